@@ -1,0 +1,31 @@
+"""ament_python package allocator_pkg (the repository root)."""
+
+from glob import glob
+
+from setuptools import find_packages, setup
+
+PACKAGE = "allocator_pkg"
+
+setup(
+    name=PACKAGE,
+    version="0.1.0",
+    packages=find_packages(include=[PACKAGE, f"{PACKAGE}.*"]),
+    data_files=[
+        ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
+        (f"share/{PACKAGE}", ["package.xml"]),
+        (f"share/{PACKAGE}/config", sorted(glob("config/*.yaml"))),
+        (f"share/{PACKAGE}/launch", sorted(glob("launch/*.py"))),
+    ],
+    install_requires=["setuptools", "numpy", "osqp", "pyyaml"],
+    zip_safe=True,
+    maintainer="allocator_pkg maintainers",
+    maintainer_email="allocator@example.com",
+    description="Thrust allocation node for marine and underwater vehicles (ROS 2 Jazzy).",
+    license="Apache-2.0",
+    python_requires=">=3.10",
+    entry_points={
+        "console_scripts": [
+            f"allocator_node = {PACKAGE}.node:main",
+        ],
+    },
+)
