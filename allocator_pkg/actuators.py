@@ -1,0 +1,160 @@
+"""Actuator models: force-to-command maps (1.3), (1.4) and control-surface lift and drag (1.48), (1.49).
+
+The allocator works in forces; these models turn a force into the set-point an actuator
+driver takes (rpm, PWM, deflection) and tell which forces the set-point range allows.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from .vehicle import CommandMapConfig, SurfaceConfig
+
+
+@dataclass(frozen=True)
+class LinearMap:
+    """F = k u (1.3), with its own k for negative force."""
+
+    gain: float
+    gain_reverse: float
+    command_min: float
+    command_max: float
+
+    def force(self, command: float) -> float:
+        return self.gain * command if command >= 0.0 else self.gain_reverse * command
+
+    def command(self, force: float) -> float:
+        return force / self.gain if force >= 0.0 else force / self.gain_reverse
+
+    def force_range(self) -> tuple[float, float]:
+        return self.force(self.command_min), self.force(self.command_max)
+
+
+@dataclass(frozen=True)
+class QuadraticMap:
+    """F = k |u| u (1.4); its inverse u = sign(F) sqrt(|F| / k)."""
+
+    gain: float
+    gain_reverse: float
+    command_min: float
+    command_max: float
+
+    def force(self, command: float) -> float:
+        gain = self.gain if command >= 0.0 else self.gain_reverse
+        return gain * abs(command) * command
+
+    def command(self, force: float) -> float:
+        gain = self.gain if force >= 0.0 else self.gain_reverse
+        return math.copysign(math.sqrt(abs(force) / gain), force)
+
+    def force_range(self) -> tuple[float, float]:
+        return self.force(self.command_min), self.force(self.command_max)
+
+
+class TableMap:
+    """Piecewise-linear map through measured (command, force) pairs, e.g. a published
+    thruster curve. A flat stretch of the curve (a dead band) inverts to its middle, so zero
+    force commands the neutral set-point, and any other force to a set-point that makes it."""
+
+    def __init__(self, command: Sequence[float], thrust: Sequence[float], command_min: float, command_max: float):
+        self._command = np.asarray(command, dtype=float)
+        self._thrust = np.asarray(thrust, dtype=float)
+        self.command_min = max(command_min, float(self._command[0]))
+        self.command_max = min(command_max, float(self._command[-1]))
+
+    def force(self, command: float) -> float:
+        return float(np.interp(command, self._command, self._thrust))
+
+    def command(self, force: float) -> float:
+        thrust, command = self._thrust, self._command
+        flat = np.flatnonzero(thrust == force)
+        if flat.size:
+            return 0.5 * float(command[flat[0]] + command[flat[-1]])
+        i = int(np.searchsorted(thrust, force))
+        if i == 0:
+            return float(command[0])
+        if i == len(thrust):
+            return float(command[-1])
+        share = (force - thrust[i - 1]) / (thrust[i] - thrust[i - 1])
+        return float(command[i - 1] + share * (command[i] - command[i - 1]))
+
+    def force_range(self) -> tuple[float, float]:
+        return self.force(self.command_min), self.force(self.command_max)
+
+
+CommandMap = LinearMap | QuadraticMap | TableMap
+
+
+def command_map(config: CommandMapConfig) -> CommandMap:
+    """The map a thruster's configuration describes."""
+    if config.kind == "table":
+        return TableMap(config.table_command, config.table_thrust, config.command_min, config.command_max)
+    kind = QuadraticMap if config.kind == "quadratic" else LinearMap
+    return kind(config.gain, config.gain_reverse, config.command_min, config.command_max)
+
+
+class CommandMaps:
+    """Commands of every actuator at once: vectorised for linear and quadratic maps.
+
+    ``surfaces`` are control surfaces, whose command is the deflection delta = L / k_L
+    (1.48); their lift gains come with each call because they change with speed.
+    """
+
+    def __init__(self, maps: Sequence[CommandMap | None]):
+        self.maps = list(maps)
+        self._linear = np.array([i for i, m in enumerate(maps) if isinstance(m, LinearMap)], dtype=int)
+        self._quadratic = np.array([i for i, m in enumerate(maps) if isinstance(m, QuadraticMap)], dtype=int)
+        self._table = [i for i, m in enumerate(maps) if isinstance(m, TableMap)]
+        self._surfaces = np.array([i for i, m in enumerate(maps) if m is None], dtype=int)
+        gains = np.array([m.gain if isinstance(m, (LinearMap, QuadraticMap)) else 1.0 for m in maps])
+        reverse = np.array([m.gain_reverse if isinstance(m, (LinearMap, QuadraticMap)) else 1.0 for m in maps])
+        self._gain = gains
+        self._gain_reverse = reverse
+        self._low = np.array([m.command_min if m is not None else -np.inf for m in maps])
+        self._high = np.array([m.command_max if m is not None else np.inf for m in maps])
+
+    def commands(self, force: np.ndarray, efficiency: np.ndarray, lift_gain: np.ndarray) -> np.ndarray:
+        """Set-points giving ``force``; a DEGRADED actuator (efficiency e < 1) is commanded
+        for force / e so that it still produces ``force``."""
+        nominal = force / efficiency
+        command = np.zeros_like(force)
+        gain = np.where(nominal >= 0.0, self._gain, self._gain_reverse)
+        idx = self._linear
+        command[idx] = nominal[idx] / gain[idx]
+        idx = self._quadratic
+        command[idx] = np.sign(nominal[idx]) * np.sqrt(np.abs(nominal[idx]) / gain[idx])
+        for i in self._table:
+            command[i] = self.maps[i].command(nominal[i])
+        idx = self._surfaces
+        if idx.size:
+            k = lift_gain[idx]
+            command[idx] = np.divide(force[idx], k, out=np.zeros(idx.size), where=k > 0.0)
+        return np.clip(command, self._low, self._high)
+
+
+def flow_speed(surface: SurfaceConfig, speed: float) -> float:
+    """u_f of (1.48): the surge speed, scaled by the wake factor behind a propeller."""
+    return speed * surface.wake_speed_factor if surface.flow == "propeller_wake" else speed
+
+
+def lift_gain(surface: SurfaceConfig, water_density: float, speed: float) -> float:
+    """k_L = 1/2 rho_w A u_f^2 C_L, lift per radian (1.48), (1.52); zero below the
+    surface's minimum control speed (the surface is then unavailable)."""
+    u_f = flow_speed(surface, speed)
+    if u_f < surface.min_control_speed or u_f <= 0.0:
+        return 0.0
+    return 0.5 * water_density * surface.area * u_f * u_f * surface.lift_coefficient
+
+
+def drag_gain(surface: SurfaceConfig, water_density: float, speed: float) -> float:
+    """k_D = 1/2 rho_w A u_f^2 C_D, drag per squared radian (1.49), (1.58)."""
+    u_f = flow_speed(surface, speed)
+    if u_f < surface.min_control_speed or u_f <= 0.0:
+        return 0.0
+    return 0.5 * water_density * surface.area * u_f * u_f * surface.drag_coefficient

@@ -1,0 +1,446 @@
+"""The allocator: state, faults and speed around one allocation method.
+
+Each sample :meth:`Allocator.allocate` turns the requested generalised force into:
+
+1. this sample's limits: thrust boxes scaled by faults and tightened by rate limits,
+   control-surface ranges from the speed (1.48), and the allowed angles of every
+   rotatable thruster (:func:`allocator_pkg.azimuth.plan`);
+2. an extended force vector from the configured method (``qp``, ``pseudoinverse`` or
+   ``nonlinear``), or from the pseudo-inverse with clipping if the solver fails;
+3. thrust, angle and command of every actuator, inside every limit whatever the solver
+   returned, with the drag of the control surfaces compensated by the thrusters
+   (1.56)-(1.58);
+4. the achieved wrench, saturation flag and power estimate.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .actuators import CommandMaps, command_map, drag_gain, lift_gain
+from .azimuth import AzimuthLimits, AzimuthState, plan, resolve
+from .configuration_matrix import configuration_matrix
+from .faults import NOMINAL, Fault, FaultMode
+from .methods.nonlinear import NonlinearAllocation
+from .methods.pseudoinverse import PseudoInverse, PseudoInverseAllocation
+from .methods.qp import QPAllocation
+from .model import MethodOutput, Model, SampleLimits
+from .schema import DOF_NAMES, METHODS
+from .sectors import in_feasible_sector
+from .vehicle import Vehicle
+
+SATURATION_TOLERANCE = 1e-3
+"""A request counts as met when every controlled DOF is within this fraction of
+max(|tau|, largest thrust_max) of it."""
+
+_SURGE = DOF_NAMES.index("surge")
+
+
+@dataclass
+class AllocationResult:
+    """One sample's answer; arrays are per actuator in configuration order."""
+
+    thrust: np.ndarray
+    azimuth: np.ndarray
+    command: np.ndarray
+    achieved: np.ndarray
+    requested: np.ndarray
+    saturated: bool
+    status: str
+    iterations: int
+    solve_time: float
+    power: float
+    method: str
+    mode: np.ndarray
+    available: np.ndarray
+    drag: float = 0.0
+
+
+@dataclass
+class AllocatorStats:
+    """Counters since the allocator was made: solver set-ups, samples, fallbacks."""
+
+    solver_setups: int = 0
+    samples: int = 0
+    fallbacks: int = 0
+
+
+@dataclass
+class _State:
+    thrust: np.ndarray
+    angle: np.ndarray
+    deflection: np.ndarray
+    azimuth: list[AzimuthState] = field(default_factory=list)
+
+
+class Allocator:
+    """Thrust allocation for one vehicle; see the module docstring for a sample's steps.
+
+    ``method`` overrides the configuration's method, ``dt`` its sample time 1/rate_hz.
+    """
+
+    def __init__(self, vehicle: Vehicle, method: str | None = None, dt: float | None = None):
+        if method is not None and method not in METHODS:
+            raise ValueError(f"unknown method '{method}'; choose from {', '.join(METHODS)}")
+        if dt is not None and not (math.isfinite(dt) and dt > 0.0):
+            raise ValueError(f"dt must be a positive number of seconds, got {dt}")
+        self._method_override = method
+        self._dt = dt
+        self._methods: dict[str, object] = {}
+        self._retired_setups = 0
+        self._faults: dict[str, Fault] = {}
+        self._speed = 0.0
+        self.stats = AllocatorStats()
+        self._configure(vehicle)
+        self.reset()
+
+    # -- configuration ----------------------------------------------------------------
+
+    @property
+    def vehicle(self) -> Vehicle:
+        return self._vehicle
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return self._vehicle.names
+
+    @property
+    def dofs(self) -> tuple[str, ...]:
+        return self._vehicle.dofs
+
+    @property
+    def method(self) -> str:
+        return self._method.name
+
+    @property
+    def dt(self) -> float:
+        return self._model.dt
+
+    @property
+    def faults(self) -> dict[str, Fault]:
+        return dict(self._faults)
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the configuration cannot do (DOFs out of reach), for the operator."""
+        return list(self._warnings)
+
+    def reconfigure(self, vehicle: Vehicle) -> None:
+        """Use a new configuration of the same actuators; state and faults carry over.
+
+        Values on the same sparsity pattern update the running solver; only a change of
+        structure (DOFs, polygon sides, saturation mode) sets one up again.
+        """
+        old = self._vehicle
+        if [(a.name, a.type) for a in vehicle.actuators] != [(a.name, a.type) for a in old.actuators]:
+            raise ValueError("reconfigure keeps the actuators (names and types); build a new Allocator instead")
+        self._configure(vehicle)
+        for state, i in zip(self._state.azimuth, self._model.rot):
+            rotation = vehicle.actuators[i].rotation
+            if not in_feasible_sector(rotation, state.angle):
+                state.angle = min(max(state.angle, rotation.azimuth_min), rotation.azimuth_max)
+
+    def _configure(self, vehicle: Vehicle) -> None:
+        model = Model.build(vehicle, self._dt if self._dt is not None else 1.0 / vehicle.rate_hz)
+        name = self._method_override or vehicle.method
+        stale = [key for key, method in self._methods.items() if method.structure != model.structure]
+        for key in stale:
+            self._retired_setups += self._methods.pop(key).setups
+        self._inverse = PseudoInverse(model)
+        self._fallback = PseudoInverseAllocation(model, self._inverse)
+        for method in self._methods.values():
+            method.update_model(model)
+        if name not in self._methods:
+            self._methods[name] = self._build_method(name, model)
+        self._method = self._methods[name]
+        self._model = model
+        self._vehicle = vehicle
+        self._maps = CommandMaps([None if a.is_surface else command_map(a.command) for a in vehicle.actuators])
+        self._warnings = _reachability_warnings(model)
+        self._apply_speed()
+        self._update_stats()
+
+    def _build_method(self, name: str, model: Model):
+        if name == "qp":
+            return QPAllocation(model)
+        if name == "nonlinear":
+            return NonlinearAllocation(model)
+        return PseudoInverseAllocation(model)
+
+    def _update_stats(self) -> None:
+        self.stats.solver_setups = self._retired_setups + sum(m.setups for m in self._methods.values())
+
+    # -- state, speed and faults ------------------------------------------------------
+
+    def reset(self) -> None:
+        """Back to the start-up state: zero thrust, initial angles; faults are kept."""
+        model = self._model
+        angle = np.zeros(model.r)
+        for i in model.rot:
+            angle[i] = self._vehicle.actuators[i].rotation.initial
+        self._state = _State(thrust=np.zeros(model.r), angle=angle, deflection=np.zeros(model.r),
+                             azimuth=[AzimuthState(angle=float(angle[i])) for i in model.rot])
+
+    @property
+    def thrust(self) -> np.ndarray:
+        return self._state.thrust.copy()
+
+    @property
+    def azimuth(self) -> np.ndarray:
+        return self._state.angle.copy()
+
+    @property
+    def speed(self) -> float:
+        return self._speed
+
+    def set_speed(self, speed: float) -> None:
+        """Surge speed [m/s] for the flow over control surfaces (1.48); values only."""
+        speed = float(speed)
+        if not math.isfinite(speed):
+            raise ValueError(f"speed must be finite, got {speed}")
+        self._speed = speed
+        self._apply_speed()
+
+    def _apply_speed(self) -> None:
+        v = self._vehicle
+        self._lift = np.array([lift_gain(a.surface, v.water_density, self._speed) if a.is_surface else 0.0
+                               for a in v.actuators])
+        self._drag = np.array([drag_gain(a.surface, v.water_density, self._speed) if a.is_surface else 0.0
+                               for a in v.actuators])
+
+    def set_fault(self, name: str, mode: FaultMode | int, efficiency: float | None = None,
+                  azimuth: float | None = None) -> None:
+        """Set one actuator's fault; it applies from the next sample. Raises ValueError
+        (naming the valid choices) for an unknown actuator or mode, an efficiency outside
+        (0, 1], or STUCK on an actuator that cannot be stuck at an angle."""
+        if name not in self.names:
+            raise ValueError(f"unknown actuator '{name}'; actuators: {', '.join(self.names)}")
+        try:
+            mode = FaultMode(mode)
+        except ValueError:
+            raise ValueError(f"unknown fault mode {mode!r}; modes: "
+                             + ", ".join(f"{m.name}={m.value}" for m in FaultMode)) from None
+        actuator = self._vehicle.actuator(name)
+        if mode == FaultMode.NOMINAL:
+            self._faults.pop(name, None)
+            return
+        if mode == FaultMode.DEGRADED:
+            if efficiency is None or not (math.isfinite(efficiency) and 0.0 < efficiency <= 1.0):
+                raise ValueError(f"DEGRADED needs an efficiency in (0, 1], got {efficiency}")
+            self._faults[name] = Fault(mode, efficiency=float(efficiency))
+            return
+        if mode == FaultMode.STUCK:
+            self._faults[name] = Fault(mode, azimuth=self._stuck_angle(actuator, azimuth))
+            return
+        self._faults[name] = Fault(mode, efficiency=0.0)
+
+    def _stuck_angle(self, actuator, azimuth: float | None) -> float:
+        stuckable = [a.name for a in self._vehicle.actuators if a.rotatable or a.is_surface]
+        if not (actuator.rotatable or actuator.is_surface):
+            raise ValueError(f"STUCK applies to rotatable thrusters and control surfaces, not the {actuator.type} "
+                             f"actuator '{actuator.name}'; these can be stuck: {', '.join(stuckable) or 'none'}")
+        if azimuth is None or not math.isfinite(azimuth):
+            raise ValueError(f"STUCK needs a finite angle, got {azimuth}")
+        if actuator.rotatable:
+            rotation = actuator.rotation
+            if not in_feasible_sector(rotation, azimuth):
+                raise ValueError(f"angle {azimuth:g} rad is outside the feasible sector "
+                                 f"[{rotation.azimuth_min:g}, {rotation.azimuth_max:g}] of '{actuator.name}'")
+        elif abs(azimuth) > actuator.surface.deflection_max:
+            raise ValueError(f"deflection {azimuth:g} rad is beyond deflection_max "
+                             f"{actuator.surface.deflection_max:g} of '{actuator.name}'")
+        return float(azimuth)
+
+    def clear_faults(self) -> None:
+        """Every actuator back to NOMINAL."""
+        self._faults.clear()
+
+    def modes(self) -> np.ndarray:
+        """FaultMode of every actuator, configuration order."""
+        return np.array([self._faults.get(n, NOMINAL).mode for n in self.names], dtype=np.uint8)
+
+    def configuration_matrix(self, azimuth: Sequence[float] | None = None) -> np.ndarray:
+        """T(alpha), 6 x r, at the given angles or the current ones."""
+        angles = self._state.angle if azimuth is None else np.asarray(azimuth, dtype=float)
+        if angles.shape != (self._model.r,):
+            raise ValueError(f"azimuth needs {self._model.r} angles, got shape {angles.shape}")
+        return configuration_matrix(self._vehicle.actuators, angles)
+
+    # -- one sample -------------------------------------------------------------------
+
+    def allocate(self, tau: Sequence[float]) -> AllocationResult:
+        """Allocate the generalised force [X, Y, Z, K, M, N]; uncontrolled DOFs are ignored."""
+        requested = np.asarray(tau, dtype=float).reshape(-1)
+        if requested.shape != (6,):
+            raise ValueError(f"tau needs 6 components [X, Y, Z, K, M, N], got {requested.size}")
+        if not np.all(np.isfinite(requested)):
+            raise ValueError(f"tau must be finite, got {requested.tolist()}")
+        start = time.perf_counter()
+        model = self._model
+        tau_c = requested[model.dof_index]
+        efficiency, stuck = self._fault_arrays()
+        limits = self._limits(tau_c, efficiency, stuck)
+        output = self._solve(tau_c, limits)
+        thrust, angle = self._resolve(output, limits)
+        drag = 0.0
+        if model.surfaces.size and _SURGE in model.dof_index:
+            drag = self._surface_drag(thrust)
+            if drag > 0.0:
+                frozen = replace(limits, low=limits.low.copy(), high=limits.high.copy())
+                frozen.low[model.surfaces] = frozen.high[model.surfaces] = thrust[model.surfaces]
+                compensated = tau_c.copy()
+                compensated[int(np.flatnonzero(model.dof_index == _SURGE)[0])] += drag
+                second = self._solve(compensated, frozen)
+                second.iterations += output.iterations
+                output = second
+                thrust, angle = self._resolve(output, frozen)
+        achieved = self._model.t_e @ self._extended(thrust, angle)
+        achieved[_SURGE] -= drag
+        scale = max(float(np.max(np.abs(tau_c))), float(np.max(model.thrust_max)), 1e-9)
+        saturated = bool(np.max(np.abs(achieved[model.dof_index] - tau_c)) > SATURATION_TOLERANCE * scale)
+        command = self._maps.commands(thrust, np.where(efficiency > 0.0, efficiency, 1.0), self._lift)
+        self._commit(thrust, angle)
+        self.stats.samples += 1
+        self._update_stats()
+        return AllocationResult(
+            thrust=thrust, azimuth=angle, command=command, achieved=achieved, requested=requested,
+            saturated=saturated, status=output.status, iterations=output.iterations,
+            solve_time=time.perf_counter() - start, power=float(np.sum(model.power * np.abs(thrust) ** 1.5)),
+            method=self._method.name, mode=self.modes(), available=self._available(efficiency), drag=drag)
+
+    def stop(self) -> AllocationResult:
+        """Zero thrust at once, angles held (watchdog and shutdown); bypasses rate limits."""
+        model = self._model
+        thrust = np.zeros(model.r)
+        angle = self._state.angle.copy()
+        efficiency, _ = self._fault_arrays()
+        command = self._maps.commands(thrust, np.where(efficiency > 0.0, efficiency, 1.0), self._lift)
+        self._commit(thrust, angle)
+        return AllocationResult(
+            thrust=thrust, azimuth=angle, command=command, achieved=np.zeros(6), requested=np.zeros(6),
+            saturated=False, status="stopped", iterations=0, solve_time=0.0, power=0.0,
+            method=self._method.name, mode=self.modes(), available=self._available(efficiency))
+
+    def _fault_arrays(self) -> tuple[np.ndarray, dict[int, float]]:
+        efficiency = np.ones(self._model.r)
+        stuck: dict[int, float] = {}
+        for i, name in enumerate(self.names):
+            fault = self._faults.get(name)
+            if fault is None:
+                continue
+            if fault.mode == FaultMode.STUCK:
+                stuck[i] = fault.azimuth
+            else:
+                efficiency[i] = fault.efficiency
+        return efficiency, stuck
+
+    def _available(self, efficiency: np.ndarray) -> np.ndarray:
+        available = efficiency > 0.0
+        available[self._model.surfaces] &= self._lift[self._model.surfaces] > 0.0
+        return available
+
+    def _limits(self, tau: np.ndarray, efficiency: np.ndarray, stuck: dict[int, float]) -> SampleLimits:
+        model = self._model
+        state = self._state
+        range_low = model.thrust_min * efficiency
+        range_high = model.thrust_max * efficiency
+        previous = state.thrust.copy()
+        step = model.thrust_step.copy()
+        surfaces = model.surfaces
+        if surfaces.size:
+            lift = self._lift[surfaces]
+            deflection_max = np.array([self._vehicle.actuators[i].surface.deflection_max for i in surfaces])
+            range_high[surfaces] = lift * deflection_max * efficiency[surfaces]
+            range_low[surfaces] = -range_high[surfaces]
+            previous[surfaces] = lift * state.deflection[surfaces]
+            step[surfaces] = np.multiply(lift, model.thrust_step[surfaces], out=np.zeros(surfaces.size),
+                                         where=lift > 0.0)
+        low = np.minimum(np.maximum(previous - step, range_low), range_high)
+        high = np.minimum(np.maximum(previous + step, range_low), range_high)
+        for i in surfaces:
+            if i in stuck:
+                low[i] = high[i] = self._lift[i] * stuck[i]
+        azimuth: list[AzimuthLimits] = []
+        if model.rot.size:
+            excluded = (range_low == 0.0) & (range_high == 0.0)
+            desired = self._inverse.desired(tau, excluded)
+            for state_k, i, (c1, c2) in zip(state.azimuth, model.rot, model.rot_columns):
+                actuator = self._vehicle.actuators[i]
+                limits_k = plan(actuator.rotation, state_k, model.angle_step[i], (range_low[i], range_high[i]),
+                                model.thrust_step[i], (desired[c1], desired[c2]), model.hold[i], stuck.get(i))
+                azimuth.append(limits_k)
+                low[i], high[i] = limits_k.thrust_low, limits_k.thrust_high
+        return SampleLimits(low=low, high=high, rot=model.rot, azimuth=azimuth, angle=state.angle.copy(),
+                            thrust=state.thrust.copy())
+
+    def _solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
+        output = self._method.solve(tau, limits)
+        if not output.solved:
+            self.stats.fallbacks += 1
+            fallback = self._fallback.solve(tau, limits)
+            fallback.status = f"fallback: pseudoinverse ({output.status})"
+            fallback.iterations = output.iterations
+            output = fallback
+        return output
+
+    def _resolve(self, output: MethodOutput, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray]:
+        """Per-actuator thrust and angle from the extended force, inside every limit."""
+        model = self._model
+        thrust = np.clip(output.force[model.starts], limits.low, limits.high)
+        angle = limits.angle.copy()
+        for k, (i, (c1, c2)) in enumerate(zip(model.rot, model.rot_columns)):
+            proposal = None if output.angle is None else float(output.angle[i])
+            thrust[i], angle[i] = resolve(limits.azimuth[k], float(limits.angle[i]),
+                                          (float(output.force[c1]), float(output.force[c2])), float(model.hold[i]),
+                                          self._vehicle.actuators[i].rotation.continuous, proposal)
+        return thrust, angle
+
+    def _extended(self, thrust: np.ndarray, angle: np.ndarray) -> np.ndarray:
+        """The extended force vector (1.18) of per-actuator thrust and angle."""
+        model = self._model
+        force = thrust[model.extended_owner].copy()
+        rot = model.rot
+        force[model.rot_columns[:, 0]] *= np.cos(angle[rot])
+        force[model.rot_columns[:, 1]] *= np.sin(angle[rot])
+        return force
+
+    def _surface_drag(self, thrust: np.ndarray) -> float:
+        """X_cs of (1.57): the added resistance of all deflected control surfaces."""
+        surfaces = self._model.surfaces
+        lift = self._lift[surfaces]
+        deflection = np.divide(thrust[surfaces], lift, out=np.zeros(surfaces.size), where=lift > 0.0)
+        return float(np.sum(self._drag[surfaces] * deflection * deflection))
+
+    def _commit(self, thrust: np.ndarray, angle: np.ndarray) -> None:
+        state = self._state
+        model = self._model
+        state.thrust = thrust.copy()
+        state.angle = angle.copy()
+        surfaces = model.surfaces
+        lift = self._lift[surfaces]
+        state.deflection[surfaces] = np.divide(thrust[surfaces], lift, out=np.zeros(surfaces.size), where=lift > 0.0)
+        for azimuth_state, i in zip(state.azimuth, model.rot):
+            azimuth_state.angle = float(angle[i])
+            azimuth_state.thrust = float(thrust[i])
+
+
+def _reachability_warnings(model: Model) -> list[str]:
+    """Controlled DOFs, or combinations of them, that no actuator can produce."""
+    warnings = []
+    dofs = model.vehicle.dofs
+    for k, dof in enumerate(dofs):
+        if not np.any(np.abs(model.t_ec[k]) > 1e-12):
+            warnings.append(f"no actuator can produce {dof}; requests in it will always be saturated")
+    rank = np.linalg.matrix_rank(model.t_ec, tol=1e-9)
+    if rank < model.n and not warnings:
+        warnings.append(f"the actuators reach only {rank} independent directions of the {model.n} controlled DOFs "
+                        f"({', '.join(dofs)}); some combinations will be saturated")
+    uncontrolled = [d for d in DOF_NAMES if d not in dofs]
+    if uncontrolled:
+        warnings.append(f"not controlled (left to the vehicle): {', '.join(uncontrolled)}")
+    return warnings

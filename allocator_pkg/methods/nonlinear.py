@@ -1,0 +1,188 @@
+"""Nonlinear allocation (1.44) by sequential linearised QPs (1.45), Johansen et al. (2004).
+
+Variables per QP: the force change Delta f of every actuator (signed thrust along its
+axis; for rotatable thrusters along the current angle), the angle change Delta alpha of
+every rotatable thruster, and the slack s:
+
+    minimise   sum_i c_i (f0_i + Delta f_i)^2  +  s' Q s  +  sum_j w_j Delta alpha_j^2
+               + d/dalpha [rho / (eps + det(T W^-1 T'))]|alpha0 . Delta alpha
+    subject to T(alpha0) Delta f + d(T(alpha) f)/dalpha|alpha0,f0 Delta alpha - s = tau - T(alpha0) f0
+               low - f0 <= Delta f <= high - f0
+               alpha_low - alpha0 <= Delta alpha <= alpha_high - alpha0
+
+- Power: P_i |f_i|^(3/2) is replaced by c_i f_i^2 with c_i = 3/4 P_i / sqrt(|f0_i|): the same
+  gradient at f0, so a fixed point of the iteration satisfies the optimality conditions of
+  (1.44), with a curvature never below the true one. Actuators with P_i = 0 (control
+  surfaces) keep the quadratic W_ii f_i^2.
+- Angle steps: w_j = Omega + the curvature the equality constraint adds along alpha_j, the
+  Hessian of the Lagrangian of (1.44), -f_j y't_j(alpha). At an unsaturated optimum the
+  multipliers satisfy y't_j = -3/2 P_j sqrt|f_j| sign(f_j), so it is 3/2 P_j |f_j|^(3/2),
+  which is used. Omega alone (1.45) would have to be tuned to each vessel's force scale;
+  without this curvature a real-time iteration overshoots and the angles chatter around the
+  optimum, leaving an O(f Delta alpha^2) wrench error.
+- Slack: the default Q is derived with c_i at half range in place of W (see
+  :meth:`allocator_pkg.model.Model.slack_weights`).
+- Singularity avoidance: the gradient of rho / (eps + det(T W^-1 T')) at alpha0, a linear cost.
+- Limits: this sample's thrust window and allowed angles (feasible sector, the piece free of
+  forbidden sectors, rate limit) from :mod:`allocator_pkg.azimuth`.
+
+To keep one OSQP instance with a constant P, the QP is written in g_i = sqrt(c_i) Delta f_i
+and h_j = sqrt(w_j) Delta alpha_j; only ``q``, ``l``, ``u`` and the ``Ax`` values of the
+equality rows change between linearisations, and each solve is warm-started.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..model import MethodOutput, Model, SampleLimits
+from .sparse_rows import Rows, ScaledProblem, entry_index, solver_settings
+
+FORCE_FLOOR = 1e-2
+"""|f0| is taken as at least this fraction of the force range in c_i, infinite at zero force."""
+
+
+def _reference_curvature(model: Model) -> np.ndarray:
+    """c_i at half of each actuator's force range."""
+    force = 0.5 * model.force_scale
+    return np.where(model.power > 0.0, 0.75 * model.power / np.sqrt(force), model.weight)
+
+
+def _turning_curvature(power: np.ndarray, force: np.ndarray) -> np.ndarray:
+    """Curvature of the Lagrangian of (1.44) along a thruster's angle, -f y't(alpha): at an
+    unsaturated optimum y't = -d(P|f|^(3/2))/df, so it equals 3/2 P |f|^(3/2)."""
+    return 1.5 * power * force ** 1.5
+
+
+class NonlinearAllocation:
+    """Allocation method ``nonlinear``."""
+
+    name = "nonlinear"
+
+    def __init__(self, model: Model):
+        self.setups = 0
+        self._setup(model)
+
+    @property
+    def structure(self) -> tuple:
+        return self.model.structure
+
+    def update_model(self, model: Model) -> None:
+        """Take a configuration with the same structure: values only, no new set-up."""
+        self._use(model)
+        self._qp.update_objective(self._p(model))
+        self._qp.update_settings(solver_settings(**vars(model.vehicle.solver)))
+
+    def _use(self, model: Model) -> None:
+        self.model = model
+        self._floor = FORCE_FLOOR * np.maximum(model.force_scale, 1e-6)
+
+    @staticmethod
+    def _p(model: Model) -> np.ndarray:
+        return np.concatenate((np.full(model.r + model.rot.size, 2.0),
+                               2.0 * model.slack_weights(_reference_curvature(model))))
+
+    def _setup(self, model: Model) -> None:
+        self._use(model)
+        r, p, n = model.r, model.rot.size, model.n
+        rows = Rows()
+        equality = [
+            rows.add([(j, 1.0) for j in range(r)] + [(r + k, 1.0) for k in range(p)] + [(r + p + d, -1.0)])
+            for d in range(n)
+        ]
+        for j in range(r + p):
+            rows.add([(j, 1.0)])
+        a = rows.matrix(r + p + n)
+        index_force = [[entry_index(a, row, j) for j in range(r)] for row in equality]
+        index_angle = [[entry_index(a, row, r + k) for k in range(p)] for row in equality]
+        self._ax_index = np.concatenate((np.array(index_force, np.int64).ravel(),
+                                         np.array(index_angle, np.int64).reshape(-1)))
+        self._equality = np.array(equality, int)
+        force = model.force_scale
+        c = _reference_curvature(model)
+        rot_force = force[model.rot]
+        omega = model.vehicle.weights.azimuth_change + _turning_curvature(model.power[model.rot], 0.5 * rot_force)
+        column_scale = np.concatenate((np.sqrt(c) * force,
+                                       np.sqrt(omega) * np.minimum(model.angle_step[model.rot], math.pi),
+                                       np.maximum(model.authority, 1e-9)))
+        self._q = np.zeros(r + p + n)
+        settings = solver_settings(**vars(model.vehicle.solver))
+        self._qp = ScaledProblem(self._p(model), self._q, a, column_scale, settings, effort=np.arange(r))
+        self.setups += 1
+
+    def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
+        model = self.model
+        rot = model.rot
+        qp = self._qp
+        n, r, p = model.n, model.r, rot.size
+        force = np.clip(limits.thrust, limits.low, limits.high)
+        angle = limits.angle.copy()
+        angle_low = np.array([lim.low for lim in limits.azimuth])
+        angle_high = np.array([lim.high for lim in limits.azimuth])
+        angle[rot] = np.clip(angle[rot], angle_low, angle_high)
+        omega = model.vehicle.weights.azimuth_change
+        iterations = 0
+        status = ""
+        for _ in range(model.vehicle.nonlinear_max_iterations):
+            t, dt = self._matrices(angle)
+            c = np.where(model.power > 0.0,
+                         0.75 * model.power / np.sqrt(np.maximum(np.abs(force), self._floor)), model.weight)
+            root = np.sqrt(c)
+            curvature = _turning_curvature(model.power[rot], np.maximum(np.abs(force[rot]), self._floor[rot]))
+            turn = np.sqrt(np.maximum(omega + curvature, 1e-12))
+            qp.update_matrix(np.concatenate(((t / root).ravel(), (dt[:, rot] * force[rot] / turn).ravel())),
+                             self._ax_index)
+            qp.low[self._equality] = qp.up[self._equality] = tau - t @ force
+            qp.low[n:n + r] = root * (limits.low - force)
+            qp.up[n:n + r] = root * (limits.high - force)
+            qp.low[n + r:] = turn * (angle_low - angle[rot])
+            qp.up[n + r:] = turn * (angle_high - angle[rot])
+            self._q[:r] = 2.0 * root * force
+            if p and model.vehicle.singularity_rho > 0.0:
+                self._q[r:r + p] = self._singularity_gradient(t, dt, limits) / turn
+            qp.update_objective(q=self._q)
+            solution = qp.solve(qp.low, qp.up)
+            iterations += solution.iterations
+            status = solution.status
+            if not solution.usable:
+                return MethodOutput(force=np.zeros(model.m), status=status, iterations=iterations, solved=False)
+            force = np.clip(force + solution.x[:r] / root, limits.low, limits.high)
+            angle[rot] = np.clip(angle[rot] + solution.x[r:r + p] / turn, angle_low, angle_high)
+        extended = np.zeros(model.m)
+        extended[model.scalar_columns] = force[model.scalar]
+        extended[model.rot_columns[:, 0]] = force[rot] * np.cos(angle[rot])
+        extended[model.rot_columns[:, 1]] = force[rot] * np.sin(angle[rot])
+        return MethodOutput(force=extended, status=status, iterations=iterations, angle=angle)
+
+    def _matrices(self, angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """T(alpha) and dT/dalpha on the controlled DOFs (n x r), from the constant T_e."""
+        model = self.model
+        rot = model.rot
+        t = np.empty((model.n, model.r))
+        dt = np.zeros((model.n, model.r))
+        t[:, model.scalar] = model.t_ec[:, model.scalar_columns]
+        if rot.size:
+            first = model.t_ec[:, model.rot_columns[:, 0]]
+            second = model.t_ec[:, model.rot_columns[:, 1]]
+            cos, sin = np.cos(angle[rot]), np.sin(angle[rot])
+            t[:, rot] = cos * first + sin * second
+            dt[:, rot] = -sin * first + cos * second
+        return t, dt
+
+    def _singularity_gradient(self, t: np.ndarray, dt: np.ndarray, limits: SampleLimits) -> np.ndarray:
+        """Gradient over the rotatable angles of rho / (eps + det(T W^-1 T')), the
+        linearised singularity term of (1.45): d det(M) = tr(adj(M) dM)."""
+        model = self.model
+        pinned = (limits.low == 0.0) & (limits.high == 0.0)
+        inverse_weight = np.where(pinned, 0.0, 1.0 / model.weight)
+        m = (t * inverse_weight) @ t.T
+        values, vectors = np.linalg.eigh(m)
+        determinant = float(np.prod(values))
+        others = np.array([np.prod(np.delete(values, i)) for i in range(len(values))])
+        adjugate = (vectors * others) @ vectors.T
+        rot = model.rot
+        d_det = 2.0 * inverse_weight[rot] * np.einsum("ik,ij,jk->k", t[:, rot], adjugate, dt[:, rot])
+        rho, epsilon = model.vehicle.singularity_rho, model.vehicle.singularity_epsilon
+        return -rho * d_det / (epsilon + determinant) ** 2

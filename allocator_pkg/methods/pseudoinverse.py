@@ -1,0 +1,134 @@
+"""Weighted generalised inverse (1.29) of the extended configuration (1.32)-(1.34).
+
+f_e = W^-1 T_e' (T_e W^-1 T_e')^-1 tau, computed as W^-1/2 pinv(T_e W^-1/2) so that it
+also answers (in the least-squares sense) when some DOF cannot be produced. The gain
+matrix is computed once per set of usable actuators and cached, never per sample: faults,
+stuck angles and actuators the sample's limits pin down change which set is used.
+
+Saturation: ``weighted`` clips each actuator to its limits (the allocator's final
+step); ``preserve_direction`` first scales every free force by one factor so that the most
+loaded actuator just reaches its limit (the uniform scale-down of common ROS thruster
+managers), then clips what rate limits still leave outside.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..model import MethodOutput, Model, SampleLimits
+
+_CACHE_SIZE = 64
+
+
+class PseudoInverse:
+    """Cached weighted pseudo-inverses of T_e over subsets of the actuators."""
+
+    def __init__(self, model: Model):
+        self.model = model
+        self._cache: dict[tuple, np.ndarray] = {}
+
+    def gain(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray:
+        """G (m x n) with f_e = G tau for the actuators not ``excluded``; a rotatable
+        thruster in ``lines`` may only push along its given angle."""
+        key = (excluded.tobytes(), tuple(sorted(lines.items())))
+        gain = self._cache.get(key)
+        if gain is None:
+            if len(self._cache) >= _CACHE_SIZE:
+                self._cache.clear()
+            gain = self._compute(excluded, lines)
+            self._cache[key] = gain
+        return gain
+
+    def _compute(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray:
+        model = self.model
+        basis_columns: list[np.ndarray] = []
+        weights: list[float] = []
+        for i, start in enumerate(model.starts):
+            if excluded[i]:
+                continue
+            if model.rotatable[i]:
+                pairs = [(math.cos(lines[i]), math.sin(lines[i]))] if i in lines else [(1.0, 0.0), (0.0, 1.0)]
+                for c1, c2 in pairs:
+                    column = np.zeros(model.m)
+                    column[start], column[start + 1] = c1, c2
+                    basis_columns.append(column)
+                    weights.append(model.weight[i])
+            else:
+                column = np.zeros(model.m)
+                column[start] = 1.0
+                basis_columns.append(column)
+                weights.append(model.weight[i])
+        if not basis_columns:
+            return np.zeros((model.m, model.n))
+        basis = np.column_stack(basis_columns) / np.sqrt(np.asarray(weights))
+        return basis @ np.linalg.pinv(model.t_ec @ basis, rcond=1e-10)
+
+    def desired(self, tau: np.ndarray, excluded: np.ndarray) -> np.ndarray:
+        """The unconstrained extended solution (1.33) with the usable actuators."""
+        return self.gain(excluded, {}) @ tau
+
+
+class PseudoInverseAllocation:
+    """Allocation method ``pseudoinverse``."""
+
+    name = "pseudoinverse"
+
+    def __init__(self, model: Model, inverse: PseudoInverse | None = None):
+        self.model = model
+        self.inverse = inverse or PseudoInverse(model)
+        self.setups = 0
+
+    @property
+    def structure(self) -> tuple:
+        return self.model.structure
+
+    def update_model(self, model: Model) -> None:
+        """A new configuration: new gains on the next sample (no solver to set up)."""
+        self.model = model
+        self.inverse = PseudoInverse(model)
+
+    def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
+        model = self.model
+        fixed = limits.fixed()
+        lines = {int(i): lim.low for i, lim in zip(model.rot, limits.azimuth) if lim.line and not fixed[i]}
+        pinned = fixed_forces(model, limits, fixed)
+        free = self.inverse.gain(fixed, lines) @ (tau - model.t_ec @ pinned)
+        if model.vehicle.saturation == "preserve_direction":
+            free *= scale_to_limits(model, limits, free, fixed)
+        return MethodOutput(force=free + pinned, status="solved")
+
+
+def fixed_forces(model: Model, limits: SampleLimits, fixed: np.ndarray) -> np.ndarray:
+    """Extended forces of the actuators the limits pin down (zero elsewhere)."""
+    force = np.zeros(model.m)
+    for i in np.flatnonzero(fixed):
+        start = model.starts[i]
+        if model.rotatable[i]:
+            angle = limits.azimuth[int(np.searchsorted(model.rot, i))].low
+            force[start] = limits.low[i] * math.cos(angle)
+            force[start + 1] = limits.low[i] * math.sin(angle)
+        else:
+            force[start] = limits.low[i]
+    return force
+
+
+def scale_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, fixed: np.ndarray) -> float:
+    """The largest factor in [0, 1] that brings every free force within its limits."""
+    scale = 1.0
+    for i, start in enumerate(model.starts):
+        if fixed[i]:
+            continue
+        if model.rotatable[i]:
+            lim = limits.azimuth[int(np.searchsorted(model.rot, i))]
+            magnitude = math.hypot(force[start], force[start + 1])
+            if magnitude > lim.magnitude_max:
+                scale = min(scale, lim.magnitude_max / magnitude)
+        else:
+            f = force[start]
+            if f > limits.high[i]:
+                scale = min(scale, max(limits.high[i], 0.0) / f)
+            elif f < limits.low[i]:
+                scale = min(scale, min(limits.low[i], 0.0) / f)
+    return scale

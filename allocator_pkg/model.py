@@ -1,0 +1,177 @@
+"""Configuration-time arrays shared by the allocation methods, and what passes between
+the allocator and a method each sample.
+
+A :class:`Model` is computed once per configuration (never per sample): index maps,
+the extended configuration matrix T_e restricted to the controlled DOFs, weights and
+limits as arrays.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .actuators import lift_gain
+from .azimuth import HOLD_FRACTION, AzimuthLimits
+from .configuration_matrix import extended_columns, extended_configuration_matrix
+from .vehicle import ActuatorConfig, Vehicle
+
+DEFAULT_SLACK_RATIO = 1e6
+"""Default Q_k: a wrench error of 1/1000 of DOF k's authority costs as much as every
+actuator at full force, sum_i c_i F_i^2 with c_i the effort curvature (W_ii in the qp method)."""
+
+REFERENCE_FLOW_SPEED = 2.0
+"""[m/s] Flow speed at which a control surface's force range sets its numerical scale."""
+
+
+def _force_scale(actuator: ActuatorConfig, water_density: float) -> float:
+    """The order of magnitude of an actuator's force, for scaling the solver's problem."""
+    if actuator.is_surface:
+        surface = actuator.surface
+        speed = max(REFERENCE_FLOW_SPEED, 2.0 * surface.min_control_speed) / (
+            surface.wake_speed_factor if surface.flow == "propeller_wake" else 1.0)
+        return max(lift_gain(surface, water_density, speed) * surface.deflection_max, 1e-6)
+    return max(actuator.thrust_max, -actuator.thrust_min)
+
+
+@dataclass(frozen=True)
+class Model:
+    vehicle: Vehicle
+    dt: float
+    dof_index: np.ndarray
+    rotatable: np.ndarray
+    rot: np.ndarray
+    scalar: np.ndarray
+    surfaces: np.ndarray
+    starts: np.ndarray
+    scalar_columns: np.ndarray
+    rot_columns: np.ndarray
+    extended_owner: np.ndarray
+    t_e: np.ndarray
+    t_ec: np.ndarray
+    weight: np.ndarray
+    weight_ext: np.ndarray
+    power: np.ndarray
+    thrust_min: np.ndarray
+    thrust_max: np.ndarray
+    thrust_step: np.ndarray
+    angle_step: np.ndarray
+    hold: np.ndarray
+    force_scale: np.ndarray
+    authority: np.ndarray
+
+    def slack_weights(self, curvature: np.ndarray) -> np.ndarray:
+        """Q: the configured weights.slack, or the default for an effort curvature c_i per
+        actuator (see DEFAULT_SLACK_RATIO)."""
+        if self.vehicle.weights.slack:
+            return np.array(self.vehicle.weights.slack)
+        effort = float(np.sum(curvature * self.force_scale ** 2))
+        return DEFAULT_SLACK_RATIO * effort / np.maximum(self.authority, 1e-9 * np.max(self.authority) + 1e-300) ** 2
+
+    @property
+    def r(self) -> int:
+        return len(self.vehicle.actuators)
+
+    @property
+    def n(self) -> int:
+        return len(self.dof_index)
+
+    @property
+    def m(self) -> int:
+        return self.t_e.shape[1]
+
+    @property
+    def structure(self) -> tuple:
+        """What fixes the sparsity pattern of the solver matrices; a configuration change
+        that keeps it is applied by updating values only."""
+        v = self.vehicle
+        return (tuple(a.type for a in v.actuators), v.dofs, v.azimuth_polygon_sides, v.saturation)
+
+    @classmethod
+    def build(cls, vehicle: Vehicle, dt: float) -> Model:
+        actuators = vehicle.actuators
+        rotatable = np.array([a.rotatable for a in actuators], dtype=bool)
+        surfaces = np.array([a.is_surface for a in actuators], dtype=bool)
+        starts = np.array(extended_columns(actuators), dtype=int)
+        t_e = extended_configuration_matrix(actuators)
+        dof_index = np.array(vehicle.dof_indices, dtype=int)
+        owner = np.concatenate([[i] * (2 if a.rotatable else 1) for i, a in enumerate(actuators)]).astype(int)
+        weight = np.array([a.weight for a in actuators])
+
+        def per_second(rate: float) -> float:
+            return rate * dt if rate > 0.0 else math.inf
+
+        thrust_step = np.array([
+            per_second(a.surface.deflection_rate_max if a.is_surface else a.thrust_rate_max) for a in actuators
+        ])
+        angle_step = np.array([per_second(a.rotation.rate_max) if a.rotatable else 0.0 for a in actuators])
+        thrust_max = np.array([0.0 if a.is_surface else a.thrust_max for a in actuators])
+        force_scale = np.array([_force_scale(a, vehicle.water_density) for a in actuators])
+        rot = np.flatnonzero(rotatable)
+        scalar = np.flatnonzero(~rotatable)
+        return cls(
+            vehicle=vehicle,
+            dt=dt,
+            dof_index=dof_index,
+            rotatable=rotatable,
+            rot=rot,
+            scalar=scalar,
+            surfaces=np.flatnonzero(surfaces),
+            starts=starts,
+            scalar_columns=starts[scalar],
+            rot_columns=np.stack([starts[rot], starts[rot] + 1], axis=1) if rot.size else np.zeros((0, 2), int),
+            extended_owner=owner,
+            t_e=t_e,
+            t_ec=t_e[dof_index],
+            weight=weight,
+            weight_ext=weight[owner],
+            power=np.array([a.power_coefficient for a in actuators]),
+            thrust_min=np.array([0.0 if a.is_surface else a.thrust_min for a in actuators]),
+            thrust_max=thrust_max,
+            thrust_step=thrust_step,
+            angle_step=angle_step,
+            hold=HOLD_FRACTION * np.maximum(thrust_max, 1e-6),
+            force_scale=force_scale,
+            authority=np.abs(t_e[dof_index]) @ force_scale[owner],
+        )
+
+
+FIXED_TOLERANCE = 1e-12
+"""Bounds closer than this [N, rad] leave an actuator no freedom."""
+
+
+@dataclass
+class SampleLimits:
+    """What one sample allows. ``low``/``high``: signed force bounds of every actuator
+    (for rotatable thrusters, along the angle, from their ``azimuth`` limits);
+    ``azimuth``: one :class:`AzimuthLimits` per rotatable thruster, at indices ``rot``;
+    ``angle``/``thrust``: the state at the start of the sample."""
+
+    low: np.ndarray
+    high: np.ndarray
+    rot: np.ndarray
+    azimuth: list[AzimuthLimits]
+    angle: np.ndarray
+    thrust: np.ndarray
+
+    def fixed(self) -> np.ndarray:
+        """Actuators whose force and angle the limits alone decide this sample."""
+        fixed = self.high - self.low <= FIXED_TOLERANCE
+        for i, limits in zip(self.rot, self.azimuth):
+            fixed[i] = fixed[i] and limits.high - limits.low <= FIXED_TOLERANCE
+        return fixed
+
+
+@dataclass
+class MethodOutput:
+    """A method's answer: the extended force vector (1.16), and how the solve went.
+    ``angle`` optionally proposes the angle of each actuator (nonlinear method)."""
+
+    force: np.ndarray
+    status: str
+    iterations: int = 0
+    solve_time: float = 0.0
+    solved: bool = True
+    angle: np.ndarray | None = None

@@ -1,0 +1,240 @@
+"""The configuration schema: every parameter the allocator reads, in one table.
+
+The same table drives the params-file loader (:func:`allocator_pkg.vehicle.load_vehicle`),
+the node's parameter declarations (descriptions, ranges, read-only flags) and the
+reference page ``docs/configuration.md``. Parameter names are the ROS ones: dotted,
+vehicle-wide keys such as ``weights.slack``, and per-actuator keys under
+``actuators.<name>.``.
+
+Values are typed the way a ROS 2 params file types them: an integer is accepted where a
+float is expected, a list holds one element type, and an empty list means "not set".
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+FIXED = "fixed"
+AZIMUTH = "azimuth"
+AZIMUTH_VERTICAL = "azimuth_vertical"
+RUDDER = "rudder"
+FIN = "fin"
+ACTUATOR_TYPES = (FIXED, AZIMUTH, AZIMUTH_VERTICAL, RUDDER, FIN)
+ROTATABLE_TYPES = (AZIMUTH, AZIMUTH_VERTICAL)
+SURFACE_TYPES = (RUDDER, FIN)
+THRUSTER_TYPES = (FIXED, AZIMUTH, AZIMUTH_VERTICAL)
+
+DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+METHODS = ("qp", "pseudoinverse", "nonlinear")
+SATURATION_MODES = ("weighted", "preserve_direction")
+COMMAND_MAPS = ("linear", "quadratic", "table")
+FLOW_MODELS = ("free", "propeller_wake")
+QOS_RELIABILITY = ("reliable", "best_effort")
+
+ACTUATOR_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+
+FLOAT = "float"
+INT = "int"
+BOOL = "bool"
+STR = "str"
+FLOAT_LIST = "float[]"
+STR_LIST = "string[]"
+
+
+@dataclass(frozen=True)
+class Key:
+    """One parameter: its type, default, limits and documentation.
+
+    ``default`` is the value used when the parameter is absent; ``None`` means the key is
+    optional with a default that depends on other keys (``default_doc`` says which), and
+    ``required`` means it must be given.
+    """
+
+    name: str
+    kind: str
+    description: str
+    default: Any = None
+    default_doc: str = ""
+    required: bool = False
+    minimum: float | None = None
+    maximum: float | None = None
+    exclusive_minimum: bool = False
+    choices: tuple[str, ...] = ()
+    length: int | None = None
+    applies_to: tuple[str, ...] = ()
+    read_only: bool = False
+    unit: str = ""
+
+    def documented_default(self) -> str:
+        if self.required:
+            return "required"
+        if self.default_doc:
+            return self.default_doc
+        if self.default is None:
+            return "not set"
+        if isinstance(self.default, bool):
+            return str(self.default).lower()
+        return repr(self.default) if isinstance(self.default, str) else str(self.default)
+
+    def documented_range(self) -> str:
+        parts = []
+        if self.choices:
+            parts.append("one of " + ", ".join(f"`{c}`" for c in self.choices))
+        if self.minimum is not None:
+            parts.append(f"{'>' if self.exclusive_minimum else '>='} {self.minimum:g}")
+        if self.maximum is not None:
+            parts.append(f"<= {self.maximum:g}")
+        if self.length is not None:
+            parts.append(f"{self.length} elements")
+        return ", ".join(parts)
+
+
+VEHICLE_KEYS: tuple[Key, ...] = (
+    Key("rate_hz", FLOAT, "Allocation rate: one sample per period, also the dt of rate limits.",
+        default=50.0, minimum=0.0, exclusive_minimum=True, maximum=10000.0, unit="Hz"),
+    Key("method", STR, "Allocation method.", default="qp", choices=METHODS),
+    Key("dofs", STR_LIST, "Controlled degrees of freedom; the others of the requested wrench are ignored.",
+        default=list(DOF_NAMES), default_doc="all six"),
+    Key("wrench_timeout", FLOAT, "Watchdog: with no valid wrench for this long, command zero thrust (0 disables).",
+        default=0.5, minimum=0.0, unit="s"),
+    Key("saturation", STR, "Unattainable requests: `weighted` trades DOFs by weights.slack; "
+        "`preserve_direction` scales the request down along its own direction first.",
+        default="weighted", choices=SATURATION_MODES),
+    Key("weights.slack", FLOAT_LIST, "Q: weight of the wrench error of each controlled DOF, in `dofs` order (1.35).",
+        default_doc="1e6 for every DOF", minimum=0.0, exclusive_minimum=True),
+    Key("weights.minimax", FLOAT, "beta: weight of the largest actuator force (1.35).", default=0.0, minimum=0.0),
+    Key("weights.azimuth_change", FLOAT,
+        "Omega: weight of the squared azimuth change per sample (1.44), nonlinear method.",
+        default=10.0, minimum=0.0, unit="1/rad^2"),
+    Key("singularity.rho", FLOAT, "rho: weight of the singularity-avoidance term (1.44), nonlinear method.",
+        default=0.0, minimum=0.0),
+    Key("singularity.epsilon", FLOAT, "epsilon: keeps the singularity term finite (1.44).",
+        default=1e-3, minimum=0.0, exclusive_minimum=True),
+    Key("azimuth_polygon_sides", INT, "Sides N of the inscribed polygon that replaces |f| <= f_max for rotatable "
+        "thrusters in the QP; worst-case loss 1 - cos(pi/N).", default=16, minimum=4, maximum=128),
+    Key("nonlinear.max_iterations", INT, "Linearised QPs solved per sample by the nonlinear method (1.45).",
+        default=1, minimum=1, maximum=50),
+    Key("solver.eps_abs", FLOAT, "OSQP absolute tolerance.", default=1e-6, minimum=0.0, exclusive_minimum=True),
+    Key("solver.eps_rel", FLOAT, "OSQP relative tolerance.", default=1e-6, minimum=0.0),
+    Key("solver.max_iter", INT, "OSQP iteration limit per solve.", default=4000, minimum=1),
+    Key("solver.time_limit", FLOAT, "OSQP time limit per solve (0: none).", default=0.0, minimum=0.0, unit="s"),
+    Key("water_density", FLOAT, "rho_w in the lift and drag of control surfaces (1.48), (1.49).",
+        default=1025.0, minimum=0.0, exclusive_minimum=True, unit="kg/m^3"),
+    Key("per_actuator_topics", BOOL, "Also publish thrusters/<name>/thrust and thrusters/<name>/azimuth "
+        "(std_msgs/Float64) each sample.", default=False),
+    Key("wrench_qos", STR, "Reliability of the wrench_command subscription.", default="reliable",
+        choices=QOS_RELIABILITY),
+    Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
+        required=True, read_only=True),
+)
+
+_ALL = ACTUATOR_TYPES
+_THR = THRUSTER_TYPES
+_ROT = ROTATABLE_TYPES
+_SURF = SURFACE_TYPES
+_DIRECTED = (FIXED, RUDDER, FIN)
+
+ACTUATOR_KEYS: tuple[Key, ...] = (
+    Key("type", STR, "Actuator type.", required=True, choices=ACTUATOR_TYPES, applies_to=_ALL, read_only=True),
+    Key("position", FLOAT_LIST, "Point where the force acts, body frame (x forward, y starboard, z down).",
+        required=True, length=3, applies_to=_ALL, unit="m"),
+    Key("direction", FLOAT_LIST, "Force direction of a fixed thruster, lift direction per positive deflection "
+        "of a control surface; normalised, must not be zero.", length=3, applies_to=_DIRECTED,
+        default_doc="required for fixed; [0, 1, 0] rudder, [0, 0, 1] fin"),
+    Key("weight", FLOAT, "W_ii: weight of this actuator's squared force (1.24), (1.35).",
+        minimum=0.0, exclusive_minimum=True, applies_to=_ALL, default_doc="1.0 thrusters, 0.1 control surfaces"),
+    Key("power_coefficient", FLOAT, "P_i in the power estimate sum P_i |f_i|^(3/2) (1.44).",
+        minimum=0.0, applies_to=_ALL, default_doc="1.0 thrusters, 0.0 control surfaces"),
+    Key("thrust_max", FLOAT, "Largest force along the actuator axis.", required=True, minimum=0.0,
+        exclusive_minimum=True, applies_to=_THR, unit="N"),
+    Key("thrust_min", FLOAT, "Most negative force along the axis (<= 0).", maximum=0.0, applies_to=_THR,
+        default_doc="-thrust_max (fixed, or reversible rotatable); 0 otherwise", unit="N"),
+    Key("thrust_rate_max", FLOAT, "Largest force change per second (0: unlimited).", default=0.0, minimum=0.0,
+        applies_to=_THR, unit="N/s"),
+    Key("command_map", STR, "Force-to-command map: `linear` F = k u (1.3), `quadratic` F = k|u|u (1.4), "
+        "`table` from measured pairs.", default="linear", choices=COMMAND_MAPS, applies_to=_THR),
+    Key("gain", FLOAT, "k of the linear or quadratic map for positive force.", default=1.0, minimum=0.0,
+        exclusive_minimum=True, applies_to=_THR),
+    Key("gain_reverse", FLOAT, "k for negative force (asymmetric propellers).", minimum=0.0,
+        exclusive_minimum=True, applies_to=_THR, default_doc="gain"),
+    Key("command_min", FLOAT, "Smallest actuator set-point; limits the force too.", applies_to=_THR,
+        default_doc="no limit"),
+    Key("command_max", FLOAT, "Largest actuator set-point; limits the force too.", applies_to=_THR,
+        default_doc="no limit"),
+    Key("table_command", FLOAT_LIST, "Measured set-points, strictly increasing (`table` map).", applies_to=_THR,
+        default_doc="required for table"),
+    Key("table_thrust", FLOAT_LIST, "Measured force at each set-point, non-decreasing, spanning 0 (`table` map).",
+        applies_to=_THR, default_doc="required for table", unit="N"),
+    Key("azimuth_min", FLOAT, "Feasible sector, lower end (the thruster cannot turn outside it).",
+        default=-math.pi, applies_to=_ROT, unit="rad"),
+    Key("azimuth_max", FLOAT, "Feasible sector, upper end; azimuth_max - azimuth_min = 2 pi means free rotation.",
+        default=math.pi, applies_to=_ROT, unit="rad"),
+    Key("azimuth_rate_max", FLOAT, "Largest turning rate (0: unlimited).", default=0.0, minimum=0.0,
+        applies_to=_ROT, unit="rad/s"),
+    Key("forbidden_sectors", FLOAT_LIST, "Flat list of [start, end] pairs: angles, counter-clockwise from start "
+        "to end, at which the thruster must not produce thrust (it may turn through them at zero thrust).",
+        applies_to=_ROT, default_doc="none", unit="rad"),
+    Key("reversible", BOOL, "Whether negative thrust along the current angle is allowed.", default=False,
+        applies_to=_ROT),
+    Key("azimuth_initial", FLOAT, "Angle at start-up; inside the feasible sector, outside forbidden ones.",
+        default=0.0, applies_to=_ROT, unit="rad"),
+    Key("area", FLOAT, "Foil area A (1.48).", required=True, minimum=0.0, exclusive_minimum=True,
+        applies_to=_SURF, unit="m^2"),
+    Key("lift_coefficient", FLOAT, "C_L, lift per radian of deflection (1.48).", required=True, minimum=0.0,
+        exclusive_minimum=True, applies_to=_SURF, unit="1/rad"),
+    Key("drag_coefficient", FLOAT, "C_D, drag per squared radian of deflection (1.49).", default=0.0,
+        minimum=0.0, applies_to=_SURF, unit="1/rad^2"),
+    Key("deflection_max", FLOAT, "Largest deflection either way.", required=True, minimum=0.0,
+        exclusive_minimum=True, maximum=math.pi / 2, applies_to=_SURF, unit="rad"),
+    Key("deflection_rate_max", FLOAT, "Largest deflection rate (0: unlimited).", default=0.0, minimum=0.0,
+        applies_to=_SURF, unit="rad/s"),
+    Key("flow", STR, "Flow speed model: `free` uses the vehicle surge speed, `propeller_wake` multiplies it by "
+        "wake_speed_factor.", default="free", choices=FLOW_MODELS, applies_to=_SURF),
+    Key("wake_speed_factor", FLOAT, "u_f / u for `propeller_wake` surfaces.", default=1.0, minimum=0.0,
+        exclusive_minimum=True, applies_to=_SURF),
+    Key("min_control_speed", FLOAT, "Below this flow speed the surface produces nothing and is unavailable.",
+        default=0.5, minimum=0.0, applies_to=_SURF, unit="m/s"),
+)
+
+VEHICLE_KEY_BY_NAME = {key.name: key for key in VEHICLE_KEYS}
+ACTUATOR_KEY_BY_NAME = {key.name: key for key in ACTUATOR_KEYS}
+ACTUATOR_PREFIX = "actuators."
+
+
+def actuator_parameter(actuator: str, key: str) -> str:
+    """Full parameter name of a per-actuator key."""
+    return f"{ACTUATOR_PREFIX}{actuator}.{key}"
+
+
+def keys_for_type(actuator_type: str) -> tuple[Key, ...]:
+    """The per-actuator keys that apply to one actuator type."""
+    return tuple(key for key in ACTUATOR_KEYS if actuator_type in key.applies_to)
+
+
+def markdown_reference() -> str:
+    """The key tables of docs/configuration.md, generated from this schema."""
+
+    def table(keys: tuple[Key, ...], show_types: bool) -> list[str]:
+        header = "| key | type | default | range | unit | meaning |"
+        rule = "|---|---|---|---|---|---|"
+        if show_types:
+            header = "| key | type | applies to | default | range | unit | meaning |"
+            rule = "|---|---|---|---|---|---|---|"
+        rows = [header, rule]
+        for key in keys:
+            cells = [f"`{key.name}`", key.kind]
+            if show_types:
+                cells.append(", ".join(key.applies_to) if key.applies_to != _ALL else "all")
+            cells += [key.documented_default(), key.documented_range(), key.unit,
+                      key.description + (" Read-only at runtime." if key.read_only else "")]
+            rows.append("| " + " | ".join(cell.replace("|", "\\|") for cell in cells) + " |")
+        return rows
+
+    lines = ["### Vehicle-wide keys", ""]
+    lines += table(VEHICLE_KEYS, show_types=False)
+    lines += ["", "### Per-actuator keys (`actuators.<name>.<key>`)", ""]
+    lines += table(ACTUATOR_KEYS, show_types=True)
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,100 @@
+"""Angle sets of rotatable thrusters: feasible sector, forbidden sectors, rotation paths.
+
+Angles of a thruster with free rotation (feasible sector of 2 pi) wrap to (-pi, pi];
+angles of a thruster with a limited sector are plain numbers in [azimuth_min, azimuth_max].
+A forbidden sector [start, end] is the arc counter-clockwise from start to end; thrust is
+not allowed inside it, but the thruster may turn through it (at zero thrust).
+
+Most functions here work in *offsets* from the current angle alpha0, on the real line, so
+that "turn 30 degrees clockwise" is the interval [-0.52, 0].
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .vehicle import RotationConfig
+
+TWO_PI = 2.0 * math.pi
+TOLERANCE = 1e-9
+
+Interval = tuple[float, float]
+
+
+def wrap(angle: float) -> float:
+    """The same angle in (-pi, pi]."""
+    wrapped = math.remainder(angle, TWO_PI)
+    return math.pi if wrapped == -math.pi else wrapped
+
+
+def in_feasible_sector(rotation: RotationConfig, angle: float) -> bool:
+    """Whether the thruster can be at this angle at all (the feasible sector)."""
+    if rotation.continuous:
+        return True
+    return rotation.azimuth_min - TOLERANCE <= angle <= rotation.azimuth_max + TOLERANCE
+
+
+def in_forbidden_sector(rotation: RotationConfig, angle: float) -> bool:
+    """Whether the angle is strictly inside a forbidden sector (its edges are allowed)."""
+    for start, end in rotation.forbidden_sectors:
+        width = (end - start) % TWO_PI
+        inside = (angle - start) % TWO_PI
+        if TOLERANCE < inside < width - TOLERANCE:
+            return True
+    return False
+
+
+def offset_domain(rotation: RotationConfig, alpha0: float) -> Interval:
+    """Offsets the thruster can turn through from alpha0 (one turn either way if free)."""
+    if rotation.continuous:
+        return (-TWO_PI, TWO_PI)
+    return (rotation.azimuth_min - alpha0, rotation.azimuth_max - alpha0)
+
+
+def forbidden_offsets(rotation: RotationConfig, alpha0: float) -> list[Interval]:
+    """Forbidden sectors as offset intervals from alpha0, over the offset domain."""
+    low, high = offset_domain(rotation, alpha0)
+    intervals = []
+    for start, end in rotation.forbidden_sectors:
+        width = (end - start) % TWO_PI
+        first = wrap(start - alpha0)
+        for shift in (-2.0 * TWO_PI, -TWO_PI, 0.0, TWO_PI):
+            lo = first + shift
+            if lo < high and lo + width > low:
+                intervals.append((lo, lo + width))
+    intervals.sort()
+    return intervals
+
+
+def allowed_piece(domain: Interval, forbidden: list[Interval], point: float = 0.0) -> Interval | None:
+    """The largest interval of the domain around ``point`` that avoids the forbidden
+    intervals' interiors; None when the point is strictly inside one of them."""
+    low, high = domain
+    for lo, hi in forbidden:
+        if lo + TOLERANCE < point < hi - TOLERANCE:
+            return None
+        if hi <= point + TOLERANCE:
+            low = max(low, hi)
+        elif lo >= point - TOLERANCE:
+            high = min(high, lo)
+    return (low, high)
+
+
+def crosses(path: Interval, forbidden: list[Interval]) -> bool:
+    """Whether turning over the offset interval ``path`` passes through a forbidden interior."""
+    lo, hi = min(path), max(path)
+    return any(f_lo < hi - TOLERANCE and f_hi > lo + TOLERANCE for f_lo, f_hi in forbidden)
+
+
+def target_offsets(rotation: RotationConfig, alpha0: float, target: float) -> list[float]:
+    """Offsets that bring the thruster from alpha0 to ``target``: both ways round for free
+    rotation, the representation inside the feasible sector otherwise (none if the
+    sector does not contain the target)."""
+    if rotation.continuous:
+        ccw = (target - alpha0) % TWO_PI
+        return [ccw, ccw - TWO_PI] if ccw > 0.0 else [0.0]
+    low, high = offset_domain(rotation, alpha0)
+    base = wrap(target - alpha0)
+    return [base + k * TWO_PI for k in (-1, 0, 1) if low - TOLERANCE <= base + k * TWO_PI <= high + TOLERANCE]

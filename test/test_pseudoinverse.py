@@ -1,0 +1,75 @@
+"""The pseudoinverse method: (1.29) for fixed thrusters, (1.33)/(1.34) with azimuths."""
+
+import math
+
+import numpy as np
+import pytest
+from conftest import DATA, ROOT, vehicle_from
+from reference import weighted_pseudo_inverse
+
+from allocator_pkg import Allocator, FaultMode
+from allocator_pkg.configuration_matrix import configuration_matrix, extended_configuration_matrix
+from allocator_pkg.methods.pseudoinverse import PseudoInverse
+from allocator_pkg.model import Model
+
+EIGHT = DATA / "eight_thrusters.yaml"
+
+
+def test_gain_is_1_29_computed_once_per_set_of_actuators():
+    vehicle = vehicle_from(EIGHT, **{f"actuators__t{i}__weight": float(i) for i in range(1, 9)})
+    model = Model.build(vehicle, 0.02)
+    inverse = PseudoInverse(model)
+    none = np.zeros(8, dtype=bool)
+    gain = inverse.gain(none, {})
+    t = configuration_matrix(vehicle.actuators, [0.0] * 8)
+    assert gain == pytest.approx(weighted_pseudo_inverse(t, np.arange(1.0, 9.0)))
+    assert inverse.gain(none, {}) is gain                      # cached, not recomputed
+
+
+def test_failed_actuator_is_left_out_and_the_others_compensate():
+    vehicle = vehicle_from(EIGHT)
+    alloc = Allocator(vehicle, method="pseudoinverse")
+    alloc.set_fault("t3", FaultMode.FAILED)
+    tau = np.array([10.0, 3.0, 5.0, 0.5, -0.2, 1.0])
+    result = alloc.allocate(tau)
+    assert result.thrust[2] == 0.0
+    assert result.achieved == pytest.approx(tau, abs=1e-9)
+    t = configuration_matrix(vehicle.actuators, [0.0] * 8)
+    keep = [i for i in range(8) if i != 2]
+    assert result.thrust[keep] == pytest.approx(weighted_pseudo_inverse(t[:, keep], np.ones(7)) @ tau)
+
+
+def test_clipping_keeps_limits_and_reports_saturation_honestly():
+    alloc = Allocator(vehicle_from(EIGHT), method="pseudoinverse")
+    result = alloc.allocate([400.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    assert np.all(result.thrust <= 40.0) and np.all(result.thrust >= -30.0)
+    assert result.saturated
+    t = configuration_matrix(alloc.vehicle.actuators, [0.0] * 8)
+    assert result.achieved == pytest.approx(t @ result.thrust)
+
+
+def test_uniform_scale_down_preserves_direction():
+    alloc = Allocator(vehicle_from(EIGHT, saturation="preserve_direction"), method="pseudoinverse")
+    tau = np.array([300.0, 100.0, 0.0, 0.0, 0.0, 0.0])
+    result = alloc.allocate(tau)
+    ratio = result.achieved[0] / tau[0]
+    assert 0.0 < ratio < 1.0
+    assert result.achieved == pytest.approx(ratio * tau, abs=1e-9)
+    assert np.max(result.thrust) == pytest.approx(40.0)
+
+
+def test_azimuths_follow_1_33_1_34():
+    vehicle = vehicle_from(ROOT / "config" / "example1_rov.yaml", actuators__azimuth_fwd__azimuth_rate_max=0.0,
+                           actuators__azimuth_aft__azimuth_rate_max=0.0, actuators__azimuth_fwd__thrust_rate_max=0.0,
+                           actuators__azimuth_aft__thrust_rate_max=0.0, actuators__main_port__thrust_rate_max=0.0,
+                           actuators__main_stbd__thrust_rate_max=0.0)
+    tau = np.array([60.0, 30.0, 0.0, 0.0, 0.0, 15.0])
+    result = Allocator(vehicle, method="pseudoinverse").allocate(tau)
+    t_e = extended_configuration_matrix(vehicle.actuators)[[0, 1, 5]]
+    f_e = weighted_pseudo_inverse(t_e, np.ones(6)) @ tau[[0, 1, 5]]
+    assert result.thrust[0] == pytest.approx(math.hypot(f_e[0], f_e[1]))
+    assert result.azimuth[0] == pytest.approx(math.atan2(f_e[1], f_e[0]))
+    assert result.thrust[1] == pytest.approx(math.hypot(f_e[2], f_e[3]))
+    assert result.azimuth[1] == pytest.approx(math.atan2(f_e[3], f_e[2]))
+    assert result.thrust[2:] == pytest.approx(f_e[4:])
+    assert result.achieved[[0, 1, 5]] == pytest.approx(tau[[0, 1, 5]])

@@ -1,0 +1,203 @@
+"""Loading and validating vehicle configurations (ROS 2 params files)."""
+
+import math
+import textwrap
+
+import pytest
+
+from allocator_pkg import ConfigError, Vehicle, load_vehicle
+from allocator_pkg.vehicle import read_parameters
+
+VALID = {
+    "dofs": ["surge", "yaw"],
+    "actuators.names": ["port", "stbd", "azi", "rudder"],
+    "actuators.port.type": "fixed",
+    "actuators.port.position": [-1.0, -0.3, 0.0],
+    "actuators.port.direction": [2.0, 0.0, 0.0],
+    "actuators.port.thrust_max": 50.0,
+    "actuators.stbd.type": "fixed",
+    "actuators.stbd.position": [-1.0, 0.3, 0.0],
+    "actuators.stbd.direction": [1.0, 0.0, 0.0],
+    "actuators.stbd.thrust_max": 50,
+    "actuators.azi.type": "azimuth",
+    "actuators.azi.position": [1.0, 0.0, 0.0],
+    "actuators.azi.thrust_max": 20.0,
+    "actuators.azi.forbidden_sectors": [3.0, 3.3],
+    "actuators.rudder.type": "rudder",
+    "actuators.rudder.position": [-1.2, 0.0, 0.0],
+    "actuators.rudder.area": 0.1,
+    "actuators.rudder.lift_coefficient": 3.0,
+    "actuators.rudder.deflection_max": 0.5,
+}
+
+
+def with_changes(**changes):
+    parameters = dict(VALID)
+    for key, value in changes.items():
+        key = key.replace("__", ".")
+        if value is None:
+            parameters.pop(key)
+        else:
+            parameters[key] = value
+    return parameters
+
+
+def problem_for(**changes) -> str:
+    with pytest.raises(ConfigError) as error:
+        Vehicle.from_parameters(with_changes(**changes))
+    return str(error.value)
+
+
+def test_valid_parameters_and_defaults():
+    vehicle = Vehicle.from_parameters(VALID)
+    port = vehicle.actuator("port")
+    assert port.direction == pytest.approx((1.0, 0.0, 0.0))     # normalised
+    assert port.thrust_min == -50.0                              # fixed: reversible by default
+    assert vehicle.actuator("stbd").thrust_max == 50.0           # an integer is a float
+    azi = vehicle.actuator("azi")
+    assert azi.thrust_min == 0.0                                 # not reversible by default
+    assert azi.rotation.continuous
+    assert azi.rotation.forbidden_sectors == ((3.0, 3.3),)
+    rudder = vehicle.actuator("rudder")
+    assert rudder.direction == (0.0, 1.0, 0.0)                   # rudder lift along +y by default
+    assert rudder.weight == pytest.approx(0.1) and port.weight == 1.0
+    assert vehicle.method == "qp" and vehicle.rate_hz == 50.0
+    assert vehicle.dofs == ("surge", "yaw")
+    assert vehicle.weights.slack == ()                           # derived per DOF by the allocator
+
+
+def test_dofs_are_kept_in_canonical_order_with_their_slack_weights():
+    vehicle = Vehicle.from_parameters(with_changes(dofs=["yaw", "surge"], weights__slack=[5.0, 7.0]))
+    assert vehicle.dofs == ("surge", "yaw")
+    assert vehicle.weights.slack == (7.0, 5.0)
+
+
+@pytest.mark.parametrize(
+    ("changes", "key", "reason"),
+    [
+        ({"actuators__names": None}, "actuators.names", "required"),
+        ({"actuators__names": ["port", "port"]}, "actuators.names", "duplicate"),
+        ({"actuators__names": ["1bad"]}, "actuators.names", "not a valid name"),
+        ({"actuators__port__type": "jet"}, "actuators.port.type", "not one of"),
+        ({"actuators__port__direction": [0.0, 0.0, 0.0]}, "actuators.port.direction", "zero"),
+        ({"actuators__port__direction": None}, "actuators.port.direction", "required"),
+        ({"actuators__port__position": [1.0, 2.0]}, "actuators.port.position", "3 elements"),
+        ({"actuators__port__thrust_max": float("nan")}, "actuators.port.thrust_max", "finite"),
+        ({"actuators__port__thrust_max": "big"}, "actuators.port.thrust_max", "expected a number"),
+        ({"actuators__port__thrust_max": -5.0}, "actuators.port.thrust_max", "must be >"),
+        ({"actuators__port__thrust_min": 5.0}, "actuators.port.thrust_min", "must be <= 0"),
+        ({"actuators__azi__thrust_min": -5.0}, "actuators.azi.thrust_min", "reversible"),
+        ({"actuators__port__command_min": 10.0, "actuators__port__command_max": 5.0},
+         "actuators.port.command_min", "below command_max"),
+        ({"actuators__port__command_map": "table"}, "actuators.port.table_command", "required"),
+        ({"actuators__port__table_thrust": [1.0, 2.0]}, "actuators.port.table_thrust", "only used with"),
+        ({"actuators__azi__azimuth_min": 1.0, "actuators__azi__azimuth_max": 0.5},
+         "actuators.azi.azimuth_min", "below"),
+        ({"actuators__azi__forbidden_sectors": [1.0, 2.0, 3.0]}, "actuators.azi.forbidden_sectors", "pairs"),
+        ({"actuators__azi__azimuth_initial": 3.1}, "actuators.azi.azimuth_initial", "forbidden"),
+        ({"actuators__azi__direction": [1.0, 0.0, 0.0]}, "actuators.azi.direction", "does not apply"),
+        ({"actuators__rudder__thrust_max": 5.0}, "actuators.rudder.thrust_max", "does not apply"),
+        ({"actuators__rudder__area": None}, "actuators.rudder.area", "required"),
+        ({"actuators__ghost__thrust_max": 5.0}, "actuators.ghost.thrust_max", "not in actuators.names"),
+        ({"actuators__port__thrust_maximum": 5.0}, "actuators.port.thrust_maximum", "unknown key"),
+        ({"rate": 5.0}, "rate", "unknown key"),
+        ({"rate_hz": 0.0}, "rate_hz", "must be >"),
+        ({"method": "magic"}, "method", "not one of"),
+        ({"dofs": ["surge", "surge"]}, "dofs", "twice"),
+        ({"dofs": ["surge", "heading"]}, "dofs", "unknown DOF"),
+        ({"weights__slack": [1.0]}, "weights.slack", "one weight per controlled DOF"),
+        ({"azimuth_polygon_sides": 2}, "azimuth_polygon_sides", "must be >="),
+        ({"azimuth_polygon_sides": 8.5}, "azimuth_polygon_sides", "integer"),
+        ({"per_actuator_topics": 1}, "per_actuator_topics", "true or false"),
+    ],
+)
+def test_each_invalid_key_is_named_with_its_reason(changes, key, reason):
+    message = problem_for(**changes)
+    assert f"{key}:" in message
+    assert reason in message
+
+
+def test_all_problems_are_reported_together():
+    with pytest.raises(ConfigError) as error:
+        Vehicle.from_parameters(with_changes(rate_hz=-1.0, method="x"))
+    assert {name for name, _ in error.value.problems} == {"rate_hz", "method"}
+
+
+def test_table_map_validation():
+    base = {"actuators__port__command_map": "table"}
+    assert "strictly increasing" in problem_for(**base, actuators__port__table_command=[0.0, 0.0, 1.0],
+                                                actuators__port__table_thrust=[-1.0, 0.0, 1.0])
+    assert "must not decrease" in problem_for(**base, actuators__port__table_command=[0.0, 1.0, 2.0],
+                                              actuators__port__table_thrust=[-1.0, 1.0, 0.0])
+    assert "span zero" in problem_for(**base, actuators__port__table_command=[0.0, 1.0],
+                                      actuators__port__table_thrust=[1.0, 2.0])
+
+
+def write(tmp_path, text):
+    path = tmp_path / "vehicle.yaml"
+    path.write_text(textwrap.dedent(text))
+    return path
+
+
+def test_params_file_reads_like_rcl(tmp_path):
+    path = write(tmp_path, """
+        /robot/thrust_allocator:
+          ros__parameters:
+            weights:
+              slack: [1e6, 1.0e+6]
+            dofs: [surge, yaw]
+            actuators:
+              names: [a]
+              a: {type: fixed, position: [0.0, 0.0, 0.0], direction: [1.0, 0.0, 0.0], thrust_max: 1.0,
+                  command_max: 1e3}
+              b: {}
+        """)
+    parameters = read_parameters(path)
+    assert parameters["weights.slack"] == [1e6, 1e6]            # 1e6 is a float, as rcl reads it
+    assert "actuators.b" not in parameters
+    vehicle = load_vehicle(path, node_name="thrust_allocator")
+    assert vehicle.weights.slack == (1e6, 1e6)
+
+
+def test_params_file_errors(tmp_path):
+    with pytest.raises(ConfigError, match="a ROS parameter list holds one type"):
+        load_vehicle(write(tmp_path, """
+            n:
+              ros__parameters:
+                actuators:
+                  names: [a]
+                  a: {type: fixed, position: [1, 0.5, 0], direction: [1.0, 0.0, 0.0], thrust_max: 1.0}
+            """))
+    with pytest.raises(ConfigError, match="not valid YAML"):
+        load_vehicle(write(tmp_path, "n: [unclosed"))
+    with pytest.raises(ConfigError, match="ros__parameters"):
+        load_vehicle(write(tmp_path, "n: {rate_hz: 5}"))
+    with pytest.raises(ConfigError, match="cannot read"):
+        load_vehicle(tmp_path / "missing.yaml")
+    with pytest.raises(ConfigError, match="no section for node 'other'"):
+        load_vehicle("config/example1_rov.yaml", node_name="other")
+
+
+def test_empty_list_means_not_set(tmp_path):
+    # rcl reads [] as "not set": the required key is then missing.
+    with pytest.raises(ConfigError, match=r"actuators\.names: required"):
+        load_vehicle(write(tmp_path, """
+            n:
+              ros__parameters:
+                actuators:
+                  names: []
+            """))
+
+
+def test_rotation_limits_and_initial_angle():
+    vehicle = Vehicle.from_parameters(with_changes(actuators__azi__azimuth_min=-1.0, actuators__azi__azimuth_max=1.0,
+                                                   actuators__azi__forbidden_sectors=None,
+                                                   actuators__azi__azimuth_initial=0.5))
+    rotation = vehicle.actuator("azi").rotation
+    assert not rotation.continuous
+    assert rotation.initial == 0.5
+    message = problem_for(actuators__azi__azimuth_min=-1.0, actuators__azi__azimuth_max=1.0,
+                          actuators__azi__azimuth_initial=1.5)
+    assert "outside the feasible sector" in message
+    assert "2 pi" in problem_for(actuators__azi__azimuth_min=-4.0, actuators__azi__azimuth_max=4.0)
+    assert math.isclose(Vehicle.from_parameters(VALID).actuator("azi").rotation.azimuth_max, math.pi)
