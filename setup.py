@@ -25,7 +25,8 @@ setup(
     python_requires=">=3.10",
     entry_points={
         "console_scripts": [
-            f"allocator_node = {PACKAGE}.node:main",
+            "allocator_node = allocator_pkg.node:main",
+            "allocator-ctl = allocator_pkg.ctl:main",
         ],
     },
 )

@@ -25,3 +25,122 @@ def vehicle_from(path, **overrides) -> Vehicle:
 @pytest.fixture
 def eight_thrusters():
     return DATA / "eight_thrusters.yaml"
+
+
+class Harness:
+    """The node under test and a probe node in one SingleThreadedExecutor, in a context of
+    their own. Time is simulated: the probe publishes /clock, so timers fire when the test
+    steps the clock, and every timing is deterministic."""
+
+    def __init__(self, context, params_file, parameters=()):
+        import rclpy
+        from diagnostic_msgs.msg import DiagnosticArray
+        from geometry_msgs.msg import Wrench
+        from rcl_interfaces.srv import SetParameters, SetParametersAtomically
+        from rclpy.executors import SingleThreadedExecutor
+        from rclpy.parameter import Parameter
+        from rosgraph_msgs.msg import Clock
+        from std_srvs.srv import Trigger
+
+        from allocator_msgs.msg import AllocationStatus, ThrusterCommands
+        from allocator_msgs.srv import SetActuatorFault
+        from allocator_pkg.node import AllocatorNode
+
+        self.time_ns = 1_000_000_000
+        overrides = [Parameter("use_sim_time", value=True), *parameters]
+        self.node = AllocatorNode(context=context, cli_args=["--ros-args", "--params-file", str(params_file)],
+                                  parameter_overrides=overrides)
+        self.probe = rclpy.create_node("probe", context=context)
+        self.executor = SingleThreadedExecutor(context=context)
+        self.executor.add_node(self.node)
+        self.executor.add_node(self.probe)
+        self.commands, self.status, self.diagnostics = [], [], []
+        self.probe.create_subscription(ThrusterCommands, "thruster_commands", self.commands.append, 100)
+        self.probe.create_subscription(AllocationStatus, "allocation_status", self.status.append, 100)
+        self.probe.create_subscription(DiagnosticArray, "/diagnostics", self.diagnostics.append, 100)
+        self.wrench = self.probe.create_publisher(Wrench, "wrench_command", 10)
+        self.clock = self.probe.create_publisher(Clock, "/clock", 10)
+        self.fault = self.probe.create_client(SetActuatorFault, "thrust_allocator/set_actuator_fault")
+        self.clear = self.probe.create_client(Trigger, "thrust_allocator/clear_faults")
+        self.set_parameters = self.probe.create_client(SetParameters, "thrust_allocator/set_parameters")
+        self.set_atomically = self.probe.create_client(SetParametersAtomically,
+                                                       "thrust_allocator/set_parameters_atomically")
+        self._clock_type = Clock
+        self._wrench_type = Wrench
+        self.spin_until(lambda: self.wrench.get_subscription_count() > 0 and self.clock.get_subscription_count() > 0)
+        self.tick(0)
+        # The jump from time 0 to the first /clock makes the timer fire once.
+        self.spin_until(lambda: self.node.samples >= 1 and len(self.commands) >= 1 and len(self.status) >= 1)
+
+    def spin_until(self, predicate, timeout=10.0):
+        import time
+        deadline = time.monotonic() + timeout
+        while not predicate():
+            if time.monotonic() > deadline:
+                raise TimeoutError("condition not reached")
+            self.executor.spin_once(timeout_sec=0.01)
+
+    def spin_for(self, seconds):
+        import time
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            self.executor.spin_once(timeout_sec=0.01)
+
+    def tick(self, periods=1, period=None):
+        """Advance simulated time by whole allocation periods; wait for each sample's output."""
+        from builtin_interfaces.msg import Time
+        period = period if period is not None else self.node.period
+        for _ in range(periods):
+            expected = self.node.samples + 1
+            self.time_ns += round(period * 1e9)
+            self._publish_clock(Time(sec=self.time_ns // 10**9, nanosec=self.time_ns % 10**9))
+            self.spin_until(lambda expected=expected: self.node.samples >= expected
+                            and len(self.commands) >= expected and len(self.status) >= expected)
+        if periods == 0:
+            self._publish_clock(Time(sec=self.time_ns // 10**9, nanosec=self.time_ns % 10**9))
+            self.spin_until(lambda: self.node.get_clock().now().nanoseconds >= self.time_ns)
+
+    def _publish_clock(self, stamp):
+        self.clock.publish(self._clock_type(clock=stamp))
+
+    def send_wrench(self, values):
+        message = self._wrench_type()
+        (message.force.x, message.force.y, message.force.z,
+         message.torque.x, message.torque.y, message.torque.z) = (float(v) for v in values)
+        received = self.node.wrenches_received
+        self.wrench.publish(message)
+        self.spin_until(lambda: self.node.wrenches_received > received)
+
+    def call(self, client, request):
+        self.spin_until(client.service_is_ready)
+        future = client.call_async(request)
+        self.spin_until(future.done)
+        return future.result()
+
+    def close(self):
+        self.executor.shutdown()
+        self.node.destroy_node()
+        self.probe.destroy_node()
+
+
+@pytest.fixture
+def ros_context():
+    """A fresh rclpy context per test, shut down afterwards."""
+    import rclpy
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    yield context
+    rclpy.try_shutdown(context=context)
+
+
+@pytest.fixture
+def harness(ros_context, request):
+    """Harness on the params file a test names with @pytest.mark.params(path, **overrides)."""
+    from rclpy.parameter import Parameter
+    marker = request.node.get_closest_marker("params")
+    path = marker.args[0] if marker else ROOT / "config" / "example1_rov.yaml"
+    values = marker.kwargs if marker else {}
+    overrides = [Parameter(name.replace("__", "."), value=value) for name, value in values.items()]
+    h = Harness(ros_context, path, overrides)
+    yield h
+    h.close()

@@ -1,0 +1,67 @@
+"""The configuration schema as ROS 2 parameters: descriptors, declaration, current values.
+
+Parameters are declared with dynamic typing and checked by the schema itself, so that a
+params file may write ``thrust_max: 50`` for a float and every error message (from a file
+or a runtime ``set_parameters``) is the same one the library gives.
+"""
+
+from __future__ import annotations
+
+import array
+from typing import Any
+
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
+from rclpy.node import Node
+
+from . import schema
+from .schema import FLOAT, INT, Key
+from .vehicle import Vehicle
+
+ROS_BUILT_IN = ("use_sim_time", "start_type_description_service")
+"""Parameters rclpy declares on every node; they are not the allocator's."""
+
+
+def is_allocator_parameter(name: str) -> bool:
+    return not (name in ROS_BUILT_IN or name.startswith("qos_overrides."))
+
+
+def descriptor(key: Key) -> ParameterDescriptor:
+    """A ParameterDescriptor with the key's documentation, range and read-only flag."""
+    text = key.description
+    if key.unit:
+        text += f" [{key.unit}]"
+    text += f" Default: {key.documented_default()}."
+    result = ParameterDescriptor(description=text, read_only=key.read_only, dynamic_typing=True,
+                                 additional_constraints=key.documented_range())
+    if key.minimum is not None and key.maximum is not None:
+        if key.kind == FLOAT:
+            result.floating_point_range = [FloatingPointRange(from_value=float(key.minimum),
+                                                              to_value=float(key.maximum), step=0.0)]
+        elif key.kind == INT:
+            result.integer_range = [IntegerRange(from_value=int(key.minimum), to_value=int(key.maximum), step=1)]
+    return result
+
+
+def plain(value: Any) -> Any:
+    """A parameter value as the schema takes it (arrays as lists)."""
+    return list(value) if isinstance(value, (array.array, tuple)) else value
+
+
+def allocator_parameters(node: Node) -> dict[str, Any]:
+    """The node's allocator parameters by name (unset ones left out)."""
+    return {name: plain(parameter.value) for name, parameter in node.get_parameters_by_prefix("").items()
+            if parameter.value is not None and is_allocator_parameter(name)}
+
+
+def declare(node: Node, vehicle: Vehicle) -> None:
+    """Declare every schema key of this vehicle (those the params file set already are),
+    each with its descriptor, so that ``ros2 param list/describe`` shows all of them."""
+    keys = [(key.name, key) for key in schema.VEHICLE_KEYS]
+    for actuator in vehicle.actuators:
+        keys += [(schema.actuator_parameter(actuator.name, key.name), key)
+                 for key in schema.keys_for_type(actuator.type)]
+    for name, key in keys:
+        if node.has_parameter(name):
+            node.set_descriptor(name, descriptor(key))
+        else:
+            node.declare_parameter(name, key.default, descriptor(key))

@@ -1,0 +1,29 @@
+"""The generated allocator_msgs interfaces: importable from the venv with no sourcing, with
+the exact fields and constants other packages rely on."""
+
+from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
+from allocator_msgs.srv import SetActuatorFault
+
+
+def test_actuator_fault_constants_and_fields():
+    assert (ActuatorFault.NOMINAL, ActuatorFault.DEGRADED, ActuatorFault.FAILED, ActuatorFault.STUCK) == (0, 1, 2, 3)
+    assert ActuatorFault.get_fields_and_field_types() == {
+        "actuator": "string", "mode": "uint8", "efficiency": "double", "azimuth": "double"}
+
+
+def test_thruster_commands_fields():
+    assert ThrusterCommands.get_fields_and_field_types() == {
+        "header": "std_msgs/Header", "name": "sequence<string>", "thrust": "sequence<double>",
+        "command": "sequence<double>", "azimuth": "sequence<double>", "mode": "sequence<uint8>"}
+
+
+def test_allocation_status_fields():
+    assert AllocationStatus.get_fields_and_field_types() == {
+        "header": "std_msgs/Header", "requested": "geometry_msgs/Wrench", "achieved": "geometry_msgs/Wrench",
+        "saturated": "boolean", "method": "string", "solver_status": "string", "iterations": "uint32",
+        "solve_time": "double", "power": "double"}
+
+
+def test_set_actuator_fault_service():
+    assert SetActuatorFault.Request.get_fields_and_field_types() == {"fault": "allocator_msgs/ActuatorFault"}
+    assert SetActuatorFault.Response.get_fields_and_field_types() == {"success": "boolean", "message": "string"}

@@ -1,0 +1,226 @@
+"""The node in one SingleThreadedExecutor with a probe node, on simulated time."""
+
+import math
+
+import numpy as np
+import pytest
+from conftest import DATA, ROOT, vehicle_from
+
+from allocator_pkg import Allocator, FaultMode
+
+EXAMPLE = ROOT / "config" / "example1_rov.yaml"
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_wrench_in_commands_out_equal_the_core_answer(harness):
+    core = Allocator(vehicle_from(EXAMPLE))
+    for _ in range(harness.node.samples):                     # before the wrench: allocating zero
+        core.allocate(np.zeros(6))
+    harness.send_wrench([100.0, 20.0, 0.0, 0.0, 0.0, 10.0])
+    harness.tick(5)
+    last = harness.commands[-1]
+    for _ in range(5):
+        expected = core.allocate([100.0, 20.0, 0.0, 0.0, 0.0, 10.0])
+    assert list(last.name) == ["azimuth_fwd", "azimuth_aft", "main_port", "main_stbd"]
+    assert np.array(last.thrust) == pytest.approx(expected.thrust)
+    assert np.array(last.azimuth) == pytest.approx(expected.azimuth)
+    assert np.array(last.command) == pytest.approx(expected.command)
+    assert list(last.mode) == [0, 0, 0, 0]
+    status = harness.status[-1]
+    assert status.requested.force.x == 100.0
+    assert status.achieved.force.x == pytest.approx(expected.achieved[0])
+    assert status.method == "qp" and status.solver_status == "solved"
+    assert last.header.stamp.sec * 10**9 + last.header.stamp.nanosec == harness.time_ns
+
+
+def test_each_sample_publishes_one_message_of_each_kind(harness):
+    before = harness.node.samples
+    harness.tick(7)
+    harness.spin_for(0.2)
+    assert harness.node.samples - before == 7
+    assert len(harness.commands) == len(harness.status) == harness.node.samples
+
+
+def test_timer_period_follows_rate_hz(harness):
+    from rclpy.parameter import Parameter
+    assert harness.node.period == pytest.approx(1 / 50)
+    result = harness.node.set_parameters([Parameter("rate_hz", value=20.0)])[0]
+    assert result.successful
+    assert harness.node.period == pytest.approx(1 / 20)
+    assert harness.node.allocator.dt == pytest.approx(1 / 20)
+    before = harness.node.samples
+    harness.tick(3, period=0.05)
+    assert harness.node.samples - before == 3
+
+
+def fault_request(actuator, mode, efficiency=0.0, azimuth=0.0):
+    from allocator_msgs.msg import ActuatorFault
+    from allocator_msgs.srv import SetActuatorFault
+    return SetActuatorFault.Request(fault=ActuatorFault(actuator=actuator, mode=mode, efficiency=efficiency,
+                                                        azimuth=azimuth))
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_fault_service_modes(harness):
+    harness.send_wrench([150.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    response = harness.call(harness.fault, fault_request("main_port", FaultMode.FAILED))
+    assert response.success, response.message
+    harness.tick(40)
+    commands = harness.commands[-1]
+    assert commands.thrust[2] == 0.0 and commands.mode[2] == FaultMode.FAILED
+    assert harness.status[-1].achieved.force.x == pytest.approx(150.0, rel=1e-3)   # the others compensate
+    assert harness.call(harness.fault, fault_request("main_stbd", FaultMode.DEGRADED, efficiency=0.5)).success
+    assert harness.call(harness.fault, fault_request("azimuth_fwd", FaultMode.STUCK, azimuth=0.4)).success
+    harness.tick(2)
+    assert list(harness.commands[-1].mode) == [FaultMode.STUCK, 0, FaultMode.FAILED, FaultMode.DEGRADED]
+    assert harness.commands[-1].azimuth[0] == pytest.approx(0.4)
+    assert harness.call(harness.fault, fault_request("main_port", FaultMode.NOMINAL)).success
+    from std_srvs.srv import Trigger
+    cleared = harness.call(harness.clear, Trigger.Request())
+    assert cleared.success and "azimuth_fwd" in cleared.message
+    assert harness.call(harness.clear, Trigger.Request()).message == "no faults were set"
+    harness.tick(1)
+    assert list(harness.commands[-1].mode) == [0, 0, 0, 0]
+
+
+@pytest.mark.parametrize(("request_args", "expected"), [
+    (("ghost", FaultMode.FAILED), "unknown actuator 'ghost'; actuators: azimuth_fwd, azimuth_aft, main_port"),
+    (("main_port", FaultMode.DEGRADED, 0.0), "efficiency in (0, 1]"),
+    (("main_port", FaultMode.DEGRADED, -1.0), "efficiency in (0, 1]"),
+    (("main_port", FaultMode.DEGRADED, 2.0), "efficiency in (0, 1]"),
+    (("main_port", FaultMode.DEGRADED, math.nan), "efficiency in (0, 1]"),
+    (("main_port", FaultMode.STUCK, 0.0, 0.3), "these can be stuck: azimuth_fwd, azimuth_aft"),
+    (("main_port", 9), "unknown mode 9; modes: NOMINAL=0, DEGRADED=1, FAILED=2, STUCK=3"),
+])
+def test_fault_service_errors_change_nothing(harness, request_args, expected):
+    response = harness.call(harness.fault, fault_request(*request_args))
+    assert not response.success
+    assert expected in response.message
+    assert harness.node.allocator.faults == {}
+
+
+def test_parameter_changes_are_checked_as_a_whole(harness):
+    from rcl_interfaces.srv import SetParameters, SetParametersAtomically
+    from rclpy.parameter import Parameter
+
+    def request(kind, **values):
+        return kind.Request(parameters=[Parameter(name.replace("__", "."), value=value).to_parameter_msg()
+                                        for name, value in values.items()])
+
+    ok = harness.call(harness.set_parameters, request(SetParameters, actuators__main_port__thrust_max=250.0))
+    assert ok.results[0].successful
+    assert harness.node.allocator.vehicle.actuator("main_port").thrust_max == 250.0
+    bad = harness.call(harness.set_parameters, request(SetParameters, actuators__main_port__thrust_min=10.0))
+    assert not bad.results[0].successful
+    assert "actuators.main_port.thrust_min" in bad.results[0].reason
+    assert harness.node.get_parameter("actuators.main_port.thrust_min").value == -200.0
+    # Valid only together: set atomically. Alone, the first would be refused.
+    together = request(SetParametersAtomically, dofs=["surge", "yaw"], weights__slack=[1e6, 2e6])
+    assert harness.call(harness.set_atomically, together).result.successful
+    assert harness.node.allocator.dofs == ("surge", "yaw")
+    mixed = request(SetParametersAtomically, rate_hz=10.0, method="magic")
+    result = harness.call(harness.set_atomically, mixed).result
+    assert not result.successful and "method" in result.reason
+    assert harness.node.get_parameter("rate_hz").value == 50.0
+    assert harness.node.period == pytest.approx(1 / 50)
+    read_only = harness.call(harness.set_parameters, request(SetParameters, actuators__names=["a"]))
+    assert not read_only.results[0].successful
+    assert "read-only" in read_only.results[0].reason
+    setups = harness.node.allocator.stats.solver_setups
+    harness.call(harness.set_parameters, request(SetParameters, weights__minimax=5.0))
+    assert harness.node.allocator.stats.solver_setups == setups      # values only
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_faults_survive_reconfiguration(harness):
+    from rclpy.parameter import Parameter
+    assert harness.call(harness.fault, fault_request("main_port", FaultMode.FAILED)).success
+    assert harness.node.set_parameters([Parameter("method", value="pseudoinverse")])[0].successful
+    harness.tick(1)
+    assert harness.commands[-1].mode[2] == FaultMode.FAILED
+    assert harness.status[-1].method == "pseudoinverse"
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.1)
+def test_watchdog_commands_zero_thrust_on_stale_input(harness):
+    harness.send_wrench([100.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(3)
+    assert harness.commands[-1].thrust[2] > 0.0
+    assert harness.status[-1].solver_status == "solved"
+    harness.tick(6)                                   # 0.12 s without a new wrench
+    assert all(t == 0.0 for t in harness.commands[-1].thrust)
+    assert harness.status[-1].solver_status.startswith("stale")
+    harness.send_wrench([100.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(1)
+    assert harness.status[-1].solver_status == "solved"
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_non_finite_wrench_is_rejected_and_the_last_valid_one_kept(harness):
+    harness.send_wrench([80.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.send_wrench([math.nan, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.send_wrench([0.0, math.inf, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(2)
+    assert harness.status[-1].requested.force.x == 80.0
+    harness.tick(round(1.0 / harness.node.period))
+    harness.spin_until(lambda: len(harness.diagnostics) > 0)
+    values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
+    assert values["rejected wrenches"] == "2"
+
+
+def test_diagnostics_levels(harness):
+    from diagnostic_msgs.msg import DiagnosticStatus
+    one_second = round(1.0 / harness.node.period)
+
+    def latest_level():
+        count = len(harness.diagnostics)
+        harness.tick(one_second)
+        harness.spin_until(lambda: len(harness.diagnostics) > count)
+        return harness.diagnostics[-1].status[0]
+
+    assert latest_level().level == DiagnosticStatus.ERROR        # no wrench yet: stale
+    harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    for _ in range(one_second):
+        harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        harness.tick(1)
+    status = latest_level()
+    harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    status = latest_level() if status.level != DiagnosticStatus.OK else status
+    assert harness.call(harness.fault, fault_request("main_port", FaultMode.DEGRADED, efficiency=0.5)).success
+    for _ in range(one_second):
+        harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        harness.tick(1)
+    harness.spin_until(lambda: harness.diagnostics[-1].status[0].level == DiagnosticStatus.WARN, timeout=3.0)
+    values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
+    assert values["mode main_port"] == "DEGRADED"
+    assert "main_port DEGRADED" in harness.diagnostics[-1].status[0].message
+
+
+@pytest.mark.params(EXAMPLE, per_actuator_topics=True, wrench_timeout=0.0)
+def test_per_actuator_topics(harness):
+    from std_msgs.msg import Float64
+    thrust, azimuth = [], []
+    harness.probe.create_subscription(Float64, "thrusters/main_stbd/thrust", thrust.append, 10)
+    harness.probe.create_subscription(Float64, "thrusters/azimuth_fwd/azimuth", azimuth.append, 10)
+    harness.spin_until(lambda: harness.node.count_subscribers("thrusters/main_stbd/thrust") > 0)
+    harness.send_wrench([60.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(3)
+    expected = harness.commands[-1]
+    harness.spin_until(lambda: thrust and azimuth and thrust[-1].data == expected.thrust[3]
+                       and azimuth[-1].data == expected.azimuth[0])
+    assert expected.thrust[3] > 0.0
+
+
+@pytest.mark.params(DATA / "infante.yaml")
+def test_odometry_sets_the_speed_of_control_surfaces(harness):
+    from nav_msgs.msg import Odometry
+    odometry = harness.probe.create_publisher(Odometry, "odometry", 10)
+    harness.spin_until(lambda: odometry.get_subscription_count() > 0)
+    message = Odometry()
+    message.twist.twist.linear.x = 2.0
+    odometry.publish(message)
+    harness.spin_until(lambda: harness.node.allocator.speed == 2.0)
+    message.twist.twist.linear.x = math.nan
+    odometry.publish(message)
+    harness.spin_for(0.2)
+    assert harness.node.allocator.speed == 2.0
