@@ -20,13 +20,14 @@ MSGS_SOURCES := $(wildcard allocator_msgs/CMakeLists.txt allocator_msgs/package.
 CONFIG ?= config/default.yaml
 PYTEST_ARGS ?=
 
-.PHONY: help setup run test lint lock clean prereqs
+.PHONY: help setup run test lint lock docs clean prereqs
 
 help:
 	@echo "make run     set up (first time) and start allocator_node with CONFIG=$(CONFIG)"
 	@echo "make test    set up (first time), lint, and run the whole pytest suite"
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
+	@echo "make docs    regenerate the key tables of docs/configuration.md from the schema"
 	@echo "make lock    re-resolve requirements.in into requirements.lock"
 	@echo "make clean   remove .venv and build/"
 
@@ -70,6 +71,9 @@ lint: setup
 
 test: lint
 	$(PY) -m pytest $(PYTEST_ARGS)
+
+docs: setup
+	$(PY) tools/update_docs.py
 
 lock: | prereqs
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)

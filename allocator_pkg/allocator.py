@@ -126,6 +126,11 @@ class Allocator:
         return dict(self._faults)
 
     @property
+    def uncontrolled(self) -> tuple[str, ...]:
+        """DOFs this configuration leaves to the vehicle (under-actuated or by choice)."""
+        return tuple(d for d in DOF_NAMES if d not in self._vehicle.dofs)
+
+    @property
     def warnings(self) -> list[str]:
         """What the configuration cannot do (DOFs out of reach), for the operator."""
         return list(self._warnings)
@@ -440,7 +445,4 @@ def _reachability_warnings(model: Model) -> list[str]:
     if rank < model.n and not warnings:
         warnings.append(f"the actuators reach only {rank} independent directions of the {model.n} controlled DOFs "
                         f"({', '.join(dofs)}); some combinations will be saturated")
-    uncontrolled = [d for d in DOF_NAMES if d not in dofs]
-    if uncontrolled:
-        warnings.append(f"not controlled (left to the vehicle): {', '.join(uncontrolled)}")
     return warnings

@@ -6,10 +6,12 @@ Every method treats a rotatable thruster through :func:`plan` and :func:`resolve
   feasible and forbidden sectors, faults and the direction the unconstrained extended
   solution (1.33) wants, into the set of angles and thrusts allowed this sample.
 - :func:`resolve` turns a wanted force vector (extended components, (1.18)) into the
-  thrust and angle actually commanded: the angle is atan2 of the force (1.23), held when
-  the force is tiny and clamped to the allowed angles; the thrust is the projection of the
-  force on the angle reached (never pointing the wrong way while turning) clipped to the
-  allowed thrusts. Outputs are inside every limit whatever the solver returned.
+  thrust and angle actually commanded: the angle is atan2 of the force (1.23), clamped to the
+  allowed angles; when the force is too small to define an angle the thruster holds, or turns
+  toward the direction the unconstrained solution wants (so that an idle thruster is ready,
+  and a thruster that must turn the long way round gets there). The thrust is the projection
+  of the force on the angle reached (never pointing the wrong way while turning) clipped to
+  the allowed thrusts. Outputs are inside every limit whatever the solver returned.
 
 Crossing to another piece. Thrust is not allowed inside a forbidden sector, so the set of
 usable angles splits into pieces, and the rate limit means the thruster only reaches nearby
@@ -65,7 +67,8 @@ class AzimuthLimits:
     """Allowed this sample: angles in [low, high] (absolute, high - low <= pi, containing the
     current angle unless a crossing moves it), thrust F in [thrust_low, thrust_high] along the
     angle, on the side sigma (+1 forward, -1 reverse). ``line`` means the angle is fixed (STUCK)
-    and F may take either sign within its bounds."""
+    and F may take either sign within its bounds. ``goal`` is the angle the wanted force
+    points to (on this side): an idle thruster turns toward it."""
 
     low: float
     high: float
@@ -73,6 +76,7 @@ class AzimuthLimits:
     thrust_low: float
     thrust_high: float
     line: bool = False
+    goal: float | None = None
 
     @property
     def magnitude_max(self) -> float:
@@ -155,7 +159,8 @@ def plan(
         thrust_low, thrust_high = max(window_low, 0.0), max(window_high, 0.0)
     else:
         thrust_low, thrust_high = min(window_low, 0.0), min(window_high, 0.0)
-    return AzimuthLimits(alpha0 + low, alpha0 + high, current_sigma, thrust_low, thrust_high)
+    goal = alpha0 + best[1] if best is not None and best[0] == current_sigma else None
+    return AzimuthLimits(alpha0 + low, alpha0 + high, current_sigma, thrust_low, thrust_high, goal=goal)
 
 
 def _best_path(
@@ -230,14 +235,17 @@ def resolve(limits: AzimuthLimits, alpha0: float, force: tuple[float, float], ho
             continuous: bool, proposal: float | None = None) -> tuple[float, float]:
     """(thrust, angle) that produce as much of ``force`` as this sample's limits allow.
 
-    The angle is ``proposal`` if a method chose one, else atan2 of the force (1.23), or the
-    previous angle when the force is below ``hold``; either way clamped to the allowed angles.
+    The angle is atan2 of the force (1.23), or ``proposal`` if a method chose one; for a force
+    below ``hold`` (an idle thruster) it turns toward the limits' goal, or holds. Either way it
+    is clamped to the allowed angles.
     """
     f1, f2 = force
-    if proposal is not None:
-        angle = alpha0 + wrap(proposal - alpha0)
-    elif limits.line or math.hypot(f1, f2) < hold:
+    if limits.line:
         angle = alpha0
+    elif math.hypot(f1, f2) < hold:
+        angle = alpha0 if limits.goal is None else limits.goal
+    elif proposal is not None:
+        angle = alpha0 + wrap(proposal - alpha0)
     else:
         direction = math.atan2(f2, f1) if limits.sigma > 0 else math.atan2(-f2, -f1)
         angle = alpha0 + wrap(direction - alpha0)

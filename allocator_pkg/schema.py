@@ -77,7 +77,11 @@ class Key:
             return "not set"
         if isinstance(self.default, bool):
             return str(self.default).lower()
-        return repr(self.default) if isinstance(self.default, str) else str(self.default)
+        if isinstance(self.default, str):
+            return f"`{self.default}`"
+        if isinstance(self.default, list):
+            return "[" + ", ".join(map(str, self.default)) + "]"
+        return f"{self.default:g}" if isinstance(self.default, float) else str(self.default)
 
     def documented_range(self) -> str:
         parts = []
@@ -104,7 +108,7 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         "`preserve_direction` scales the request down along its own direction first.",
         default="weighted", choices=SATURATION_MODES),
     Key("weights.slack", FLOAT_LIST, "Q: weight of the wrench error of each controlled DOF, in `dofs` order (1.35).",
-        default_doc="1e6 for every DOF", minimum=0.0, exclusive_minimum=True),
+        default_doc="derived per DOF (see above)", minimum=0.0, exclusive_minimum=True),
     Key("weights.minimax", FLOAT, "beta: weight of the largest actuator force (1.35).", default=0.0, minimum=0.0),
     Key("weights.azimuth_change", FLOAT,
         "Omega: weight of the squared azimuth change per sample (1.44), nonlinear method.",

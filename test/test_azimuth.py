@@ -1,0 +1,169 @@
+"""Rotatable thrusters through every method: rate limits, sectors, the polygon, crossing
+forbidden sectors at zero thrust, stuck thrusters, reversible and vertical ones."""
+
+import math
+
+import numpy as np
+import pytest
+from conftest import ROOT, vehicle_from
+
+from allocator_pkg import Allocator, FaultMode, Vehicle
+from allocator_pkg.azimuth import AzimuthLimits, AzimuthState, plan, resolve
+from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector, wrap
+
+DP = ROOT / "config" / "dp_vessel.yaml"
+EXAMPLE = ROOT / "config" / "example1_rov.yaml"
+METHODS = ["qp", "pseudoinverse", "nonlinear"]
+
+
+SINGLE = {"dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
+          "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0}
+
+
+def single_azimuth(**keys):
+    return Vehicle.from_parameters({**SINGLE, **{f"actuators.a.{k}": v for k, v in keys.items()}})
+
+
+def check_limits(vehicle, previous, result, dt):
+    for i, actuator in enumerate(vehicle.actuators):
+        assert math.isfinite(result.thrust[i]) and math.isfinite(result.azimuth[i])
+        if actuator.rotatable:
+            rotation = actuator.rotation
+            step = abs(wrap(result.azimuth[i] - previous.azimuth[i]))
+            if rotation.rate_max > 0:
+                assert step <= rotation.rate_max * dt + 1e-9, f"{actuator.name} turned {step} rad"
+            assert in_feasible_sector(rotation, result.azimuth[i])
+            if abs(result.thrust[i]) > 1e-9:
+                assert not in_forbidden_sector(rotation, result.azimuth[i]), f"{actuator.name} thrusts in a sector"
+            assert actuator.thrust_min - 1e-9 <= result.thrust[i] <= actuator.thrust_max + 1e-9
+        if actuator.thrust_rate_max > 0:
+            assert abs(result.thrust[i] - previous.thrust[i]) <= actuator.thrust_rate_max * dt + 1e-6
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_rotating_force_respects_rates_and_sectors_and_converges(method):
+    vehicle = vehicle_from(DP)
+    alloc = Allocator(vehicle, method=method)
+    previous = alloc.stop()
+    force = 200000.0
+    for k in range(900):                                     # 1.5 turns of the requested force
+        heading = 2 * math.pi * k / 600
+        tau = [force * math.cos(heading), force * math.sin(heading), 0.0, 0.0, 0.0, 0.0]
+        result = alloc.allocate(tau)
+        check_limits(vehicle, previous, result, alloc.dt)
+        previous = result
+    tau = [force * math.cos(heading), force * math.sin(heading), 0.0, 0.0, 0.0, 0.0]
+    for _ in range(300):                                     # hold the last request: angles settle
+        result = alloc.allocate(tau)
+        check_limits(vehicle, previous, result, alloc.dt)
+        previous = result
+    assert not result.saturated
+    assert result.achieved[[0, 1, 5]] == pytest.approx(np.array(tau)[[0, 1, 5]], abs=1e-3 * force)
+
+
+@pytest.mark.parametrize("sides", [8, 16, 32])
+def test_polygon_never_exceeds_the_limit_and_loses_at_most_one_minus_cos(sides):
+    vehicle = Vehicle.from_parameters({**SINGLE, "azimuth_polygon_sides": sides})
+    worst = 1.0
+    for k in range(72):
+        alloc = Allocator(vehicle)
+        heading = math.radians(5 * k)
+        for _ in range(3):
+            result = alloc.allocate([500 * math.cos(heading), 500 * math.sin(heading), 0, 0, 0, 0])
+        magnitude = math.hypot(result.achieved[0], result.achieved[1])
+        assert magnitude <= 100.0 + 1e-6
+        worst = min(worst, magnitude / 100.0)
+    assert worst >= math.cos(math.pi / sides) - 1e-4
+
+
+def test_pseudo_inverse_angle_moves_at_rate_and_never_pushes_the_wrong_way():
+    vehicle = single_azimuth(azimuth_rate_max=1.0)
+    alloc = Allocator(vehicle, method="pseudoinverse", dt=0.1)
+    for k in range(40):
+        result = alloc.allocate([-50.0, 1.0, 0, 0, 0, 0])            # behind: the angle must turn ~pi
+        assert result.thrust[0] >= 0.0
+        expected = min(0.1 * (k + 1), math.atan2(1.0, -50.0))
+        assert result.azimuth[0] == pytest.approx(expected, abs=1e-9)
+        direction = np.array([math.cos(result.azimuth[0]), math.sin(result.azimuth[0])])
+        assert result.thrust[0] == pytest.approx(max(0.0, direction @ [-50.0, 1.0]), abs=1e-9)
+    assert result.achieved[:2] == pytest.approx([-50.0, 1.0])
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_forbidden_sector_is_crossed_at_zero_thrust(method):
+    # Free rotation, forbidden sector (1.0, 2.0): from 0.8 to a wanted direction of 2.3 rad the
+    # short way crosses it.
+    vehicle = single_azimuth(azimuth_rate_max=0.5, forbidden_sectors=[1.0, 2.0], azimuth_initial=0.8,
+                             thrust_rate_max=100.0)
+    alloc = Allocator(vehicle, method=method, dt=0.1)
+    target = [50 * math.cos(2.3), 50 * math.sin(2.3), 0, 0, 0, 0]
+    previous = alloc.stop()
+    crossed = False
+    for _ in range(80):
+        result = alloc.allocate(target)
+        check_limits(vehicle, previous, result, 0.1)
+        if in_forbidden_sector(vehicle.actuators[0].rotation, result.azimuth[0]):
+            crossed = True
+            assert result.thrust[0] == 0.0
+        previous = result
+    assert crossed
+    assert result.azimuth[0] == pytest.approx(2.3, abs=1e-3)
+    assert result.achieved[:2] == pytest.approx(target[:2], abs=0.1)
+
+
+def test_limited_sector_keeps_the_angle_inside_and_turns_the_long_way():
+    vehicle = single_azimuth(azimuth_min=-2.0, azimuth_max=2.0, azimuth_rate_max=1.0, azimuth_initial=1.9)
+    alloc = Allocator(vehicle, dt=0.1)
+    previous = alloc.stop()
+    target = [50 * math.cos(-1.9), 50 * math.sin(-1.9), 0, 0, 0, 0]
+    for _ in range(80):
+        result = alloc.allocate(target)
+        check_limits(vehicle, previous, result, 0.1)
+        previous = result
+    assert result.azimuth[0] == pytest.approx(-1.9, abs=1e-3)
+
+
+def test_reversible_thruster_pushes_backwards_without_turning():
+    vehicle = single_azimuth(reversible=True, thrust_min=-80.0, azimuth_rate_max=0.2)
+    alloc = Allocator(vehicle, dt=0.1)
+    result = alloc.allocate([-60.0, 0.0, 0, 0, 0, 0])
+    assert result.thrust[0] == pytest.approx(-60.0, rel=1e-4)
+    assert result.azimuth[0] == pytest.approx(0.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_stuck_azimuth_keeps_its_angle_while_the_others_compensate(method):
+    vehicle = vehicle_from(EXAMPLE)
+    alloc = Allocator(vehicle, method=method)
+    alloc.set_fault("azimuth_fwd", FaultMode.STUCK, azimuth=1.2)
+    tau = np.array([120.0, 40.0, 0.0, 0.0, 0.0, 20.0])
+    setups = alloc.stats.solver_setups
+    for _ in range(150):
+        result = alloc.allocate(tau)
+        assert result.azimuth[0] == pytest.approx(1.2)
+    assert not result.saturated
+    assert result.achieved[[0, 1, 5]] == pytest.approx(tau[[0, 1, 5]], abs=0.2)
+    assert alloc.stats.solver_setups == setups
+
+
+def test_vertical_azimuth_pushes_in_the_x_z_plane():
+    parameters = {"dofs": ["surge", "heave"], "actuators.names": ["v"], "actuators.v.type": "azimuth_vertical",
+                  "actuators.v.position": [0.0, 0.0, 0.0], "actuators.v.thrust_max": 100.0}
+    alloc = Allocator(Vehicle.from_parameters(parameters))
+    result = alloc.allocate([30.0, 0.0, 40.0, 0.0, 0.0, 0.0])
+    assert result.thrust[0] == pytest.approx(50.0, rel=1e-4)
+    assert result.azimuth[0] == pytest.approx(math.atan2(30.0, 40.0), abs=1e-4)   # 0 points along +z
+
+
+def test_plan_and_resolve_units():
+    vehicle = single_azimuth(azimuth_rate_max=1.0)
+    rotation = vehicle.actuators[0].rotation
+    state = AzimuthState(angle=0.0, thrust=20.0)
+    limits = plan(rotation, state, 0.1, (0.0, 100.0), 5.0, (0.0, 50.0), 0.01)
+    assert (limits.low, limits.high) == pytest.approx((-0.1, 0.1))
+    assert (limits.thrust_low, limits.thrust_high) == (15.0, 25.0)
+    thrust, angle = resolve(limits, 0.0, (0.0, 50.0), 0.01, continuous=True)
+    assert angle == pytest.approx(0.1)
+    assert thrust == 15.0          # the projection, 50 sin(0.1), is below what the rate limit allows
+    held = resolve(AzimuthLimits(-0.1, 0.1, 1, 0.0, 25.0), 0.05, (1e-3, 0.0), 0.01, continuous=True)
+    assert held[1] == 0.05

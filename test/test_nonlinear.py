@@ -1,0 +1,76 @@
+"""The nonlinear method (1.44)/(1.45) against an independent optimum, and its singularity term."""
+
+import numpy as np
+import pytest
+from conftest import DATA, vehicle_from
+from scipy.optimize import minimize
+
+from allocator_pkg import Allocator
+from allocator_pkg.configuration_matrix import configuration_matrix
+
+FOUR = DATA / "four_azimuths.yaml"
+
+
+def slsqp_optimum(vehicle, tau, starts=20):
+    """min sum_i |f_i|^(3/2) s.t. T(alpha) f = tau, 0 <= f <= f_max, from several starts."""
+    actuators = vehicle.actuators
+    rows = list(vehicle.dof_indices)
+    f_max = np.array([a.thrust_max for a in actuators])
+    rng = np.random.default_rng(1)
+
+    def residual(x):
+        return (configuration_matrix(actuators, x[4:])[rows] @ x[:4] - tau[rows]) / 1e5
+
+    best = None
+    for _ in range(starts):
+        x0 = np.concatenate((rng.uniform(0.1, 0.5, 4) * f_max, rng.uniform(-np.pi, np.pi, 4)))
+        result = minimize(lambda x: np.sum(np.abs(x[:4]) ** 1.5), x0, method="SLSQP",
+                          constraints=[{"type": "eq", "fun": residual}],
+                          bounds=[(0.0, f) for f in f_max] + [(None, None)] * 4,
+                          options={"maxiter": 500, "ftol": 1e-12})
+        if result.success and (best is None or result.fun < best.fun):
+            best = result
+    return best.fun
+
+
+@pytest.mark.parametrize("tau", [[2e5, 1e5, 0, 0, 0, 3e6], [-1e5, 2.5e5, 0, 0, 0, -4e6], [3e5, 0, 0, 0, 0, 1e6]])
+def test_power_is_within_a_few_percent_of_an_independent_optimum(tau):
+    vehicle = vehicle_from(FOUR)
+    alloc = Allocator(vehicle, method="nonlinear")
+    tau = np.array(tau, dtype=float)
+    for _ in range(400):
+        result = alloc.allocate(tau)
+    assert not result.saturated
+    assert result.achieved[[0, 1, 5]] == pytest.approx(tau[[0, 1, 5]], rel=1e-4, abs=1.0)
+    optimum = slsqp_optimum(vehicle, tau)
+    assert result.power <= 1.03 * optimum
+    assert alloc.stats.solver_setups == 1
+
+
+def test_nonlinear_uses_less_power_than_the_quadratic_effort_of_qp():
+    vehicle = vehicle_from(FOUR)
+    tau = [2e5, 1e5, 0, 0, 0, 3e6]
+    nonlinear, qp = Allocator(vehicle, method="nonlinear"), Allocator(vehicle, method="qp")
+    for _ in range(400):
+        a, b = nonlinear.allocate(tau), qp.allocate(tau)
+    assert a.power < b.power
+
+
+def determinants(rho):
+    vehicle = vehicle_from(FOUR, singularity__rho=rho)
+    alloc = Allocator(vehicle, method="nonlinear")
+    values = []
+    for k in range(600):
+        # Spread the azimuths with a sway and yaw request, then ask for pure surge: the
+        # least-power answer lines all four up, where T T' is singular.
+        alloc.allocate([1e5, 2e5, 0, 0, 0, 2e6] if k < 150 else [3e5, 0, 0, 0, 0, 0])
+        t = alloc.configuration_matrix()[[0, 1, 5]]
+        values.append(np.linalg.det(t @ t.T))
+    return np.array(values[150:])
+
+
+def test_singularity_avoidance_keeps_the_configuration_away_from_det_zero():
+    plain, avoiding = determinants(0.0), determinants(1e6)
+    assert plain.min() < 1e-6
+    assert avoiding.min() > 1.0
+    assert np.all(avoiding[-100:] > plain[-100:])

@@ -1,0 +1,24 @@
+"""The schema is the single source of the configuration reference."""
+
+from conftest import ROOT
+
+from allocator_pkg import schema
+
+
+def test_configuration_doc_is_generated_from_the_schema():
+    text = (ROOT / "docs" / "configuration.md").read_text()
+    assert schema.markdown_reference() in text, "docs/configuration.md is out of date: run `make docs`"
+
+
+def test_every_actuator_type_has_its_keys():
+    for kind in schema.ACTUATOR_TYPES:
+        names = {key.name for key in schema.keys_for_type(kind)}
+        assert {"type", "position", "weight", "power_coefficient"} <= names
+    assert "azimuth_rate_max" in {k.name for k in schema.keys_for_type("azimuth_vertical")}
+    assert "thrust_max" not in {k.name for k in schema.keys_for_type("fin")}
+    assert "direction" not in {k.name for k in schema.keys_for_type("azimuth")}
+
+
+def test_read_only_keys():
+    read_only = {key.name for key in schema.VEHICLE_KEYS + schema.ACTUATOR_KEYS if key.read_only}
+    assert read_only == {"actuators.names", "type"}
