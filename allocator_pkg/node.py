@@ -342,6 +342,9 @@ class AllocatorNode(Node):
             values["iterations"] = str(self._last.iterations)
         if allocator.vehicle.has_surfaces:
             values["speed [m/s]"] = f"{allocator.speed:g}"
+            unavailable = [a.name for a, ok in zip(allocator.vehicle.actuators, self._last.available) if not ok] \
+                if self._last is not None else []
+            values["unavailable"] = ", ".join(unavailable) or "none"
         for name, mode in zip(allocator.names, modes):
             values[f"mode {name}"] = FaultMode(mode).name
         status.values = [KeyValue(key=key, value=value) for key, value in values.items()]

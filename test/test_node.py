@@ -224,3 +224,28 @@ def test_odometry_sets_the_speed_of_control_surfaces(harness):
     odometry.publish(message)
     harness.spin_for(0.2)
     assert harness.node.allocator.speed == 2.0
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.1)
+def test_watchdog_logs_once_per_transition(harness):
+    from rcl_interfaces.msg import Log
+    logs = []
+    harness.probe.create_subscription(Log, "/rosout", logs.append, 100)
+    harness.spin_until(lambda: harness.node.count_subscribers("/rosout") > 0 or True)
+    harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(2)
+    harness.tick(20)                                     # stale for 18 samples
+    harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(2)
+    harness.spin_for(0.3)
+    texts = [log.msg for log in logs if log.name == "thrust_allocator"]
+    assert sum("no valid wrench" in text for text in texts) == 1
+    assert sum("wrench input resumed" in text for text in texts) >= 1
+
+
+@pytest.mark.params(DATA / "infante.yaml")
+def test_diagnostics_name_unavailable_control_surfaces(harness):
+    harness.tick(round(1.0 / harness.node.period))
+    harness.spin_until(lambda: len(harness.diagnostics) > 0)
+    values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
+    assert values["unavailable"].startswith("fin_bow_port")
