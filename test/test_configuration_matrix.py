@@ -112,7 +112,7 @@ def test_infante_fin_matrix_1_51():
     # the test vehicle's coordinates: bow fins at x = 1.2, stern fins at x = -1.6, y = -+0.4,
     # lift per positive deflection up (-z) for port fins and down (+z) for starboard fins
     # (Table 2: port "forward edge down", starboard "forward edge up").
-    vehicle = load_vehicle("test/data/infante.yaml")
+    vehicle = load_vehicle("config/infante_auv.yaml")
     fins = [a for a in vehicle.actuators if a.type == "fin"]
     k_b, k_s = 3.0, 4.0
     gains = np.array([k_b, k_b, k_s, k_s])

@@ -3,7 +3,7 @@
 
 import numpy as np
 import pytest
-from conftest import DATA, vehicle_from
+from conftest import ROOT, vehicle_from
 
 from allocator_pkg import Allocator
 
@@ -15,6 +15,7 @@ K_RUDDER = 0.5 * RHO * 0.08 * (1.3 * SPEED) ** 2 * 3.0   # rudders in the propel
 D_BOW, D_STERN = K_BOW * 0.8 / 3.0, K_STERN * 0.8 / 3.0     # (1.58) with C_D = 0.8
 D_RUDDER = K_RUDDER * 0.8 / 3.0
 W_BOW, W_STERN = 1.0, 2.0                             # the weights w_b, w_s of (1.54), on deflections
+SURFACES = ("fin_bow_port", "fin_bow_stbd", "fin_stern_port", "fin_stern_stbd", "rudder_port", "rudder_stbd")
 
 
 def infante(speed=SPEED):
@@ -23,8 +24,11 @@ def infante(speed=SPEED):
     # of (1.53) at this speed (only the fins act on heave, roll and pitch: the multiple, chosen
     # to keep the weights near the others', does not change their answer).
     scale = 0.1 * K_BOW**2
+    no_rate_limits = {f"actuators__{name}__{key}": 0.0 for name, key in
+                      [("thruster_port", "thrust_rate_max"), ("thruster_stbd", "thrust_rate_max")]
+                      + [(surface, "deflection_rate_max") for surface in SURFACES]}
     vehicle = vehicle_from(
-        DATA / "infante.yaml",
+        ROOT / "config" / "infante_auv.yaml", **no_rate_limits,
         actuators__thruster_port__position=[-2.0, 0.0, 0.0], actuators__thruster_stbd__position=[-2.0, 0.0, 0.0],
         actuators__fin_bow_port__weight=scale * W_BOW / K_BOW**2,
         actuators__fin_bow_stbd__weight=scale * W_BOW / K_BOW**2,

@@ -211,7 +211,7 @@ def test_per_actuator_topics(harness):
     assert expected.thrust[3] > 0.0
 
 
-@pytest.mark.params(DATA / "infante.yaml")
+@pytest.mark.params(ROOT / "config" / "infante_auv.yaml")
 def test_odometry_sets_the_speed_of_control_surfaces(harness):
     from nav_msgs.msg import Odometry
     odometry = harness.probe.create_publisher(Odometry, "odometry", 10)
@@ -243,7 +243,7 @@ def test_watchdog_logs_once_per_transition(harness):
     assert sum("wrench input resumed" in text for text in texts) >= 1
 
 
-@pytest.mark.params(DATA / "infante.yaml")
+@pytest.mark.params(ROOT / "config" / "infante_auv.yaml")
 def test_diagnostics_name_unavailable_control_surfaces(harness):
     harness.tick(round(1.0 / harness.node.period))
     harness.spin_until(lambda: len(harness.diagnostics) > 0)
