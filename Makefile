@@ -20,7 +20,7 @@ MSGS_SOURCES := $(wildcard allocator_msgs/CMakeLists.txt allocator_msgs/package.
 CONFIG ?= config/default.yaml
 PYTEST_ARGS ?=
 
-.PHONY: help setup run test lint lock docs clean prereqs
+.PHONY: help setup run test lint lock docs capability clean prereqs
 
 help:
 	@echo "make run     set up (first time) and start allocator_node with CONFIG=$(CONFIG)"
@@ -28,6 +28,7 @@ help:
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
 	@echo "make docs    regenerate the key tables of docs/configuration.md from the schema"
+	@echo "make capability  capability plots of every shipped vehicle into docs/capability/"
 	@echo "make lock    re-resolve requirements.in into requirements.lock"
 	@echo "make clean   remove .venv and build/"
 
@@ -74,6 +75,10 @@ test: lint
 
 docs: setup
 	$(PY) tools/update_docs.py
+
+VEHICLES := $(filter-out config/default.yaml,$(wildcard config/*.yaml))
+capability: setup
+	@for vehicle in $(VEHICLES); do $(VENV)/bin/allocator-capability $$vehicle --out docs/capability || exit 1; done
 
 lock: | prereqs
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)

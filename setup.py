@@ -17,6 +17,7 @@ setup(
         (f"share/{PACKAGE}/launch", sorted(glob("launch/*.py"))),
     ],
     install_requires=["setuptools", "numpy", "osqp", "pyyaml"],
+    extras_require={"tools": ["scipy", "matplotlib"]},     # allocator-capability and the demo
     zip_safe=True,
     maintainer="allocator_pkg maintainers",
     maintainer_email="allocator@example.com",
@@ -27,6 +28,7 @@ setup(
         "console_scripts": [
             "allocator_node = allocator_pkg.node:main",
             "allocator-ctl = allocator_pkg.ctl:main",
+            "allocator-capability = allocator_pkg.capability:main",
         ],
     },
 )

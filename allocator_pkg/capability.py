@@ -1,0 +1,385 @@
+"""Capability analysis: the largest generalised force a vehicle can hold in each direction.
+
+For each direction in a plane of two DOFs (surge and sway by default, the dynamic-positioning
+capability plot), with the other controlled DOFs held at given values (yaw moment 0 by
+default), a small linear programme finds the largest magnitude the actuators can produce with
+the configured limits, faults and the configured method's constraints:
+
+- ``qp``: the inscribed N-gon of ``azimuth_polygon_sides`` for rotatable thrusters, as the
+  QP uses;
+- ``nonlinear``: the thrust circle itself (a 256-gon, within 0.008 %);
+- ``pseudoinverse``: only forces the weighted pseudo-inverse gives within every limit (it has
+  no way to redistribute), found by bisection on the method itself.
+
+Rotatable thrusters may turn to any allowed angle (steady state: rate limits do not apply).
+A forbidden sector makes the set of forces a thruster can give non-convex; it is split into
+convex pieces (cones at most pi wide) and every combination of pieces is solved, keeping the
+best. Control surfaces give the lift of the given speed.
+
+``allocator-capability`` writes the polar plot (nominal and every single-actuator failure)
+as PNG and the numbers as CSV.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import itertools
+import math
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import linprog
+
+from .actuators import lift_gain
+from .faults import Fault, FaultMode
+from .methods.pseudoinverse import PseudoInverse
+from .model import Model
+from .schema import DOF_NAMES
+from .sectors import TWO_PI, in_feasible_sector, wrap
+from .vehicle import ActuatorConfig, Vehicle, load_vehicle
+
+FORCE_DOFS = ("surge", "sway", "heave")
+NONLINEAR_SIDES = 256
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """Largest request per direction: ``points`` (k x 2) in the plane's physical units."""
+
+    directions: np.ndarray
+    points: np.ndarray
+
+    @property
+    def magnitude(self) -> np.ndarray:
+        return np.hypot(self.points[:, 0], self.points[:, 1])
+
+
+class Capability:
+    """Capability of one vehicle in a plane of two controlled DOFs."""
+
+    def __init__(self, vehicle: Vehicle, method: str | None = None, speed: float = 2.0,
+                 plane: tuple[str, str] | None = None):
+        self.vehicle = vehicle
+        self.method = method or vehicle.method
+        self.speed = speed
+        self.model = Model.build(vehicle, 1.0 / vehicle.rate_hz)
+        self.plane = plane or default_plane(vehicle)
+        missing = [d for d in self.plane if d not in vehicle.dofs]
+        if missing:
+            raise ValueError(f"the plane {self.plane} needs controlled DOFs; {', '.join(missing)} is not controlled")
+        rows = list(vehicle.dofs)
+        self._plane_rows = [rows.index(d) for d in self.plane]
+        same_units = all(d in FORCE_DOFS for d in self.plane) or not any(d in FORCE_DOFS for d in self.plane)
+        authority = self.model.authority[self._plane_rows]
+        self.axis_scale = np.ones(2) if same_units else authority / max(float(np.max(authority)), 1e-12)
+
+    def max_force(self, direction: float, yaw_moment: float = 0.0,
+                  faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
+        """Largest magnitude along ``direction`` [rad, in the plane, from its first DOF toward
+        its second] with the yaw moment held (when yaw is controlled and not in the plane)."""
+        return float(np.hypot(*self._max_point(direction, yaw_moment, _faults(faults))))
+
+    def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
+                 faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:
+        directions = np.radians(np.arange(0.0, 360.0, step_deg))
+        faults = _faults(faults)
+        points = np.array([self._max_point(angle, yaw_moment, faults) for angle in directions])
+        return Envelope(directions=directions, points=points)
+
+    # -- one direction --------------------------------------------------------------------
+
+    def _request(self, direction: float, yaw_moment: float) -> tuple[np.ndarray, np.ndarray]:
+        """(unit request per unit of magnitude, fixed part) on the controlled DOFs."""
+        unit = np.zeros(self.model.n)
+        unit[self._plane_rows] = self.axis_scale * np.array([math.cos(direction), math.sin(direction)])
+        fixed = np.zeros(self.model.n)
+        if "yaw" in self.vehicle.dofs and "yaw" not in self.plane:
+            fixed[list(self.vehicle.dofs).index("yaw")] = yaw_moment
+        return unit, fixed
+
+    def _max_point(self, direction: float, yaw_moment: float, faults: dict[str, Fault]) -> np.ndarray:
+        unit, fixed = self._request(direction, yaw_moment)
+        if self.method == "pseudoinverse":
+            magnitude = self._pseudo_inverse_limit(unit, fixed, faults)
+        else:
+            magnitude = self._linear_programme(unit, fixed, faults)
+        return magnitude * self.axis_scale * np.array([math.cos(direction), math.sin(direction)])
+
+    def _ranges(self, faults: dict[str, Fault]) -> tuple[np.ndarray, np.ndarray]:
+        """Signed force range of every actuator, faults applied."""
+        low, high = np.empty(self.model.r), np.empty(self.model.r)
+        for i, actuator in enumerate(self.vehicle.actuators):
+            efficiency = _efficiency(faults.get(actuator.name))
+            if actuator.is_surface:
+                reach = lift_gain(actuator.surface, self.vehicle.water_density, self.speed) * efficiency
+                high[i] = reach * actuator.surface.deflection_max
+                low[i] = -high[i]
+                fault = faults.get(actuator.name)
+                if fault is not None and fault.mode == FaultMode.STUCK:
+                    low[i] = high[i] = reach * fault.azimuth
+            else:
+                low[i], high[i] = actuator.thrust_min * efficiency, actuator.thrust_max * efficiency
+        return low, high
+
+    def _linear_programme(self, unit: np.ndarray, fixed: np.ndarray, faults: dict[str, Fault]) -> float:
+        model = self.model
+        low, high = self._ranges(faults)
+        sides = NONLINEAR_SIDES if self.method == "nonlinear" else self.vehicle.azimuth_polygon_sides
+        choices = [_pieces(self.vehicle.actuators[i], faults.get(self.vehicle.actuators[i].name), low[i], high[i])
+                   for i in model.rot]
+        best = 0.0
+        for combination in itertools.product(*choices):
+            best = max(best, self._solve(unit, fixed, low, high, combination, sides))
+        return best
+
+    def _solve(self, unit, fixed, low, high, pieces, sides) -> float:
+        """max F s.t. T_e f = F unit + fixed, boxes, and each rotatable force in its piece."""
+        model = self.model
+        columns = model.m + 1
+        bounds = [(None, None)] * model.m + [(0.0, None)]
+        for i, column in zip(model.scalar, model.scalar_columns):
+            bounds[column] = (low[i], high[i])
+        a_ub, b_ub = [], []
+        normals = [(math.cos(TWO_PI * k / sides), math.sin(TWO_PI * k / sides)) for k in range(sides)]
+        for (c1, c2), piece in zip(model.rot_columns, pieces):
+            start, end, radius, line = piece
+            if radius <= 0.0:
+                bounds[c1] = bounds[c2] = (0.0, 0.0)
+                continue
+            for nx, ny in normals:                                  # inscribed polygon of the radius
+                row = np.zeros(columns)
+                row[c1], row[c2] = nx, ny
+                a_ub.append(row)
+                b_ub.append(radius * math.cos(math.pi / sides))
+            for angle, sign in ((start, -1.0), (end, 1.0)):         # the cone [start, end]
+                row = np.zeros(columns)
+                row[c1], row[c2] = sign * -math.sin(angle), sign * math.cos(angle)
+                a_ub.append(row)
+                b_ub.append(0.0)
+                if line:
+                    a_ub.append(-row)
+                    b_ub.append(0.0)
+            middle = 0.5 * (start + end)
+            row = np.zeros(columns)
+            row[c1], row[c2] = -math.cos(middle), -math.sin(middle)
+            a_ub.append(row)                                        # pointed: along the middle, not against
+            b_ub.append(0.0)
+        a_eq = np.hstack([model.t_ec, -unit.reshape(-1, 1)])
+        cost = np.zeros(columns)
+        cost[-1] = -1.0
+        result = linprog(cost, A_ub=np.array(a_ub) if a_ub else None, b_ub=np.array(b_ub) if b_ub else None,
+                         A_eq=a_eq, b_eq=fixed, bounds=bounds, method="highs")
+        return float(result.x[-1]) if result.status == 0 else 0.0
+
+    def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: dict[str, Fault]) -> float:
+        """Largest F whose pseudo-inverse forces stay within every limit (bisection)."""
+        model = self.model
+        low, high = self._ranges(faults)
+        excluded = (low == 0.0) & (high == 0.0)
+        lines = {int(i): faults[self.vehicle.actuators[i].name].azimuth for i in model.rot
+                 if self.vehicle.actuators[i].name in faults
+                 and faults[self.vehicle.actuators[i].name].mode == FaultMode.STUCK}
+        gain = PseudoInverse(model).gain(excluded, lines)
+
+        def feasible(magnitude: float) -> bool:
+            force = gain @ (magnitude * unit + fixed)
+            if np.max(np.abs(model.t_ec @ force - magnitude * unit - fixed)) > 1e-6 * max(1.0, magnitude):
+                return False
+            for i, column in zip(model.scalar, model.scalar_columns):
+                if not low[i] - 1e-9 <= force[column] <= high[i] + 1e-9:
+                    return False
+            for i, (c1, c2) in zip(model.rot, model.rot_columns):
+                actuator = self.vehicle.actuators[i]
+                magnitude_i = math.hypot(force[c1], force[c2])
+                if magnitude_i > max(high[i], -low[i]) + 1e-9:
+                    return False
+                if magnitude_i > 1e-9 and not _allowed(actuator, math.atan2(force[c2], force[c1])):
+                    return False
+            return True
+
+        if not feasible(0.0):
+            return 0.0
+        upper = 2.0 * float(np.sum(np.maximum(high, -low) * np.abs(model.t_ec[:, model.starts]).max(axis=0)))
+        lower = 0.0
+        for _ in range(60):
+            middle = 0.5 * (lower + upper)
+            lower, upper = (middle, upper) if feasible(middle) else (lower, middle)
+        return lower
+
+
+def _allowed(actuator: ActuatorConfig, direction: float) -> bool:
+    """Whether a rotatable thruster can push in this direction (forward or, if reversible, back)."""
+    rotation = actuator.rotation
+    candidates = [direction] + ([direction + math.pi] if rotation.reversible else [])
+    for angle in candidates:
+        for representation in (wrap(angle), wrap(angle) - TWO_PI, wrap(angle) + TWO_PI):
+            if in_feasible_sector(rotation, representation) and not _in_forbidden(rotation, representation):
+                return True
+    return False
+
+
+def _in_forbidden(rotation, angle: float) -> bool:
+    for start, end in rotation.forbidden_sectors:
+        width = (end - start) % TWO_PI
+        if 1e-9 < (angle - start) % TWO_PI < width - 1e-9:
+            return True
+    return False
+
+
+def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float) -> list[tuple]:
+    """Convex pieces (start, end, radius, line) of the forces a rotatable thruster can give."""
+    rotation = actuator.rotation
+    if fault is not None and fault.mode == FaultMode.STUCK:
+        angle = fault.azimuth
+        pieces = [] if _in_forbidden(rotation, angle) else [(angle, angle, high, True)]
+        if low < 0.0 and not _in_forbidden(rotation, angle):
+            pieces.append((angle + math.pi, angle + math.pi, -low, True))
+        return pieces or [(angle, angle, 0.0, True)]
+    arcs = _allowed_arcs(rotation)
+    pieces = [(start, end, high, False) for start, end in arcs]
+    if low < 0.0:
+        pieces += [(start + math.pi, end + math.pi, -low, False) for start, end in arcs]
+    split = []
+    for start, end, radius, line in pieces:
+        while end - start > math.pi:
+            split.append((start, start + math.pi, radius, line))
+            start += math.pi
+        split.append((start, end, radius, line))
+    return split
+
+
+def _allowed_arcs(rotation) -> list[tuple[float, float]]:
+    """Arcs of angles where the thruster may push: feasible sector minus forbidden sectors."""
+    low, high = (-math.pi, math.pi) if rotation.continuous else (rotation.azimuth_min, rotation.azimuth_max)
+    cuts = []
+    for start, end in rotation.forbidden_sectors:
+        width = (end - start) % TWO_PI
+        base = wrap(start)
+        for shift in (-TWO_PI, 0.0, TWO_PI):
+            if base + shift < high and base + shift + width > low:
+                cuts.append((base + shift, base + shift + width))
+    arcs = [(low, high)]
+    for cut_low, cut_high in sorted(cuts):
+        arcs = [piece for a, b in arcs
+                for piece in ((a, min(b, cut_low)), (max(a, cut_high), b)) if piece[1] > piece[0]]
+    if rotation.continuous and len(arcs) > 1 and arcs[0][0] == -math.pi and arcs[-1][1] == math.pi:
+        arcs = [(arcs[-1][0], arcs[0][1] + TWO_PI), *arcs[1:-1]]        # join across +-pi
+    return arcs
+
+
+def _efficiency(fault: Fault | None) -> float:
+    if fault is None or fault.mode in (FaultMode.NOMINAL, FaultMode.STUCK):
+        return 1.0
+    return 0.0 if fault.mode == FaultMode.FAILED else fault.efficiency
+
+
+def _faults(faults: Mapping[str, Fault | FaultMode] | None) -> dict[str, Fault]:
+    result = {}
+    for name, fault in (faults or {}).items():
+        result[name] = fault if isinstance(fault, Fault) else Fault(FaultMode(fault), efficiency=0.0)
+    return result
+
+
+def default_plane(vehicle: Vehicle) -> tuple[str, str]:
+    """Surge and sway when both are controlled (the DP plot); else the first two controlled DOFs."""
+    if "surge" in vehicle.dofs and "sway" in vehicle.dofs:
+        return ("surge", "sway")
+    if len(vehicle.dofs) < 2:
+        raise ValueError("capability needs two controlled DOFs")
+    return (vehicle.dofs[0], vehicle.dofs[1])
+
+
+# -- command line -------------------------------------------------------------------------
+
+def write_csv(path: Path, plane: tuple[str, str], cases: dict[str, Envelope]) -> None:
+    with path.open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        header = ["direction_deg"]
+        for case in cases:
+            header += [f"{case}.{plane[0]}", f"{case}.{plane[1]}", f"{case}.magnitude"]
+        writer.writerow(header)
+        first = next(iter(cases.values()))
+        for k, direction in enumerate(first.directions):
+            row = [f"{math.degrees(direction):.1f}"]
+            for envelope in cases.values():
+                x, y = envelope.points[k]
+                row += [f"{x:.6g}", f"{y:.6g}", f"{envelope.magnitude[k]:.6g}"]
+            writer.writerow(row)
+
+
+def plot(path: Path, title: str, plane: tuple[str, str], cases: dict[str, Envelope], polar: bool) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure = plt.figure(figsize=(8.5, 7.5))
+    axes = figure.add_subplot(projection="polar" if polar else None)
+    for name, envelope in cases.items():
+        style = dict(linewidth=2.4, color="black") if name == "nominal" else dict(linewidth=1.2)
+        if polar:
+            closed = np.append(envelope.directions, envelope.directions[0])
+            axes.plot(closed, np.append(envelope.magnitude, envelope.magnitude[0]) / 1e3, label=name, **style)
+        else:
+            points = np.vstack([envelope.points, envelope.points[:1]])
+            axes.plot(points[:, 0], points[:, 1], label=name, **style)
+    if polar:
+        axes.set_theta_zero_location("N")           # surge ahead, sway to starboard (clockwise)
+        axes.set_theta_direction(-1)
+        axes.set_title(f"{title}\nlargest {plane[0]}/{plane[1]} force [kN] held per direction", pad=18)
+    else:
+        axes.set_xlabel(f"{plane[0]} [{_unit(plane[0])}]")
+        axes.set_ylabel(f"{plane[1]} [{_unit(plane[1])}]")
+        axes.grid(True)
+        axes.set_title(f"{title}\nlargest request held per direction ({plane[0]}, {plane[1]})")
+    axes.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+
+
+def _unit(dof: str) -> str:
+    return "N" if dof in FORCE_DOFS else "N m"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="allocator-capability", description=__doc__.split("\n\n")[0])
+    parser.add_argument("config", help="vehicle params file")
+    parser.add_argument("--out", default=".", help="folder for <vehicle>_capability.png and .csv")
+    parser.add_argument("--step", type=float, default=5.0, help="degrees between directions (default %(default)s)")
+    parser.add_argument("--yaw-moment", type=float, default=0.0, help="yaw moment held [N m] (default 0)")
+    parser.add_argument("--speed", type=float, default=2.0, help="surge speed for control surfaces [m/s]")
+    parser.add_argument("--method", choices=["qp", "pseudoinverse", "nonlinear"], help="default: the file's")
+    parser.add_argument("--plane", nargs=2, metavar=("X", "Y"), choices=DOF_NAMES,
+                        help="the two DOFs of the plot (default: surge sway, else the first two controlled)")
+    arguments = parser.parse_args(argv)
+    vehicle = load_vehicle(arguments.config)
+    try:
+        capability = Capability(vehicle, arguments.method, arguments.speed,
+                                tuple(arguments.plane) if arguments.plane else None)
+    except ValueError as error:
+        print(f"allocator-capability: {error}", file=sys.stderr)
+        return 2
+    cases = {"nominal": capability.envelope(arguments.step, arguments.yaw_moment)}
+    for actuator in vehicle.actuators:
+        cases[f"{actuator.name} failed"] = capability.envelope(arguments.step, arguments.yaw_moment,
+                                                               {actuator.name: FaultMode.FAILED})
+    out = Path(arguments.out)
+    out.mkdir(parents=True, exist_ok=True)
+    stem = Path(arguments.config).stem
+    write_csv(out / f"{stem}_capability.csv", capability.plane, cases)
+    polar = all(d in ("surge", "sway") for d in capability.plane)
+    held = "" if "yaw" in capability.plane or "yaw" not in vehicle.dofs else \
+        f", yaw moment {arguments.yaw_moment:g} N m held"
+    plot(out / f"{stem}_capability.png", f"{stem} ({capability.method}{held})", capability.plane, cases, polar)
+    print(out / f"{stem}_capability.png")
+    print(out / f"{stem}_capability.csv")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,85 @@
+"""Capability analysis against hand-computed values, and the allocator-capability CLI."""
+
+import csv
+import math
+import os
+import subprocess
+import sys
+
+import pytest
+from conftest import ROOT
+
+from allocator_pkg import FaultMode, Vehicle
+from allocator_pkg.capability import Capability
+
+# A symmetric vessel: surge thrusters at y = -+1 m, sway thrusters at x = -+1 m, +-100 N each.
+SYMMETRIC = {
+    "dofs": ["surge", "sway", "yaw"],
+    "actuators.names": ["surge_port", "surge_stbd", "sway_aft", "sway_fwd"],
+    "actuators.surge_port.type": "fixed", "actuators.surge_port.position": [0.0, -1.0, 0.0],
+    "actuators.surge_port.direction": [1.0, 0.0, 0.0], "actuators.surge_port.thrust_max": 100.0,
+    "actuators.surge_stbd.type": "fixed", "actuators.surge_stbd.position": [0.0, 1.0, 0.0],
+    "actuators.surge_stbd.direction": [1.0, 0.0, 0.0], "actuators.surge_stbd.thrust_max": 100.0,
+    "actuators.sway_aft.type": "fixed", "actuators.sway_aft.position": [-1.0, 0.0, 0.0],
+    "actuators.sway_aft.direction": [0.0, 1.0, 0.0], "actuators.sway_aft.thrust_max": 100.0,
+    "actuators.sway_fwd.type": "fixed", "actuators.sway_fwd.position": [1.0, 0.0, 0.0],
+    "actuators.sway_fwd.direction": [0.0, 1.0, 0.0], "actuators.sway_fwd.thrust_max": 100.0,
+}
+
+
+@pytest.mark.parametrize("method", ["qp", "nonlinear", "pseudoinverse"])
+@pytest.mark.parametrize("degrees", [0, 30, 45, 90, 135, 200, 270])
+def test_symmetric_vessel_nominal(method, degrees):
+    # Surge and sway are independent, each 2 x 100 N with the yaw moments cancelling:
+    # F(theta) = 200 / max(|cos|, |sin|).
+    capability = Capability(Vehicle.from_parameters(SYMMETRIC), method=method)
+    theta = math.radians(degrees)
+    expected = 200.0 / max(abs(math.cos(theta)), abs(math.sin(theta)))
+    assert capability.max_force(theta) == pytest.approx(expected, rel=1e-6)
+
+
+def test_symmetric_vessel_with_a_failure_and_a_yaw_moment():
+    capability = Capability(Vehicle.from_parameters(SYMMETRIC))
+    # Pure surge with surge_stbd failed: surge_port (y = -1) at F makes N = +F, cancelled by the
+    # sway pair pushing -+F/2 (N = 1 * F_fwd - 1 * F_aft): F <= 100 from either side.
+    assert capability.max_force(0.0, faults={"surge_stbd": FaultMode.FAILED}) == pytest.approx(100.0, rel=1e-6)
+    # Pure sway while holding N = 300 N m: the surge pair gives at most 200 N m (+-100 N at
+    # +-1 m), the sway pair the rest: F_fwd - F_aft = 100, F_fwd + F_aft = F, F_fwd <= 100.
+    assert capability.max_force(math.pi / 2, yaw_moment=300.0) == pytest.approx(100.0, rel=1e-6)
+    assert capability.max_force(math.pi / 2, yaw_moment=200.0) == pytest.approx(200.0, rel=1e-6)
+
+
+def test_azimuth_polygon_in_qp_and_circle_in_nonlinear():
+    parameters = {"dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
+                  "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0,
+                  "azimuth_polygon_sides": 8}
+    vehicle = Vehicle.from_parameters(parameters)
+    side, corner = 0.0, math.pi / 8                        # middle of a side of the octagon, a corner
+    assert Capability(vehicle, "qp").max_force(side) == pytest.approx(100.0 * math.cos(math.pi / 8), rel=1e-6)
+    assert Capability(vehicle, "qp").max_force(corner) == pytest.approx(100.0, rel=1e-6)
+    assert Capability(vehicle, "nonlinear").max_force(side) == pytest.approx(100.0, rel=1e-4)
+    stuck = Capability(vehicle, "qp").max_force(math.pi / 2, faults={"a": FaultMode.STUCK})   # stuck at 0 rad
+    assert stuck == pytest.approx(0.0, abs=1e-6)
+
+
+def test_forbidden_sector_removes_directions():
+    parameters = {"dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
+                  "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0,
+                  "actuators.a.forbidden_sectors": [1.0, 2.0], "azimuth_polygon_sides": 64}
+    capability = Capability(Vehicle.from_parameters(parameters), "qp")
+    assert capability.max_force(1.5) == pytest.approx(0.0, abs=1e-6)
+    assert capability.max_force(0.5) == pytest.approx(100.0, rel=2e-3)
+
+
+def test_cli_writes_png_and_csv(tmp_path):
+    binary = os.path.join(os.path.dirname(sys.executable), "allocator-capability")
+    result = subprocess.run([binary, str(ROOT / "config" / "example1_rov.yaml"), "--out", str(tmp_path),
+                             "--step", "30"], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    png = tmp_path / "example1_rov_capability.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+    rows = list(csv.reader((tmp_path / "example1_rov_capability.csv").open()))
+    assert rows[0][:4] == ["direction_deg", "nominal.surge", "nominal.sway", "nominal.magnitude"]
+    assert len(rows) == 1 + 12
+    assert "main_port failed.magnitude" in rows[0]
+    assert float(rows[1][3]) == pytest.approx(894.1, rel=1e-3)      # surge: 2 x 300 + 2 x 150 cos(pi/16)
