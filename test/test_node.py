@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import DATA, ROOT, vehicle_from
+from conftest import ROOT, vehicle_from
 
 from allocator_pkg import Allocator, FaultMode
 
