@@ -20,11 +20,12 @@ MSGS_SOURCES := $(wildcard allocator_msgs/CMakeLists.txt allocator_msgs/package.
 CONFIG ?= config/default.yaml
 PYTEST_ARGS ?=
 
-.PHONY: help setup run test lint lock docs capability clean prereqs
+.PHONY: help setup run test lint lock docs capability demo clean prereqs
 
 help:
 	@echo "make run     set up (first time) and start allocator_node with CONFIG=$(CONFIG)"
 	@echo "make test    set up (first time), lint, and run the whole pytest suite"
+	@echo "make demo    station keeping with a thruster failure, live table and a timeline PNG"
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
 	@echo "make docs    regenerate the key tables of docs/configuration.md from the schema"
@@ -66,6 +67,11 @@ $(STAMPS)/pkg: $(STAMPS)/msgs setup.py setup.cfg package.xml
 
 run: setup
 	$(VENV)/bin/allocator_node --ros-args --params-file $(CONFIG)
+
+DEMO_CONFIG ?= config/dp_vessel.yaml
+DEMO_DURATION ?= 40
+demo: setup
+	$(PY) -m allocator_pkg.demo --config $(DEMO_CONFIG) --duration $(DEMO_DURATION) --out build/demo_timeline.png
 
 lint: setup
 	@$(VENV)/bin/ruff check .
