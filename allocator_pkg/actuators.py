@@ -67,22 +67,29 @@ class TableMap:
         self._thrust = np.asarray(thrust, dtype=float)
         self.command_min = max(command_min, float(self._command[0]))
         self.command_max = min(command_max, float(self._command[-1]))
+        # The inverse: the curve's points with each flat stretch reduced to its two ends, so that
+        # interpolation jumps across it; a force met exactly by a flat stretch maps to its middle.
+        forces, first = np.unique(self._thrust, return_index=True)
+        last = len(self._thrust) - 1 - np.unique(self._thrust[::-1], return_index=True)[1]
+        keep = sorted(set(first) | set(last))
+        self._inverse_force = self._thrust[keep]
+        self._inverse_command = self._command[keep]
+        flat = last > first
+        self._flat_force = forces[flat]
+        self._flat_middle = 0.5 * (self._command[first[flat]] + self._command[last[flat]])
 
     def force(self, command: float) -> float:
         return float(np.interp(command, self._command, self._thrust))
 
     def command(self, force: float) -> float:
-        thrust, command = self._thrust, self._command
-        flat = np.flatnonzero(thrust == force)
-        if flat.size:
-            return 0.5 * float(command[flat[0]] + command[flat[-1]])
-        i = int(np.searchsorted(thrust, force))
-        if i == 0:
-            return float(command[0])
-        if i == len(thrust):
-            return float(command[-1])
-        share = (force - thrust[i - 1]) / (thrust[i] - thrust[i - 1])
-        return float(command[i - 1] + share * (command[i] - command[i - 1]))
+        return float(self.commands(np.array([force]))[0])
+
+    def commands(self, force: np.ndarray) -> np.ndarray:
+        """Set-points of several forces at once."""
+        result = np.interp(force, self._inverse_force, self._inverse_command)
+        for value, middle in zip(self._flat_force, self._flat_middle):
+            result[force == value] = middle
+        return result
 
     def force_range(self) -> tuple[float, float]:
         return self.force(self.command_min), self.force(self.command_max)
@@ -110,7 +117,11 @@ class CommandMaps:
         self.maps = list(maps)
         self._linear = np.array([i for i, m in enumerate(maps) if isinstance(m, LinearMap)], dtype=int)
         self._quadratic = np.array([i for i, m in enumerate(maps) if isinstance(m, QuadraticMap)], dtype=int)
-        self._table = [i for i, m in enumerate(maps) if isinstance(m, TableMap)]
+        tables: dict[int, list[int]] = {}
+        for i, m in enumerate(maps):
+            if isinstance(m, TableMap):
+                tables.setdefault(id(m), []).append(i)
+        self._tables = [(maps[group[0]], np.array(group)) for group in tables.values()]
         self._surfaces = np.array([i for i, m in enumerate(maps) if m is None], dtype=int)
         gains = np.array([m.gain if isinstance(m, (LinearMap, QuadraticMap)) else 1.0 for m in maps])
         reverse = np.array([m.gain_reverse if isinstance(m, (LinearMap, QuadraticMap)) else 1.0 for m in maps])
@@ -124,18 +135,21 @@ class CommandMaps:
         for force / e so that it still produces ``force``."""
         nominal = force / efficiency
         command = np.zeros_like(force)
-        gain = np.where(nominal >= 0.0, self._gain, self._gain_reverse)
-        idx = self._linear
-        command[idx] = nominal[idx] / gain[idx]
-        idx = self._quadratic
-        command[idx] = np.sign(nominal[idx]) * np.sqrt(np.abs(nominal[idx]) / gain[idx])
-        for i in self._table:
-            command[i] = self.maps[i].command(nominal[i])
+        if self._linear.size or self._quadratic.size:
+            gain = np.where(nominal >= 0.0, self._gain, self._gain_reverse)
+            if self._linear.size:
+                idx = self._linear
+                command[idx] = nominal[idx] / gain[idx]
+            if self._quadratic.size:
+                idx = self._quadratic
+                command[idx] = np.sign(nominal[idx]) * np.sqrt(np.abs(nominal[idx]) / gain[idx])
+        for table, idx in self._tables:
+            command[idx] = table.commands(nominal[idx])
         idx = self._surfaces
         if idx.size:
             k = lift_gain[idx]
             command[idx] = np.divide(force[idx], k, out=np.zeros(idx.size), where=k > 0.0)
-        return np.clip(command, self._low, self._high)
+        return np.minimum(np.maximum(command, self._low), self._high)
 
 
 def flow_speed(surface: SurfaceConfig, speed: float) -> float:

@@ -70,6 +70,14 @@ class AllocatorStats:
     fallbacks: int = 0
 
 
+@dataclass(frozen=True)
+class _FaultState:
+    efficiency: np.ndarray
+    command_efficiency: np.ndarray
+    stuck: dict[int, float]
+    modes: np.ndarray
+
+
 @dataclass
 class _State:
     thrust: np.ndarray
@@ -165,9 +173,14 @@ class Allocator:
         self._method = self._methods[name]
         self._model = model
         self._vehicle = vehicle
-        self._maps = CommandMaps([None if a.is_surface else command_map(a.command) for a in vehicle.actuators])
+        maps: dict = {}                      # actuators with the same map share it (one vectorised call)
+        self._maps = CommandMaps([None if a.is_surface else maps.setdefault(a.command, command_map(a.command))
+                                  for a in vehicle.actuators])
         self._warnings = _reachability_warnings(model)
+        self._largest_thrust = max(float(np.max(model.thrust_max)), 1e-9)
+        self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._apply_speed()
+        self._refresh_faults()
         self._update_stats()
 
     def _build_method(self, name: str, model: Model):
@@ -217,6 +230,8 @@ class Allocator:
                                for a in v.actuators])
         self._drag = np.array([drag_gain(a.surface, v.water_density, self._speed) if a.is_surface else 0.0
                                for a in v.actuators])
+        if hasattr(self, "_fault_state"):
+            self._refresh_availability()
 
     def set_fault(self, name: str, mode: FaultMode | int, efficiency: float | None = None,
                   azimuth: float | None = None) -> None:
@@ -233,16 +248,15 @@ class Allocator:
         actuator = self._vehicle.actuator(name)
         if mode == FaultMode.NOMINAL:
             self._faults.pop(name, None)
-            return
-        if mode == FaultMode.DEGRADED:
+        elif mode == FaultMode.DEGRADED:
             if efficiency is None or not (math.isfinite(efficiency) and 0.0 < efficiency <= 1.0):
                 raise ValueError(f"DEGRADED needs an efficiency in (0, 1], got {efficiency}")
             self._faults[name] = Fault(mode, efficiency=float(efficiency))
-            return
-        if mode == FaultMode.STUCK:
+        elif mode == FaultMode.STUCK:
             self._faults[name] = Fault(mode, azimuth=self._stuck_angle(actuator, azimuth))
-            return
-        self._faults[name] = Fault(mode, efficiency=0.0)
+        else:
+            self._faults[name] = Fault(mode, efficiency=0.0)
+        self._refresh_faults()
 
     def _stuck_angle(self, actuator, azimuth: float | None) -> float:
         stuckable = [a.name for a in self._vehicle.actuators if a.rotatable or a.is_surface]
@@ -264,10 +278,11 @@ class Allocator:
     def clear_faults(self) -> None:
         """Every actuator back to NOMINAL."""
         self._faults.clear()
+        self._refresh_faults()
 
     def modes(self) -> np.ndarray:
         """FaultMode of every actuator, configuration order."""
-        return np.array([self._faults.get(n, NOMINAL).mode for n in self.names], dtype=np.uint8)
+        return self._fault_state.modes.copy()
 
     def configuration_matrix(self, azimuth: Sequence[float] | None = None) -> np.ndarray:
         """T(alpha), 6 x r, at the given angles or the current ones."""
@@ -280,16 +295,16 @@ class Allocator:
 
     def allocate(self, tau: Sequence[float]) -> AllocationResult:
         """Allocate the generalised force [X, Y, Z, K, M, N]; uncontrolled DOFs are ignored."""
-        requested = np.asarray(tau, dtype=float).reshape(-1)
+        requested = np.array(tau, dtype=float).reshape(-1)
         if requested.shape != (6,):
             raise ValueError(f"tau needs 6 components [X, Y, Z, K, M, N], got {requested.size}")
-        if not np.all(np.isfinite(requested)):
+        if not np.isfinite(requested).all():
             raise ValueError(f"tau must be finite, got {requested.tolist()}")
         start = time.perf_counter()
         model = self._model
         tau_c = requested[model.dof_index]
-        efficiency, stuck = self._fault_arrays()
-        limits = self._limits(tau_c, efficiency, stuck)
+        faults = self._fault_state
+        limits = self._limits(tau_c, faults.efficiency, faults.stuck)
         output = self._solve(tau_c, limits)
         thrust, angle = self._resolve(output, limits)
         drag = 0.0
@@ -304,35 +319,36 @@ class Allocator:
                 second.iterations += output.iterations
                 output = second
                 thrust, angle = self._resolve(output, frozen)
-        achieved = self._model.t_e @ self._extended(thrust, angle)
+        achieved = model.t_e @ self._extended(thrust, angle)
         achieved[_SURGE] -= drag
-        scale = max(float(np.max(np.abs(tau_c))), float(np.max(model.thrust_max)), 1e-9)
-        saturated = bool(np.max(np.abs(achieved[model.dof_index] - tau_c)) > SATURATION_TOLERANCE * scale)
-        command = self._maps.commands(thrust, np.where(efficiency > 0.0, efficiency, 1.0), self._lift)
+        scale = max(float(np.abs(tau_c).max()), self._largest_thrust)
+        saturated = bool(np.abs(achieved[model.dof_index] - tau_c).max() > SATURATION_TOLERANCE * scale)
+        command = self._maps.commands(thrust, faults.command_efficiency, self._lift)
         self._commit(thrust, angle)
         self.stats.samples += 1
         self._update_stats()
         return AllocationResult(
             thrust=thrust, azimuth=angle, command=command, achieved=achieved, requested=requested,
             saturated=saturated, status=output.status, iterations=output.iterations,
-            solve_time=time.perf_counter() - start, power=float(np.sum(model.power * np.abs(thrust) ** 1.5)),
-            method=self._method.name, mode=self.modes(), available=self._available(efficiency), drag=drag)
+            solve_time=time.perf_counter() - start, power=float(model.power @ np.abs(thrust) ** 1.5),
+            method=self._method.name, mode=faults.modes.copy(), available=self._availability.copy(), drag=drag)
 
     def stop(self) -> AllocationResult:
         """Zero thrust at once, angles held (watchdog and shutdown); bypasses rate limits."""
         model = self._model
         thrust = np.zeros(model.r)
         angle = self._state.angle.copy()
-        efficiency, _ = self._fault_arrays()
-        command = self._maps.commands(thrust, np.where(efficiency > 0.0, efficiency, 1.0), self._lift)
+        faults = self._fault_state
+        command = self._maps.commands(thrust, faults.command_efficiency, self._lift)
         self._commit(thrust, angle)
         return AllocationResult(
             thrust=thrust, azimuth=angle, command=command, achieved=np.zeros(6), requested=np.zeros(6),
             saturated=False, status="stopped", iterations=0, solve_time=0.0, power=0.0,
-            method=self._method.name, mode=self.modes(), available=self._available(efficiency))
+            method=self._method.name, mode=faults.modes.copy(), available=self._availability.copy())
 
-    def _fault_arrays(self) -> tuple[np.ndarray, dict[int, float]]:
-        efficiency = np.ones(self._model.r)
+    def _refresh_faults(self) -> None:
+        """The faults as arrays, computed when they change (not per sample)."""
+        efficiency = np.ones(len(self.names))
         stuck: dict[int, float] = {}
         for i, name in enumerate(self.names):
             fault = self._faults.get(name)
@@ -342,21 +358,27 @@ class Allocator:
                 stuck[i] = fault.azimuth
             else:
                 efficiency[i] = fault.efficiency
-        return efficiency, stuck
+        modes = np.array([self._faults.get(n, NOMINAL).mode for n in self.names], dtype=np.uint8)
+        self._fault_state = _FaultState(efficiency=efficiency, stuck=stuck, modes=modes,
+                                        command_efficiency=np.where(efficiency > 0.0, efficiency, 1.0))
+        self._refresh_availability()
 
-    def _available(self, efficiency: np.ndarray) -> np.ndarray:
-        available = efficiency > 0.0
+    def _refresh_availability(self) -> None:
+        available = self._fault_state.efficiency > 0.0
         available[self._model.surfaces] &= self._lift[self._model.surfaces] > 0.0
-        return available
+        self._availability = available
 
     def _limits(self, tau: np.ndarray, efficiency: np.ndarray, stuck: dict[int, float]) -> SampleLimits:
         model = self._model
         state = self._state
         range_low = model.thrust_min * efficiency
         range_high = model.thrust_max * efficiency
+        surfaces = model.surfaces
+        if not (surfaces.size or model.rot.size or self._rate_limited):
+            return SampleLimits(low=range_low, high=range_high, rot=model.rot, azimuth=[], angle=state.angle.copy(),
+                                thrust=state.thrust.copy())
         previous = state.thrust.copy()
         step = model.thrust_step.copy()
-        surfaces = model.surfaces
         if surfaces.size:
             lift = self._lift[surfaces]
             deflection_max = np.array([self._vehicle.actuators[i].surface.deflection_max for i in surfaces])
@@ -396,7 +418,7 @@ class Allocator:
     def _resolve(self, output: MethodOutput, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray]:
         """Per-actuator thrust and angle from the extended force, inside every limit."""
         model = self._model
-        thrust = np.clip(output.force[model.starts], limits.low, limits.high)
+        thrust = np.minimum(np.maximum(output.force[model.starts], limits.low), limits.high)
         angle = limits.angle.copy()
         for k, (i, (c1, c2)) in enumerate(zip(model.rot, model.rot_columns)):
             proposal = None if output.angle is None else float(output.angle[i])
