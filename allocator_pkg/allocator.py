@@ -8,8 +8,8 @@ Each sample :meth:`Allocator.allocate` turns the requested generalised force int
 2. an extended force vector from the configured method (``qp``, ``pseudoinverse`` or
    ``nonlinear``), or from the pseudo-inverse with clipping if the solver fails;
 3. thrust, angle and command of every actuator, inside every limit whatever the solver
-   returned, with the drag of the control surfaces compensated by the thrusters
-   (1.56)-(1.58);
+   returned, with the drag of the control surfaces compensated (1.56)-(1.58): the surge
+   request grows by the drag of the deflections and is solved again, until the drag settles;
 4. the achieved wrench, saturation flag and power estimate.
 """
 
@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -36,9 +36,13 @@ from .vehicle import Vehicle
 
 SATURATION_TOLERANCE = 1e-3
 """A request counts as met when every controlled DOF is within this fraction of
-max(|tau|, largest thrust_max) of it."""
+max(|tau|, the largest actuator force range) of it."""
 
 _SURGE = DOF_NAMES.index("surge")
+
+DRAG_PASSES = 4
+"""Solves per sample for the drag feed-forward (1.56)-(1.58): the request plus the drag of the
+last pass's deflections, until the drag stops changing (two or three passes in practice)."""
 
 
 @dataclass
@@ -177,7 +181,7 @@ class Allocator:
         self._maps = CommandMaps([None if a.is_surface else maps.setdefault(a.command, command_map(a.command))
                                   for a in vehicle.actuators])
         self._warnings = _reachability_warnings(model)
-        self._largest_thrust = max(float(np.max(model.thrust_max)), 1e-9)
+        self._largest_thrust = max(float(np.max(model.force_scale)), 1e-9)
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._apply_speed()
         self._refresh_faults()
@@ -309,16 +313,19 @@ class Allocator:
         thrust, angle = self._resolve(output, limits)
         drag = 0.0
         if model.surfaces.size and _SURGE in model.dof_index:
-            drag = self._surface_drag(thrust)
-            if drag > 0.0:
-                frozen = replace(limits, low=limits.low.copy(), high=limits.high.copy())
-                frozen.low[model.surfaces] = frozen.high[model.surfaces] = thrust[model.surfaces]
+            surge = int(np.flatnonzero(model.dof_index == _SURGE)[0])
+            for _ in range(DRAG_PASSES):
+                new_drag = self._surface_drag(thrust)
+                if abs(new_drag - drag) <= 1e-9 * max(1.0, abs(tau_c[surge])):
+                    break
+                drag = new_drag
                 compensated = tau_c.copy()
-                compensated[int(np.flatnonzero(model.dof_index == _SURGE)[0])] += drag
-                second = self._solve(compensated, frozen)
-                second.iterations += output.iterations
-                output = second
-                thrust, angle = self._resolve(output, frozen)
+                compensated[surge] += drag
+                again = self._solve(compensated, limits)
+                again.iterations += output.iterations
+                output = again
+                thrust, angle = self._resolve(output, limits)
+            drag = self._surface_drag(thrust)
         achieved = model.t_e @ self._extended(thrust, angle)
         achieved[_SURGE] -= drag
         scale = max(float(np.abs(tau_c).max()), self._largest_thrust)

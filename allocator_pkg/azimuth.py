@@ -33,6 +33,7 @@ from .sectors import (
     allowed_piece,
     crosses,
     forbidden_offsets,
+    in_forbidden_sector,
     offset_domain,
     target_offsets,
     wrap,
@@ -41,7 +42,7 @@ from .sectors import (
 if TYPE_CHECKING:
     from .vehicle import RotationConfig
 
-CROSSING_MARGIN = 0.2
+CROSSING_MARGIN = 0.05
 """How far [rad] beyond a forbidden sector the wanted direction must lie before a crossing starts."""
 
 CROSSING_PENALTY = 0.5
@@ -68,7 +69,8 @@ class AzimuthLimits:
     current angle unless a crossing moves it), thrust F in [thrust_low, thrust_high] along the
     angle, on the side sigma (+1 forward, -1 reverse). ``line`` means the angle is fixed (STUCK)
     and F may take either sign within its bounds. ``goal`` is the angle the wanted force
-    points to (on this side): an idle thruster turns toward it."""
+    points to (on this side): an idle thruster turns toward it. ``physical_max`` is the largest
+    thrust magnitude on this side with faults applied, before any rate limit."""
 
     low: float
     high: float
@@ -77,6 +79,7 @@ class AzimuthLimits:
     thrust_high: float
     line: bool = False
     goal: float | None = None
+    physical_max: float = math.inf
 
     @property
     def magnitude_max(self) -> float:
@@ -113,9 +116,11 @@ def plan(
     window_low, window_high = thrust_window(thrust0, thrust_step, *thrust_range)
     if stuck is not None:
         state.turning = 0
+        if in_forbidden_sector(rotation, stuck):           # stuck where it must not push: it does not
+            window_low = window_high = 0.0
         return AzimuthLimits(stuck, stuck, 1, window_low, window_high, line=True)
 
-    moving = abs(thrust0) > hold
+    moving = abs(thrust0) > min(hold, thrust_step)        # cannot reach zero thrust this sample
     current_sigma = (1 if thrust0 > 0.0 else -1) if moving else state.sigma
     forbidden = forbidden_offsets(rotation, alpha0)
     domain = offset_domain(rotation, alpha0)
@@ -160,7 +165,9 @@ def plan(
     else:
         thrust_low, thrust_high = min(window_low, 0.0), min(window_high, 0.0)
     goal = alpha0 + best[1] if best is not None and best[0] == current_sigma else None
-    return AzimuthLimits(alpha0 + low, alpha0 + high, current_sigma, thrust_low, thrust_high, goal=goal)
+    physical = thrust_range[1] if current_sigma > 0 else -thrust_range[0]
+    return AzimuthLimits(alpha0 + low, alpha0 + high, current_sigma, thrust_low, thrust_high, goal=goal,
+                         physical_max=physical)
 
 
 def _best_path(

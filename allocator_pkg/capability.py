@@ -83,6 +83,17 @@ class Capability:
         its second] with the yaw moment held (when yaw is controlled and not in the plane)."""
         return float(np.hypot(*self._max_point(direction, yaw_moment, _faults(faults))))
 
+    def scale(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
+        """The largest lambda with lambda * tau attainable ([X, Y, Z, K, M, N]; uncontrolled DOFs
+        ignored): a request is attainable when this is at least 1."""
+        request = np.asarray(tau, dtype=float)[self.model.dof_index]
+        if not np.any(request):
+            return math.inf
+        faults = _faults(faults)
+        if self.method == "pseudoinverse":
+            return self._pseudo_inverse_limit(request, np.zeros(self.model.n), faults)
+        return self._linear_programme(request, np.zeros(self.model.n), faults)
+
     def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
                  faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:
         directions = np.radians(np.arange(0.0, 360.0, step_deg))

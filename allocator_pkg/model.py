@@ -68,7 +68,9 @@ class Model:
         if self.vehicle.weights.slack:
             return np.array(self.vehicle.weights.slack)
         effort = float(np.sum(curvature * self.force_scale ** 2))
-        return DEFAULT_SLACK_RATIO * effort / np.maximum(self.authority, 1e-9 * np.max(self.authority) + 1e-300) ** 2
+        reach = float(np.max(self.authority, initial=0.0)) or 1.0
+        authority = np.where(self.authority > 1e-9 * reach, self.authority, reach)   # unreachable DOFs
+        return DEFAULT_SLACK_RATIO * effort / authority ** 2
 
     @property
     def r(self) -> int:

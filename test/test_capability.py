@@ -83,3 +83,11 @@ def test_cli_writes_png_and_csv(tmp_path):
     assert len(rows) == 1 + 12
     assert "main_port failed.magnitude" in rows[0]
     assert float(rows[1][3]) == pytest.approx(894.1, rel=1e-3)      # surge: 2 x 300 + 2 x 150 cos(pi/16)
+
+
+def test_scale_of_a_request():
+    capability = Capability(Vehicle.from_parameters(SYMMETRIC))
+    assert capability.scale([100.0, 50.0, 0.0, 0.0, 0.0, 0.0]) == pytest.approx(2.0, rel=1e-6)
+    assert capability.scale([100.0, 50.0, 999.0, 0.0, 0.0, 0.0]) == pytest.approx(2.0, rel=1e-6)   # heave ignored
+    assert capability.scale([400.0, 0.0, 0.0, 0.0, 0.0, 0.0], faults={"surge_port": FaultMode.FAILED}) == \
+        pytest.approx(0.25, rel=1e-6)

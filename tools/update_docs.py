@@ -1,17 +1,27 @@
-"""Regenerate the key tables of docs/configuration.md from allocator_pkg.schema (make docs).
+"""make docs: regenerate the generated parts of the documentation.
 
-The tables sit between the BEGIN/END markers; the prose around them is kept. A test fails
-when the file and the schema disagree.
+- docs/configuration.md: the key tables, from allocator_pkg.schema, between the BEGIN/END
+  markers (the prose around them is kept);
+- docs/faults.md: the fault matrix of every shipped vehicle (allocator_pkg.fault_matrix).
+
+Tests fail when these files and the code disagree.
 """
 
 import sys
 from pathlib import Path
 
+from allocator_pkg.fault_matrix import markdown
 from allocator_pkg.schema import markdown_reference
 
 BEGIN = "<!-- BEGIN GENERATED: make docs -->\n"
 END = "<!-- END GENERATED -->\n"
-DOC = Path(__file__).resolve().parents[1] / "docs" / "configuration.md"
+ROOT = Path(__file__).resolve().parents[1]
+DOC = ROOT / "docs" / "configuration.md"
+FAULTS = ROOT / "docs" / "faults.md"
+
+
+def vehicle_files() -> list[Path]:
+    return sorted(p for p in (ROOT / "config").glob("*.yaml") if p.stem != "default")
 
 
 def render(text: str) -> str:
@@ -22,7 +32,8 @@ def render(text: str) -> str:
 
 def main() -> int:
     DOC.write_text(render(DOC.read_text()))
-    print(f"updated {DOC}")
+    FAULTS.write_text(markdown(vehicle_files()))
+    print(f"updated {DOC} and {FAULTS}")
     return 0
 
 

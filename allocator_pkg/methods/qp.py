@@ -304,18 +304,23 @@ class QPAllocation:
         half_plane = lim.high - lim.low >= HALF_PLANE
         low[cone_a], up[cone_a] = (-INFINITY if half_plane else 0.0), INFINITY
         low[cone_b], up[cone_b] = -INFINITY, (INFINITY if half_plane else 0.0)
-        up[polygon] = _polygon_radius(lim, inscribed) * inscribed
+        up[polygon] = _polygon_bound(lim, inscribed)
         if lim.sigma > 0:
             low[mid], up[mid] = (lim.thrust_low if lim.thrust_low > 0.0 or half_plane else -INFINITY), INFINITY
         else:
             low[mid], up[mid] = -INFINITY, (lim.thrust_high if lim.thrust_high < 0.0 or half_plane else INFINITY)
 
 
-def _polygon_radius(lim, inscribed: float) -> float:
-    """Radius of this sample's N-gon: the thrust limit, unless the smallest thrust the sample
-    demands (a rate limit, a ramp, a stuck thruster) would fall between the polygon and the
-    circle; then just large enough to hold it. The final thrust is clipped to its limit."""
+def _polygon_bound(lim, inscribed: float) -> float:
+    """Right-hand side of the N-gon rows, n_k . f <= bound.
+
+    The actuator's own limit is inscribed (bound = f_max cos(pi/N): |f| <= f_max holds
+    exactly, at a worst-case loss of 1 - cos(pi/N)). A rate limit below it is circumscribed
+    (bound = F0 + rate dt): inscribing it would lose 1 - cos(pi/N) every sample and cap a
+    rate-limited thrust at about rate dt / (1 - cos(pi/N)). The final thrust is clipped to
+    the exact rate limit anyway. The bound never cuts off the smallest thrust the sample
+    demands (a rate limit from below, a ramp, a stuck thruster)."""
     if lim.line:
-        return max(abs(lim.thrust_low), abs(lim.thrust_high)) / inscribed
+        return max(abs(lim.thrust_low), abs(lim.thrust_high))
     smallest, largest = (lim.thrust_low, lim.thrust_high) if lim.sigma > 0 else (-lim.thrust_high, -lim.thrust_low)
-    return max(largest, smallest / inscribed)
+    return max(min(lim.physical_max * inscribed, largest), smallest)
