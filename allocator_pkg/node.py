@@ -72,11 +72,17 @@ class _Counters:
 
 
 class AllocatorNode(Node):
-    """The allocation node. Raises ConfigError if its parameters are invalid."""
+    """The allocation node. Raises ConfigError if its parameters are invalid.
+
+    State shared between callbacks sits behind one lock, and parameter changes are serialised
+    by another (rclpy has none), so ``set_parameters`` may be called from any thread while an
+    executor spins the node: each change is checked against the parameters it will replace.
+    """
 
     def __init__(self, **kwargs):
         super().__init__(NODE_NAME, automatically_declare_parameters_from_overrides=True, **kwargs)
         self._lock = threading.Lock()
+        self._parameters_lock = threading.RLock()
         vehicle = Vehicle.from_parameters(ros_parameters.allocator_parameters(self))
         ros_parameters.declare(self, vehicle)
         self._allocator = Allocator(vehicle)
@@ -122,16 +128,17 @@ class AllocatorNode(Node):
     # -- inputs -------------------------------------------------------------------------
 
     def _on_wrench(self, message: Wrench) -> None:
-        self.wrenches_received += 1
         values = wrench_to_array(message)
         if not np.all(np.isfinite(values)):
             with self._lock:
+                self.wrenches_received += 1
                 self._counters.rejected_wrenches += 1
                 self._counters.rejected_in_period += 1
             self.get_logger().warn(f"rejected a wrench with non-finite values {values.tolist()}",
                                    throttle_duration_sec=LOG_THROTTLE)
             return
         with self._lock:
+            self.wrenches_received += 1
             self._wrench = values
             self._wrench_time = self.get_clock().now()
 
@@ -242,6 +249,16 @@ class AllocatorNode(Node):
         return response
 
     # -- parameters ---------------------------------------------------------------------
+
+    def set_parameters(self, parameter_list: list[Parameter]) -> list[SetParametersResult]:
+        """rclpy's ``set_parameters``, one change at a time across threads."""
+        with self._parameters_lock:
+            return super().set_parameters(parameter_list)
+
+    def set_parameters_atomically(self, parameter_list: list[Parameter]) -> SetParametersResult:
+        """rclpy's ``set_parameters_atomically`` (also behind the parameter services), serialised."""
+        with self._parameters_lock:
+            return super().set_parameters_atomically(parameter_list)
 
     def _on_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
         """Check a change against the whole schema; apply it between two samples, or not at all."""
