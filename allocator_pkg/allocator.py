@@ -35,8 +35,8 @@ from .sectors import in_feasible_sector
 from .vehicle import Vehicle
 
 SATURATION_TOLERANCE = 1e-3
-"""A request counts as met when every controlled DOF is within this fraction of
-max(|tau|, the largest actuator force range) of it."""
+"""A request counts as met when every controlled DOF is within this fraction of the DOF's
+authority of it (Model.dof_scale)."""
 
 _SURGE = DOF_NAMES.index("surge")
 
@@ -181,7 +181,7 @@ class Allocator:
         self._maps = CommandMaps([None if a.is_surface else maps.setdefault(a.command, command_map(a.command))
                                   for a in vehicle.actuators])
         self._warnings = _reachability_warnings(model)
-        self._largest_thrust = max(float(np.max(model.force_scale)), 1e-9)
+        self._saturation_error = SATURATION_TOLERANCE * model.dof_scale
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._apply_speed()
         self._refresh_faults()
@@ -328,8 +328,7 @@ class Allocator:
             drag = self._surface_drag(thrust)
         achieved = model.t_e @ self._extended(thrust, angle)
         achieved[_SURGE] -= drag
-        scale = max(float(np.abs(tau_c).max()), self._largest_thrust)
-        saturated = bool(np.abs(achieved[model.dof_index] - tau_c).max() > SATURATION_TOLERANCE * scale)
+        saturated = bool((np.abs(achieved[model.dof_index] - tau_c) > self._saturation_error).any())
         command = self._maps.commands(thrust, faults.command_efficiency, self._lift)
         self._commit(thrust, angle)
         self.stats.samples += 1

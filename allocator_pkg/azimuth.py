@@ -243,13 +243,13 @@ def resolve(limits: AzimuthLimits, alpha0: float, force: tuple[float, float], ho
     """(thrust, angle) that produce as much of ``force`` as this sample's limits allow.
 
     The angle is atan2 of the force (1.23), or ``proposal`` if a method chose one; for a force
-    below ``hold`` (an idle thruster) it turns toward the limits' goal, or holds. Either way it
-    is clamped to the allowed angles.
+    below ``hold`` or a thruster that may not push this sample (an idle or failed one) it turns
+    toward the limits' goal, or holds. Either way it is clamped to the allowed angles.
     """
     f1, f2 = force
     if limits.line:
         angle = alpha0
-    elif math.hypot(f1, f2) < hold:
+    elif math.hypot(f1, f2) < hold or limits.magnitude_max == 0.0:
         angle = alpha0 if limits.goal is None else limits.goal
     elif proposal is not None:
         angle = alpha0 + wrap(proposal - alpha0)

@@ -68,9 +68,14 @@ class Model:
         if self.vehicle.weights.slack:
             return np.array(self.vehicle.weights.slack)
         effort = float(np.sum(curvature * self.force_scale ** 2))
+        return DEFAULT_SLACK_RATIO * effort / self.dof_scale ** 2
+
+    @property
+    def dof_scale(self) -> np.ndarray:
+        """The authority of each controlled DOF, the largest one standing in for a DOF that no
+        actuator reaches: the yardstick of wrench errors (slack weights, the saturation flag)."""
         reach = float(np.max(self.authority, initial=0.0)) or 1.0
-        authority = np.where(self.authority > 1e-9 * reach, self.authority, reach)   # unreachable DOFs
-        return DEFAULT_SLACK_RATIO * effort / authority ** 2
+        return np.where(self.authority > 1e-9 * reach, self.authority, reach)
 
     @property
     def r(self) -> int:
@@ -159,10 +164,11 @@ class SampleLimits:
     thrust: np.ndarray
 
     def fixed(self) -> np.ndarray:
-        """Actuators whose force and angle the limits alone decide this sample."""
+        """Actuators whose force the limits alone decide this sample (a rotatable thruster:
+        its angle too, or a thrust that must be zero, where the angle does not matter)."""
         fixed = self.high - self.low <= FIXED_TOLERANCE
         for i, limits in zip(self.rot, self.azimuth):
-            fixed[i] = fixed[i] and limits.high - limits.low <= FIXED_TOLERANCE
+            fixed[i] = fixed[i] and (limits.high - limits.low <= FIXED_TOLERANCE or limits.magnitude_max == 0.0)
         return fixed
 
 

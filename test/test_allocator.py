@@ -111,3 +111,28 @@ def test_reconfigure_keeps_faults_and_refuses_other_actuators(alloc):
     assert alloc.faults["main_port"].mode == FaultMode.FAILED
     with pytest.raises(ValueError, match="keeps the actuators"):
         alloc.reconfigure(load_vehicle(DATA / "eight_thrusters.yaml"))
+
+
+NARROW_TWIN = {"dofs": ["surge", "yaw"], "actuators.names": ["port", "stbd"],
+               "actuators.port.type": "fixed", "actuators.port.position": [0.0, -0.1, 0.0],
+               "actuators.port.direction": [1.0, 0.0, 0.0], "actuators.stbd.direction": [1.0, 0.0, 0.0],
+               "actuators.port.thrust_min": -1e5, "actuators.port.thrust_max": 1e5,
+               "actuators.stbd.type": "fixed", "actuators.stbd.position": [0.0, 0.1, 0.0],
+               "actuators.stbd.thrust_min": -1e5, "actuators.stbd.thrust_max": 1e5}
+
+
+@pytest.mark.parametrize(("yaw_factor", "saturated"), [(0.999, False), (1.003, True)])
+def test_saturation_is_judged_in_each_dof_against_its_own_authority(yaw_factor, saturated):
+    """Two 1e5 N thrusters 0.2 m apart: surge authority 2e5 N, yaw authority 0.1 (2e5) = 2e4 N m.
+    A yaw moment 0.3 % beyond it misses by 60 N m: 3e-3 of the yaw authority, so saturated,
+    although that is less than 1e-3 of the thrusters' force."""
+    from allocator_pkg import Vehicle
+    alloc = Allocator(Vehicle.from_parameters(NARROW_TWIN))
+    tau = np.array([0.0, 0.0, 0.0, 0.0, 0.0, 2e4 * yaw_factor])
+    result = alloc.allocate(tau)
+    assert result.saturated is saturated
+    if saturated:
+        assert result.achieved[5] == pytest.approx(2e4, rel=1e-4)
+        assert 2e4 * (yaw_factor - 1.0) < 1e-3 * 1e5
+    else:
+        assert result.achieved[[0, 5]] == pytest.approx(tau[[0, 5]], abs=1e-3 * 2e4)

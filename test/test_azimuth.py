@@ -146,6 +146,21 @@ def test_stuck_azimuth_keeps_its_angle_while_the_others_compensate(method):
     assert alloc.stats.solver_setups == setups
 
 
+@pytest.mark.parametrize("method", METHODS)
+def test_failed_azimuth_holds_its_angle_and_the_others_take_over(method):
+    """A failed azimuth gives nothing, so no method may count on it nor turn it; the aft azimuth
+    and the main propellers meet a request they can reach on their own."""
+    vehicle = vehicle_from(EXAMPLE)
+    alloc = Allocator(vehicle, method=method)
+    alloc.set_fault("azimuth_fwd", FaultMode.FAILED)
+    tau = np.array([100.0, 20.0, 0.0, 0.0, 0.0, 10.0])
+    for _ in range(300):
+        result = alloc.allocate(tau)
+        assert result.azimuth[0] == 0.0 and result.thrust[0] == 0.0
+    assert not result.saturated
+    assert result.achieved[[0, 1, 5]] == pytest.approx(tau[[0, 1, 5]], abs=0.05)
+
+
 def test_vertical_azimuth_pushes_in_the_x_z_plane():
     parameters = {"dofs": ["surge", "heave"], "actuators.names": ["v"], "actuators.v.type": "azimuth_vertical",
                   "actuators.v.position": [0.0, 0.0, 0.0], "actuators.v.thrust_max": 100.0}
