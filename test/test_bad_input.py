@@ -106,13 +106,15 @@ def test_solver_trouble_publishes_the_fallback_and_recovers(harness, name, value
     assert harness.status[-1].solver_status == "solved"
 
 
-def test_parameter_changes_from_other_threads_race_the_timer_and_the_services(ros_context):
+@pytest.mark.parametrize("executor_type", ["SingleThreadedExecutor", "MultiThreadedExecutor"])
+def test_parameter_changes_from_other_threads_race_the_timer_and_the_services(ros_context, executor_type):
     """Two threads change parameters (each change valid only as a whole) while the executor
-    thread runs the timer and a third thread sets and clears faults through the services:
-    every published sample belongs to one whole configuration, and the final configuration is
-    the one the parameters describe."""
+    runs the timer and a third thread sets and clears faults through the services: every
+    published sample belongs to one whole configuration, and the final configuration is the
+    one the parameters describe. On a MultiThreadedExecutor the callbacks also run on
+    threads of its pool."""
     import rclpy
-    from rclpy.executors import SingleThreadedExecutor
+    from rclpy import executors
     from std_srvs.srv import Trigger
 
     from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
@@ -129,15 +131,20 @@ def test_parameter_changes_from_other_threads_race_the_timer_and_the_services(ro
     client.create_subscription(AllocationStatus, "allocation_status", samples.append, 100)
     wrench = client.create_publisher(type(array_to_wrench(np.zeros(6))), "wrench_command", 10)
     step = iter(range(10**9))
-    client.create_timer(0.01, lambda: wrench.publish(array_to_wrench(
+    # rclpy 7.1.6's MultiThreadedExecutor stalls for seconds under steady subscription traffic
+    # (README, "Threads"); there the wrench comes once a second so that the race gets run.
+    wrench_period = 0.01 if executor_type == "SingleThreadedExecutor" else 1.0
+    client.create_timer(wrench_period, lambda: wrench.publish(array_to_wrench(
         [200.0 * math.sin(next(step) / 10), 50.0, 0.0, 0.0, 0.0, 30.0])))
     set_fault = client.create_client(SetActuatorFault, "thrust_allocator/set_actuator_fault")
     clear = client.create_client(Trigger, "thrust_allocator/clear_faults")
-    executor = SingleThreadedExecutor(context=ros_context)
+    executor = getattr(executors, executor_type)(context=ros_context)
     executor.add_node(node)
-    executor.add_node(client)
-    spinner = threading.Thread(target=executor.spin, daemon=True)
-    spinner.start()
+    probe = executors.SingleThreadedExecutor(context=ros_context)
+    probe.add_node(client)
+    spinners = [threading.Thread(target=e.spin, daemon=True) for e in (executor, probe)]
+    for spinner in spinners:
+        spinner.start()
     assert set_fault.wait_for_service(timeout_sec=10.0) and clear.wait_for_service(timeout_sec=10.0)
 
     three = [parameter("dofs", ["surge", "sway", "yaw"]), parameter("weights.slack", [1e6, 2e6, 3e6]),
@@ -166,7 +173,9 @@ def test_parameter_changes_from_other_threads_race_the_timer_and_the_services(ro
     for racer in racers:
         racer.join(timeout=20.0)
     executor.shutdown()
-    spinner.join(timeout=5.0)
+    probe.shutdown()
+    for spinner in spinners:
+        spinner.join(timeout=5.0)
 
     assert all(len(v) > 10 and all(v) for v in outcomes.values()), {k: len(v) for k, v in outcomes.items()}
     commands = [m for m in samples if isinstance(m, ThrusterCommands)]
