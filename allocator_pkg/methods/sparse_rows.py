@@ -15,6 +15,7 @@ read as fractions of those ranges.
 from __future__ import annotations
 
 import math
+import signal
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,6 +24,9 @@ import scipy.sparse as sp
 
 ACCEPTED = (osqp.SolverStatus.OSQP_SOLVED, osqp.SolverStatus.OSQP_SOLVED_INACCURATE)
 """OSQP statuses whose solution is used; any other falls back to the pseudo-inverse."""
+
+INTERRUPTED = osqp.SolverStatus.OSQP_SIGINT
+"""OSQP catches SIGINT while it solves and only stops; the signal is raised again for the process."""
 
 CHECK_TERMINATION = 5
 """Iterations between OSQP's convergence checks: warm-started samples often converge in a few."""
@@ -150,8 +154,10 @@ class ScaledProblem:
                                       u=np.minimum(up * self.row_scale, bound))
             self._raw.solve()
             info, solution = self._raw.info, self._raw.solution
+        if info.status_val == INTERRUPTED:
+            signal.raise_signal(signal.SIGINT)      # Ctrl-C or a SIGINT stop meant for the process
         x = solution.x * self.column_scale
-        usable = info.status_val in ACCEPTED and bool(np.all(np.isfinite(x)))
+        usable = info.status_val in ACCEPTED and bool(np.isfinite(x).all())
         return Solution(x=x, status=info.status, iterations=int(info.iter), usable=usable)
 
 
