@@ -120,6 +120,10 @@ def plan(
             window_low = window_high = 0.0
         return AzimuthLimits(stuck, stuck, 1, window_low, window_high, line=True)
 
+    if thrust_range == (0.0, 0.0):                         # failed: nothing to turn for
+        state.turning = 0
+        return AzimuthLimits(alpha0, alpha0, state.sigma, 0.0, 0.0, physical_max=0.0)
+
     moving = abs(thrust0) > min(hold, thrust_step)        # cannot reach zero thrust this sample
     current_sigma = (1 if thrust0 > 0.0 else -1) if moving else state.sigma
     forbidden = forbidden_offsets(rotation, alpha0)

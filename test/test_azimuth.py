@@ -111,6 +111,25 @@ def test_forbidden_sector_is_crossed_at_zero_thrust(method):
     assert result.achieved[:2] == pytest.approx(target[:2], abs=0.1)
 
 
+def test_azimuth_failing_mid_crossing_stops_turning_and_resumes_when_cleared():
+    vehicle = single_azimuth(azimuth_rate_max=0.5, forbidden_sectors=[1.0, 2.0], azimuth_initial=0.8,
+                             thrust_rate_max=100.0)
+    alloc = Allocator(vehicle, dt=0.1)
+    target = [50 * math.cos(2.3), 50 * math.sin(2.3), 0, 0, 0, 0]
+    rotation = vehicle.actuators[0].rotation
+    while not in_forbidden_sector(rotation, alloc.allocate(target).azimuth[0]):
+        pass
+    alloc.set_fault("a", FaultMode.FAILED)
+    stopped = alloc.allocate(target).azimuth[0]
+    for _ in range(10):
+        result = alloc.allocate(target)
+        assert result.azimuth[0] == stopped and result.thrust[0] == 0.0
+    alloc.clear_faults()
+    for _ in range(60):
+        result = alloc.allocate(target)
+    assert result.azimuth[0] == pytest.approx(2.3, abs=1e-3)
+
+
 def test_limited_sector_keeps_the_angle_inside_and_turns_the_long_way():
     vehicle = single_azimuth(azimuth_min=-2.0, azimuth_max=2.0, azimuth_rate_max=1.0, azimuth_initial=1.9)
     alloc = Allocator(vehicle, dt=0.1)
