@@ -134,7 +134,7 @@ class CommandMaps:
         """Set-points giving ``force``; a DEGRADED actuator (efficiency e < 1) is commanded
         for force / e so that it still produces ``force``."""
         nominal = force / efficiency
-        command = np.zeros_like(force)
+        command = np.zeros(force.shape)
         if self._linear.size or self._quadratic.size:
             gain = np.where(nominal >= 0.0, self._gain, self._gain_reverse)
             if self._linear.size:

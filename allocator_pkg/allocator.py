@@ -107,7 +107,7 @@ class Allocator:
         self._retired_setups = 0
         self._faults: dict[str, Fault] = {}
         self._speed = 0.0
-        self.stats = AllocatorStats()
+        self._stats = AllocatorStats()
         self._configure(vehicle)
         self.reset()
 
@@ -185,7 +185,6 @@ class Allocator:
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._apply_speed()
         self._refresh_faults()
-        self._update_stats()
 
     def _build_method(self, name: str, model: Model):
         if name == "qp":
@@ -194,8 +193,11 @@ class Allocator:
             return NonlinearAllocation(model)
         return PseudoInverseAllocation(model)
 
-    def _update_stats(self) -> None:
-        self.stats.solver_setups = self._retired_setups + sum(m.setups for m in self._methods.values())
+    @property
+    def stats(self) -> AllocatorStats:
+        """Counters since the allocator was made (solver set-ups counted when read)."""
+        self._stats.solver_setups = self._retired_setups + sum(m.setups for m in self._methods.values())
+        return self._stats
 
     # -- state, speed and faults ------------------------------------------------------
 
@@ -331,8 +333,7 @@ class Allocator:
         saturated = bool((np.abs(achieved[model.dof_index] - tau_c) > self._saturation_error).any())
         command = self._maps.commands(thrust, faults.command_efficiency, self._lift)
         self._commit(thrust, angle)
-        self.stats.samples += 1
-        self._update_stats()
+        self._stats.samples += 1
         return AllocationResult(
             thrust=thrust, azimuth=angle, command=command, achieved=achieved, requested=requested,
             saturated=saturated, status=output.status, iterations=output.iterations,
@@ -414,7 +415,7 @@ class Allocator:
     def _solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         output = self._method.solve(tau, limits)
         if not output.solved:
-            self.stats.fallbacks += 1
+            self._stats.fallbacks += 1
             fallback = self._fallback.solve(tau, limits)
             fallback.status = f"fallback: pseudoinverse ({output.status})"
             fallback.iterations = output.iterations
@@ -436,10 +437,11 @@ class Allocator:
     def _extended(self, thrust: np.ndarray, angle: np.ndarray) -> np.ndarray:
         """The extended force vector (1.18) of per-actuator thrust and angle."""
         model = self._model
-        force = thrust[model.extended_owner].copy()
+        force = thrust[model.extended_owner]
         rot = model.rot
-        force[model.rot_columns[:, 0]] *= np.cos(angle[rot])
-        force[model.rot_columns[:, 1]] *= np.sin(angle[rot])
+        if rot.size:
+            force[model.rot_columns[:, 0]] *= np.cos(angle[rot])
+            force[model.rot_columns[:, 1]] *= np.sin(angle[rot])
         return force
 
     def _surface_drag(self, thrust: np.ndarray) -> float:
@@ -455,8 +457,10 @@ class Allocator:
         state.thrust = thrust.copy()
         state.angle = angle.copy()
         surfaces = model.surfaces
-        lift = self._lift[surfaces]
-        state.deflection[surfaces] = np.divide(thrust[surfaces], lift, out=np.zeros(surfaces.size), where=lift > 0.0)
+        if surfaces.size:
+            lift = self._lift[surfaces]
+            state.deflection[surfaces] = np.divide(thrust[surfaces], lift, out=np.zeros(surfaces.size),
+                                                   where=lift > 0.0)
         for azimuth_state, i in zip(state.azimuth, model.rot):
             azimuth_state.angle = float(angle[i])
             azimuth_state.thrust = float(thrust[i])
