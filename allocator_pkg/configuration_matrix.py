@@ -25,10 +25,17 @@ _Y = np.array([0.0, 1.0, 0.0])
 _Z = np.array([0.0, 0.0, 1.0])
 
 
+NEGLIGIBLE = 1e-12
+"""Entries below this (a lever of a picometre, or cos(pi/2) rounded) are exactly zero: a
+denormal lever would otherwise overflow the solver's row scaling and the pseudo-inverse."""
+
+
 def force_column(position: Sequence[float], direction: Sequence[float]) -> np.ndarray:
     """(1.5): the generalised force [d ; r x d] of a unit force along d applied at r."""
     d = np.asarray(direction, dtype=float)
-    return np.concatenate((d, np.cross(np.asarray(position, dtype=float), d)))
+    column = np.concatenate((d, np.cross(np.asarray(position, dtype=float), d)))
+    column[np.abs(column) < NEGLIGIBLE] = 0.0
+    return column
 
 
 def rotation_basis(actuator_type: str) -> tuple[np.ndarray, np.ndarray]:

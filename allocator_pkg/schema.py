@@ -119,7 +119,8 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         default=1e-3, minimum=0.0, exclusive_minimum=True),
     Key("azimuth_polygon_sides", INT, "Sides N of the inscribed polygon that replaces |f| <= f_max for rotatable "
         "thrusters in the QP; worst-case loss 1 - cos(pi/N).", default=16, minimum=4, maximum=128),
-    Key("nonlinear.max_iterations", INT, "Linearised QPs solved per sample by the nonlinear method (1.45).",
+    Key("nonlinear.max_iterations", INT, "Linearised QPs solved per sample by the nonlinear method (1.45), "
+        "at most; a pass that misses the request by more than the one before ends them.",
         default=1, minimum=1, maximum=50),
     Key("solver.eps_abs", FLOAT, "OSQP absolute tolerance, as a fraction of each variable's range.",
         default=1e-5, minimum=0.0, exclusive_minimum=True),

@@ -8,8 +8,15 @@ os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
 os.environ.setdefault("ROS_DOMAIN_ID", "42")
 
 import pytest
+from hypothesis import settings
 
 from allocator_pkg.vehicle import Vehicle, read_parameters
+
+# Property tests: `make test` runs the same examples every time (a red CI means a change broke
+# something); HYPOTHESIS_PROFILE=explore draws many fresh ones to look for new failures.
+settings.register_profile("ci", derandomize=True, max_examples=60)
+settings.register_profile("explore", max_examples=1000)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / "data"

@@ -74,6 +74,19 @@ def test_lift_grows_with_the_square_of_speed():
     assert fast == pytest.approx(slow / 4.0, rel=1e-3)
 
 
+def test_a_new_speed_changes_values_only():
+    """Lift gains follow the speed from sample to sample without a new solver set-up, and the
+    answer at a speed is the same whichever speeds came before."""
+    tau = [50.0, 0.0, 80.0, 0.0, -40.0, 30.0]
+    alloc = infante(2.0)
+    setups = alloc.stats.solver_setups
+    for speed in (3.0, 1.0, 4.0):
+        alloc.set_speed(speed)
+        alloc.allocate(tau)
+    assert alloc.stats.solver_setups == setups
+    assert alloc.allocate(tau).command[2:] == pytest.approx(infante(4.0).allocate(tau).command[2:], rel=1e-3)
+
+
 def test_surfaces_below_their_minimum_speed_are_unavailable():
     alloc = infante(0.3)
     result = alloc.allocate([50.0, 0.0, 80.0, 0.0, 0.0, 0.0])

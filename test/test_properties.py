@@ -149,7 +149,7 @@ def check(vehicle, alloc, fault_set, previous, result, tau):
 
 
 @pytest.mark.parametrize("method", ["qp", "pseudoinverse", "nonlinear"])
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@settings(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(data=st.data())
 def test_outputs_respect_every_limit_and_are_deterministic(method, data):
     vehicle = data.draw(vehicles())

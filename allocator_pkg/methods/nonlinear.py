@@ -125,7 +125,9 @@ class NonlinearAllocation:
         omega = model.vehicle.weights.azimuth_change
         iterations = 0
         status = ""
-        for _ in range(model.vehicle.nonlinear_max_iterations):
+        passes = model.vehicle.nonlinear_max_iterations
+        miss = math.inf
+        for _ in range(passes):
             t, dt = self._matrices(angle)
             c = np.where(model.power > 0.0,
                          0.75 * model.power / np.sqrt(np.maximum(np.abs(force), self._floor)), model.weight)
@@ -148,8 +150,20 @@ class NonlinearAllocation:
             status = solution.status
             if not solution.usable:
                 return MethodOutput(force=np.zeros(model.m), status=status, iterations=iterations, solved=False)
-            force = np.clip(force + solution.x[:r] / root, limits.low, limits.high)
-            angle[rot] = np.clip(angle[rot] + solution.x[r:r + p] / turn, angle_low, angle_high)
+            new_force = np.clip(force + solution.x[:r] / root, limits.low, limits.high)
+            new_angle = angle.copy()
+            new_angle[rot] = np.clip(angle[rot] + solution.x[r:r + p] / turn, angle_low, angle_high)
+            if passes > 1:
+                # Another pass linearises around the new point; from a poor one (thrusters at
+                # rest: dT/dalpha f = 0) it can overshoot, so a pass that misses tau by more
+                # than the last one (each DOF against its authority, as the default Q weighs
+                # them) is dropped and the passes stop.
+                t_new, _ = self._matrices(new_angle)
+                new_miss = float(np.sum(((t_new @ new_force - tau) / model.dof_scale) ** 2))
+                if new_miss >= miss:
+                    break
+                miss = new_miss
+            force, angle = new_force, new_angle
         extended = np.zeros(model.m)
         extended[model.scalar_columns] = force[model.scalar]
         extended[model.rot_columns[:, 0]] = force[rot] * np.cos(angle[rot])
