@@ -39,6 +39,9 @@ SATURATION_TOLERANCE = 1e-3
 authority of it (Model.dof_scale)."""
 
 _SURGE = DOF_NAMES.index("surge")
+PLANE = ("surge", "sway", "yaw")
+"""The horizontal plane, in which a vehicle is under-actuated if its actuators cannot give
+independent forces in all three."""
 
 DRAG_PASSES = 4
 """Solves per sample for the drag feed-forward (1.56)-(1.58): the request plus the drag of the
@@ -147,6 +150,11 @@ class Allocator:
         """What the configuration cannot do (DOFs out of reach), for the operator."""
         return list(self._warnings)
 
+    @property
+    def notes(self) -> list[str]:
+        """What the operator should know but is by design (an under-actuated vehicle)."""
+        return list(self._notes)
+
     def reconfigure(self, vehicle: Vehicle) -> None:
         """Use a new configuration of the same actuators; state and faults carry over.
 
@@ -181,6 +189,7 @@ class Allocator:
         self._maps = CommandMaps([None if a.is_surface else maps.setdefault(a.command, command_map(a.command))
                                   for a in vehicle.actuators])
         self._warnings = _reachability_warnings(model)
+        self._notes = _actuation_notes(model)
         self._saturation_error = SATURATION_TOLERANCE * model.dof_scale
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._apply_speed()
@@ -478,3 +487,15 @@ def _reachability_warnings(model: Model) -> list[str]:
         warnings.append(f"the actuators reach only {rank} independent directions of the {model.n} controlled DOFs "
                         f"({', '.join(dofs)}); some combinations will be saturated")
     return warnings
+
+
+def _actuation_notes(model: Model) -> list[str]:
+    """Whether the actuators give independent forces in surge, sway and yaw, the plane every
+    marine vehicle moves in; if not, the vehicle is under-actuated there."""
+    plane = [DOF_NAMES.index(dof) for dof in PLANE]
+    rank = int(np.linalg.matrix_rank(model.t_e[plane], tol=1e-9))
+    if rank == len(plane):
+        return []
+    left = [dof for dof in PLANE if dof not in model.vehicle.dofs]
+    return [f"under-actuated: the actuators give {rank} independent directions in {', '.join(PLANE)}"
+            + (f"; {', '.join(left)} is left to the vehicle's dynamics" if left else "")]

@@ -107,11 +107,12 @@ def parse_value(text: str) -> object:
 
 
 def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -> str:
-    """One compact line: every actuator's thrust [N] (@ azimuth [deg]) and the solver figures."""
+    """One compact line: every actuator's thrust [N], command (set-point) and azimuth [deg] if it
+    has one, then the solver figures."""
     parts = []
-    for name, thrust, azimuth in zip(commands.name, commands.thrust, commands.azimuth):
-        angle = f"@{math.degrees(azimuth):6.1f}" if azimuth != 0.0 else " " * 7
-        parts.append(f"{name} {thrust:9.1f}{angle}")
+    for name, thrust, command, azimuth in zip(commands.name, commands.thrust, commands.command, commands.azimuth):
+        angle = f" @{math.degrees(azimuth):6.1f}" if azimuth != 0.0 else " " * 8
+        parts.append(f"{name} {thrust:9.1f} N cmd {command:8.2f}{angle}")
     line = " | ".join(parts)
     if status is not None:
         line += (f" || sat {'YES' if status.saturated else 'no '} {status.solve_time * 1e6:7.0f} us "

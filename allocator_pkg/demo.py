@@ -119,6 +119,9 @@ def main(argv: list[str] | None = None) -> int:
     out = Path(arguments.out)
     out.parent.mkdir(parents=True, exist_ok=True)
 
+    # A local show: DDS discovery stays on this machine unless the caller chose otherwise.
+    os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    os.environ.setdefault("ROS_DOMAIN_ID", "42")
     binary = os.path.join(os.path.dirname(sys.executable), "allocator_node")
     node_process = subprocess.Popen([binary, "--ros-args", "--params-file", arguments.config, "-p",
                                      f"wrench_timeout:={max(1.0, 5.0 / vehicle.rate_hz)}"],

@@ -20,9 +20,11 @@ from geometry_msgs.msg import Wrench
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.duration import Duration
+from rclpy.exceptions import ParameterNotDeclaredException
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from rclpy.parameter_service import ParameterService
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from rclpy.time import Time
@@ -38,6 +40,7 @@ from .faults import FaultMode
 from .vehicle import ConfigError, Vehicle
 
 NODE_NAME = "thrust_allocator"
+STOP_ACK_TIMEOUT = 1.0       # s the shutdown's zero-thrust command waits for acknowledgements
 DIAGNOSTICS_PERIOD = 1.0
 LOG_THROTTLE = 5.0
 
@@ -45,6 +48,20 @@ LOG_THROTTLE = 5.0
 def wrench_to_array(wrench: Wrench) -> np.ndarray:
     return np.array([wrench.force.x, wrench.force.y, wrench.force.z,
                      wrench.torque.x, wrench.torque.y, wrench.torque.z])
+
+
+class _WholeSetParameterService(ParameterService):
+    """rclpy's parameter services, with ``set_parameters`` requests taken as a whole (see
+    AllocatorNode.set_parameters) instead of value by value."""
+
+    def _set_parameters_callback(self, request, response):
+        node = self._get_node()
+        parameters = [Parameter.from_parameter_msg(message) for message in request.parameters]
+        try:
+            response.results = node.set_parameters(parameters)
+        except ParameterNotDeclaredException as error:
+            response.results = [SetParametersResult(successful=False, reason=str(error)) for _ in parameters]
+        return response
 
 
 def array_to_wrench(values) -> Wrench:
@@ -80,7 +97,9 @@ class AllocatorNode(Node):
     """
 
     def __init__(self, **kwargs):
-        super().__init__(NODE_NAME, automatically_declare_parameters_from_overrides=True, **kwargs)
+        super().__init__(NODE_NAME, automatically_declare_parameters_from_overrides=True,
+                         start_parameter_services=False, **kwargs)
+        self._parameter_service = _WholeSetParameterService(self)
         self._lock = threading.Lock()
         self._parameters_lock = threading.RLock()
         vehicle = Vehicle.from_parameters(ros_parameters.allocator_parameters(self))
@@ -88,6 +107,8 @@ class AllocatorNode(Node):
         self._allocator = Allocator(vehicle)
         for warning in self._allocator.warnings:
             self.get_logger().warn(warning)
+        for note in self._allocator.notes:
+            self.get_logger().info(note)
         self._counters = _Counters()
         self._wrench = np.zeros(6)
         self._wrench_time: Time | None = None
@@ -210,10 +231,13 @@ class AllocatorNode(Node):
             if azimuth is not None:
                 azimuth.publish(Float64(data=float(result.azimuth[i])))
 
-    def publish_stop(self) -> None:
-        """One zero-thrust command (shutdown); angles held."""
+    def publish_stop(self, timeout: float = STOP_ACK_TIMEOUT) -> bool:
+        """One zero-thrust command (shutdown), angles held; waits up to ``timeout`` seconds
+        for every subscriber to acknowledge it (the node is about to go, and with it the
+        reliable writer that would resend it). Whether all did."""
         with self._lock:
             self._publish(self._allocator.stop(), self.get_clock().now(), "stopped: shutting down")
+        return self._commands.wait_for_all_acked(Duration(seconds=timeout))
 
     # -- faults -------------------------------------------------------------------------
 
@@ -251,9 +275,11 @@ class AllocatorNode(Node):
     # -- parameters ---------------------------------------------------------------------
 
     def set_parameters(self, parameter_list: list[Parameter]) -> list[SetParametersResult]:
-        """rclpy's ``set_parameters``, one change at a time across threads."""
-        with self._parameters_lock:
-            return super().set_parameters(parameter_list)
+        """Several values at once are checked and applied as a whole (rclpy would apply each on
+        its own, and values valid only together could never be set this way): one result per
+        value, all alike. One change at a time across threads."""
+        result = self.set_parameters_atomically(parameter_list)
+        return [SetParametersResult(successful=result.successful, reason=result.reason) for _ in parameter_list]
 
     def set_parameters_atomically(self, parameter_list: list[Parameter]) -> SetParametersResult:
         """rclpy's ``set_parameters_atomically`` (also behind the parameter services), serialised."""
@@ -362,6 +388,8 @@ class AllocatorNode(Node):
             unavailable = [a.name for a, ok in zip(allocator.vehicle.actuators, self._last.available) if not ok] \
                 if self._last is not None else []
             values["unavailable"] = ", ".join(unavailable) or "none"
+        if allocator.notes:
+            values["actuation"] = "; ".join(allocator.notes)
         for name, mode in zip(allocator.names, modes):
             values[f"mode {name}"] = FaultMode(mode).name
         status.values = [KeyValue(key=key, value=value) for key, value in values.items()]
@@ -386,8 +414,11 @@ def main(args: list[str] | None = None) -> int:
     try:
         while not stop.is_set() and rclpy.ok():
             executor.spin_once(timeout_sec=0.1)
-        node.publish_stop()
-        node.get_logger().info("stopped: published zero thrust")
+        if node.publish_stop():
+            node.get_logger().info("stopped: published zero thrust")
+        else:
+            node.get_logger().warn(f"stopped: published zero thrust, not acknowledged by every "
+                                   f"subscriber within {STOP_ACK_TIMEOUT:g} s")
     finally:
         executor.shutdown()
         node.destroy_node()

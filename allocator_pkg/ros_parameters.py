@@ -1,13 +1,15 @@
 """The configuration schema as ROS 2 parameters: descriptors, declaration, current values.
 
 Parameters are declared with dynamic typing and checked by the schema itself, so that a
-params file may write ``thrust_max: 50`` for a float and every error message (from a file
-or a runtime ``set_parameters``) is the same one the library gives.
+params file may write ``thrust_max: 50`` for a float and the error messages (from a file or a
+runtime ``set_parameters``) are the ones the library gives; only a number outside a key's
+range is refused first by rclpy, with its own message naming the parameter and the range.
 """
 
 from __future__ import annotations
 
 import array
+import sys
 from typing import Any
 
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
@@ -16,6 +18,8 @@ from rclpy.node import Node
 from . import schema
 from .schema import FLOAT, INT, Key
 from .vehicle import Vehicle
+
+INT64_MAX = 2**63 - 1
 
 ROS_BUILT_IN = ("use_sim_time", "start_type_description_service")
 """Parameters rclpy declares on every node; they are not the allocator's."""
@@ -26,19 +30,25 @@ def is_allocator_parameter(name: str) -> bool:
 
 
 def descriptor(key: Key) -> ParameterDescriptor:
-    """A ParameterDescriptor with the key's documentation, range and read-only flag."""
+    """A ParameterDescriptor with the key's documentation, range and read-only flag. A bound
+    on one side only gets the largest value of the type on the other; an exclusive bound is
+    checked by the schema (ROS ranges include their ends) and named in the constraints text."""
     text = key.description
     if key.unit:
         text += f" [{key.unit}]"
     text += f" Default: {key.documented_default()}."
     result = ParameterDescriptor(description=text, read_only=key.read_only, dynamic_typing=True,
                                  additional_constraints=key.documented_range())
-    if key.minimum is not None and key.maximum is not None:
-        if key.kind == FLOAT:
-            result.floating_point_range = [FloatingPointRange(from_value=float(key.minimum),
-                                                              to_value=float(key.maximum), step=0.0)]
-        elif key.kind == INT:
-            result.integer_range = [IntegerRange(from_value=int(key.minimum), to_value=int(key.maximum), step=1)]
+    if key.minimum is None and key.maximum is None:
+        return result
+    if key.kind == FLOAT:
+        low = -sys.float_info.max if key.minimum is None else float(key.minimum)
+        high = sys.float_info.max if key.maximum is None else float(key.maximum)
+        result.floating_point_range = [FloatingPointRange(from_value=low, to_value=high, step=0.0)]
+    elif key.kind == INT:
+        low = -INT64_MAX if key.minimum is None else int(key.minimum)
+        high = INT64_MAX if key.maximum is None else int(key.maximum)
+        result.integer_range = [IntegerRange(from_value=low, to_value=high, step=1)]
     return result
 
 

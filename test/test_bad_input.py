@@ -26,14 +26,15 @@ BAD_PARAMETERS = [
     ("dofs", ["surge", "surge"], "dofs: lists a DOF twice"),
     ("weights.slack", [1.0], "weights.slack: needs one weight per controlled DOF"),
     ("actuators.main_port.direction", [0.0, 0.0, 0.0], "actuators.main_port.direction: must not be the zero vector"),
-    ("actuators.main_port.thrust_min", 10.0, "actuators.main_port.thrust_min: must be <= 0"),
-    ("actuators.main_port.thrust_max", math.inf, "actuators.main_port.thrust_max: must be finite"),
+    ("actuators.main_port.thrust_min", 10.0, "Parameter actuators.main_port.thrust_min out of range"),
+    ("actuators.main_port.thrust_max", math.inf, "Parameter actuators.main_port.thrust_max out of range"),
+    ("actuators.main_port.thrust_max", 0.0, "actuators.main_port.thrust_max: must be > 0"),
     ("actuators.main_port.command_min", 100.0, "actuators.main_port.command_min"),
     ("actuators.azimuth_fwd.azimuth_min", 2.0, "azimuth_initial: 0 rad is outside the feasible sector [2, 3.14159]"),
     ("actuators.azimuth_fwd.azimuth_min", 4.0, "actuators.azimuth_fwd.azimuth_min: must be below azimuth_max"),
     ("actuators.azimuth_fwd.forbidden_sectors", [1.0], "actuators.azimuth_fwd.forbidden_sectors: needs [start, end]"),
     ("actuators.azimuth_fwd.forbidden_sectors", [-0.5, 0.5], "azimuth_initial: 0 rad is inside a forbidden sector"),
-    ("solver.max_iter", 0, "solver.max_iter: must be >= 1"),
+    ("solver.max_iter", 0, "Parameter solver.max_iter out of range"),
     ("per_actuator_topics", "yes", "per_actuator_topics: expected true or false"),
 ]
 

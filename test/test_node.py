@@ -114,9 +114,16 @@ def test_parameter_changes_are_checked_as_a_whole(harness):
     assert not bad.results[0].successful
     assert "actuators.main_port.thrust_min" in bad.results[0].reason
     assert harness.node.get_parameter("actuators.main_port.thrust_min").value == -200.0
-    # Valid only together: set atomically. Alone, the first would be refused.
-    together = request(SetParametersAtomically, dofs=["surge", "yaw"], weights__slack=[1e6, 2e6])
-    assert harness.call(harness.set_atomically, together).result.successful
+    # Valid only together: one set_parameters request takes them as a whole (rclpy alone would
+    # apply them one by one and refuse the first); a bad value in it refuses all of them.
+    alone = harness.call(harness.set_parameters, request(SetParameters, dofs=["surge", "yaw"]))
+    assert not alone.results[0].successful and "weights.slack" in alone.results[0].reason
+    spoilt = harness.call(harness.set_parameters, request(SetParameters, weights__minimax=2.0, method="magic"))
+    assert [r.successful for r in spoilt.results] == [False, False] and "method" in spoilt.results[0].reason
+    assert harness.node.get_parameter("weights.minimax").value == 0.0
+    together = harness.call(harness.set_parameters,
+                            request(SetParameters, dofs=["surge", "yaw"], weights__slack=[1e6, 2e6]))
+    assert [r.successful for r in together.results] == [True, True]
     assert harness.node.allocator.dofs == ("surge", "yaw")
     mixed = request(SetParametersAtomically, rate_hz=10.0, method="magic")
     result = harness.call(harness.set_atomically, mixed).result
@@ -186,6 +193,7 @@ def test_diagnostics_levels(harness):
     status = latest_level()
     harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     status = latest_level() if status.level != DiagnosticStatus.OK else status
+    assert status.level == DiagnosticStatus.OK and status.message == "allocating"
     assert harness.call(harness.fault, fault_request("main_port", FaultMode.DEGRADED, efficiency=0.5)).success
     for _ in range(one_second):
         harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
@@ -249,3 +257,49 @@ def test_diagnostics_name_unavailable_control_surfaces(harness):
     harness.spin_until(lambda: len(harness.diagnostics) > 0)
     values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
     assert values["unavailable"].startswith("fin_bow_port")
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_wrench_qos_matches_a_best_effort_controller(harness):
+    """A best-effort publisher cannot feed a reliable subscription; with wrench_qos best_effort
+    (here switched at runtime, which re-creates the subscription) it can."""
+    from geometry_msgs.msg import Wrench
+    from rclpy.parameter import Parameter
+    from rclpy.qos import QoSProfile, ReliabilityPolicy
+    publisher = harness.probe.create_publisher(Wrench, "wrench_command",
+                                               QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
+    message = Wrench()
+    message.force.x = 42.0
+    for _ in range(20):
+        publisher.publish(message)
+        harness.spin_for(0.01)
+    assert harness.node.wrenches_received == 0
+    assert harness.node.set_parameters([Parameter("wrench_qos", value="best_effort")])[0].successful
+
+    def delivered():
+        publisher.publish(message)
+        return harness.node.wrenches_received > 0
+
+    harness.spin_until(delivered)
+    harness.tick(1)
+    assert harness.status[-1].requested.force.x == 42.0
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_the_shutdown_command_is_zero_thrust_and_acknowledged(harness):
+    harness.send_wrench([150.0, 20.0, 0.0, 0.0, 0.0, 10.0])
+    harness.tick(3)
+    angles = list(harness.commands[-1].azimuth)
+    count = len(harness.commands)
+    assert harness.node.publish_stop(timeout=5.0)
+    harness.spin_until(lambda: len(harness.commands) > count)
+    assert list(harness.commands[-1].thrust) == [0.0] * 4 and list(harness.commands[-1].azimuth) == angles
+
+
+@pytest.mark.params(ROOT / "config" / "otter_usv.yaml")
+def test_an_under_actuated_vehicle_says_so_in_diagnostics(harness):
+    harness.tick(round(1.0 / harness.node.period))
+    harness.spin_until(lambda: len(harness.diagnostics) > 0)
+    values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
+    assert values["actuation"].startswith("under-actuated: the actuators give 2 independent directions")
+    assert "sway is left to the vehicle's dynamics" in values["actuation"]

@@ -88,6 +88,18 @@ def test_node_process_runs_takes_faults_and_stops_cleanly_on_sigterm(ros_context
     assert "stopped: published zero thrust" in node_process.stdout.read()
 
 
+def test_node_process_stops_cleanly_on_sigint(ros_context, node_process):
+    """Ctrl-C: one zero-thrust command, exit code 0 (SIGINT during a solve: test_sparse_rows)."""
+    listener = Listener(ros_context)
+    listener.spin_until(lambda: len(listener.commands) > 3)
+    count = len(listener.commands)
+    node_process.send_signal(signal.SIGINT)
+    listener.spin_until(lambda: node_process.poll() is not None and len(listener.commands) > count, timeout=20.0)
+    assert node_process.wait(timeout=10) == 0
+    assert all(t == 0.0 for t in listener.commands[-1].thrust)
+    assert "stopped: published zero thrust" in node_process.stdout.read()
+
+
 def test_invalid_configuration_exits_with_a_clear_message(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text(EXAMPLE.read_text().replace("thrust_max: 300.0", "thrust_max: -300.0", 1))

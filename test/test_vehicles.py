@@ -35,14 +35,29 @@ def test_vehicle_allocates_a_representative_wrench(path):
     for _ in range(300):
         result = alloc.allocate(tau)
         assert np.all(np.isfinite(result.thrust)) and np.all(np.isfinite(result.command))
-        for actuator, thrust, angle in zip(vehicle.actuators, result.thrust, result.azimuth):
-            if not actuator.is_surface:
+        for actuator, thrust, angle, command in zip(vehicle.actuators, result.thrust, result.azimuth,
+                                                     result.command):
+            if actuator.is_surface:
+                assert abs(command) <= actuator.surface.deflection_max + 1e-12     # the deflection [rad]
+            else:
                 assert actuator.thrust_min - 1e-9 <= thrust <= actuator.thrust_max + 1e-9
             if actuator.rotatable and abs(thrust) > 0.0:
                 assert not in_forbidden_sector(actuator.rotation, angle)
     assert not result.saturated, f"{path.stem}: {result.achieved} for {tau}"
     rows = list(vehicle.dof_indices)
     assert result.achieved[rows] == pytest.approx(tau[rows], rel=1e-3, abs=1e-3 * np.max(np.abs(tau)))
+
+
+@pytest.mark.parametrize("path", CONFIGS, ids=[p.stem for p in CONFIGS])
+def test_an_under_actuated_vehicle_says_so(path):
+    """The Otter's two propellers, both along x, give surge and yaw but never sway; every
+    other shipped vehicle can push independently in surge, sway and yaw."""
+    notes = Allocator(load_vehicle(path)).notes
+    if path.stem == "otter_usv":
+        assert notes == ["under-actuated: the actuators give 2 independent directions in surge, sway, yaw; "
+                         "sway is left to the vehicle's dynamics"]
+    else:
+        assert notes == []
 
 
 def test_vehicle_table_lists_every_vehicle():
