@@ -20,7 +20,7 @@ MSGS_SOURCES := $(wildcard allocator_msgs/CMakeLists.txt allocator_msgs/package.
 CONFIG ?= config/default.yaml
 PYTEST_ARGS ?=
 
-.PHONY: help setup run test lint lock docs capability demo clean prereqs
+.PHONY: help setup run test lint lock docs capability demo bench soak clean prereqs
 
 help:
 	@echo "make run     set up (first time) and start allocator_node with CONFIG=$(CONFIG)"
@@ -30,6 +30,8 @@ help:
 	@echo "make lint    ruff"
 	@echo "make docs    regenerate the key tables of docs/configuration.md from the schema"
 	@echo "make capability  capability plots of every shipped vehicle into docs/capability/"
+	@echo "make bench   solver and node benchmarks into bench/results/latest.json and docs/performance.md"
+	@echo "make soak    the node for SOAK_MINUTES=$(SOAK_MINUTES) at 500 Hz under random faults and changes"
 	@echo "make lock    re-resolve requirements.in into requirements.lock"
 	@echo "make clean   remove .venv and build/"
 
@@ -85,6 +87,14 @@ docs: setup
 VEHICLES := $(filter-out config/default.yaml,$(wildcard config/*.yaml))
 capability: setup
 	@for vehicle in $(VEHICLES); do $(VENV)/bin/allocator-capability $$vehicle --out docs/capability || exit 1; done
+
+BENCH_ARGS ?=
+bench: setup
+	$(PY) bench/run.py $(BENCH_ARGS)
+
+SOAK_MINUTES ?= 10
+soak: setup
+	$(PY) bench/soak.py --minutes $(SOAK_MINUTES)
 
 lock: | prereqs
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)

@@ -1,0 +1,72 @@
+"""make bench: run the solver and node benchmarks, write bench/results/latest.json and
+regenerate docs/performance.md from it. Every figure compared in the report comes from
+this one run, on this machine."""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import os
+import platform
+import subprocess
+import sys
+from importlib import metadata
+from pathlib import Path
+
+os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+os.environ.setdefault("ROS_DOMAIN_ID", "42")
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "bench" / "results"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import report  # noqa: E402
+import solver  # noqa: E402
+
+
+def machine() -> dict[str, str]:
+    """CPU, Python and library versions of this run."""
+    cpu = "unknown"
+    cpuinfo = Path("/proc/cpuinfo")
+    if cpuinfo.exists():
+        for line in cpuinfo.read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    versions = {}
+    for name in ("numpy", "osqp", "scipy", "quadprog", "ros-jazzy-rclpy"):
+        try:
+            versions[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            versions[name] = "not installed"
+    return {"cpu": cpu, "cores": str(os.cpu_count()), "python": platform.python_version(),
+            "platform": platform.platform(), "date": datetime.date.today().isoformat(), **versions}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="short sequences and node runs (a smoke test)")
+    arguments = parser.parse_args(argv)
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    samples = 300 if arguments.quick else solver.SAMPLES
+    result = {"machine": machine(), "quick": arguments.quick}
+    result["solver"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "solver.py"), "--samples",
+                                            str(samples)]))
+    node_out = RESULTS / "node.json"
+    subprocess.run([sys.executable, str(ROOT / "bench" / "node.py"), "--out", str(node_out)]
+                   + (["--quick"] if arguments.quick else []), check=True)
+    result["node"] = json.loads(node_out.read_text())
+    latest = RESULTS / "latest.json"
+    latest.write_text(json.dumps(result, indent=1))
+    report.write(result, ROOT / "docs" / "performance.md")
+    print(f"bench: wrote {latest} and docs/performance.md")
+    return 0
+
+
+def _capture(command: list[str]) -> str:
+    return subprocess.run(command, check=True, capture_output=True, text=True).stdout
+
+
+if __name__ == "__main__":
+    sys.exit(main())
