@@ -1,0 +1,44 @@
+"""The benchmark and soak scripts' own logic (their runs are benchmarks, not tests)."""
+
+import json
+import math
+import sys
+
+from conftest import ROOT
+
+sys.path.insert(0, str(ROOT / "bench"))
+
+import report
+import soak
+
+from allocator_pkg import load_vehicle
+
+
+def test_the_report_is_rebuilt_from_the_committed_results(tmp_path):
+    result = json.loads((ROOT / "bench" / "results" / "latest.json").read_text())
+    out = tmp_path / "performance.md"
+    report.write(result, out)
+    text = out.read_text()
+    assert text == (ROOT / "docs" / "performance.md").read_text()
+    for vehicle in result["solver"]["vehicles"]:
+        assert f"### {vehicle} (" in text
+
+
+def test_the_soak_judges_each_command_by_the_state_at_its_stamp():
+    vehicle = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
+    start = soak.State(vehicle, {})
+    degraded = soak.State(vehicle, {"azimuth_port": 0.5})
+    history = soak.History(start)
+    change = soak.Change(sent=10.0, state=degraded)
+    history.changes.append(change)
+    period = 0.002
+    assert history.at(9.0, period) == (start, start, False)
+    assert history.at(10.5, period) == (start, degraded, True)          # asked, not answered yet
+    change.answered = 10.01
+    assert history.at(10.011, period) == (start, degraded, True)        # within a period of the answer
+    assert history.at(10.1, period) == (degraded, degraded, False)
+    low, high = degraded.limits(vehicle.actuators.index(vehicle.actuator("azimuth_port")))
+    assert (low, high) == (0.0, 0.5 * vehicle.actuator("azimuth_port").thrust_max)
+    history.forget(change)
+    assert history.at(10.1, period) == (start, start, False)
+    assert math.isinf(history.changes[0].sent)
