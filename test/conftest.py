@@ -107,6 +107,13 @@ class Harness:
             self._publish_clock(Time(sec=self.time_ns // 10**9, nanosec=self.time_ns % 10**9))
             self.spin_until(lambda: self.node.get_clock().now().nanoseconds >= self.time_ns)
 
+    def diagnostics_after_a_second(self):
+        """Step the clock one second and return the key-values of the diagnostics that follow."""
+        count = len(self.diagnostics)
+        self.tick(round(1.0 / self.node.period))
+        self.spin_until(lambda: len(self.diagnostics) > count)
+        return {kv.key: kv.value for kv in self.diagnostics[-1].status[0].values}
+
     def _publish_clock(self, stamp):
         self.clock.publish(self._clock_type(clock=stamp))
 

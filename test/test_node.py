@@ -169,10 +169,7 @@ def test_non_finite_wrench_is_rejected_and_the_last_valid_one_kept(harness):
     harness.send_wrench([0.0, math.inf, 0.0, 0.0, 0.0, 0.0])
     harness.tick(2)
     assert harness.status[-1].requested.force.x == 80.0
-    harness.tick(round(1.0 / harness.node.period))
-    harness.spin_until(lambda: len(harness.diagnostics) > 0)
-    values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
-    assert values["rejected wrenches"] == "2"
+    assert harness.diagnostics_after_a_second()["rejected wrenches"] == "2"
 
 
 def test_diagnostics_levels(harness):
@@ -253,10 +250,7 @@ def test_watchdog_logs_once_per_transition(harness):
 
 @pytest.mark.params(ROOT / "config" / "infante_auv.yaml")
 def test_diagnostics_name_unavailable_control_surfaces(harness):
-    harness.tick(round(1.0 / harness.node.period))
-    harness.spin_until(lambda: len(harness.diagnostics) > 0)
-    values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
-    assert values["unavailable"].startswith("fin_bow_port")
+    assert harness.diagnostics_after_a_second()["unavailable"].startswith("fin_bow_port")
 
 
 @pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
@@ -298,8 +292,6 @@ def test_the_shutdown_command_is_zero_thrust_and_acknowledged(harness):
 
 @pytest.mark.params(ROOT / "config" / "otter_usv.yaml")
 def test_an_under_actuated_vehicle_says_so_in_diagnostics(harness):
-    harness.tick(round(1.0 / harness.node.period))
-    harness.spin_until(lambda: len(harness.diagnostics) > 0)
-    values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
+    values = harness.diagnostics_after_a_second()
     assert values["actuation"].startswith("under-actuated: the actuators give 2 independent directions")
     assert "sway is left to the vehicle's dynamics" in values["actuation"]
