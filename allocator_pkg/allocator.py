@@ -191,6 +191,9 @@ class Allocator:
         self._warnings = _reachability_warnings(model)
         self._notes = _actuation_notes(model)
         self._saturation_error = SATURATION_TOLERANCE * model.dof_scale
+        rows = np.flatnonzero(model.dof_index == _SURGE)
+        self._surge_row = int(rows[0]) if rows.size else None
+        self._deflection_max = np.array([vehicle.actuators[i].surface.deflection_max for i in model.surfaces])
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._apply_speed()
         self._refresh_faults()
@@ -323,8 +326,8 @@ class Allocator:
         output = self._solve(tau_c, limits)
         thrust, angle = self._resolve(output, limits)
         drag = 0.0
-        if model.surfaces.size and _SURGE in model.dof_index:
-            surge = int(np.flatnonzero(model.dof_index == _SURGE)[0])
+        surge = self._surge_row
+        if model.surfaces.size and surge is not None:
             for _ in range(DRAG_PASSES):
                 new_drag = self._surface_drag(thrust)
                 if abs(new_drag - drag) <= 1e-9 * max(1.0, abs(tau_c[surge])):
@@ -397,8 +400,7 @@ class Allocator:
         step = model.thrust_step.copy()
         if surfaces.size:
             lift = self._lift[surfaces]
-            deflection_max = np.array([self._vehicle.actuators[i].surface.deflection_max for i in surfaces])
-            range_high[surfaces] = lift * deflection_max * efficiency[surfaces]
+            range_high[surfaces] = lift * self._deflection_max * efficiency[surfaces]
             range_low[surfaces] = -range_high[surfaces]
             previous[surfaces] = lift * state.deflection[surfaces]
             step[surfaces] = np.multiply(lift, model.thrust_step[surfaces], out=np.zeros(surfaces.size),
@@ -491,11 +493,12 @@ def _reachability_warnings(model: Model) -> list[str]:
 
 def _actuation_notes(model: Model) -> list[str]:
     """Whether the actuators give independent forces in surge, sway and yaw, the plane every
-    marine vehicle moves in; if not, the vehicle is under-actuated there."""
+    marine vehicle moves in; if not, and the configuration leaves some of them to the vehicle,
+    it is under-actuated by design (a controlled DOF out of reach is a warning instead)."""
+    left = [dof for dof in PLANE if dof not in model.vehicle.dofs]
     plane = [DOF_NAMES.index(dof) for dof in PLANE]
     rank = int(np.linalg.matrix_rank(model.t_e[plane], tol=1e-9))
-    if rank == len(plane):
+    if not left or rank == len(plane):
         return []
-    left = [dof for dof in PLANE if dof not in model.vehicle.dofs]
-    return [f"under-actuated: the actuators give {rank} independent directions in {', '.join(PLANE)}"
-            + (f"; {', '.join(left)} is left to the vehicle's dynamics" if left else "")]
+    return [f"under-actuated: the actuators give {rank} independent directions in {', '.join(PLANE)}; "
+            f"{', '.join(left)} is left to the vehicle's dynamics"]

@@ -74,8 +74,8 @@ class Model:
     def dof_scale(self) -> np.ndarray:
         """The authority of each controlled DOF, the largest one standing in for a DOF that no
         actuator reaches: the yardstick of wrench errors (slack weights, the saturation flag).
-        An authority below 1e-9 of the largest authority or actuator force (a lever of 1e-300 m)
-        counts as none."""
+        An authority below 1e-9 of the largest authority or actuator force counts as none, and
+        the larger of those two stands in for it."""
         reach = max(float(np.max(self.authority, initial=0.0)), float(np.max(self.force_scale, initial=0.0))) or 1.0
         return np.where(self.authority > 1e-9 * reach, self.authority, reach)
 

@@ -85,6 +85,11 @@ def wrench_at(t: float) -> Wrench:
     return wrench
 
 
+def stamp_seconds(message) -> float:
+    """A message's header stamp [s]."""
+    return message.header.stamp.sec + message.header.stamp.nanosec * 1e-9
+
+
 def wrench_key(wrench: Wrench) -> WrenchKey:
     """The exact values of a wrench, to match a published wrench with the one the node used."""
     return (wrench.force.x, wrench.force.y, wrench.force.z, wrench.torque.x, wrench.torque.y, wrench.torque.z)
@@ -112,8 +117,7 @@ class Probe:
 
     def _on_commands(self, message: ThrusterCommands) -> None:
         """Record the receipt time and header stamp of a command."""
-        stamp = message.header.stamp
-        self.commands.append((time.time(), stamp.sec + stamp.nanosec * 1e-9))
+        self.commands.append((time.time(), stamp_seconds(message)))
 
     def _on_status(self, message: AllocationStatus) -> None:
         """Record the solve time; for the first status that echoes a published wrench, time
@@ -122,7 +126,7 @@ class Probe:
         self.solves.append((now, message.solve_time))
         published = self._pending.pop(wrench_key(message.requested), None)
         if published is not None:
-            stamp = message.header.stamp.sec + message.header.stamp.nanosec * 1e-9
+            stamp = stamp_seconds(message)
             receipt, command_stamp = self.commands[-1] if self.commands else (now, None)
             self.latencies.append((published, receipt if command_stamp == stamp else now))
 

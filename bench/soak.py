@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 from geometry_msgs.msg import Wrench
-from node import ROOT, Probe, node_process, percentiles, process_cpu_seconds, ros_context, summarise
+from node import ROOT, Probe, node_process, percentiles, process_cpu_seconds, ros_context, stamp_seconds, summarise
 from rcl_interfaces.srv import SetParametersAtomically
 from rclpy.context import Context
 from rclpy.parameter import Parameter
@@ -59,14 +59,9 @@ EXTREME_SAMPLES = 6          # wrench periods a 1e12 wrench is held (three node 
 SILENCE = 0.5                # s without commands that counts as the node hanging
 MAX_VIOLATIONS_KEPT = 50
 METHODS = ("qp", "pseudoinverse", "nonlinear")
-DOF_INDEX = {"surge": 0, "sway": 1, "heave": 2, "roll": 3, "pitch": 4, "yaw": 5}
 FIRST_ACTIONS = ("method nonlinear", "method pseudoinverse", "method qp", "fault DEGRADED", "fault FAILED",
                  "fault STUCK", "fault NOMINAL", "clear", "thrust_max", "weights", "max_iter", "invalid")
 """Warm-up: every kind of change once, so that later allocations are not taken for a leak."""
-
-
-def stamp_of(message) -> float:
-    return message.header.stamp.sec + message.header.stamp.nanosec * 1e-9
 
 
 @dataclass(frozen=True)
@@ -154,9 +149,9 @@ class SoakProbe(Probe):
         self.tally = tally
         self.previous: ThrusterCommands | None = None
         vehicle = history.latest.vehicle
+        model = Model.build(vehicle, 1.0 / RATE_HZ)
         self.authority = np.zeros(6)
-        for dof, value in zip(vehicle.dofs, Model.build(vehicle, 1.0 / RATE_HZ).dof_scale):
-            self.authority[DOF_INDEX[dof]] = value
+        self.authority[model.dof_index] = model.dof_scale
         self.walk = np.zeros(6)
         self.last_extreme = time.monotonic()
         self.extreme_left = 0
@@ -194,7 +189,7 @@ class SoakProbe(Probe):
             self.tally.extreme_allocated += 1
         achieved = (message.achieved.force.x, message.achieved.force.y, message.achieved.torque.z)
         if not all(math.isfinite(v) for v in achieved):
-            self.tally.violation(f"t={stamp_of(message):.3f}: non-finite achieved wrench {achieved}")
+            self.tally.violation(f"t={stamp_seconds(message):.3f}: non-finite achieved wrench {achieved}")
 
     def _on_commands(self, message: ThrusterCommands) -> None:
         super()._on_commands(message)
@@ -204,13 +199,13 @@ class SoakProbe(Probe):
     def check(self, message: ThrusterCommands) -> None:
         """Every output finite and within the limits in force; steps within rate limits."""
         self.tally.checked += 1
-        stamp = stamp_of(message)
+        stamp = stamp_seconds(message)
         period = 1.0 / RATE_HZ
         before, after, flight = self.history.at(stamp, period)
         previous = self.previous
         steps = 1
         if previous is not None:
-            gap = (stamp - stamp_of(previous)) / period
+            gap = (stamp - stamp_seconds(previous)) / period
             steps = 1 if gap <= 1.2 else math.floor(gap) + 1      # a late tick then a lost one: 2 steps
         for i, actuator in enumerate(after.vehicle.actuators):
             thrust, azimuth, command, mode = message.thrust[i], message.azimuth[i], message.command[i], message.mode[i]

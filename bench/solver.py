@@ -200,9 +200,9 @@ def power_optimum(vehicle, tau: np.ndarray, start: np.ndarray | None, rng) -> tu
     lift = np.array([lift_gain(actuators[i].surface, vehicle.water_density, SPEED) for i in surfaces])
     drag = np.array([drag_gain(actuators[i].surface, vehicle.water_density, SPEED) for i in surfaces])
     low, high = [], []
-    for actuator in actuators:
+    for i, actuator in enumerate(actuators):
         if actuator.is_surface:
-            reach = lift_gain(actuator.surface, vehicle.water_density, SPEED) * actuator.surface.deflection_max
+            reach = lift[surfaces.index(i)] * actuator.surface.deflection_max
             low.append(-reach)
             high.append(reach)
         else:

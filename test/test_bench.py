@@ -1,7 +1,6 @@
 """The benchmark and soak scripts' own logic (their runs are benchmarks, not tests)."""
 
 import json
-import math
 import sys
 
 from conftest import ROOT
@@ -15,13 +14,10 @@ from allocator_pkg import load_vehicle
 
 
 def test_the_report_is_rebuilt_from_the_committed_results(tmp_path):
-    result = json.loads((ROOT / "bench" / "results" / "latest.json").read_text())
     out = tmp_path / "performance.md"
-    report.write(result, out)
+    report.write(json.loads((ROOT / "bench" / "results" / "latest.json").read_text()), out)
     text = out.read_text()
     assert text == (ROOT / "docs" / "performance.md").read_text()
-    for vehicle in result["solver"]["vehicles"]:
-        assert f"### {vehicle} (" in text
 
 
 def test_the_soak_judges_each_command_by_the_state_at_its_stamp():
@@ -40,5 +36,4 @@ def test_the_soak_judges_each_command_by_the_state_at_its_stamp():
     low, high = degraded.limits(vehicle.actuators.index(vehicle.actuator("azimuth_port")))
     assert (low, high) == (0.0, 0.5 * vehicle.actuator("azimuth_port").thrust_max)
     history.forget(change)
-    assert history.at(10.1, period) == (start, start, False)
-    assert math.isinf(history.changes[0].sent)
+    assert history.at(10.1, period) == (start, start, False) and len(history.changes) == 1

@@ -11,6 +11,14 @@ from allocator_pkg.configuration_matrix import configuration_matrix
 FOUR = DATA / "four_azimuths.yaml"
 
 
+def authority(vehicle):
+    """Surge, sway and yaw authority of azimuths able to point anywhere: sum f_max in X and Y,
+    sum f_max |l| in N, with |l| each thruster's distance from the origin in the plane."""
+    f_max = np.array([a.thrust_max for a in vehicle.actuators])
+    lever = np.array([np.hypot(*a.position[:2]) for a in vehicle.actuators])
+    return np.array([f_max.sum(), f_max.sum(), f_max @ lever])
+
+
 def slsqp_optimum(vehicle, tau, starts=20):
     """min sum_i |f_i|^(3/2) s.t. T(alpha) f = tau, 0 <= f <= f_max, from several starts."""
     actuators = vehicle.actuators
@@ -41,11 +49,7 @@ def test_power_is_within_a_few_percent_of_an_independent_optimum(tau):
     for _ in range(400):
         result = alloc.allocate(tau)
     assert not result.saturated
-    # Four azimuths of up to f_max at |l| from the origin: authority sum(f_max) in X and Y, sum(f_max |l|) in N.
-    f_max = np.array([a.thrust_max for a in vehicle.actuators])
-    lever = np.array([np.hypot(*a.position[:2]) for a in vehicle.actuators])
-    authority = np.array([f_max.sum(), f_max.sum(), f_max @ lever])
-    assert np.all(np.abs(result.achieved[[0, 1, 5]] - tau[[0, 1, 5]]) <= 1e-4 * authority)
+    assert np.all(np.abs(result.achieved[[0, 1, 5]] - tau[[0, 1, 5]]) <= 1e-4 * authority(vehicle))
     optimum = slsqp_optimum(vehicle, tau)
     assert result.power <= 1.03 * optimum
     assert alloc.stats.solver_setups == 1
@@ -91,12 +95,9 @@ def test_more_linearised_qps_per_sample_leave_less_linearisation_error():
     errors = {}
     for iterations in (1, 5):
         vehicle = vehicle_from(FOUR, nonlinear__max_iterations=iterations, **free)
-        f_max = np.array([a.thrust_max for a in vehicle.actuators])
-        lever = np.array([np.hypot(*a.position[:2]) for a in vehicle.actuators])
-        authority = np.array([f_max.sum(), f_max.sum(), f_max @ lever])
         alloc = Allocator(vehicle, method="nonlinear")
-        errors[iterations] = [np.max(np.abs(alloc.allocate(tau).achieved[[0, 1, 5]] - tau[[0, 1, 5]]) / authority)
-                              for _ in range(2)]
+        errors[iterations] = [np.max(np.abs(alloc.allocate(tau).achieved[[0, 1, 5]] - tau[[0, 1, 5]])
+                                     / authority(vehicle)) for _ in range(2)]
         assert alloc.stats.solver_setups == 1
     assert errors[5][0] < errors[1][0]
     assert errors[5][1] < 1e-3 * errors[1][1]

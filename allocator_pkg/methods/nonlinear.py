@@ -78,6 +78,7 @@ class NonlinearAllocation:
     def _use(self, model: Model) -> None:
         self.model = model
         self._floor = FORCE_FLOOR * np.maximum(model.force_scale, 1e-6)
+        self._dof_scale = model.dof_scale
 
     @staticmethod
     def _p(model: Model) -> np.ndarray:
@@ -127,8 +128,8 @@ class NonlinearAllocation:
         status = ""
         passes = model.vehicle.nonlinear_max_iterations
         miss = math.inf
+        t, dt = self._matrices(angle)
         for _ in range(passes):
-            t, dt = self._matrices(angle)
             c = np.where(model.power > 0.0,
                          0.75 * model.power / np.sqrt(np.maximum(np.abs(force), self._floor)), model.weight)
             root = np.sqrt(c)
@@ -158,11 +159,11 @@ class NonlinearAllocation:
                 # rest: dT/dalpha f = 0) it can overshoot, so a pass that misses tau by more
                 # than the last one (each DOF against its authority, as the default Q weighs
                 # them) is dropped and the passes stop.
-                t_new, _ = self._matrices(new_angle)
-                new_miss = float(np.sum(((t_new @ new_force - tau) / model.dof_scale) ** 2))
+                t_new, dt_new = self._matrices(new_angle)
+                new_miss = float(np.sum(((t_new @ new_force - tau) / self._dof_scale) ** 2))
                 if new_miss >= miss:
                     break
-                miss = new_miss
+                miss, t, dt = new_miss, t_new, dt_new
             force, angle = new_force, new_angle
         extended = np.zeros(model.m)
         extended[model.scalar_columns] = force[model.scalar]

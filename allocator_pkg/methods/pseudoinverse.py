@@ -63,7 +63,7 @@ class PseudoInverse:
         if not basis_columns:
             return np.zeros((model.m, model.n))
         basis = np.column_stack(basis_columns) / np.sqrt(np.asarray(weights))
-        return basis @ _pinv(model.t_ec @ basis)
+        return basis @ np.linalg.pinv(model.t_ec @ basis, rcond=1e-10)
 
     def desired(self, tau: np.ndarray, excluded: np.ndarray) -> np.ndarray:
         """The unconstrained extended solution (1.33) with the usable actuators."""
@@ -98,15 +98,6 @@ class PseudoInverseAllocation:
         if model.vehicle.saturation == "preserve_direction":
             free *= scale_to_limits(model, limits, free, fixed)
         return MethodOutput(force=free + pinned, status="solved")
-
-
-def _pinv(matrix: np.ndarray) -> np.ndarray:
-    """Moore-Penrose inverse that drops singular values below 1e-10 of the largest, as
-    numpy's does, and also below 1e-12 outright: T's entries are direction cosines and lever
-    arms [m], so a smaller one is a lever of nothing, whose inverse would overflow."""
-    u, sigma, vt = np.linalg.svd(matrix, full_matrices=False)
-    keep = sigma > max(1e-10 * float(np.max(sigma, initial=0.0)), 1e-12)
-    return (vt[keep].T / sigma[keep]) @ u[:, keep].T
 
 
 def fixed_forces(model: Model, limits: SampleLimits, fixed: np.ndarray) -> np.ndarray:
