@@ -67,19 +67,6 @@ def configuration_matrix(actuators: Sequence[ActuatorConfig], angles: Sequence[f
     ])
 
 
-def configuration_matrix_derivative(actuators: Sequence[ActuatorConfig], angles: Sequence[float]) -> np.ndarray:
-    """dT/dalpha column by column, 6 x r: d t_i / d alpha_i for rotatable thrusters
-    (direction(alpha + pi/2)), zero for the others."""
-    columns = []
-    for actuator, angle in zip(actuators, angles):
-        if actuator.rotatable:
-            e1, e2 = rotation_basis(actuator.type)
-            columns.append(force_column(actuator.position, -np.sin(angle) * e1 + np.cos(angle) * e2))
-        else:
-            columns.append(np.zeros(6))
-    return np.column_stack(columns)
-
-
 def extended_columns(actuators: Sequence[ActuatorConfig]) -> list[int]:
     """Index of each actuator's first column in T_e; rotatable thrusters take two."""
     starts, column = [], 0
