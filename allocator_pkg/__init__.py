@@ -9,16 +9,23 @@ and the command-line tools::
 """
 
 from .allocator import AllocationResult, Allocator, AllocatorStats
-from .faults import Fault, FaultMode
-from .vehicle import ConfigError, Vehicle, load_vehicle
+from .faults import Fault, FaultMode, FaultSet
+from .methods import METHODS
+from .parameters import load_vehicle, parse_parameters, read_parameters, vehicle_from_parameters
+from .vehicle import ConfigError, Vehicle
 
 __all__ = [
+    "METHODS",
     "AllocationResult",
     "Allocator",
     "AllocatorStats",
     "ConfigError",
     "Fault",
     "FaultMode",
+    "FaultSet",
     "Vehicle",
     "load_vehicle",
+    "parse_parameters",
+    "read_parameters",
+    "vehicle_from_parameters",
 ]

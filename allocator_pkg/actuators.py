@@ -9,12 +9,10 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from .vehicle import CommandMapConfig, SurfaceConfig
+from .vehicle import CommandMapConfig, SurfaceConfig
 
 
 @dataclass(frozen=True)

@@ -22,17 +22,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .actuators import CommandMaps, command_map, drag_gain, lift_gain
+from .actuators import CommandMaps, command_map, drag_gain
 from .azimuth import AzimuthLimits, AzimuthState, plan, resolve
 from .configuration_matrix import configuration_matrix
-from .faults import NOMINAL, Fault, FaultMode
-from .methods.nonlinear import NonlinearAllocation
-from .methods.pseudoinverse import PseudoInverse, PseudoInverseAllocation
-from .methods.qp import QPAllocation
+from .faults import Fault, FaultMode, FaultSet, lift_gains, static_ranges
+from .methods import METHODS, AllocationMethod
+from .methods.pseudoinverse import PseudoInverseAllocation, PseudoInverseGains
 from .model import MethodOutput, Model, SampleLimits
-from .schema import DOF_NAMES, METHODS
 from .sectors import in_feasible_sector
-from .vehicle import Vehicle
+from .solvers import BACKENDS, DEFAULT_BACKEND, BackendFactory
+from .vehicle import DOF_NAMES, Vehicle
 
 SATURATION_TOLERANCE = 1e-3
 """A request counts as met when every controlled DOF is within this fraction of the DOF's
@@ -77,14 +76,6 @@ class AllocatorStats:
     fallbacks: int = 0
 
 
-@dataclass(frozen=True)
-class _FaultState:
-    efficiency: np.ndarray
-    command_efficiency: np.ndarray
-    stuck: dict[int, float]
-    modes: np.ndarray
-
-
 @dataclass
 class _State:
     thrust: np.ndarray
@@ -96,21 +87,32 @@ class _State:
 class Allocator:
     """Thrust allocation for one vehicle; see the module docstring for a sample's steps.
 
-    ``method`` overrides the configuration's method, ``dt`` its sample time 1/rate_hz.
+    ``method`` overrides the configuration's method, ``dt`` its sample time 1/rate_hz;
+    ``backend`` names the QP solver behind the methods (a key of
+    :data:`allocator_pkg.solvers.BACKENDS`) or is a backend factory.
     """
 
-    def __init__(self, vehicle: Vehicle, method: str | None = None, dt: float | None = None):
+    def __init__(self, vehicle: Vehicle, method: str | None = None, dt: float | None = None,
+                 backend: str | BackendFactory = DEFAULT_BACKEND):
         if method is not None and method not in METHODS:
             raise ValueError(f"unknown method '{method}'; choose from {', '.join(METHODS)}")
+        unfit = METHODS[method or vehicle.method].problems(vehicle)
+        if unfit:
+            raise ValueError(f"method '{method or vehicle.method}' cannot serve this vehicle: {'; '.join(unfit)}")
         if dt is not None and not (math.isfinite(dt) and dt > 0.0):
             raise ValueError(f"dt must be a positive number of seconds, got {dt}")
+        if isinstance(backend, str):
+            if backend not in BACKENDS:
+                raise ValueError(f"unknown backend '{backend}'; installed: {', '.join(BACKENDS)}")
+            backend = BACKENDS[backend]
         self._method_override = method
         self._dt = dt
-        self._methods: dict[str, object] = {}
+        self._backend = backend
+        self._methods: dict[str, AllocationMethod] = {}
         self._retired_setups = 0
-        self._faults: dict[str, Fault] = {}
         self._speed = 0.0
         self._stats = AllocatorStats()
+        self._fault_set = FaultSet(vehicle)
         self._configure(vehicle)
         self.reset()
 
@@ -138,7 +140,12 @@ class Allocator:
 
     @property
     def faults(self) -> dict[str, Fault]:
-        return dict(self._faults)
+        return dict(self._fault_set.faults)
+
+    @property
+    def fault_set(self) -> FaultSet:
+        """The faults in force, validated, with their per-actuator arrays."""
+        return self._fault_set
 
     @property
     def uncontrolled(self) -> tuple[str, ...]:
@@ -155,15 +162,20 @@ class Allocator:
         """What the operator should know but is by design (an under-actuated vehicle)."""
         return list(self._notes)
 
+    def check_reconfigure(self, vehicle: Vehicle) -> None:
+        """Raise ValueError if :meth:`reconfigure` cannot take ``vehicle``."""
+        old = self._vehicle
+        if [(a.name, a.type) for a in vehicle.actuators] != [(a.name, a.type) for a in old.actuators]:
+            raise ValueError("reconfigure keeps the actuators (names and types); build a new Allocator instead")
+
     def reconfigure(self, vehicle: Vehicle) -> None:
         """Use a new configuration of the same actuators; state and faults carry over.
 
         Values on the same sparsity pattern update the running solver; only a change of
         structure (DOFs, polygon sides, saturation mode) sets one up again.
         """
-        old = self._vehicle
-        if [(a.name, a.type) for a in vehicle.actuators] != [(a.name, a.type) for a in old.actuators]:
-            raise ValueError("reconfigure keeps the actuators (names and types); build a new Allocator instead")
+        self.check_reconfigure(vehicle)
+        self._fault_set = self._fault_set.rebound(vehicle)
         self._configure(vehicle)
         for state, i in zip(self._state.azimuth, self._model.rot):
             rotation = vehicle.actuators[i].rotation
@@ -176,12 +188,12 @@ class Allocator:
         stale = [key for key, method in self._methods.items() if method.structure != model.structure]
         for key in stale:
             self._retired_setups += self._methods.pop(key).setups
-        self._inverse = PseudoInverse(model)
-        self._fallback = PseudoInverseAllocation(model, self._inverse)
+        self._inverse = PseudoInverseGains(model)
+        self._fallback = PseudoInverseAllocation(model, self._backend, self._inverse)
         for method in self._methods.values():
             method.update_model(model)
         if name not in self._methods:
-            self._methods[name] = self._build_method(name, model)
+            self._methods[name] = METHODS[name](model, self._backend)
         self._method = self._methods[name]
         self._model = model
         self._vehicle = vehicle
@@ -193,17 +205,8 @@ class Allocator:
         self._saturation_error = SATURATION_TOLERANCE * model.dof_scale
         rows = np.flatnonzero(model.dof_index == _SURGE)
         self._surge_row = int(rows[0]) if rows.size else None
-        self._deflection_max = np.array([vehicle.actuators[i].surface.deflection_max for i in model.surfaces])
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._apply_speed()
-        self._refresh_faults()
-
-    def _build_method(self, name: str, model: Model):
-        if name == "qp":
-            return QPAllocation(model)
-        if name == "nonlinear":
-            return NonlinearAllocation(model)
-        return PseudoInverseAllocation(model)
 
     @property
     def stats(self) -> AllocatorStats:
@@ -244,63 +247,28 @@ class Allocator:
 
     def _apply_speed(self) -> None:
         v = self._vehicle
-        self._lift = np.array([lift_gain(a.surface, v.water_density, self._speed) if a.is_surface else 0.0
-                               for a in v.actuators])
+        self._lift = lift_gains(v, self._speed)
         self._drag = np.array([drag_gain(a.surface, v.water_density, self._speed) if a.is_surface else 0.0
                                for a in v.actuators])
-        if hasattr(self, "_fault_state"):
-            self._refresh_availability()
+        self._refresh_ranges()
 
     def set_fault(self, name: str, mode: FaultMode | int, efficiency: float | None = None,
-                  azimuth: float | None = None) -> None:
+                  angle: float | None = None) -> None:
         """Set one actuator's fault; it applies from the next sample. Raises ValueError
         (naming the valid choices) for an unknown actuator or mode, an efficiency outside
-        (0, 1], or STUCK on an actuator that cannot be stuck at an angle."""
-        if name not in self.names:
-            raise ValueError(f"unknown actuator '{name}'; actuators: {', '.join(self.names)}")
-        try:
-            mode = FaultMode(mode)
-        except ValueError:
-            raise ValueError(f"unknown fault mode {mode!r}; modes: "
-                             + ", ".join(f"{m.name}={m.value}" for m in FaultMode)) from None
-        actuator = self._vehicle.actuator(name)
-        if mode == FaultMode.NOMINAL:
-            self._faults.pop(name, None)
-        elif mode == FaultMode.DEGRADED:
-            if efficiency is None or not (math.isfinite(efficiency) and 0.0 < efficiency <= 1.0):
-                raise ValueError(f"DEGRADED needs an efficiency in (0, 1], got {efficiency}")
-            self._faults[name] = Fault(mode, efficiency=float(efficiency))
-        elif mode == FaultMode.STUCK:
-            self._faults[name] = Fault(mode, azimuth=self._stuck_angle(actuator, azimuth))
-        else:
-            self._faults[name] = Fault(mode, efficiency=0.0)
-        self._refresh_faults()
-
-    def _stuck_angle(self, actuator, azimuth: float | None) -> float:
-        stuckable = [a.name for a in self._vehicle.actuators if a.rotatable or a.is_surface]
-        if not (actuator.rotatable or actuator.is_surface):
-            raise ValueError(f"STUCK applies to rotatable thrusters and control surfaces, not the {actuator.type} "
-                             f"actuator '{actuator.name}'; these can be stuck: {', '.join(stuckable) or 'none'}")
-        if azimuth is None or not math.isfinite(azimuth):
-            raise ValueError(f"STUCK needs a finite angle, got {azimuth}")
-        if actuator.rotatable:
-            rotation = actuator.rotation
-            if not in_feasible_sector(rotation, azimuth):
-                raise ValueError(f"angle {azimuth:g} rad is outside the feasible sector "
-                                 f"[{rotation.azimuth_min:g}, {rotation.azimuth_max:g}] of '{actuator.name}'")
-        elif abs(azimuth) > actuator.surface.deflection_max:
-            raise ValueError(f"deflection {azimuth:g} rad is beyond deflection_max "
-                             f"{actuator.surface.deflection_max:g} of '{actuator.name}'")
-        return float(azimuth)
+        (0, 1], or STUCK on an actuator that cannot be stuck or at an angle it cannot take;
+        nothing changes then. ``angle`` is the azimuth or deflection [rad] of STUCK."""
+        self._fault_set = self._fault_set.with_fault(name, mode, efficiency, angle)
+        self._refresh_ranges()
 
     def clear_faults(self) -> None:
         """Every actuator back to NOMINAL."""
-        self._faults.clear()
-        self._refresh_faults()
+        self._fault_set = self._fault_set.cleared()
+        self._refresh_ranges()
 
     def modes(self) -> np.ndarray:
         """FaultMode of every actuator, configuration order."""
-        return self._fault_state.modes.copy()
+        return self._fault_set.modes.copy()
 
     def configuration_matrix(self, azimuth: Sequence[float] | None = None) -> np.ndarray:
         """T(alpha), 6 x r, at the given angles or the current ones."""
@@ -321,8 +289,8 @@ class Allocator:
         start = time.perf_counter()
         model = self._model
         tau_c = requested[model.dof_index]
-        faults = self._fault_state
-        limits = self._limits(tau_c, faults.efficiency, faults.stuck)
+        faults = self._fault_set
+        limits = self._limits(tau_c, faults.stuck)
         output = self._solve(tau_c, limits)
         thrust, angle = self._resolve(output, limits)
         drag = 0.0
@@ -357,7 +325,7 @@ class Allocator:
         model = self._model
         thrust = np.zeros(model.r)
         angle = self._state.angle.copy()
-        faults = self._fault_state
+        faults = self._fault_set
         command = self._maps.commands(thrust, faults.command_efficiency, self._lift)
         self._commit(thrust, angle)
         return AllocationResult(
@@ -365,51 +333,30 @@ class Allocator:
             saturated=False, status="stopped", iterations=0, solve_time=0.0, power=0.0,
             method=self._method.name, mode=faults.modes.copy(), available=self._availability.copy())
 
-    def _refresh_faults(self) -> None:
-        """The faults as arrays, computed when they change (not per sample)."""
-        efficiency = np.ones(len(self.names))
-        stuck: dict[int, float] = {}
-        for i, name in enumerate(self.names):
-            fault = self._faults.get(name)
-            if fault is None:
-                continue
-            if fault.mode == FaultMode.STUCK:
-                stuck[i] = fault.azimuth
-            else:
-                efficiency[i] = fault.efficiency
-        modes = np.array([self._faults.get(n, NOMINAL).mode for n in self.names], dtype=np.uint8)
-        self._fault_state = _FaultState(efficiency=efficiency, stuck=stuck, modes=modes,
-                                        command_efficiency=np.where(efficiency > 0.0, efficiency, 1.0))
-        self._refresh_availability()
-
-    def _refresh_availability(self) -> None:
-        available = self._fault_state.efficiency > 0.0
+    def _refresh_ranges(self) -> None:
+        """The static force ranges and availability, computed when faults or speed change."""
+        self._range_low, self._range_high = static_ranges(self._vehicle, self._fault_set, self._speed)
+        available = self._fault_set.efficiency > 0.0
         available[self._model.surfaces] &= self._lift[self._model.surfaces] > 0.0
         self._availability = available
 
-    def _limits(self, tau: np.ndarray, efficiency: np.ndarray, stuck: dict[int, float]) -> SampleLimits:
+    def _limits(self, tau: np.ndarray, stuck: dict[int, float]) -> SampleLimits:
         model = self._model
         state = self._state
-        range_low = model.thrust_min * efficiency
-        range_high = model.thrust_max * efficiency
+        range_low, range_high = self._range_low, self._range_high
         surfaces = model.surfaces
         if not (surfaces.size or model.rot.size or self._rate_limited):
-            return SampleLimits(low=range_low, high=range_high, rot=model.rot, azimuth=[], angle=state.angle.copy(),
-                                thrust=state.thrust.copy())
+            return SampleLimits(low=range_low.copy(), high=range_high.copy(), rot=model.rot, azimuth=[],
+                                angle=state.angle.copy(), thrust=state.thrust.copy())
         previous = state.thrust.copy()
         step = model.thrust_step.copy()
         if surfaces.size:
             lift = self._lift[surfaces]
-            range_high[surfaces] = lift * self._deflection_max * efficiency[surfaces]
-            range_low[surfaces] = -range_high[surfaces]
             previous[surfaces] = lift * state.deflection[surfaces]
             step[surfaces] = np.multiply(lift, model.thrust_step[surfaces], out=np.zeros(surfaces.size),
                                          where=lift > 0.0)
         low = np.minimum(np.maximum(previous - step, range_low), range_high)
         high = np.minimum(np.maximum(previous + step, range_low), range_high)
-        for i in surfaces:
-            if i in stuck:
-                low[i] = high[i] = self._lift[i] * stuck[i]
         azimuth: list[AzimuthLimits] = []
         if model.rot.size:
             excluded = (range_low == 0.0) & (range_high == 0.0)

@@ -26,21 +26,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
+from .angles import ANGLE_TOLERANCE, wrap
 from .sectors import (
-    TOLERANCE,
     allowed_piece,
     crosses,
     forbidden_offsets,
     in_forbidden_sector,
     offset_domain,
     target_offsets,
-    wrap,
 )
-
-if TYPE_CHECKING:
-    from .vehicle import RotationConfig
+from .vehicle import RotationConfig
 
 CROSSING_MARGIN = 0.05
 """How far [rad] beyond a forbidden sector the wanted direction must lie before a crossing starts."""
@@ -159,7 +155,7 @@ def plan(
     if best is not None:
         offset = best[1]
         natural = wrap(offset)
-        if natural * offset < 0.0 or abs(offset) > math.pi + TOLERANCE:
+        if natural * offset < 0.0 or abs(offset) > math.pi + ANGLE_TOLERANCE:
             low, high = (0.0, high) if offset > 0.0 else (low, 0.0)
     if high - low > math.pi:
         centre = max(-0.5 * math.pi, min(0.5 * math.pi, best[1] if best is not None else 0.0))
@@ -197,7 +193,7 @@ def _best_path(
                 cost += CROSSING_PENALTY
             if sigma != current_sigma and moving:
                 cost += CROSSING_PENALTY
-            if cost < best_cost - TOLERANCE:
+            if cost < best_cost - ANGLE_TOLERANCE:
                 best, best_cost = (sigma, offset, crossing), cost
     return best
 
@@ -205,9 +201,9 @@ def _best_path(
 def _beyond_forbidden(offset: float, forbidden: list[tuple[float, float]]) -> float:
     """How far past the last forbidden interval on the path [0, offset] the target lies."""
     if offset > 0.0:
-        ends = [hi for lo, hi in forbidden if 0.0 < hi <= offset + TOLERANCE and lo < offset]
+        ends = [hi for lo, hi in forbidden if 0.0 < hi <= offset + ANGLE_TOLERANCE and lo < offset]
         return offset - max(ends) if ends else 0.0
-    starts = [lo for lo, hi in forbidden if offset - TOLERANCE <= lo < 0.0 and hi > offset]
+    starts = [lo for lo, hi in forbidden if offset - ANGLE_TOLERANCE <= lo < 0.0 and hi > offset]
     return min(starts) - offset if starts else 0.0
 
 

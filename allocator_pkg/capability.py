@@ -3,13 +3,12 @@
 For each direction in a plane of two DOFs (surge and sway by default, the dynamic-positioning
 capability plot), with the other controlled DOFs held at given values (yaw moment 0 by
 default), a small linear programme finds the largest magnitude the actuators can produce with
-the configured limits, faults and the configured method's constraints:
-
-- ``qp``: the inscribed N-gon of ``azimuth_polygon_sides`` for rotatable thrusters, as the
-  QP uses;
-- ``nonlinear``: the thrust circle itself (a 256-gon, within 0.008 %);
-- ``pseudoinverse``: only forces the weighted pseudo-inverse gives within every limit (it has
-  no way to redistribute), found by bisection on the method itself.
+the configured limits, faults and the configured method's constraints: each method says
+which polygon its constraints put on a rotatable thruster's force
+(:meth:`~allocator_pkg.methods.base.AllocationMethod.thrust_region_sides`: the inscribed N-gon
+of ``azimuth_polygon_sides`` for ``qp``, the circle itself for ``nonlinear``), or that it
+cannot redistribute force (``pseudoinverse``), in which case only forces the weighted
+pseudo-inverse gives within every limit count, found by bisection on the pseudo-inverse.
 
 Rotatable thrusters may turn to any allowed angle (steady state: rate limits do not apply).
 A forbidden sector makes the set of forces a thruster can give non-convex; it is split into
@@ -34,16 +33,16 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import linprog
 
-from .actuators import lift_gain
-from .faults import Fault, FaultMode
-from .methods.pseudoinverse import PseudoInverse
+from .angles import TWO_PI
+from .faults import Fault, FaultMode, FaultSet, static_ranges
+from .methods import METHODS
+from .methods.pseudoinverse import PseudoInverseGains
 from .model import Model
-from .schema import DOF_NAMES
-from .sectors import TWO_PI, in_feasible_sector, wrap
-from .vehicle import ActuatorConfig, Vehicle, load_vehicle
+from .parameters import load_vehicle
+from .sectors import allowed_arcs, can_push_along, in_forbidden_sector
+from .vehicle import DOF_NAMES, ActuatorConfig, Vehicle
 
 FORCE_DOFS = ("surge", "sway", "heave")
-NONLINEAR_SIDES = 256
 
 
 @dataclass(frozen=True)
@@ -65,6 +64,9 @@ class Capability:
                  plane: tuple[str, str] | None = None):
         self.vehicle = vehicle
         self.method = method or vehicle.method
+        if self.method not in METHODS:
+            raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
+        self.sides = METHODS[self.method].thrust_region_sides(vehicle)
         self.speed = speed
         self.model = Model.build(vehicle, 1.0 / vehicle.rate_hz)
         self.plane = plane or default_plane(vehicle)
@@ -81,7 +83,7 @@ class Capability:
                   faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
         """Largest magnitude along ``direction`` [rad, in the plane, from its first DOF toward
         its second] with the yaw moment held (when yaw is controlled and not in the plane)."""
-        return float(np.hypot(*self._max_point(direction, yaw_moment, _faults(faults))))
+        return float(np.hypot(*self._max_point(direction, yaw_moment, FaultSet.of(self.vehicle, faults))))
 
     def scale(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
         """The largest lambda with lambda * tau attainable ([X, Y, Z, K, M, N]; uncontrolled DOFs
@@ -89,15 +91,15 @@ class Capability:
         request = np.asarray(tau, dtype=float)[self.model.dof_index]
         if not np.any(request):
             return math.inf
-        faults = _faults(faults)
-        if self.method == "pseudoinverse":
+        faults = FaultSet.of(self.vehicle, faults)
+        if self.sides is None:
             return self._pseudo_inverse_limit(request, np.zeros(self.model.n), faults)
         return self._linear_programme(request, np.zeros(self.model.n), faults)
 
     def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
                  faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:
         directions = np.radians(np.arange(0.0, 360.0, step_deg))
-        faults = _faults(faults)
+        faults = FaultSet.of(self.vehicle, faults)
         points = np.array([self._max_point(angle, yaw_moment, faults) for angle in directions])
         return Envelope(directions=directions, points=points)
 
@@ -112,39 +114,22 @@ class Capability:
             fixed[list(self.vehicle.dofs).index("yaw")] = yaw_moment
         return unit, fixed
 
-    def _max_point(self, direction: float, yaw_moment: float, faults: dict[str, Fault]) -> np.ndarray:
+    def _max_point(self, direction: float, yaw_moment: float, faults: FaultSet) -> np.ndarray:
         unit, fixed = self._request(direction, yaw_moment)
-        if self.method == "pseudoinverse":
+        if self.sides is None:
             magnitude = self._pseudo_inverse_limit(unit, fixed, faults)
         else:
             magnitude = self._linear_programme(unit, fixed, faults)
         return magnitude * self.axis_scale * np.array([math.cos(direction), math.sin(direction)])
 
-    def _ranges(self, faults: dict[str, Fault]) -> tuple[np.ndarray, np.ndarray]:
-        """Signed force range of every actuator, faults applied."""
-        low, high = np.empty(self.model.r), np.empty(self.model.r)
-        for i, actuator in enumerate(self.vehicle.actuators):
-            efficiency = _efficiency(faults.get(actuator.name))
-            if actuator.is_surface:
-                reach = lift_gain(actuator.surface, self.vehicle.water_density, self.speed) * efficiency
-                high[i] = reach * actuator.surface.deflection_max
-                low[i] = -high[i]
-                fault = faults.get(actuator.name)
-                if fault is not None and fault.mode == FaultMode.STUCK:
-                    low[i] = high[i] = reach * fault.azimuth
-            else:
-                low[i], high[i] = actuator.thrust_min * efficiency, actuator.thrust_max * efficiency
-        return low, high
-
-    def _linear_programme(self, unit: np.ndarray, fixed: np.ndarray, faults: dict[str, Fault]) -> float:
+    def _linear_programme(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet) -> float:
         model = self.model
-        low, high = self._ranges(faults)
-        sides = NONLINEAR_SIDES if self.method == "nonlinear" else self.vehicle.azimuth_polygon_sides
-        choices = [_pieces(self.vehicle.actuators[i], faults.get(self.vehicle.actuators[i].name), low[i], high[i])
-                   for i in model.rot]
+        low, high = static_ranges(self.vehicle, faults, self.speed)
+        choices = [_pieces(self.vehicle.actuators[i], faults.faults.get(self.vehicle.actuators[i].name), low[i],
+                           high[i]) for i in model.rot]
         best = 0.0
         for combination in itertools.product(*choices):
-            best = max(best, self._solve(unit, fixed, low, high, combination, sides))
+            best = max(best, self._solve(unit, fixed, low, high, combination, self.sides))
         return best
 
     def _solve(self, unit, fixed, low, high, pieces, sides) -> float:
@@ -186,15 +171,13 @@ class Capability:
                          A_eq=a_eq, b_eq=fixed, bounds=bounds, method="highs")
         return float(result.x[-1]) if result.status == 0 else 0.0
 
-    def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: dict[str, Fault]) -> float:
+    def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet) -> float:
         """Largest F whose pseudo-inverse forces stay within every limit (bisection)."""
         model = self.model
-        low, high = self._ranges(faults)
+        low, high = static_ranges(self.vehicle, faults, self.speed)
         excluded = (low == 0.0) & (high == 0.0)
-        lines = {int(i): faults[self.vehicle.actuators[i].name].azimuth for i in model.rot
-                 if self.vehicle.actuators[i].name in faults
-                 and faults[self.vehicle.actuators[i].name].mode == FaultMode.STUCK}
-        gain = PseudoInverse(model).gain(excluded, lines)
+        lines = {int(i): faults.stuck[int(i)] for i in model.rot if int(i) in faults.stuck}
+        gain = PseudoInverseGains(model).gain(excluded, lines)
 
         def feasible(magnitude: float) -> bool:
             force = gain @ (magnitude * unit + fixed)
@@ -208,7 +191,7 @@ class Capability:
                 magnitude_i = math.hypot(force[c1], force[c2])
                 if magnitude_i > max(high[i], -low[i]) + 1e-9:
                     return False
-                if magnitude_i > 1e-9 and not _allowed(actuator, math.atan2(force[c2], force[c1])):
+                if magnitude_i > 1e-9 and not can_push_along(actuator.rotation, math.atan2(force[c2], force[c1])):
                     return False
             return True
 
@@ -222,35 +205,16 @@ class Capability:
         return lower
 
 
-def _allowed(actuator: ActuatorConfig, direction: float) -> bool:
-    """Whether a rotatable thruster can push in this direction (forward or, if reversible, back)."""
-    rotation = actuator.rotation
-    candidates = [direction] + ([direction + math.pi] if rotation.reversible else [])
-    for angle in candidates:
-        for representation in (wrap(angle), wrap(angle) - TWO_PI, wrap(angle) + TWO_PI):
-            if in_feasible_sector(rotation, representation) and not _in_forbidden(rotation, representation):
-                return True
-    return False
-
-
-def _in_forbidden(rotation, angle: float) -> bool:
-    for start, end in rotation.forbidden_sectors:
-        width = (end - start) % TWO_PI
-        if 1e-9 < (angle - start) % TWO_PI < width - 1e-9:
-            return True
-    return False
-
-
 def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float) -> list[tuple]:
     """Convex pieces (start, end, radius, line) of the forces a rotatable thruster can give."""
     rotation = actuator.rotation
     if fault is not None and fault.mode == FaultMode.STUCK:
-        angle = fault.azimuth
-        pieces = [] if _in_forbidden(rotation, angle) else [(angle, angle, high, True)]
-        if low < 0.0 and not _in_forbidden(rotation, angle):
+        angle = fault.angle
+        pieces = [] if in_forbidden_sector(rotation, angle) else [(angle, angle, high, True)]
+        if low < 0.0 and not in_forbidden_sector(rotation, angle):
             pieces.append((angle + math.pi, angle + math.pi, -low, True))
         return pieces or [(angle, angle, 0.0, True)]
-    arcs = _allowed_arcs(rotation)
+    arcs = allowed_arcs(rotation)
     pieces = [(start, end, high, False) for start, end in arcs]
     if low < 0.0:
         pieces += [(start + math.pi, end + math.pi, -low, False) for start, end in arcs]
@@ -261,38 +225,6 @@ def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: flo
             start += math.pi
         split.append((start, end, radius, line))
     return split
-
-
-def _allowed_arcs(rotation) -> list[tuple[float, float]]:
-    """Arcs of angles where the thruster may push: feasible sector minus forbidden sectors."""
-    low, high = (-math.pi, math.pi) if rotation.continuous else (rotation.azimuth_min, rotation.azimuth_max)
-    cuts = []
-    for start, end in rotation.forbidden_sectors:
-        width = (end - start) % TWO_PI
-        base = wrap(start)
-        for shift in (-TWO_PI, 0.0, TWO_PI):
-            if base + shift < high and base + shift + width > low:
-                cuts.append((base + shift, base + shift + width))
-    arcs = [(low, high)]
-    for cut_low, cut_high in sorted(cuts):
-        arcs = [piece for a, b in arcs
-                for piece in ((a, min(b, cut_low)), (max(a, cut_high), b)) if piece[1] > piece[0]]
-    if rotation.continuous and len(arcs) > 1 and arcs[0][0] == -math.pi and arcs[-1][1] == math.pi:
-        arcs = [(arcs[-1][0], arcs[0][1] + TWO_PI), *arcs[1:-1]]        # join across +-pi
-    return arcs
-
-
-def _efficiency(fault: Fault | None) -> float:
-    if fault is None or fault.mode in (FaultMode.NOMINAL, FaultMode.STUCK):
-        return 1.0
-    return 0.0 if fault.mode == FaultMode.FAILED else fault.efficiency
-
-
-def _faults(faults: Mapping[str, Fault | FaultMode] | None) -> dict[str, Fault]:
-    result = {}
-    for name, fault in (faults or {}).items():
-        result[name] = fault if isinstance(fault, Fault) else Fault(FaultMode(fault), efficiency=0.0)
-    return result
 
 
 def default_plane(vehicle: Vehicle) -> tuple[str, str]:
@@ -364,7 +296,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--step", type=float, default=5.0, help="degrees between directions (default %(default)s)")
     parser.add_argument("--yaw-moment", type=float, default=0.0, help="yaw moment held [N m] (default 0)")
     parser.add_argument("--speed", type=float, default=2.0, help="surge speed for control surfaces [m/s]")
-    parser.add_argument("--method", choices=["qp", "pseudoinverse", "nonlinear"], help="default: the file's")
+    parser.add_argument("--method", choices=list(METHODS), help="default: the file's")
     parser.add_argument("--plane", nargs=2, metavar=("X", "Y"), choices=DOF_NAMES,
                         help="the two DOFs of the plot (default: surge sway, else the first two controlled)")
     arguments = parser.parse_args(argv)

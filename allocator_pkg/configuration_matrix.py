@@ -2,7 +2,7 @@
 
 Every column comes from (1.5), tau = [d ; r x d] for a unit force direction d applied at
 r, for any direction (not only the axis-aligned cases of Table 1; the printed columns of
-(1.10) and (1.13) carry sign typos, see docs/theory.md).
+(1.10) and (1.13) carry sign typos, see the errata in docs/theory.md).
 
 - :func:`configuration_matrix` is T(alpha) of (1.9)/(1.13): one column per actuator, along
   its current direction.
@@ -17,8 +17,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .schema import AZIMUTH, AZIMUTH_VERTICAL
-from .vehicle import ActuatorConfig
+from .vehicle import AZIMUTH, AZIMUTH_VERTICAL, ActuatorConfig
 
 _X = np.array([1.0, 0.0, 0.0])
 _Y = np.array([0.0, 1.0, 0.0])

@@ -32,7 +32,8 @@ from std_srvs.srv import Trigger
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 from allocator_msgs.srv import SetActuatorFault
 
-from .node import NODE_NAME, array_to_wrench
+from .conversions import array_to_wrench
+from .node_settings import NODE_NAME
 
 FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
                "failed": ActuatorFault.FAILED, "stuck": ActuatorFault.STUCK}

@@ -29,11 +29,11 @@ from rclpy.executors import SingleThreadedExecutor
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 
+from .conversions import array_to_wrench
 from .ctl import Controller, format_sample
 from .model import Model
-from .node import array_to_wrench
-from .schema import DOF_NAMES
-from .vehicle import Vehicle, load_vehicle
+from .parameters import load_vehicle
+from .vehicle import DOF_NAMES, Vehicle
 
 
 @dataclass

@@ -14,8 +14,8 @@ import numpy as np
 
 from .capability import Capability
 from .faults import FaultMode
-from .schema import DOF_NAMES
-from .vehicle import Vehicle, load_vehicle
+from .parameters import load_vehicle
+from .vehicle import DOF_NAMES, Vehicle
 
 LOST = 1e-9
 """A direction whose largest request is below this fraction of the DOF's authority is lost."""

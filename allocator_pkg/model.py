@@ -38,6 +38,31 @@ def _force_scale(actuator: ActuatorConfig, water_density: float) -> float:
 
 @dataclass(frozen=True)
 class Model:
+    """The configuration as arrays, computed once per configuration (never per sample).
+
+    r actuators, m extended columns (a rotatable thruster has two, (1.16)-(1.18)), n
+    controlled DOFs. Per actuator unless said otherwise:
+
+    - ``dof_index`` (n): rows of tau that are controlled, in DOF_NAMES order;
+    - ``rotatable`` (bool), ``rot``, ``scalar``, ``surfaces``: which actuators rotate, the
+      indices of those that do and of those that do not, and of the control surfaces;
+    - ``starts``: first extended column of each actuator; ``scalar_columns``: the column of
+      each non-rotating one; ``rot_columns`` (p x 2): the two columns of each rotating one;
+      ``extended_owner`` (m): the actuator of each extended column;
+    - ``t_e`` (6 x m): the extended configuration matrix (1.17)/(1.22); ``t_ec`` (n x m): its
+      controlled rows;
+    - ``weight``, ``weight_ext`` (m): W_ii of (1.24)/(1.35), per actuator and per column;
+      ``power``: P_i of (1.44);
+    - ``thrust_min``, ``thrust_max``: force limits (0 for control surfaces, whose range
+      depends on speed); ``thrust_step``: largest force change per sample (a control
+      surface: deflection change per sample), inf when not limited; ``angle_step``: largest
+      azimuth change per sample (0 for actuators that do not rotate);
+    - ``hold``: the force below which a rotatable thruster's angle is undefined and held;
+    - ``force_scale``: the order of magnitude of each actuator's force (solver scaling);
+    - ``authority`` (n): the largest force or moment all actuators together give in each
+      controlled DOF.
+    """
+
     vehicle: Vehicle
     dt: float
     dof_index: np.ndarray

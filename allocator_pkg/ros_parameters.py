@@ -10,10 +10,15 @@ from __future__ import annotations
 
 import array
 import sys
+import threading
 from typing import Any
 
-from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor, SetParametersResult
+from rcl_interfaces.srv import SetParameters
+from rclpy.exceptions import ParameterNotDeclaredException
 from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import qos_profile_parameters
 
 from . import schema
 from .schema import FLOAT, INT, Key
@@ -66,7 +71,7 @@ def allocator_parameters(node: Node) -> dict[str, Any]:
 def declare(node: Node, vehicle: Vehicle) -> None:
     """Declare every schema key of this vehicle (those the params file set already are),
     each with its descriptor, so that ``ros2 param list/describe`` shows all of them."""
-    keys = [(key.name, key) for key in schema.VEHICLE_KEYS]
+    keys = [(key.name, key) for key in schema.VEHICLE_KEYS + schema.NODE_KEYS]
     for actuator in vehicle.actuators:
         keys += [(schema.actuator_parameter(actuator.name, key.name), key)
                  for key in schema.keys_for_type(actuator.type)]
@@ -75,3 +80,44 @@ def declare(node: Node, vehicle: Vehicle) -> None:
             node.set_descriptor(name, descriptor(key))
         else:
             node.declare_parameter(name, key.default, descriptor(key))
+
+
+class WholeSetParameters:
+    """Mixin for a Node (listed before it): several values set in one call are checked and
+    applied as a whole, and changes are serialised across threads.
+
+    rclpy sets the values of a ``set_parameters`` call (and of a ``~/set_parameters`` request)
+    one by one, so values valid only together (``dofs`` with ``weights.slack``) could never be
+    set that way. Here :meth:`set_parameters` is ``set_parameters_atomically`` with one result
+    per value, all alike, and the ``~/set_parameters`` service answers with it, through rclpy's
+    public API only (rclpy's service is found by its type and replaced). Call
+    :meth:`setup_whole_set_parameters` once the Node is initialised.
+    """
+
+    def setup_whole_set_parameters(self) -> None:
+        """Create the lock and answer ``~/set_parameters`` with :meth:`set_parameters` in
+        place of rclpy's service."""
+        self._parameters_lock = threading.RLock()
+        for service in list(self.services):
+            if service.srv_type is SetParameters:
+                self.destroy_service(service)
+        self.create_service(SetParameters, "~/set_parameters", self._on_set_parameters_request,
+                            qos_profile=qos_profile_parameters)
+
+    def set_parameters(self, parameter_list: list[Parameter]) -> list[SetParametersResult]:
+        result = self.set_parameters_atomically(parameter_list)
+        return [SetParametersResult(successful=result.successful, reason=result.reason) for _ in parameter_list]
+
+    def set_parameters_atomically(self, parameter_list: list[Parameter]) -> SetParametersResult:
+        """rclpy's ``set_parameters_atomically`` (also behind the parameter services), serialised."""
+        with self._parameters_lock:
+            return super().set_parameters_atomically(parameter_list)
+
+    def _on_set_parameters_request(self, request: SetParameters.Request, response: SetParameters.Response):
+        parameters = [Parameter.from_parameter_msg(message) for message in request.parameters]
+        try:
+            response.results = self.set_parameters(parameters)
+        except ParameterNotDeclaredException as error:
+            response.results = [SetParametersResult(successful=False, reason=str(error)) for _ in parameters]
+        return response
+

@@ -17,22 +17,21 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-FIXED = "fixed"
-AZIMUTH = "azimuth"
-AZIMUTH_VERTICAL = "azimuth_vertical"
-RUDDER = "rudder"
-FIN = "fin"
-ACTUATOR_TYPES = (FIXED, AZIMUTH, AZIMUTH_VERTICAL, RUDDER, FIN)
-ROTATABLE_TYPES = (AZIMUTH, AZIMUTH_VERTICAL)
-SURFACE_TYPES = (RUDDER, FIN)
-THRUSTER_TYPES = (FIXED, AZIMUTH, AZIMUTH_VERTICAL)
-
-DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
-METHODS = ("qp", "pseudoinverse", "nonlinear")
-SATURATION_MODES = ("weighted", "preserve_direction")
-COMMAND_MAPS = ("linear", "quadratic", "table")
-FLOW_MODELS = ("free", "propeller_wake")
-QOS_RELIABILITY = ("reliable", "best_effort")
+from .methods import METHODS
+from .node_settings import QOS_RELIABILITY
+from .vehicle import (
+    ACTUATOR_TYPES,
+    COMMAND_MAPS,
+    DOF_NAMES,
+    FIN,
+    FIXED,
+    FLOW_MODELS,
+    ROTATABLE_TYPES,
+    RUDDER,
+    SATURATION_MODES,
+    SURFACE_TYPES,
+    THRUSTER_TYPES,
+)
 
 ACTUATOR_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
@@ -99,11 +98,9 @@ class Key:
 VEHICLE_KEYS: tuple[Key, ...] = (
     Key("rate_hz", FLOAT, "Allocation rate: one sample per period, also the dt of rate limits.",
         default=50.0, minimum=0.0, exclusive_minimum=True, maximum=10000.0, unit="Hz"),
-    Key("method", STR, "Allocation method.", default="qp", choices=METHODS),
+    Key("method", STR, "Allocation method (see docs/theory.md).", default="qp", choices=tuple(METHODS)),
     Key("dofs", STR_LIST, "Controlled degrees of freedom; the others of the requested wrench are ignored.",
         default=list(DOF_NAMES), default_doc="all six"),
-    Key("wrench_timeout", FLOAT, "Watchdog: with no valid wrench for this long, command zero thrust (0 disables).",
-        default=0.5, minimum=0.0, unit="s"),
     Key("saturation", STR, "Unattainable requests: `weighted` trades DOFs by weights.slack; "
         "`preserve_direction` scales the request down along its own direction first.",
         default="weighted", choices=SATURATION_MODES),
@@ -129,13 +126,19 @@ VEHICLE_KEYS: tuple[Key, ...] = (
     Key("solver.time_limit", FLOAT, "OSQP time limit per solve (0: none).", default=0.0, minimum=0.0, unit="s"),
     Key("water_density", FLOAT, "rho_w in the lift and drag of control surfaces (1.48), (1.49).",
         default=1025.0, minimum=0.0, exclusive_minimum=True, unit="kg/m^3"),
+    Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
+        required=True, read_only=True),
+)
+
+NODE_KEYS: tuple[Key, ...] = (
+    Key("wrench_timeout", FLOAT, "Watchdog: with no valid wrench for this long, command zero thrust (0 disables).",
+        default=0.5, minimum=0.0, unit="s"),
     Key("per_actuator_topics", BOOL, "Also publish thrusters/<name>/thrust and thrusters/<name>/azimuth "
         "(std_msgs/Float64) each sample.", default=False),
     Key("wrench_qos", STR, "Reliability of the wrench_command subscription.", default="reliable",
         choices=QOS_RELIABILITY),
-    Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
-        required=True, read_only=True),
 )
+"""Settings of the ROS node only (:class:`allocator_pkg.node_settings.NodeSettings`)."""
 
 _ALL = ACTUATOR_TYPES
 _THR = THRUSTER_TYPES
@@ -206,6 +209,7 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
 )
 
 VEHICLE_KEY_BY_NAME = {key.name: key for key in VEHICLE_KEYS}
+NODE_KEY_BY_NAME = {key.name: key for key in NODE_KEYS}
 ACTUATOR_KEY_BY_NAME = {key.name: key for key in ACTUATOR_KEYS}
 ACTUATOR_PREFIX = "actuators."
 
@@ -241,6 +245,8 @@ def markdown_reference() -> str:
 
     lines = ["### Vehicle-wide keys", ""]
     lines += table(VEHICLE_KEYS, show_types=False)
+    lines += ["", "### Node keys (only `allocator_node` reads them)", ""]
+    lines += table(NODE_KEYS, show_types=False)
     lines += ["", "### Per-actuator keys (`actuators.<name>.<key>`)", ""]
     lines += table(ACTUATOR_KEYS, show_types=True)
     return "\n".join(lines) + "\n"

@@ -12,28 +12,18 @@ that "turn 30 degrees clockwise" is the interval [-0.52, 0].
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:
-    from .vehicle import RotationConfig
-
-TWO_PI = 2.0 * math.pi
-TOLERANCE = 1e-9
+from .angles import ANGLE_TOLERANCE, TWO_PI, wrap
+from .vehicle import RotationConfig
 
 Interval = tuple[float, float]
-
-
-def wrap(angle: float) -> float:
-    """The same angle in (-pi, pi]."""
-    wrapped = math.remainder(angle, TWO_PI)
-    return math.pi if wrapped == -math.pi else wrapped
 
 
 def in_feasible_sector(rotation: RotationConfig, angle: float) -> bool:
     """Whether the thruster can be at this angle at all (the feasible sector)."""
     if rotation.continuous:
         return True
-    return rotation.azimuth_min - TOLERANCE <= angle <= rotation.azimuth_max + TOLERANCE
+    return rotation.azimuth_min - ANGLE_TOLERANCE <= angle <= rotation.azimuth_max + ANGLE_TOLERANCE
 
 
 def in_forbidden_sector(rotation: RotationConfig, angle: float) -> bool:
@@ -41,7 +31,7 @@ def in_forbidden_sector(rotation: RotationConfig, angle: float) -> bool:
     for start, end in rotation.forbidden_sectors:
         width = (end - start) % TWO_PI
         inside = (angle - start) % TWO_PI
-        if TOLERANCE < inside < width - TOLERANCE:
+        if ANGLE_TOLERANCE < inside < width - ANGLE_TOLERANCE:
             return True
     return False
 
@@ -73,11 +63,11 @@ def allowed_piece(domain: Interval, forbidden: list[Interval], point: float = 0.
     intervals' interiors; None when the point is strictly inside one of them."""
     low, high = domain
     for lo, hi in forbidden:
-        if lo + TOLERANCE < point < hi - TOLERANCE:
+        if lo + ANGLE_TOLERANCE < point < hi - ANGLE_TOLERANCE:
             return None
-        if hi <= point + TOLERANCE:
+        if hi <= point + ANGLE_TOLERANCE:
             low = max(low, hi)
-        elif lo >= point - TOLERANCE:
+        elif lo >= point - ANGLE_TOLERANCE:
             high = min(high, lo)
     return (low, high)
 
@@ -85,7 +75,7 @@ def allowed_piece(domain: Interval, forbidden: list[Interval], point: float = 0.
 def crosses(path: Interval, forbidden: list[Interval]) -> bool:
     """Whether turning over the offset interval ``path`` passes through a forbidden interior."""
     lo, hi = min(path), max(path)
-    return any(f_lo < hi - TOLERANCE and f_hi > lo + TOLERANCE for f_lo, f_hi in forbidden)
+    return any(f_lo < hi - ANGLE_TOLERANCE and f_hi > lo + ANGLE_TOLERANCE for f_lo, f_hi in forbidden)
 
 
 def target_offsets(rotation: RotationConfig, alpha0: float, target: float) -> list[float]:
@@ -97,4 +87,37 @@ def target_offsets(rotation: RotationConfig, alpha0: float, target: float) -> li
         return [ccw, ccw - TWO_PI] if ccw > 0.0 else [0.0]
     low, high = offset_domain(rotation, alpha0)
     base = wrap(target - alpha0)
-    return [base + k * TWO_PI for k in (-1, 0, 1) if low - TOLERANCE <= base + k * TWO_PI <= high + TOLERANCE]
+    return [base + k * TWO_PI for k in (-1, 0, 1)
+            if low - ANGLE_TOLERANCE <= base + k * TWO_PI <= high + ANGLE_TOLERANCE]
+
+
+def allowed_arcs(rotation: RotationConfig) -> list[Interval]:
+    """Arcs of absolute angles at which the thruster may push: the feasible sector minus the
+    forbidden sectors; for free rotation an arc may run across +-pi (its end above pi)."""
+    low, high = (-math.pi, math.pi) if rotation.continuous else (rotation.azimuth_min, rotation.azimuth_max)
+    cuts = []
+    for start, end in rotation.forbidden_sectors:
+        width = (end - start) % TWO_PI
+        base = wrap(start)
+        for shift in (-TWO_PI, 0.0, TWO_PI):
+            if base + shift < high and base + shift + width > low:
+                cuts.append((base + shift, base + shift + width))
+    arcs = [(low, high)]
+    for cut_low, cut_high in sorted(cuts):
+        arcs = [piece for a, b in arcs
+                for piece in ((a, min(b, cut_low)), (max(a, cut_high), b)) if piece[1] > piece[0]]
+    if rotation.continuous and len(arcs) > 1 and arcs[0][0] == -math.pi and arcs[-1][1] == math.pi:
+        arcs = [(arcs[-1][0], arcs[0][1] + TWO_PI), *arcs[1:-1]]        # join across +-pi
+    return arcs
+
+
+def can_push_along(rotation: RotationConfig, direction: float) -> bool:
+    """Whether the thruster can push along ``direction`` [rad]: at that angle, or (if
+    reversible) at the opposite one pushing backwards, inside the feasible sector and outside
+    every forbidden sector."""
+    candidates = [direction] + ([direction + math.pi] if rotation.reversible else [])
+    for angle in candidates:
+        for representation in (wrap(angle), wrap(angle) - TWO_PI, wrap(angle) + TWO_PI):
+            if in_feasible_sector(rotation, representation) and not in_forbidden_sector(rotation, representation):
+                return True
+    return False

@@ -44,10 +44,10 @@ from std_srvs.srv import Trigger
 
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 from allocator_msgs.srv import SetActuatorFault
-from allocator_pkg import ConfigError, FaultMode, Vehicle
+from allocator_pkg import METHODS, ConfigError, FaultMode, Vehicle, read_parameters, vehicle_from_parameters
+from allocator_pkg.angles import wrap
 from allocator_pkg.model import Model
-from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector, wrap
-from allocator_pkg.vehicle import read_parameters
+from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector
 
 RATE_HZ = 500.0
 WRENCH_HZ = 1000.0
@@ -58,7 +58,6 @@ EXTREMES_PERIOD = 10.0       # s between a NaN wrench and a 1e12 wrench
 EXTREME_SAMPLES = 6          # wrench periods a 1e12 wrench is held (three node periods)
 SILENCE = 0.5                # s without commands that counts as the node hanging
 MAX_VIOLATIONS_KEPT = 50
-METHODS = ("qp", "pseudoinverse", "nonlinear")
 FIRST_ACTIONS = ("method nonlinear", "method pseudoinverse", "method qp", "fault DEGRADED", "fault FAILED",
                  "fault STUCK", "fault NOMINAL", "clear", "thrust_max", "weights", "max_iter", "invalid")
 """Warm-up: every kind of change once, so that later allocations are not taken for a leak."""
@@ -272,7 +271,7 @@ class Disturber:
         elif kind == "clear":
             self.send("clear faults", self.clear, Trigger.Request(), State(state.vehicle, {}), expect=True)
         elif kind == "method":
-            self.change_parameters("method", {"method": detail or self.rng.choice(METHODS)}, state)
+            self.change_parameters("method", {"method": detail or self.rng.choice(list(METHODS))}, state)
         elif kind == "weights":
             self.change_parameters("weights", {"weights.minimax": self.rng.uniform(0.0, 10.0),
                                                "weights.azimuth_change": self.rng.uniform(0.0, 10.0)}, state)
@@ -309,7 +308,7 @@ class Disturber:
     def change_parameters(self, action: str, values: dict, state: State) -> None:
         candidate = {**self.parameters, **values}
         try:
-            after, expect = State(Vehicle.from_parameters(candidate), state.efficiency), True
+            after, expect = State(vehicle_from_parameters(candidate), state.efficiency), True
         except ConfigError:
             after, expect = state, False
         request = SetParametersAtomically.Request(
@@ -372,7 +371,7 @@ def soak(config: Path, minutes: float, seed: int, log: Path) -> dict:
     """Run the soak and return its figures."""
     parameters = read_parameters(config)
     tally = Tally()
-    history = History(State(Vehicle.from_parameters(parameters), {}))
+    history = History(State(vehicle_from_parameters(parameters), {}))
     seconds = 60.0 * minutes
     memory: list[tuple[float, dict[str, float]]] = []
     crash = None

@@ -13,16 +13,18 @@ largest force or moment all actuators together can give in it), the largest over
 
 Methods, each timed as a whole sample (``Allocator.allocate``, Python included):
 
-1. ``qp``: ours, one OSQP problem per configuration, updated and warm-started (and
-   ``nonlinear`` where the vehicle has rotatable thrusters);
-2. ``qp, fresh OSQP``: the same problem, but a new OSQP object set up and solved cold every
-   sample (what several open-source allocators do);
-3. ``pseudoinverse (clip)`` and ``pseudoinverse (scale)``: weighted pseudo-inverse with
-   clipping, and with uniform scale-down (the common ROS thruster-manager pattern);
-4. ``qp, quadprog``: the same problem solved by quadprog's dense active-set method, as a
-   speed reference (the benchmark swaps the solver call; everything else is the same);
-5. the optimum of (1.44), static (no rate limits, forbidden sectors ignored), by scipy SLSQP
+1. every registered method (``allocator_pkg.METHODS``): ``qp`` on one OSQP problem per
+   configuration, updated and warm-started, ``pseudoinverse`` with clipping, ``nonlinear``;
+2. ``pseudoinverse (scale)``: the weighted pseudo-inverse with uniform scale-down (the common
+   ROS thruster-manager pattern);
+3. ``qp`` on other solver backends (``allocator_pkg.solvers.BACKENDS``): ``qp, fresh OSQP``,
+   a new OSQP object set up and solved cold every sample (what several open-source allocators
+   do), and the dense active-set solvers ``qp, quadprog`` and ``qp, DAQP`` as exact speed
+   anchors; everything but the solver call is the same;
+4. the optimum of (1.44), static (no rate limits, forbidden sectors ignored), by scipy SLSQP
    from three starts, on the attainable samples among every 40th, as the reference for power.
+
+Solver calls are timed through the backend seam (bounds and solve, in the backend).
 
 Run by ``make bench``; writes JSON to stdout or ``--out``.
 """
@@ -39,16 +41,14 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-import osqp
-import quadprog
 from scipy.optimize import minimize
 
-from allocator_pkg import Allocator, load_vehicle
+from allocator_pkg import METHODS, Allocator, load_vehicle
 from allocator_pkg.actuators import drag_gain, lift_gain
 from allocator_pkg.capability import Capability
 from allocator_pkg.configuration_matrix import configuration_matrix
-from allocator_pkg.methods.sparse_rows import ACCEPTED, Solution
 from allocator_pkg.model import Model
+from allocator_pkg.solvers import BACKENDS, DEFAULT_BACKEND
 
 WARM_UP = 200
 SAMPLES = 2000
@@ -74,114 +74,49 @@ def sequences(vehicle, samples: int, seed: int = 1) -> dict[str, np.ndarray]:
     return {"smooth": smooth, "random": random}
 
 
-# -- the solver swaps of patterns 2 and 4 ------------------------------------------------------
+# -- solver backends, each timed through the seam ---------------------------------------------
 
-def timed(problem, store: list) -> None:
-    """Record the time of each solver call (bounds update and solve) of one ScaledProblem."""
-    solve = problem.solve
+class Timed:
+    """A backend factory whose backends record the time of each solve call (bounds update
+    and solve) in ``times``."""
 
-    def timed_solve(low, up):
-        begin = time.perf_counter()
-        solution = solve(low, up)
-        store.append(time.perf_counter() - begin)
-        return solution
+    def __init__(self, backend: str):
+        self.factory = BACKENDS[backend]
+        self.times: list[float] = []
 
-    problem.solve = timed_solve
+    def __call__(self):
+        backend = self.factory()
+        solve = backend.solve
+        times = self.times
 
-
-def fresh_osqp(problem):
-    """Patch one ScaledProblem to set up a new OSQP object and solve cold every sample."""
-    settings = problem.solver.settings
-
-    def solve(low, up):
-        cache = problem.solver._derivative_cache
-        solver = osqp.OSQP()
-        solver.setup(P=cache["P"], q=cache["q"], A=cache["A"], l=np.maximum(low * problem.row_scale, -1e30),
-                     u=np.minimum(up * problem.row_scale, 1e30), verbose=False, scaling=0,
-                     eps_abs=settings.eps_abs, eps_rel=settings.eps_rel, max_iter=settings.max_iter,
-                     check_termination=settings.check_termination, polishing=False)
-        result = solver.solve(raise_error=False)
-        x = np.array(result.x) * problem.column_scale
-        return Solution(x=x, status=result.info.status, iterations=int(result.info.iter),
-                        usable=result.info.status_val in ACCEPTED and bool(np.all(np.isfinite(x))))
-
-    problem.solve = solve
-
-
-def dense_active_set(problem):
-    """Patch one ScaledProblem to solve its (normalised) QP with quadprog every sample; the
-    time of quadprog's call alone goes to ``problem.quadprog_times`` (the dense conversion,
-    benchmark plumbing, is left out of it)."""
-    problem.quadprog_times = []
-
-    def solve(low, up):
-        cache = problem.solver._derivative_cache
-        p = cache["P"].toarray()
-        p = p + p.T - np.diag(np.diag(p)) + 1e-9 * np.eye(p.shape[0])
-        a = cache["A"].toarray()
-        low, up = low * problem.row_scale, up * problem.row_scale
-        equal = np.isclose(low, up)
-        lower = ~equal & np.isfinite(low)
-        upper = ~equal & np.isfinite(up)
-        constraints = np.vstack([a[equal], a[lower], -a[upper]]).T
-        bounds = np.concatenate([low[equal], low[lower], -up[upper]])
-        try:
+        def timed_solve(low, up):
             begin = time.perf_counter()
-            z = quadprog.solve_qp(p, -cache["q"], constraints, bounds, meq=int(equal.sum()))[0]
-            problem.quadprog_times.append(time.perf_counter() - begin)
-            status, usable = "solved", True
-        except ValueError as error:
-            z, status, usable = np.zeros(p.shape[0]), f"quadprog: {error}", False
-        return Solution(x=z * problem.column_scale, status=status, iterations=0, usable=usable)
+            result = solve(low, up)
+            times.append(time.perf_counter() - begin)
+            return result
 
-    problem.solve = solve
+        backend.solve = timed_solve
+        return backend
 
 
-def keep_cache(problem) -> None:
-    """OSQP's wrapper keeps P, q, A in ``_derivative_cache`` only through its public update();
-    our direct calls bypass it, so mirror A's values there for the swapped solvers."""
-    original = problem.update_matrix
-
-    def update_matrix(values, index=None):
-        original(values, index)
-        cache = problem.solver._derivative_cache["A"]
-        scaled = values * (problem._entry_scale if index is None else problem._entry_scale[index])
-        if index is None:
-            cache.data[:] = scaled
-        else:
-            cache.data[index] = scaled
-
-    problem.update_matrix = update_matrix
-    original_objective = problem.update_objective
-
-    def update_objective(p_diagonal=None, q=None):
-        original_objective(p_diagonal, q)
-        cache = problem.solver._derivative_cache
-        if p_diagonal is not None:
-            cache["P"] = problem._p(p_diagonal)
-        if q is not None:
-            cache["q"] = problem._q(q)
-
-    problem.update_objective = update_objective
+PATTERNS = {"qp, fresh OSQP": "osqp_fresh", "qp, quadprog": "quadprog", "qp, DAQP": "daqp"}
+"""Other solvers on the same QP (name in the report: backend)."""
 
 
-def allocators(vehicle) -> dict[str, Allocator]:
-    """Every method of the comparison, each its own Allocator on the same vehicle."""
-    result = {"qp": Allocator(vehicle, method="qp")}
-    fresh = Allocator(vehicle, method="qp")
-    keep_cache(fresh._method._main.qp)
-    fresh_osqp(fresh._method._main.qp)
-    result["qp, fresh OSQP"] = fresh
-    dense = Allocator(vehicle, method="qp")
-    keep_cache(dense._method._main.qp)
-    dense_active_set(dense._method._main.qp)
-    result["qp, quadprog"] = dense
-    if any(a.rotatable for a in vehicle.actuators):
-        result["nonlinear"] = Allocator(vehicle, method="nonlinear")
-    result["pseudoinverse (clip)"] = Allocator(vehicle, method="pseudoinverse")
+def allocators(vehicle) -> dict[str, tuple[Allocator, Timed]]:
+    """Every method of the comparison, each its own Allocator on the same vehicle, with the
+    record of its solver calls."""
+    result = {}
+    for name in METHODS:
+        timed_backend = Timed(DEFAULT_BACKEND)
+        result[name] = (Allocator(vehicle, method=name, backend=timed_backend), timed_backend)
+    for name, backend in PATTERNS.items():
+        if backend in BACKENDS:
+            timed_backend = Timed(backend)
+            result[name] = (Allocator(vehicle, method="qp", backend=timed_backend), timed_backend)
     scaled = replace(vehicle, saturation="preserve_direction")
-    result["pseudoinverse (scale)"] = Allocator(scaled, method="pseudoinverse")
-    for allocator in result.values():
+    result["pseudoinverse (scale)"] = (Allocator(scaled, method="pseudoinverse"), Timed(DEFAULT_BACKEND))
+    for allocator, _ in result.values():
         allocator.set_speed(SPEED)
     return result
 
@@ -264,18 +199,11 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
             found = power_optimum(vehicle, requests[k], start, rng)
             if found is not None:
                 reference[k], start = found
-    for name, allocator in methods.items():
-        solver_times: list[float] = []
-        problem = getattr(allocator._method, "_main", None)
-        if problem is not None and name != "qp, quadprog":
-            timed(problem.qp, solver_times)
-        elif name == "nonlinear":
-            timed(allocator._method._qp, solver_times)
+    for name, (allocator, timed_backend) in methods.items():
         for tau in requests[:WARM_UP]:
             allocator.allocate(tau)
+        solver_times = timed_backend.times
         solver_times.clear()
-        if name == "qp, quadprog":
-            problem.qp.quadprog_times.clear()
         times, errors, iterations, power_ratio, saturated = [], [], [], [], 0
         previous = allocator.azimuth
         travel = 0.0
@@ -291,8 +219,6 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
             if k in reference and reference[k] > 0.0 and errors[-1] < 1e-3:
                 power_ratio.append(result.power / reference[k])
         errors = np.array(errors)
-        if name == "qp, quadprog":
-            solver_times = problem.qp.quadprog_times
         results[name] = {
             "time_us": {key: value * 1e6 for key, value in percentiles(times).items()},
             "solver_us": {key: value * 1e6 for key, value in percentiles(solver_times).items()},

@@ -10,7 +10,7 @@ os.environ.setdefault("ROS_DOMAIN_ID", "42")
 import pytest
 from hypothesis import settings
 
-from allocator_pkg.vehicle import Vehicle, read_parameters
+from allocator_pkg import Vehicle, read_parameters, vehicle_from_parameters
 
 # Property tests: `make test` runs the same examples every time (a red CI means a change broke
 # something); HYPOTHESIS_PROFILE=explore draws many fresh ones to look for new failures.
@@ -26,7 +26,7 @@ def vehicle_from(path, **overrides) -> Vehicle:
     """A vehicle from a params file with some parameters replaced (dots in names as '__')."""
     parameters = read_parameters(path)
     parameters.update({key.replace("__", "."): value for key, value in overrides.items()})
-    return Vehicle.from_parameters(parameters)
+    return vehicle_from_parameters(parameters)
 
 
 @pytest.fixture

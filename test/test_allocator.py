@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from conftest import DATA, ROOT, vehicle_from
 
-from allocator_pkg import Allocator, FaultMode, load_vehicle
+from allocator_pkg import Allocator, FaultMode, load_vehicle, vehicle_from_parameters
 from allocator_pkg.actuators import command_map
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
@@ -48,7 +48,7 @@ def test_fault_errors_name_the_valid_choices(alloc):
         with pytest.raises(ValueError, match=r"efficiency in \(0, 1\]"):
             alloc.set_fault("main_port", FaultMode.DEGRADED, efficiency=efficiency)
     with pytest.raises(ValueError, match="these can be stuck: azimuth_fwd, azimuth_aft"):
-        alloc.set_fault("main_port", FaultMode.STUCK, azimuth=0.3)
+        alloc.set_fault("main_port", FaultMode.STUCK, angle=0.3)
     with pytest.raises(ValueError, match="unknown fault mode"):
         alloc.set_fault("main_port", 7)
     assert alloc.faults == {}
@@ -58,7 +58,7 @@ def test_stuck_outside_the_feasible_sector_is_refused():
     vehicle = vehicle_from(EXAMPLE, actuators__azimuth_fwd__azimuth_min=-1.0, actuators__azimuth_fwd__azimuth_max=1.0)
     alloc = Allocator(vehicle)
     with pytest.raises(ValueError, match="outside the feasible sector"):
-        alloc.set_fault("azimuth_fwd", FaultMode.STUCK, azimuth=2.0)
+        alloc.set_fault("azimuth_fwd", FaultMode.STUCK, angle=2.0)
 
 
 def test_commands_map_back_to_the_allocated_force():
@@ -136,8 +136,7 @@ def test_saturation_is_judged_in_each_dof_against_its_own_authority(yaw_factor, 
     """Two 1e5 N thrusters 0.2 m apart: surge authority 2e5 N, yaw authority 0.1 (2e5) = 2e4 N m.
     A yaw moment 0.3 % beyond it misses by 60 N m: 3e-3 of the yaw authority, so saturated,
     although that is less than 1e-3 of the thrusters' force."""
-    from allocator_pkg import Vehicle
-    alloc = Allocator(Vehicle.from_parameters(NARROW_TWIN))
+    alloc = Allocator(vehicle_from_parameters(NARROW_TWIN))
     tau = np.array([0.0, 0.0, 0.0, 0.0, 0.0, 2e4 * yaw_factor])
     result = alloc.allocate(tau)
     assert result.saturated is saturated

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from conftest import ROOT
 
-from allocator_pkg import FaultMode
+from allocator_pkg import FaultMode, vehicle_from_parameters
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 
@@ -120,8 +120,8 @@ def test_parameter_changes_from_other_threads_race_the_timer_and_the_services(ro
 
     from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
     from allocator_msgs.srv import SetActuatorFault
-    from allocator_pkg import Vehicle
-    from allocator_pkg.node import AllocatorNode, array_to_wrench
+    from allocator_pkg.conversions import array_to_wrench
+    from allocator_pkg.node import AllocatorNode
     from allocator_pkg.ros_parameters import allocator_parameters
 
     node = AllocatorNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(EXAMPLE)],
@@ -189,7 +189,7 @@ def test_parameter_changes_from_other_threads_race_the_timer_and_the_services(ro
         assert len(message.thrust) == len(message.azimuth) == len(message.command) == len(message.mode) == 4
     for message in statuses:
         assert message.solver_status in ("solved", "solved inaccurate") or message.solver_status.startswith("fallback")
-    assert node.allocator.vehicle == Vehicle.from_parameters(allocator_parameters(node))
+    assert node.allocator.vehicle == vehicle_from_parameters(allocator_parameters(node))
     assert node.allocator.vehicle.dofs in (("surge", "sway", "yaw"), ("surge", "yaw"))
     client.destroy_node()
     node.destroy_node()

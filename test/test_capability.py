@@ -9,7 +9,7 @@ import sys
 import pytest
 from conftest import ROOT
 
-from allocator_pkg import FaultMode, Vehicle
+from allocator_pkg import METHODS, FaultMode, vehicle_from_parameters
 from allocator_pkg.capability import Capability
 
 # A symmetric vessel: surge thrusters at y = -+1 m, sway thrusters at x = -+1 m, +-100 N each.
@@ -27,19 +27,19 @@ SYMMETRIC = {
 }
 
 
-@pytest.mark.parametrize("method", ["qp", "nonlinear", "pseudoinverse"])
+@pytest.mark.parametrize("method", list(METHODS))
 @pytest.mark.parametrize("degrees", [0, 30, 45, 90, 135, 200, 270])
 def test_symmetric_vessel_nominal(method, degrees):
     # Surge and sway are independent, each 2 x 100 N with the yaw moments cancelling:
     # F(theta) = 200 / max(|cos|, |sin|).
-    capability = Capability(Vehicle.from_parameters(SYMMETRIC), method=method)
+    capability = Capability(vehicle_from_parameters(SYMMETRIC), method=method)
     theta = math.radians(degrees)
     expected = 200.0 / max(abs(math.cos(theta)), abs(math.sin(theta)))
     assert capability.max_force(theta) == pytest.approx(expected, rel=1e-6)
 
 
 def test_symmetric_vessel_with_a_failure_and_a_yaw_moment():
-    capability = Capability(Vehicle.from_parameters(SYMMETRIC))
+    capability = Capability(vehicle_from_parameters(SYMMETRIC))
     # Pure surge with surge_stbd failed: surge_port (y = -1) at F makes N = +F, cancelled by the
     # sway pair pushing -+F/2 (N = 1 * F_fwd - 1 * F_aft): F <= 100 from either side.
     assert capability.max_force(0.0, faults={"surge_stbd": FaultMode.FAILED}) == pytest.approx(100.0, rel=1e-6)
@@ -53,7 +53,7 @@ def test_azimuth_polygon_in_qp_and_circle_in_nonlinear():
     parameters = {"dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
                   "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0,
                   "azimuth_polygon_sides": 8}
-    vehicle = Vehicle.from_parameters(parameters)
+    vehicle = vehicle_from_parameters(parameters)
     side, corner = 0.0, math.pi / 8                        # middle of a side of the octagon, a corner
     assert Capability(vehicle, "qp").max_force(side) == pytest.approx(100.0 * math.cos(math.pi / 8), rel=1e-6)
     assert Capability(vehicle, "qp").max_force(corner) == pytest.approx(100.0, rel=1e-6)
@@ -66,7 +66,7 @@ def test_forbidden_sector_removes_directions():
     parameters = {"dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
                   "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0,
                   "actuators.a.forbidden_sectors": [1.0, 2.0], "azimuth_polygon_sides": 64}
-    capability = Capability(Vehicle.from_parameters(parameters), "qp")
+    capability = Capability(vehicle_from_parameters(parameters), "qp")
     assert capability.max_force(1.5) == pytest.approx(0.0, abs=1e-6)
     assert capability.max_force(0.5) == pytest.approx(100.0, rel=2e-3)
 
@@ -86,7 +86,7 @@ def test_cli_writes_png_and_csv(tmp_path):
 
 
 def test_scale_of_a_request():
-    capability = Capability(Vehicle.from_parameters(SYMMETRIC))
+    capability = Capability(vehicle_from_parameters(SYMMETRIC))
     assert capability.scale([100.0, 50.0, 0.0, 0.0, 0.0, 0.0]) == pytest.approx(2.0, rel=1e-6)
     assert capability.scale([100.0, 50.0, 999.0, 0.0, 0.0, 0.0]) == pytest.approx(2.0, rel=1e-6)   # heave ignored
     assert capability.scale([400.0, 0.0, 0.0, 0.0, 0.0, 0.0], faults={"surge_port": FaultMode.FAILED}) == \

@@ -8,7 +8,7 @@ from conftest import ROOT
 from allocator_pkg import Allocator, FaultMode, load_vehicle
 from allocator_pkg.capability import Capability
 from allocator_pkg.fault_matrix import failure_sets, markdown
-from allocator_pkg.schema import DOF_NAMES
+from allocator_pkg.vehicle import DOF_NAMES
 
 CONFIGS = sorted(p for p in (ROOT / "config").glob("*.yaml") if p.stem != "default")
 SPEED = 2.0

@@ -62,7 +62,7 @@ def test_node_process_runs_takes_faults_and_stops_cleanly_on_sigterm(ros_context
     listener = Listener(ros_context)
     listener.spin_until(lambda: len(listener.commands) > 3)
     assert list(listener.commands[-1].name) == ["azimuth_fwd", "azimuth_aft", "main_port", "main_stbd"]
-    from allocator_pkg.node import array_to_wrench
+    from allocator_pkg.conversions import array_to_wrench
     wrench = array_to_wrench([120.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     listener.spin_until(lambda: listener.controller.wrench.get_subscription_count() > 0)
 

@@ -14,12 +14,13 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from allocator_pkg import Allocator, FaultMode, Vehicle
+from allocator_pkg import METHODS, Allocator, FaultMode, Vehicle, vehicle_from_parameters
 from allocator_pkg.allocator import SATURATION_TOLERANCE
+from allocator_pkg.angles import wrap
 from allocator_pkg.configuration_matrix import configuration_matrix
 from allocator_pkg.model import Model
-from allocator_pkg.schema import DOF_NAMES
-from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector, wrap
+from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector
+from allocator_pkg.vehicle import DOF_NAMES
 
 TYPES = ("fixed", "azimuth", "azimuth_vertical", "rudder", "fin")
 finite = st.floats(min_value=-3.0, max_value=3.0, allow_nan=False)
@@ -72,7 +73,7 @@ def vehicles(draw) -> Vehicle:
                   "weights.minimax": draw(st.sampled_from([0.0, 0.0, 10.0]))}
     for name in names:
         parameters.update(draw(actuator(name)))
-    return Vehicle.from_parameters(parameters)
+    return vehicle_from_parameters(parameters)
 
 
 @st.composite
@@ -104,7 +105,7 @@ def run(vehicle, method, fault_set, sequence, speed):
     alloc = Allocator(vehicle, method=method)
     alloc.set_speed(speed)
     for name, (mode, efficiency, angle) in fault_set.items():
-        alloc.set_fault(name, mode, efficiency=efficiency, azimuth=angle)
+        alloc.set_fault(name, mode, efficiency=efficiency, angle=angle)
     previous = alloc.stop()
     results = []
     for tau in sequence:
@@ -148,7 +149,7 @@ def check(vehicle, alloc, fault_set, previous, result, tau):
         assert np.all(np.abs(result.achieved[rows] - tau[rows]) <= tolerance * (1 + 1e-9))
 
 
-@pytest.mark.parametrize("method", ["qp", "pseudoinverse", "nonlinear"])
+@pytest.mark.parametrize("method", list(METHODS))
 @settings(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(data=st.data())
 def test_outputs_respect_every_limit_and_are_deterministic(method, data):

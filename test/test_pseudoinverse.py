@@ -9,7 +9,7 @@ from reference import weighted_pseudo_inverse
 
 from allocator_pkg import Allocator, FaultMode
 from allocator_pkg.configuration_matrix import configuration_matrix, extended_configuration_matrix
-from allocator_pkg.methods.pseudoinverse import PseudoInverse
+from allocator_pkg.methods.pseudoinverse import PseudoInverseGains
 from allocator_pkg.model import Model
 
 EIGHT = DATA / "eight_thrusters.yaml"
@@ -18,7 +18,7 @@ EIGHT = DATA / "eight_thrusters.yaml"
 def test_gain_is_1_29_computed_once_per_set_of_actuators():
     vehicle = vehicle_from(EIGHT, **{f"actuators__t{i}__weight": float(i) for i in range(1, 9)})
     model = Model.build(vehicle, 0.02)
-    inverse = PseudoInverse(model)
+    inverse = PseudoInverseGains(model)
     none = np.zeros(8, dtype=bool)
     gain = inverse.gain(none, {})
     t = configuration_matrix(vehicle.actuators, [0.0] * 8)

@@ -7,8 +7,8 @@ from conftest import ROOT
 
 from allocator_pkg import Allocator, load_vehicle
 from allocator_pkg.model import Model
-from allocator_pkg.schema import DOF_NAMES
 from allocator_pkg.sectors import in_forbidden_sector
+from allocator_pkg.vehicle import DOF_NAMES
 
 CONFIGS = sorted((ROOT / "config").glob("*.yaml"))
 

@@ -1,2 +1,27 @@
-"""Allocation methods, one module each: ``pseudoinverse`` (1.29)/(1.33), ``qp`` (1.35) on
-OSQP, ``nonlinear`` (1.44) by sequential QPs (1.45). Each exposes ``solve(tau, limits)``."""
+"""Allocation methods, one module each, and the registry everything else derives from.
+
+``METHODS`` maps each configuration name to its :class:`~.base.AllocationMethod`: the
+schema's choices for ``method``, the allocator's construction, ``allocator-capability
+--method``, the benchmarks and the tests' parameter lists all read it. A new method is one
+module with a subclass of :class:`~.base.AllocationMethod`, one line here, its tests and a
+section in docs/theory.md.
+
+- ``qp``: the constrained QP (1.35) on one warm-started solver problem;
+- ``pseudoinverse``: the weighted generalised inverse (1.29)/(1.33) with clipping or scaling;
+- ``nonlinear``: the nonlinear problem (1.44) by sequential linearised QPs (1.45).
+"""
+
+from __future__ import annotations
+
+from .base import AllocationMethod
+from .nonlinear import NonlinearAllocation
+from .pseudoinverse import PseudoInverseAllocation
+from .qp import QPAllocation
+
+METHODS: dict[str, type[AllocationMethod]] = {
+    QPAllocation.name: QPAllocation,
+    PseudoInverseAllocation.name: PseudoInverseAllocation,
+    NonlinearAllocation.name: NonlinearAllocation,
+}
+
+__all__ = ["METHODS", "AllocationMethod"]

@@ -38,7 +38,10 @@ import math
 import numpy as np
 
 from ..model import MethodOutput, Model, SampleLimits
-from .sparse_rows import Rows, ScaledProblem, entry_index, solver_settings
+from ..solvers import BackendFactory
+from ..solvers.problem import Rows, ScaledProblem, entry_index
+from ..vehicle import Vehicle
+from .base import AllocationMethod
 
 FORCE_FLOOR = 1e-2
 """|f0| is taken as at least this fraction of the force range in c_i, infinite at zero force."""
@@ -56,24 +59,29 @@ def _turning_curvature(power: np.ndarray, force: np.ndarray) -> np.ndarray:
     return 1.5 * power * force ** 1.5
 
 
-class NonlinearAllocation:
+CIRCLE_SIDES = 256
+"""The thrust circle |f| <= f_max this method keeps exactly, as a polygon for the capability
+analysis (within 1 - cos(pi/256) = 0.008 %)."""
+
+
+class NonlinearAllocation(AllocationMethod):
     """Allocation method ``nonlinear``."""
 
     name = "nonlinear"
 
-    def __init__(self, model: Model):
-        self.setups = 0
+    def __init__(self, model: Model, backend: BackendFactory):
+        super().__init__(model, backend)
         self._setup(model)
 
-    @property
-    def structure(self) -> tuple:
-        return self.model.structure
+    @classmethod
+    def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
+        return CIRCLE_SIDES
 
     def update_model(self, model: Model) -> None:
         """Take a configuration with the same structure: values only, no new set-up."""
         self._use(model)
         self._qp.update_objective(self._p(model))
-        self._qp.update_settings(solver_settings(**vars(model.vehicle.solver)))
+        self._qp.update_settings(model.vehicle.solver)
 
     def _use(self, model: Model) -> None:
         self.model = model
@@ -109,8 +117,8 @@ class NonlinearAllocation:
                                        np.sqrt(omega) * np.minimum(model.angle_step[model.rot], math.pi),
                                        np.maximum(model.authority, 1e-9)))
         self._q = np.zeros(r + p + n)
-        settings = solver_settings(**vars(model.vehicle.solver))
-        self._qp = ScaledProblem(self._p(model), self._q, a, column_scale, settings, effort=np.arange(r))
+        self._qp = ScaledProblem(self._p(model), self._q, a, column_scale, model.vehicle.solver, effort=np.arange(r),
+                                 backend=self.backend())
         self.setups += 1
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:

@@ -18,12 +18,16 @@ import math
 import numpy as np
 
 from ..model import MethodOutput, Model, SampleLimits
+from ..solvers import BackendFactory
+from ..vehicle import Vehicle
+from .base import AllocationMethod
 
 _CACHE_SIZE = 64
 
 
-class PseudoInverse:
-    """Cached weighted pseudo-inverses of T_e over subsets of the actuators."""
+class PseudoInverseGains:
+    """Cached gain matrices of the weighted pseudo-inverse (1.29) of T_e, one per subset of
+    usable actuators (a configuration's cache: never computed per sample)."""
 
     def __init__(self, model: Model):
         self.model = model
@@ -70,24 +74,24 @@ class PseudoInverse:
         return self.gain(excluded, {}) @ tau
 
 
-class PseudoInverseAllocation:
-    """Allocation method ``pseudoinverse``."""
+class PseudoInverseAllocation(AllocationMethod):
+    """Allocation method ``pseudoinverse``: no solver; ``gains`` may be a cache shared with
+    the allocator (which also uses it for the fallback and azimuth planning)."""
 
     name = "pseudoinverse"
 
-    def __init__(self, model: Model, inverse: PseudoInverse | None = None):
-        self.model = model
-        self.inverse = inverse or PseudoInverse(model)
-        self.setups = 0
-
-    @property
-    def structure(self) -> tuple:
-        return self.model.structure
+    def __init__(self, model: Model, backend: BackendFactory, gains: PseudoInverseGains | None = None):
+        super().__init__(model, backend)
+        self.inverse = gains or PseudoInverseGains(model)
 
     def update_model(self, model: Model) -> None:
         """A new configuration: new gains on the next sample (no solver to set up)."""
         self.model = model
-        self.inverse = PseudoInverse(model)
+        self.inverse = PseudoInverseGains(model)
+
+    @classmethod
+    def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
+        return None
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         model = self.model

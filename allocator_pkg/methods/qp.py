@@ -22,7 +22,7 @@ OSQP keeps its previous primal and dual iterates and starts the next sample from
 limits) updates ``Ax``/``Px``/``q`` on the same pattern; only a change of the pattern itself
 (number or type of actuators, DOFs, polygon sides, saturation mode) sets the problem up again.
 
-The problem is normalised once per configuration (:class:`.sparse_rows.ScaledProblem`):
+The problem is normalised once per configuration (:class:`~allocator_pkg.solvers.problem.ScaledProblem`):
 forces by their actuator's range, slacks by their DOF's authority, rows by their largest
 coefficient, the cost by its largest curvature, so that the Q >> W weighting of (1.35) does
 not cost OSQP thousands of iterations when a request saturates.
@@ -43,7 +43,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..model import MethodOutput, Model, SampleLimits
-from .sparse_rows import Rows, ScaledProblem, entry_index, solver_settings
+from ..solvers import BackendFactory
+from ..solvers.problem import Rows, ScaledProblem, entry_index
+from ..vehicle import Vehicle
+from .base import AllocationMethod
 
 INFINITY = math.inf
 HALF_PLANE = math.pi - 1e-9
@@ -77,20 +80,19 @@ class _Problem:
     narrowing: np.ndarray | None = None
 
 
-class QPAllocation:
+class QPAllocation(AllocationMethod):
     """Allocation method ``qp``."""
 
     name = "qp"
 
-    def __init__(self, model: Model):
-        self.setups = 0
-        self.model = model
+    def __init__(self, model: Model, backend: BackendFactory):
+        super().__init__(model, backend)
         self._main = self._setup(model, scale=False)
         self._scale = self._setup(model, scale=True) if model.vehicle.saturation == "preserve_direction" else None
 
-    @property
-    def structure(self) -> tuple:
-        return self.model.structure
+    @classmethod
+    def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
+        return vehicle.azimuth_polygon_sides
 
     def update_model(self, model: Model) -> None:
         """Take a configuration with the same structure: values only, no new set-up."""
@@ -103,7 +105,7 @@ class QPAllocation:
             self._constant_bounds(problem.qp, model, index, scale)
             problem.qp.update_matrix(a.data)
             problem.qp.update_objective(p, q)
-            problem.qp.update_settings(solver_settings(**vars(model.vehicle.solver)))
+            problem.qp.update_settings(model.vehicle.solver)
             problem.pair_base = [np.column_stack((a[rows, c1].toarray().ravel(), a[rows, c2].toarray().ravel()))
                                  for rows, (c1, c2) in zip(problem.pair_rows, model.rot_columns)]
             problem.p_diagonal = p
@@ -201,8 +203,9 @@ class QPAllocation:
         a, index = self._constraints(model, scale)
         p, q = self._objective(model, scale)
         extra = self._columns(model, scale)[0]
-        qp = ScaledProblem(p, q, a, self._column_scale(model, scale), solver_settings(**vars(model.vehicle.solver)),
-                           effort=np.arange(0 if not scale else model.m, model.m if not scale else model.m + 1))
+        qp = ScaledProblem(p, q, a, self._column_scale(model, scale), model.vehicle.solver,
+                           effort=np.arange(0 if not scale else model.m, model.m if not scale else model.m + 1),
+                           backend=self.backend())
         self._constant_bounds(qp, model, index, scale)
         pair_rows = [np.sort(a.indices[a.indptr[int(c1)]:a.indptr[int(c1) + 1]]) for c1, _ in model.rot_columns]
         pair_index = [np.array([entry_index(a, int(row), int(col)) for col in cols for row in rows], dtype=np.int64)

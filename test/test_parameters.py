@@ -5,8 +5,7 @@ import textwrap
 
 import pytest
 
-from allocator_pkg import ConfigError, Vehicle, load_vehicle
-from allocator_pkg.vehicle import read_parameters
+from allocator_pkg import ConfigError, load_vehicle, read_parameters, vehicle_from_parameters
 
 VALID = {
     "dofs": ["surge", "yaw"],
@@ -44,12 +43,12 @@ def with_changes(**changes):
 
 def problem_for(**changes) -> str:
     with pytest.raises(ConfigError) as error:
-        Vehicle.from_parameters(with_changes(**changes))
+        vehicle_from_parameters(with_changes(**changes))
     return str(error.value)
 
 
 def test_valid_parameters_and_defaults():
-    vehicle = Vehicle.from_parameters(VALID)
+    vehicle = vehicle_from_parameters(VALID)
     port = vehicle.actuator("port")
     assert port.direction == pytest.approx((1.0, 0.0, 0.0))     # normalised
     assert port.thrust_min == -50.0                              # fixed: reversible by default
@@ -67,7 +66,7 @@ def test_valid_parameters_and_defaults():
 
 
 def test_dofs_are_kept_in_canonical_order_with_their_slack_weights():
-    vehicle = Vehicle.from_parameters(with_changes(dofs=["yaw", "surge"], weights__slack=[5.0, 7.0]))
+    vehicle = vehicle_from_parameters(with_changes(dofs=["yaw", "surge"], weights__slack=[5.0, 7.0]))
     assert vehicle.dofs == ("surge", "yaw")
     assert vehicle.weights.slack == (7.0, 5.0)
 
@@ -119,7 +118,7 @@ def test_each_invalid_key_is_named_with_its_reason(changes, key, reason):
 
 def test_all_problems_are_reported_together():
     with pytest.raises(ConfigError) as error:
-        Vehicle.from_parameters(with_changes(rate_hz=-1.0, method="x"))
+        vehicle_from_parameters(with_changes(rate_hz=-1.0, method="x"))
     assert {name for name, _ in error.value.problems} == {"rate_hz", "method"}
 
 
@@ -190,7 +189,7 @@ def test_empty_list_means_not_set(tmp_path):
 
 
 def test_rotation_limits_and_initial_angle():
-    vehicle = Vehicle.from_parameters(with_changes(actuators__azi__azimuth_min=-1.0, actuators__azi__azimuth_max=1.0,
+    vehicle = vehicle_from_parameters(with_changes(actuators__azi__azimuth_min=-1.0, actuators__azi__azimuth_max=1.0,
                                                    actuators__azi__forbidden_sectors=None,
                                                    actuators__azi__azimuth_initial=0.5))
     rotation = vehicle.actuator("azi").rotation
@@ -200,4 +199,4 @@ def test_rotation_limits_and_initial_angle():
                           actuators__azi__azimuth_initial=1.5)
     assert "outside the feasible sector" in message
     assert "2 pi" in problem_for(actuators__azi__azimuth_min=-4.0, actuators__azi__azimuth_max=4.0)
-    assert math.isclose(Vehicle.from_parameters(VALID).actuator("azi").rotation.azimuth_max, math.pi)
+    assert math.isclose(vehicle_from_parameters(VALID).actuator("azi").rotation.azimuth_max, math.pi)

@@ -1,0 +1,53 @@
+"""ROS messages to and from the library's arrays and results. No node here: ``ctl``, the
+demo and the benches build and read the same messages without importing the node."""
+
+from __future__ import annotations
+
+import numpy as np
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import Wrench
+
+from allocator_msgs.msg import AllocationStatus, ThrusterCommands
+
+from .allocator import AllocationResult
+
+
+def wrench_to_array(wrench: Wrench) -> np.ndarray:
+    """[X, Y, Z, K, M, N] of a Wrench."""
+    return np.array([wrench.force.x, wrench.force.y, wrench.force.z,
+                     wrench.torque.x, wrench.torque.y, wrench.torque.z])
+
+
+def array_to_wrench(values) -> Wrench:
+    """A Wrench of [X, Y, Z, K, M, N]."""
+    wrench = Wrench()
+    (wrench.force.x, wrench.force.y, wrench.force.z,
+     wrench.torque.x, wrench.torque.y, wrench.torque.z) = (float(v) for v in values)
+    return wrench
+
+
+def commands_message(result: AllocationResult, names: tuple[str, ...], stamp: Time) -> ThrusterCommands:
+    """Every actuator's thrust, set-point, angle and fault mode of one sample."""
+    message = ThrusterCommands()
+    message.header.stamp = stamp
+    message.name = list(names)
+    message.thrust = result.thrust.tolist()
+    message.command = result.command.tolist()
+    message.azimuth = result.azimuth.tolist()
+    message.mode = result.mode.tolist()
+    return message
+
+
+def status_message(result: AllocationResult, solver_status: str, stamp: Time) -> AllocationStatus:
+    """Requested and achieved wrench, saturation and solver figures of one sample."""
+    message = AllocationStatus()
+    message.header.stamp = stamp
+    message.requested = array_to_wrench(result.requested)
+    message.achieved = array_to_wrench(result.achieved)
+    message.saturated = result.saturated
+    message.method = result.method
+    message.solver_status = solver_status
+    message.iterations = result.iterations
+    message.solve_time = result.solve_time
+    message.power = result.power
+    return message

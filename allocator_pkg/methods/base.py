@@ -1,0 +1,59 @@
+"""The interface every allocation method implements (after PX4's ControlAllocation: one
+``allocate`` per method, the effectiveness matrices and the glue elsewhere).
+
+A method is constructed once per configuration structure with the configuration-time
+arrays (:class:`~allocator_pkg.model.Model`) and a solver backend factory, takes new values
+of the same structure through :meth:`update_model`, and each sample turns the controlled
+part of tau and this sample's limits into the extended force vector (1.16). Thrust and angle
+per actuator, command maps, the fallback and the achieved wrench are the allocator's.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from typing import ClassVar
+
+import numpy as np
+
+from ..model import MethodOutput, Model, SampleLimits
+from ..solvers import BackendFactory
+from ..vehicle import Vehicle
+
+
+class AllocationMethod(ABC):
+    """One allocation method. ``setups`` counts the solver set-ups it has made (the tests
+    check that faults and value changes add none)."""
+
+    name: ClassVar[str]
+
+    def __init__(self, model: Model, backend: BackendFactory):
+        self.model = model
+        self.backend = backend
+        self.setups = 0
+
+    @property
+    def structure(self) -> tuple:
+        """What fixes the method's solver pattern; another configuration with the same
+        structure is taken by :meth:`update_model`, a different one needs a new method."""
+        return self.model.structure
+
+    @abstractmethod
+    def update_model(self, model: Model) -> None:
+        """Take a configuration with the same structure: values only, no new set-up."""
+
+    @abstractmethod
+    def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
+        """The extended force vector for the controlled DOFs ``tau`` within ``limits``."""
+
+    @classmethod
+    def problems(cls, vehicle: Vehicle) -> list[str]:
+        """Why this method cannot serve ``vehicle`` (empty when it can): checked when a
+        configuration is parsed, so that a method is refused with its reason."""
+        return []
+
+    @classmethod
+    @abstractmethod
+    def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
+        """Sides of the polygon this method's constraints put on a rotatable thruster's
+        force, for the capability analysis; None when the method cannot redistribute force
+        and its capability is that of the weighted pseudo-inverse along the request."""

@@ -1,0 +1,50 @@
+"""What a QP solver must offer to stand behind :class:`~allocator_pkg.solvers.problem.ScaledProblem`.
+
+A backend receives the normalised problem once, min 1/2 x'Px + q'x s.t. low <= Ax <= up
+with diagonal P and a fixed sparsity pattern of A, then only new values on that pattern and
+new bounds each sample. Infinite bounds mean no bound. A backend keeps whatever state helps
+it between solves (OSQP its iterates, an active-set solver its working set).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import ClassVar, Protocol
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..vehicle import SolverSettings
+
+
+@dataclass(frozen=True)
+class BackendResult:
+    """A backend's answer in normalised units: ``usable`` when its status means a solution."""
+
+    x: np.ndarray
+    status: str
+    iterations: int
+    usable: bool
+
+
+class Backend(Protocol):
+    name: ClassVar[str]
+
+    def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
+        """Take the problem's structure and first values (bounds come with each solve)."""
+
+    def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
+        """New values of the diagonal of P and/or of q."""
+
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+        """New values of A's stored entries: all of them, or those at ``index`` (CSC order)."""
+
+    def update_settings(self, settings: SolverSettings) -> None:
+        """Tolerances and limits changed by a reconfiguration."""
+
+    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+        """Solve with these row bounds."""
+
+
+BackendFactory = Callable[[], Backend]

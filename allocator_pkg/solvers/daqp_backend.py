@@ -1,0 +1,64 @@
+"""DAQP (dual active set, dense) behind the solver seam, warm-started from the previous
+solve's active set: the exact active-set solver allocators in flight control use, as a
+benchmark anchor."""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import daqp
+import numpy as np
+import scipy.sparse as sp
+
+from ..vehicle import SolverSettings
+from .backend import BackendResult
+
+REGULARISATION = 1e-9
+"""Added to the (normalised) diagonal of P, as for quadprog: DAQP wants it positive definite."""
+
+BOUND = 1e30
+"""DAQP's infinity."""
+
+EQUALITY, ACTIVE = 5, 1
+"""DAQP's constraint senses: an equality row, and an inequality to start in the working set."""
+
+SOLVED = (1, 2)
+"""DAQP exit flags of an optimal (2: soft-optimal) solution."""
+
+
+class DAQPBackend:
+    name: ClassVar[str] = "daqp"
+
+    def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
+        self.p = np.diag(p_diagonal + REGULARISATION)
+        self.q = q.copy()
+        self.a = a.copy()
+        self.dense = np.ascontiguousarray(self.a.toarray())
+        self.active = np.zeros(a.shape[0], dtype=bool)
+        self.update_settings(settings)
+
+    def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
+        if p_diagonal is not None:
+            self.p = np.diag(p_diagonal + REGULARISATION)
+        if q is not None:
+            self.q = q.copy()
+
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+        if index is None:
+            self.a.data[:] = values
+        else:
+            self.a.data[index] = values
+        self.dense = np.ascontiguousarray(self.a.toarray())
+
+    def update_settings(self, settings: SolverSettings) -> None:
+        self.iter_limit = settings.max_iter
+
+    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+        sense = np.where(low == up, EQUALITY, np.where(self.active, ACTIVE, 0)).astype(np.int32)
+        x, _, flag, info = daqp.solve(self.p, self.q, self.dense, np.minimum(up, BOUND), np.maximum(low, -BOUND),
+                                      sense, iter_limit=self.iter_limit)
+        usable = flag in SOLVED
+        if usable:
+            self.active = np.asarray(info["lam"]) != 0.0
+        return BackendResult(x=np.asarray(x, dtype=float), status="solved" if usable else f"daqp exit flag {flag}",
+                             iterations=int(info["iterations"]), usable=usable)

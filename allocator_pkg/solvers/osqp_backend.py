@@ -1,0 +1,138 @@
+"""OSQP (ADMM) behind the solver seam: set up once, updated in place and warm-started from
+the previous solve's primal and dual iterates; and, as a benchmark pattern, the same solver
+set up afresh and solved cold on every call."""
+
+from __future__ import annotations
+
+import signal
+from typing import ClassVar
+
+import numpy as np
+import osqp
+import scipy.sparse as sp
+
+from ..vehicle import SolverSettings
+from .backend import BackendResult
+
+ACCEPTED = (osqp.SolverStatus.OSQP_SOLVED, osqp.SolverStatus.OSQP_SOLVED_INACCURATE)
+"""OSQP statuses whose solution is used; any other falls back to the pseudo-inverse."""
+
+INTERRUPTED = osqp.SolverStatus.OSQP_SIGINT
+"""OSQP catches SIGINT while it solves and only stops; the signal is raised again for the process."""
+
+CHECK_TERMINATION = 5
+"""Iterations between OSQP's convergence checks: warm-started samples often converge in a few."""
+
+INFINITY = float(osqp.constant("OSQP_INFTY"))
+"""OSQP's stand-in for an infinite bound; larger values are clipped to it."""
+
+
+def osqp_settings(settings: SolverSettings) -> dict:
+    """OSQP settings a configuration may change at runtime (time_limit 0: none)."""
+    return dict(eps_abs=settings.eps_abs, eps_rel=settings.eps_rel, max_iter=settings.max_iter,
+                time_limit=settings.time_limit if settings.time_limit > 0.0 else 1e10)
+
+
+def _diagonal(values: np.ndarray) -> sp.csc_matrix:
+    index = np.arange(len(values))
+    matrix = sp.csc_matrix((values, (index, index)), shape=(len(values), len(values)))
+    matrix.sort_indices()
+    return matrix
+
+
+def _result(status: str, status_val: int, iterations: int, x: np.ndarray) -> BackendResult:
+    if status_val == INTERRUPTED:
+        signal.raise_signal(signal.SIGINT)      # Ctrl-C or a SIGINT stop meant for the process
+    return BackendResult(x=np.array(x, dtype=float), status=status, iterations=int(iterations),
+                         usable=status_val in ACCEPTED)
+
+
+class OSQPBackend:
+    """One OSQP instance for the life of the problem: values updated, warm-started."""
+
+    name: ClassVar[str] = "osqp"
+
+    def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
+        rows = a.shape[0]
+        self.solver = osqp.OSQP()
+        self.solver.setup(P=_diagonal(p_diagonal), q=q, A=a, l=np.full(rows, -INFINITY), u=np.full(rows, INFINITY),
+                          verbose=False, warm_starting=True, polishing=False, scaling=0,
+                          check_termination=CHECK_TERMINATION, **osqp_settings(settings))
+        self._index_type = np.int64 if self.solver.ext.OSQP_USE_LONG == 1 else np.int32
+        # The per-sample calls go to OSQP's extension object when it offers them: the Python
+        # wrapper's update() and solve() add about 25 us of bookkeeping per sample (constant
+        # look-ups, an info dictionary). Same calls, same data; test_osqp_backend pins the
+        # attributes used, so an OSQP release that drops them fails there, not silently here.
+        raw = getattr(self.solver, "_solver", None)
+        self._raw = raw if all(hasattr(raw, name) for name in RAW_CALLS) else None
+
+    def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
+        if p_diagonal is not None:
+            self.solver.update(Px=p_diagonal)
+        if q is not None:
+            if self._raw is not None:
+                self._raw.update_data_vec(q=q, l=None, u=None)
+            else:
+                self.solver.update(q=q)
+
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+        if index is None:
+            self.solver.update(Ax=values)
+        elif self._raw is not None:
+            self._raw.update_data_mat(P_x=None, P_i=None, A_x=values, A_i=index.astype(self._index_type, copy=False))
+        else:
+            self.solver.update(Ax=values, Ax_idx=index)
+
+    def update_settings(self, settings: SolverSettings) -> None:
+        self.solver.update_settings(**osqp_settings(settings))
+
+    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+        low, up = np.maximum(low, -INFINITY), np.minimum(up, INFINITY)
+        if self._raw is None:
+            self.solver.update(l=low, u=up)
+            result = self.solver.solve(raise_error=False)
+            return _result(result.info.status, result.info.status_val, result.info.iter, result.x)
+        self._raw.update_data_vec(q=None, l=low, u=up)
+        self._raw.solve()
+        info = self._raw.info
+        return _result(info.status, info.status_val, info.iter, self._raw.solution.x)
+
+
+RAW_CALLS = ("update_data_vec", "update_data_mat", "solve", "solution", "info")
+"""What :class:`OSQPBackend` calls on OSQP's extension object."""
+
+
+class FreshOSQPBackend:
+    """A new OSQP instance set up and solved cold on every call: what allocators that build
+    their QP each sample do. For benchmarks; the node never uses it."""
+
+    name: ClassVar[str] = "osqp_fresh"
+
+    def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
+        self.p = _diagonal(p_diagonal)
+        self.q = q.copy()
+        self.a = a.copy()
+        self.settings = settings
+
+    def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
+        if p_diagonal is not None:
+            self.p = _diagonal(p_diagonal)
+        if q is not None:
+            self.q = q.copy()
+
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+        if index is None:
+            self.a.data[:] = values
+        else:
+            self.a.data[index] = values
+
+    def update_settings(self, settings: SolverSettings) -> None:
+        self.settings = settings
+
+    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+        solver = osqp.OSQP()
+        solver.setup(P=self.p, q=self.q, A=self.a, l=np.maximum(low, -INFINITY), u=np.minimum(up, INFINITY),
+                     verbose=False, polishing=False, scaling=0, check_termination=CHECK_TERMINATION,
+                     **osqp_settings(self.settings))
+        result = solver.solve(raise_error=False)
+        return _result(result.info.status, result.info.status_val, result.info.iter, result.x)

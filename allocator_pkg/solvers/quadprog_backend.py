@@ -1,0 +1,57 @@
+"""quadprog (Goldfarb-Idnani dual active set, dense) behind the solver seam: an exact
+reference and a speed anchor for the benchmarks. Every solve starts from scratch."""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar
+
+import numpy as np
+import quadprog
+import scipy.sparse as sp
+
+from ..vehicle import SolverSettings
+from .backend import BackendResult
+
+REGULARISATION = 1e-9
+"""Added to the (normalised) diagonal of P: quadprog needs a positive definite P, and the
+problems carry uncosted variables (the minimax bound fbar when beta = 0)."""
+
+
+class QuadprogBackend:
+    name: ClassVar[str] = "quadprog"
+
+    def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
+        self.p = np.diag(p_diagonal + REGULARISATION)
+        self.q = q.copy()
+        self.a = a.copy()
+        self.dense = self.a.toarray()
+
+    def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
+        if p_diagonal is not None:
+            self.p = np.diag(p_diagonal + REGULARISATION)
+        if q is not None:
+            self.q = q.copy()
+
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+        if index is None:
+            self.a.data[:] = values
+        else:
+            self.a.data[index] = values
+        self.dense = self.a.toarray()
+
+    def update_settings(self, settings: SolverSettings) -> None:
+        """quadprog has no tolerances to set."""
+
+    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+        equal = low == up
+        lower = ~equal & (low > -math.inf)
+        upper = ~equal & (up < math.inf)
+        a = self.dense
+        constraints = np.vstack([a[equal], a[lower], -a[upper]]).T
+        bounds = np.concatenate([low[equal], low[lower], -up[upper]])
+        try:
+            x, _, _, iterations, _, _ = quadprog.solve_qp(self.p, -self.q, constraints, bounds, meq=int(equal.sum()))
+        except ValueError as error:
+            return BackendResult(x=np.zeros(len(self.q)), status=f"quadprog: {error}", iterations=0, usable=False)
+        return BackendResult(x=x, status="solved", iterations=int(iterations[0]), usable=True)

@@ -1,0 +1,30 @@
+"""Messages to and from the library's arrays and results."""
+
+import numpy as np
+from builtin_interfaces.msg import Time
+from conftest import ROOT
+
+from allocator_pkg import Allocator, load_vehicle
+from allocator_pkg.conversions import array_to_wrench, commands_message, status_message, wrench_to_array
+
+
+def test_wrench_round_trip_in_dof_order():
+    values = np.array([1.0, -2.0, 3.5, 0.25, -0.5, 7.0])
+    wrench = array_to_wrench(values)
+    assert (wrench.force.x, wrench.force.y, wrench.force.z) == (1.0, -2.0, 3.5)
+    assert (wrench.torque.x, wrench.torque.y, wrench.torque.z) == (0.25, -0.5, 7.0)
+    assert np.array_equal(wrench_to_array(wrench), values)
+
+
+def test_commands_and_status_carry_one_sample():
+    allocator = Allocator(load_vehicle(ROOT / "config" / "example1_rov.yaml"))
+    result = allocator.allocate([50.0, 10.0, 0.0, 0.0, 0.0, 5.0])
+    stamp = Time(sec=3, nanosec=7)
+    commands = commands_message(result, allocator.names, stamp)
+    assert commands.header.stamp == stamp and list(commands.name) == list(allocator.names)
+    assert np.array_equal(commands.thrust, result.thrust) and np.array_equal(commands.azimuth, result.azimuth)
+    assert np.array_equal(commands.command, result.command) and list(commands.mode) == [0, 0, 0, 0]
+    status = status_message(result, "solved here", stamp)
+    assert status.solver_status == "solved here" and status.method == "qp"
+    assert np.allclose(wrench_to_array(status.achieved), result.achieved)
+    assert status.requested.force.x == 50.0 and status.saturated == result.saturated
