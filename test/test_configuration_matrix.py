@@ -1,4 +1,4 @@
-"""Columns of T and T_e against hand-derived r x d, per (1.5) and the ERRATA."""
+"""Columns of T and T_e against hand-derived r x d, per (1.5) and the errata of docs/theory.md."""
 
 import math
 
@@ -25,7 +25,7 @@ def rotatable(position, kind="azimuth", name="a"):
 
 
 def test_errata_check_value():
-    # ERRATA.md: r = (2, 0.5, 0.3), d = (1, 0, 0) gives (1, 0, 0, 0, 0.3, -0.5).
+    # docs/theory.md, Errata: r = (2, 0.5, 0.3), d = (1, 0, 0) gives (1, 0, 0, 0, 0.3, -0.5).
     assert force_column([2.0, 0.5, 0.3], [1.0, 0.0, 0.0]) == pytest.approx([1, 0, 0, 0, 0.3, -0.5])
 
 
@@ -56,7 +56,7 @@ def test_oblique_column():
 def test_horizontal_azimuth_column_matches_corrected_1_13():
     lx, ly, lz, a = 2.0, -1.0, 0.5, 0.7
     t = configuration_matrix([rotatable((lx, ly, lz))], [a])[:, 0]
-    # (1.13) with the ERRATA's pitch row l_z cos(alpha)
+    # (1.13) with the corrected pitch row l_z cos(alpha) (docs/theory.md, Errata)
     expected = [math.cos(a), math.sin(a), 0.0, -lz * math.sin(a), lz * math.cos(a), lx * math.sin(a) - ly * math.cos(a)]
     assert t == pytest.approx(expected)
 
