@@ -27,13 +27,14 @@ from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from rclpy.time import Time
-from std_msgs.msg import Float64, Header
+from std_msgs.msg import Header
 from std_srvs.srv import Trigger
 
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 from allocator_msgs.srv import SetActuatorFault
 
 from . import ros_parameters
+from .actuator_topics import ActuatorTopics
 from .allocator import AllocationResult, Allocator
 from .conversions import commands_message, status_message, wrench_to_array
 from .diagnostics import Counters, diagnostic_status
@@ -42,6 +43,7 @@ from .node_settings import NODE_NAME, NodeSettings
 from .parameters import parse_parameters
 from .ros_parameters import WholeSetParameters
 from .vehicle import ConfigError, Vehicle
+from .watchdog import Watchdog
 
 STOP_ACK_TIMEOUT = 1.0       # s the shutdown's zero-thrust command waits for acknowledgements
 DIAGNOSTICS_PERIOD = 1.0
@@ -70,8 +72,8 @@ class AllocatorNode(WholeSetParameters, Node):
             self.get_logger().info(note)
         self._counters = Counters()
         self._wrench = np.zeros(6)
-        self._wrench_time: Time | None = None
-        self._stale = False
+        self._wrench_time: int | None = None
+        self._watchdog = Watchdog(settings.wrench_timeout)
         self._last: AllocationResult | None = None
         self.samples = 0
         self.wrenches_received = 0
@@ -80,7 +82,7 @@ class AllocatorNode(WholeSetParameters, Node):
         self._commands = self.create_publisher(ThrusterCommands, "thruster_commands", reliable)
         self._status = self.create_publisher(AllocationStatus, "allocation_status", reliable)
         self._diagnostics = self.create_publisher(DiagnosticArray, "/diagnostics", 10)
-        self._per_actuator: dict[int, tuple] = {}
+        self._per_actuator: ActuatorTopics | None = None
         self._wrench_subscription = None
         self._settings = settings
         self._apply_settings(settings, None)
@@ -115,7 +117,7 @@ class AllocatorNode(WholeSetParameters, Node):
             self.wrenches_received += 1
             if np.all(np.isfinite(values)):
                 self._wrench = values
-                self._wrench_time = self.get_clock().now()
+                self._wrench_time = self.get_clock().now().nanoseconds
                 return
             self._counters.rejected_wrenches += 1
             self._counters.rejected_in_period += 1
@@ -137,31 +139,24 @@ class AllocatorNode(WholeSetParameters, Node):
     def _on_timer(self) -> None:
         with self._lock:
             now = self.get_clock().now()
-            timeout = self._settings.wrench_timeout
-            stale = timeout > 0.0 and (self._wrench_time is None
-                                       or now - self._wrench_time > Duration(seconds=timeout))
-            if stale != self._stale:
-                self._stale = stale
-                if stale and self._wrench_time is None:
-                    self.get_logger().info("waiting for wrench_command: commanding zero thrust")
-                elif stale:
-                    self.get_logger().warn(f"no valid wrench for {timeout:g} s: commanding zero thrust")
-                else:
-                    self.get_logger().info("wrench input resumed")
+            stale, transition = self._watchdog.check(now.nanoseconds, self._wrench_time)
+            if transition is not None and transition[0] == "warn":
+                self.get_logger().warn(transition[1])
+            elif transition is not None:
+                self.get_logger().info(transition[1])
             result = self._allocator.stop() if stale else self._allocator.allocate(self._wrench)
             self.samples += 1
             self._counters.count(result)
             self._last = result
-            self._publish(result, now, f"stale: no valid wrench for {timeout:g} s" if stale else result.status)
+            self._publish(result, now, f"stale: no valid wrench for {self._watchdog.timeout:g} s" if stale
+                          else result.status)
 
     def _publish(self, result: AllocationResult, now: Time, status: str) -> None:
         stamp = now.to_msg()
         self._commands.publish(commands_message(result, self._allocator.names, stamp))
         self._status.publish(status_message(result, status, stamp))
-        for i, (thrust, azimuth) in self._per_actuator.items():
-            thrust.publish(Float64(data=float(result.thrust[i])))
-            if azimuth is not None:
-                azimuth.publish(Float64(data=float(result.azimuth[i])))
+        if self._per_actuator is not None:
+            self._per_actuator.publish(result)
 
     def publish_stop(self, timeout: float = STOP_ACK_TIMEOUT) -> bool:
         """One zero-thrust command (shutdown), angles held; waits up to ``timeout`` seconds
@@ -238,6 +233,7 @@ class AllocatorNode(WholeSetParameters, Node):
                 self._timer.timer_period_ns = round(1e9 / vehicle.rate_hz)
             self._apply_settings(settings, self._settings)
             self._settings = settings
+            self._watchdog.timeout = settings.wrench_timeout
         self.get_logger().info(f"applied {', '.join(names)}")
 
     def _apply_settings(self, settings: NodeSettings, old: NodeSettings | None) -> None:
@@ -249,25 +245,18 @@ class AllocatorNode(WholeSetParameters, Node):
                 else ReliabilityPolicy.RELIABLE
             self._wrench_subscription = self.create_subscription(
                 Wrench, "wrench_command", self._on_wrench, QoSProfile(depth=1, reliability=reliability))
-        if settings.per_actuator_topics and not self._per_actuator:
-            for i, actuator in enumerate(self._allocator.vehicle.actuators):
-                thrust = self.create_publisher(Float64, f"thrusters/{actuator.name}/thrust", 1)
-                azimuth = (self.create_publisher(Float64, f"thrusters/{actuator.name}/azimuth", 1)
-                           if actuator.rotatable else None)
-                self._per_actuator[i] = (thrust, azimuth)
-        elif not settings.per_actuator_topics and self._per_actuator:
-            for thrust, azimuth in self._per_actuator.values():
-                self.destroy_publisher(thrust)
-                if azimuth is not None:
-                    self.destroy_publisher(azimuth)
-            self._per_actuator = {}
+        if settings.per_actuator_topics and self._per_actuator is None:
+            self._per_actuator = ActuatorTopics(self, self._allocator.vehicle)
+        elif not settings.per_actuator_topics and self._per_actuator is not None:
+            self._per_actuator.close()
+            self._per_actuator = None
 
     # -- diagnostics --------------------------------------------------------------------
 
     def _on_diagnostics(self) -> None:
         with self._lock:
             status = diagnostic_status(f"{self.get_name()}: thrust allocation", self.get_fully_qualified_name(),
-                                       self._allocator, self._counters, self._stale, self._last)
+                                       self._allocator, self._counters, self._watchdog.stale, self._last)
             self._counters.reset_period()
         self._diagnostics.publish(DiagnosticArray(header=Header(stamp=self.get_clock().now().to_msg()),
                                                   status=[status]))

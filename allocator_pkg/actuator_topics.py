@@ -1,0 +1,36 @@
+"""Optional per-actuator topics (``per_actuator_topics``): ``thrusters/<name>/thrust`` and,
+for rotatable thrusters, ``thrusters/<name>/azimuth``, std_msgs/Float64 each sample, for
+drivers and plots that take one number per actuator."""
+
+from __future__ import annotations
+
+from rclpy.node import Node
+from std_msgs.msg import Float64
+
+from .allocator import AllocationResult
+from .vehicle import Vehicle
+
+
+class ActuatorTopics:
+    """The publishers of one vehicle's actuators on a node, until :meth:`close`."""
+
+    def __init__(self, node: Node, vehicle: Vehicle):
+        self._node = node
+        self._publishers = [
+            (i, node.create_publisher(Float64, f"thrusters/{actuator.name}/thrust", 1),
+             node.create_publisher(Float64, f"thrusters/{actuator.name}/azimuth", 1) if actuator.rotatable else None)
+            for i, actuator in enumerate(vehicle.actuators)
+        ]
+
+    def publish(self, result: AllocationResult) -> None:
+        for i, thrust, azimuth in self._publishers:
+            thrust.publish(Float64(data=float(result.thrust[i])))
+            if azimuth is not None:
+                azimuth.publish(Float64(data=float(result.azimuth[i])))
+
+    def close(self) -> None:
+        for _, thrust, azimuth in self._publishers:
+            self._node.destroy_publisher(thrust)
+            if azimuth is not None:
+                self._node.destroy_publisher(azimuth)
+        self._publishers = []
