@@ -61,3 +61,19 @@ def test_values_on_the_same_pattern_change_the_answer(backend):
     changed.data[index] = 2e3
     solution = problem.solve(low, up)
     assert solution.x == pytest.approx(reference(p_new, changed, low, up), rel=1e-4, abs=1e-3)
+
+
+@pytest.mark.parametrize("backend", list(BACKENDS))
+def test_every_backend_gives_the_multipliers_in_one_convention(backend):
+    """y with P x + q + A'y = 0 (OSQP's convention): the methods read a thruster limit's
+    multiplier from it, whichever backend solved. The active rows here: the equality (its
+    multiplier is 2 q s, the slack's cost gradient: its column in A is -1) and x1's upper bound
+    (x1 = 2000: its multiplier is positive); x2 stays just under its bound (multiplier 0)."""
+    p, a, low, up, _ = badly_scaled_problem()
+    problem = ScaledProblem(p, np.zeros(3), a, np.array([2e3, 3.0, 5e3]), SETTINGS, np.arange(2), BACKENDS[backend]())
+    solution = problem.solve(low, up)
+    stationarity = p * solution.x + a.T @ solution.y
+    assert np.max(np.abs(stationarity)) <= 1e-4 * np.max(np.abs(solution.y))
+    assert solution.y[0] == pytest.approx(p[2] * solution.x[2], rel=1e-4)
+    assert solution.x[0] == pytest.approx(2e3) and solution.y[1] > 0.0
+    assert solution.y[2] == pytest.approx(0.0, abs=1e-6 * abs(solution.y[0]))

@@ -9,7 +9,6 @@ it between solves (OSQP its iterates, an active-set solver its working set).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import ClassVar, Protocol
 
 import numpy as np
@@ -18,14 +17,23 @@ import scipy.sparse as sp
 from ..vehicle import SolverSettings
 
 
-@dataclass(frozen=True)
 class BackendResult:
-    """A backend's answer in normalised units: ``usable`` when its status means a solution."""
+    """A backend's answer in normalised units: ``usable`` when its status means a solution.
+    ``y`` holds the row multipliers in OSQP's convention: P x + q + A' y = 0, y >= 0 where a
+    row's upper bound holds it, y <= 0 where its lower bound does; ``duals`` is the array, or a
+    function that returns it (fetched only when read: most samples never need them)."""
 
-    x: np.ndarray
-    status: str
-    iterations: int
-    usable: bool
+    __slots__ = ("_duals", "iterations", "status", "usable", "x")
+
+    def __init__(self, x: np.ndarray, duals: np.ndarray | Callable[[], np.ndarray], status: str, iterations: int,
+                 usable: bool):
+        self.x, self._duals, self.status, self.iterations, self.usable = x, duals, status, iterations, usable
+
+    @property
+    def y(self) -> np.ndarray:
+        if callable(self._duals):
+            self._duals = np.asarray(self._duals())
+        return self._duals
 
 
 class Backend(Protocol):
@@ -37,14 +45,15 @@ class Backend(Protocol):
     def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
         """New values of the diagonal of P and/or of q."""
 
-    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
-        """New values of A's stored entries: all of them, or those at ``index`` (CSC order)."""
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
+        """New values of A's stored entries (all of them, or those at ``index``, CSC order), and
+        of P's diagonal if given: one update, so a factorising solver refactorises once."""
 
     def update_settings(self, settings: SolverSettings) -> None:
         """Tolerances and limits changed by a reconfiguration."""
 
     def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
-        """Solve with these row bounds."""
+        """Solve with these row bounds (the backend may change the arrays: they are scratch)."""
 
 
 BackendFactory = Callable[[], Backend]

@@ -32,8 +32,9 @@ class DAQPBackend:
     def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
         self.p = np.diag(p_diagonal + REGULARISATION)
         self.q = q.copy()
-        self.a = a.copy()
-        self.dense = np.ascontiguousarray(self.a.toarray())
+        self.dense = np.ascontiguousarray(a.toarray())
+        self._entry_row = a.indices.copy()
+        self._entry_col = np.repeat(np.arange(a.shape[1]), np.diff(a.indptr))
         self.active = np.zeros(a.shape[0], dtype=bool)
         self.update_settings(settings)
 
@@ -43,12 +44,13 @@ class DAQPBackend:
         if q is not None:
             self.q = q.copy()
 
-    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
+        if p_diagonal is not None:
+            self.p = np.diag(p_diagonal + REGULARISATION)
         if index is None:
-            self.a.data[:] = values
+            self.dense[self._entry_row, self._entry_col] = values
         else:
-            self.a.data[index] = values
-        self.dense = np.ascontiguousarray(self.a.toarray())
+            self.dense[self._entry_row[index], self._entry_col[index]] = values
 
     def update_settings(self, settings: SolverSettings) -> None:
         self.iter_limit = settings.max_iter
@@ -58,7 +60,8 @@ class DAQPBackend:
         x, _, flag, info = daqp.solve(self.p, self.q, self.dense, np.minimum(up, BOUND), np.maximum(low, -BOUND),
                                       sense, iter_limit=self.iter_limit)
         usable = flag in SOLVED
+        multipliers = np.asarray(info["lam"], dtype=float)
         if usable:
-            self.active = np.asarray(info["lam"]) != 0.0
-        return BackendResult(x=np.asarray(x, dtype=float), status="solved" if usable else f"daqp exit flag {flag}",
-                             iterations=int(info["iterations"]), usable=usable)
+            self.active = multipliers != 0.0
+        return BackendResult(np.asarray(x, dtype=float), multipliers, "solved" if usable else f"daqp exit flag {flag}",
+                             int(info["iterations"]), usable)

@@ -14,16 +14,26 @@ import scipy.sparse as sp
 from ..vehicle import SolverSettings
 from .backend import BackendResult
 
-ACCEPTED = (osqp.SolverStatus.OSQP_SOLVED, osqp.SolverStatus.OSQP_SOLVED_INACCURATE)
+ACCEPTED = frozenset((int(osqp.SolverStatus.OSQP_SOLVED), int(osqp.SolverStatus.OSQP_SOLVED_INACCURATE)))
 """OSQP statuses whose solution is used; any other falls back to the pseudo-inverse."""
 
-INTERRUPTED = osqp.SolverStatus.OSQP_SIGINT
+INTERRUPTED = int(osqp.SolverStatus.OSQP_SIGINT)
 """OSQP catches SIGINT while it solves and only stops; the signal is raised again for the process."""
 
 CHECK_TERMINATION = 5
 """Iterations between OSQP's convergence checks: warm-started samples often converge in a few."""
 
 INFINITY = float(osqp.constant("OSQP_INFTY"))
+
+STOPPED = frozenset((int(osqp.SolverStatus.OSQP_MAX_ITER_REACHED), int(osqp.SolverStatus.OSQP_TIME_LIMIT_REACHED)))
+"""Statuses of a solve stopped by its budget: the iterate is used when it is feasible enough."""
+
+ITERATE_TOLERANCE = 100.0
+"""A stopped solve's iterate is used when its primal residual is within this many eps_abs
+(normalised units, 1e-3 of a variable's range by default): with Q >> W the wrench converges
+long before the split of effort among actuators (directions only W decides, 1e6 flatter), so
+such an iterate gives the wrench and keeps every limit; warm starting carries the remaining
+work over to the next sample."""
 """OSQP's stand-in for an infinite bound; larger values are clipped to it."""
 
 
@@ -40,11 +50,22 @@ def _diagonal(values: np.ndarray) -> sp.csc_matrix:
     return matrix
 
 
-def _result(status: str, status_val: int, iterations: int, x: np.ndarray) -> BackendResult:
-    if status_val == INTERRUPTED:
+_STATUS: dict[int, str] = {}
+"""OSQP's status texts by value, read from OSQP once each."""
+
+
+def _result(info, solution, settings: SolverSettings) -> BackendResult:
+    value = info.status_val
+    if value == INTERRUPTED:
         signal.raise_signal(signal.SIGINT)      # Ctrl-C or a SIGINT stop meant for the process
-    return BackendResult(x=np.array(x, dtype=float), status=status, iterations=int(iterations),
-                         usable=status_val in ACCEPTED)
+    status = _STATUS.get(value)
+    if status is None:
+        status = _STATUS[value] = info.status
+    usable = value in ACCEPTED
+    if value in STOPPED and info.prim_res <= ITERATE_TOLERANCE * settings.eps_abs:
+        usable = True
+        status = f"{status}: iterate used (primal residual {info.prim_res:.1e})"
+    return BackendResult(solution.x, lambda: solution.y, status, info.iter, usable)
 
 
 class OSQPBackend:
@@ -58,6 +79,7 @@ class OSQPBackend:
         self.solver.setup(P=_diagonal(p_diagonal), q=q, A=a, l=np.full(rows, -INFINITY), u=np.full(rows, INFINITY),
                           verbose=False, warm_starting=True, polishing=False, scaling=0,
                           check_termination=CHECK_TERMINATION, **osqp_settings(settings))
+        self.settings = settings
         self._index_type = np.int64 if self.solver.ext.OSQP_USE_LONG == 1 else np.int32
         # The per-sample calls go to OSQP's extension object when it offers them: the Python
         # wrapper's update() and solve() add about 25 us of bookkeeping per sample (constant
@@ -75,27 +97,31 @@ class OSQPBackend:
             else:
                 self.solver.update(q=q)
 
-    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
         if index is None:
-            self.solver.update(Ax=values)
+            self.solver.update(Ax=values, Px=p_diagonal)
         elif self._raw is not None:
-            self._raw.update_data_mat(P_x=None, P_i=None, A_x=values, A_i=index.astype(self._index_type, copy=False))
-        else:
+            self._raw.update_data_mat(P_x=p_diagonal, P_i=None, A_x=values,
+                                      A_i=index.astype(self._index_type, copy=False))
+        elif p_diagonal is None:
             self.solver.update(Ax=values, Ax_idx=index)
+        else:
+            self.solver.update(Ax=values, Ax_idx=index, Px=p_diagonal)
 
     def update_settings(self, settings: SolverSettings) -> None:
         self.solver.update_settings(**osqp_settings(settings))
+        self.settings = settings
 
     def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
-        low, up = np.maximum(low, -INFINITY), np.minimum(up, INFINITY)
+        np.maximum(low, -INFINITY, out=low)
+        np.minimum(up, INFINITY, out=up)
         if self._raw is None:
             self.solver.update(l=low, u=up)
             result = self.solver.solve(raise_error=False)
-            return _result(result.info.status, result.info.status_val, result.info.iter, result.x)
+            return _result(result.info, result, self.settings)
         self._raw.update_data_vec(q=None, l=low, u=up)
         self._raw.solve()
-        info = self._raw.info
-        return _result(info.status, info.status_val, info.iter, self._raw.solution.x)
+        return _result(self._raw.info, self._raw.solution, self.settings)
 
 
 RAW_CALLS = ("update_data_vec", "update_data_mat", "solve", "solution", "info")
@@ -120,11 +146,13 @@ class FreshOSQPBackend:
         if q is not None:
             self.q = q.copy()
 
-    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
         if index is None:
             self.a.data[:] = values
         else:
             self.a.data[index] = values
+        if p_diagonal is not None:
+            self.p = _diagonal(p_diagonal)
 
     def update_settings(self, settings: SolverSettings) -> None:
         self.settings = settings
@@ -135,4 +163,4 @@ class FreshOSQPBackend:
                      verbose=False, polishing=False, scaling=0, check_termination=CHECK_TERMINATION,
                      **osqp_settings(self.settings))
         result = solver.solve(raise_error=False)
-        return _result(result.info.status, result.info.status_val, result.info.iter, result.x)
+        return _result(result.info, result, self.settings)

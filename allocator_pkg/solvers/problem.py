@@ -17,13 +17,12 @@ its own, and its tolerances read as fractions of those ranges.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..vehicle import SolverSettings
-from .backend import Backend
+from .backend import Backend, BackendResult
 
 
 class Rows:
@@ -56,14 +55,24 @@ def entry_index(matrix: sp.csc_matrix, row: int, col: int) -> int:
     return int(start + np.flatnonzero(matrix.indices[start:end] == row)[0])
 
 
-@dataclass(frozen=True)
 class Solution:
-    """The primal solution in physical units, and how the solve went."""
+    """The primal solution in physical units and how the solve went; ``y``, the row
+    multipliers in physical units (OSQP's sign convention, see
+    :class:`~.backend.BackendResult`), is computed when first read."""
 
-    x: np.ndarray
-    status: str
-    iterations: int
-    usable: bool
+    __slots__ = ("_problem", "_y", "iterations", "status", "usable", "x")
+
+    def __init__(self, x: np.ndarray, status: str, iterations: int, usable: bool, result: BackendResult,
+                 problem: ScaledProblem):
+        self.x, self.status, self.iterations, self.usable = x, status, iterations, usable
+        self._y, self._problem = result, problem
+
+    @property
+    def y(self) -> np.ndarray:
+        if self._problem is not None:
+            self._y = self._y.y * self._problem.row_scale / self._problem.cost_scale
+            self._problem = None
+        return self._y
 
 
 class ScaledProblem:
@@ -93,6 +102,8 @@ class ScaledProblem:
         self.cost_scale = 1.0 / max(reference, 1e-300)
         self.low = np.full(a.shape[0], -math.inf)
         self.up = np.full(a.shape[0], math.inf)
+        self._low = np.empty(a.shape[0])
+        self._up = np.empty(a.shape[0])
         self.backend = backend
         backend.setup(self._p(p_diagonal), self._q(q), self._a(a.data), settings)
 
@@ -110,16 +121,20 @@ class ScaledProblem:
         self.backend.update_objective(None if p_diagonal is None else self._p(p_diagonal),
                                       None if q is None else self._q(q))
 
-    def update_matrix(self, values: np.ndarray, index: np.ndarray | None = None) -> None:
-        """New values of stored entries of A (all of them, or those at ``index``), physical units."""
-        self.backend.update_matrix(values * (self._entry_scale if index is None else self._entry_scale[index]), index)
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None = None,
+                      p_diagonal: np.ndarray | None = None) -> None:
+        """New values of stored entries of A (all of them, or those at ``index``) and, if given,
+        of P's diagonal, physical units, in one update of the backend."""
+        self.backend.update_matrix(values * (self._entry_scale if index is None else self._entry_scale[index]), index,
+                                   None if p_diagonal is None else self._p(p_diagonal))
 
     def update_settings(self, settings: SolverSettings) -> None:
         self.backend.update_settings(settings)
 
     def solve(self, low: np.ndarray, up: np.ndarray) -> Solution:
         """Solve for physical bounds; the solution comes back in physical units."""
-        result = self.backend.solve(low * self.row_scale, up * self.row_scale)
+        result = self.backend.solve(np.multiply(low, self.row_scale, out=self._low),
+                                    np.multiply(up, self.row_scale, out=self._up))
         x = result.x * self.column_scale
-        return Solution(x=x, status=result.status, iterations=result.iterations,
-                        usable=result.usable and bool(np.isfinite(x).all()))
+        usable = result.usable and math.isfinite(x.sum())
+        return Solution(x, result.status, result.iterations, usable, result, self)

@@ -33,7 +33,9 @@ class QuadprogBackend:
         if q is not None:
             self.q = q.copy()
 
-    def update_matrix(self, values: np.ndarray, index: np.ndarray | None) -> None:
+    def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
+        if p_diagonal is not None:
+            self.p = np.diag(p_diagonal + REGULARISATION)
         if index is None:
             self.a.data[:] = values
         else:
@@ -51,7 +53,14 @@ class QuadprogBackend:
         constraints = np.vstack([a[equal], a[lower], -a[upper]]).T
         bounds = np.concatenate([low[equal], low[lower], -up[upper]])
         try:
-            x, _, _, iterations, _, _ = quadprog.solve_qp(self.p, -self.q, constraints, bounds, meq=int(equal.sum()))
+            x, _, _, iterations, multipliers, _ = quadprog.solve_qp(self.p, -self.q, constraints, bounds,
+                                                                    meq=int(equal.sum()))
         except ValueError as error:
-            return BackendResult(x=np.zeros(len(self.q)), status=f"quadprog: {error}", iterations=0, usable=False)
-        return BackendResult(x=x, status="solved", iterations=int(iterations[0]), usable=True)
+            return BackendResult(np.zeros(len(self.q)), np.zeros(len(low)), f"quadprog: {error}", 0, False)
+        # quadprog: P x + q = C lambda, lambda >= 0 on inequalities; OSQP's y is minus that per row.
+        y = np.zeros(len(low))
+        counts = np.cumsum([equal.sum(), lower.sum(), upper.sum()])
+        y[equal] = -multipliers[:counts[0]]
+        y[lower] -= multipliers[counts[0]:counts[1]]
+        y[upper] += multipliers[counts[1]:]
+        return BackendResult(x, y, "solved", int(iterations[0]), True)
