@@ -114,8 +114,10 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         default=0.0, minimum=0.0),
     Key("singularity.epsilon", FLOAT, "epsilon: keeps the singularity term finite (1.44).",
         default=1e-3, minimum=0.0, exclusive_minimum=True),
-    Key("azimuth_polygon_sides", INT, "Sides N of the inscribed polygon that replaces |f| <= f_max for rotatable "
-        "thrusters in the QP; worst-case loss 1 - cos(pi/N).", default=16, minimum=4, maximum=128),
+    Key("azimuth_polygon_sides", INT, "Sides N of the polygon that stands for |f| <= f_max of a rotatable thruster in "
+        "the QP (section 5.3); it is turned every sample to the thruster's direction, where its bound is exact, so "
+        "N only shapes how forces off that direction are modelled while the thruster turns.", default=8, minimum=4,
+        maximum=128),
     Key("nonlinear.max_iterations", INT, "Linearised QPs solved per sample by the nonlinear method (1.45), "
         "at most; a pass that misses the request by more than the one before ends them.",
         default=1, minimum=1, maximum=50),

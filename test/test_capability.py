@@ -9,7 +9,7 @@ import sys
 import pytest
 from conftest import ROOT
 
-from allocator_pkg import METHODS, FaultMode, vehicle_from_parameters
+from allocator_pkg import METHODS, Allocator, FaultMode, vehicle_from_parameters
 from allocator_pkg.capability import Capability
 
 # A symmetric vessel: surge thrusters at y = -+1 m, sway thrusters at x = -+1 m, +-100 N each.
@@ -49,16 +49,23 @@ def test_symmetric_vessel_with_a_failure_and_a_yaw_moment():
     assert capability.max_force(math.pi / 2, yaw_moment=200.0) == pytest.approx(200.0, rel=1e-6)
 
 
-def test_azimuth_polygon_in_qp_and_circle_in_nonlinear():
+@pytest.mark.parametrize("method", ["qp", "nonlinear"])
+def test_an_azimuth_gives_its_whole_thrust_circle_at_rest(method):
+    """The qp method's octagon has a face along the thruster's direction at its exact limit:
+    held, a request beyond the limit settles at the full 100 N in every direction, between the
+    octagon's corners too (a fixed inscribed octagon gave 100 cos(pi/8) = 92.4 N there), and
+    the capability analysis says the same."""
     parameters = {"dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
                   "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0,
                   "azimuth_polygon_sides": 8}
     vehicle = vehicle_from_parameters(parameters)
-    side, corner = 0.0, math.pi / 8                        # middle of a side of the octagon, a corner
-    assert Capability(vehicle, "qp").max_force(side) == pytest.approx(100.0 * math.cos(math.pi / 8), rel=1e-6)
-    assert Capability(vehicle, "qp").max_force(corner) == pytest.approx(100.0, rel=1e-6)
-    assert Capability(vehicle, "nonlinear").max_force(side) == pytest.approx(100.0, rel=1e-4)
-    stuck = Capability(vehicle, "qp").max_force(math.pi / 2, faults={"a": FaultMode.STUCK})   # stuck at 0 rad
+    for direction in (0.0, math.pi / 8, 1.0, 2.5):        # middle of an octagon's side, a corner, others
+        assert Capability(vehicle, method).max_force(direction) == pytest.approx(100.0, rel=1e-4)
+        allocator = Allocator(vehicle, method=method)
+        for _ in range(50):
+            result = allocator.allocate([150.0 * math.cos(direction), 150.0 * math.sin(direction), 0, 0, 0, 0])
+        assert math.hypot(*result.achieved[:2]) == pytest.approx(100.0, rel=1e-6)
+    stuck = Capability(vehicle, method).max_force(math.pi / 2, faults={"a": FaultMode.STUCK})   # stuck at 0 rad
     assert stuck == pytest.approx(0.0, abs=1e-6)
 
 
@@ -82,7 +89,7 @@ def test_cli_writes_png_and_csv(tmp_path):
     assert rows[0][:4] == ["direction_deg", "nominal.surge", "nominal.sway", "nominal.magnitude"]
     assert len(rows) == 1 + 12
     assert "main_port failed.magnitude" in rows[0]
-    assert float(rows[1][3]) == pytest.approx(894.1, rel=1e-3)      # surge: 2 x 300 + 2 x 150 cos(pi/16)
+    assert float(rows[1][3]) == pytest.approx(900.0, rel=1e-4)      # surge: 2 x 300 + 2 x 150, whole circles
 
 
 def test_scale_of_a_request():

@@ -19,6 +19,10 @@ from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BackendFactory
 from ..vehicle import Vehicle
 
+CIRCLE_SIDES = 256
+"""The thrust circle |f| <= f_max as a polygon for the capability analysis of a method that
+keeps the circle itself at rest (within 1 - cos(pi/256) = 0.008 %)."""
+
 
 class AllocationMethod(ABC):
     """One allocation method. ``setups`` counts the solver set-ups it has made (the tests

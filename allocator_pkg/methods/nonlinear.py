@@ -15,20 +15,25 @@ every rotatable thruster, and the slack s:
   (1.44), with a curvature never below the true one. Actuators with P_i = 0 (control
   surfaces) keep the quadratic W_ii f_i^2.
 - Angle steps: w_j = Omega + the curvature the equality constraint adds along alpha_j, the
-  Hessian of the Lagrangian of (1.44), -f_j y't_j(alpha). At an unsaturated optimum the
-  multipliers satisfy y't_j = -3/2 P_j sqrt|f_j| sign(f_j), so it is 3/2 P_j |f_j|^(3/2),
-  which is used. Omega alone (1.45) would have to be tuned to each vessel's force scale;
-  without this curvature a real-time iteration overshoots and the angles chatter around the
-  optimum, leaving an O(f Delta alpha^2) wrench error.
+  Hessian of the Lagrangian of (1.44), -f_j y't_j(alpha), with y the multipliers of the
+  equality rows in the last QP. At an unsaturated optimum y't_j = -3/2 P_j sqrt|f_j| sign(f_j),
+  so it is 3/2 P_j |f_j|^(3/2), which is also the floor; at a thruster's limit its thrust
+  multiplier adds to it, often by orders of magnitude. Omega alone (1.45) would have to be
+  tuned to each vessel's force scale, and the unsaturated value alone is far too small near
+  capability: the step overshoots by a full rate step every sample and the angles alternate.
 - Slack: the default Q is derived with c_i at half range in place of W (see
   :meth:`allocator_pkg.model.Model.slack_weights`).
 - Singularity avoidance: the gradient of rho / (eps + det(T W^-1 T')) at alpha0, a linear cost.
 - Limits: this sample's thrust window and allowed angles (feasible sector, the piece free of
   forbidden sectors, rate limit) from :mod:`allocator_pkg.azimuth`.
 
-To keep one OSQP instance with a constant P, the QP is written in g_i = sqrt(c_i) Delta f_i
-and h_j = sqrt(w_j) Delta alpha_j; only ``q``, ``l``, ``u`` and the ``Ax`` values of the
-equality rows change between linearisations, and each solve is warm-started.
+The QP is written in g_i = sqrt(c_i) Delta f_i and h_j = F_j Delta alpha_j, the force across
+the thruster that turning makes (F_j its thrust, at least a floor): in those units an angle
+step moves the wrench as much as a force does, and its curvature is of the forces' order,
+so the solver sees no direction many times flatter than the others (in radians, a rate step
+of a degree or two is a variable a hundred times weaker than the forces, on which ADMM
+crawls). Between linearisations ``q``, ``l``, ``u``, the ``Ax`` values of the equality rows
+and the curvature of h (``Px``) change, on one OSQP instance, and each solve is warm-started.
 """
 
 from __future__ import annotations
@@ -41,10 +46,14 @@ from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BackendFactory
 from ..solvers.problem import Rows, ScaledProblem, entry_index
 from ..vehicle import Vehicle
-from .base import AllocationMethod
+from .base import CIRCLE_SIDES, AllocationMethod
 
 FORCE_FLOOR = 1e-2
 """|f0| is taken as at least this fraction of the force range in c_i, infinite at zero force."""
+
+TRUST_STEP = 0.25 * math.pi
+"""[rad] The largest angle change of one linearisation when no rate limit bounds it: (1.45)
+is a model of T(alpha) near alpha_0 only."""
 
 
 def _reference_curvature(model: Model) -> np.ndarray:
@@ -57,11 +66,6 @@ def _turning_curvature(power: np.ndarray, force: np.ndarray) -> np.ndarray:
     """Curvature of the Lagrangian of (1.44) along a thruster's angle, -f y't(alpha): at an
     unsaturated optimum y't = -d(P|f|^(3/2))/df, so it equals 3/2 P |f|^(3/2)."""
     return 1.5 * power * force ** 1.5
-
-
-CIRCLE_SIDES = 256
-"""The thrust circle |f| <= f_max this method keeps exactly, as a polygon for the capability
-analysis (within 1 - cos(pi/256) = 0.008 %)."""
 
 
 class NonlinearAllocation(AllocationMethod):
@@ -85,12 +89,19 @@ class NonlinearAllocation(AllocationMethod):
 
     def _use(self, model: Model) -> None:
         self.model = model
+        self._multipliers = np.zeros(model.n)
+        self._trust = np.minimum(model.angle_step[model.rot], TRUST_STEP)
+        self._p_diagonal = self._p(model)
         self._floor = FORCE_FLOOR * np.maximum(model.force_scale, 1e-6)
         self._dof_scale = model.dof_scale
 
     @staticmethod
     def _p(model: Model) -> np.ndarray:
-        return np.concatenate((np.full(model.r + model.rot.size, 2.0),
+        """P's diagonal at a reference point (half of each force range); the angles' part
+        changes with every linearisation."""
+        lever = 0.5 * model.force_scale[model.rot]
+        turning = model.vehicle.weights.azimuth_change + _turning_curvature(model.power[model.rot], lever)
+        return np.concatenate((np.full(model.r, 2.0), 2.0 * turning / (lever * lever),
                                2.0 * model.slack_weights(_reference_curvature(model))))
 
     def _setup(self, model: Model) -> None:
@@ -111,11 +122,7 @@ class NonlinearAllocation(AllocationMethod):
         self._equality = np.array(equality, int)
         force = model.force_scale
         c = _reference_curvature(model)
-        rot_force = force[model.rot]
-        omega = model.vehicle.weights.azimuth_change + _turning_curvature(model.power[model.rot], 0.5 * rot_force)
-        column_scale = np.concatenate((np.sqrt(c) * force,
-                                       np.sqrt(omega) * np.minimum(model.angle_step[model.rot], math.pi),
-                                       np.maximum(model.authority, 1e-9)))
+        column_scale = np.concatenate((np.sqrt(c) * force, force[model.rot], np.maximum(model.authority, 1e-9)))
         self._q = np.zeros(r + p + n)
         self._qp = ScaledProblem(self._p(model), self._q, a, column_scale, model.vehicle.solver, effort=np.arange(r),
                                  backend=self.backend())
@@ -131,6 +138,7 @@ class NonlinearAllocation(AllocationMethod):
         angle_low = np.array([lim.low for lim in limits.azimuth])
         angle_high = np.array([lim.high for lim in limits.azimuth])
         angle[rot] = np.clip(angle[rot], angle_low, angle_high)
+        trust = self._trust
         omega = model.vehicle.weights.azimuth_change
         iterations = 0
         status = ""
@@ -141,27 +149,31 @@ class NonlinearAllocation(AllocationMethod):
             c = np.where(model.power > 0.0,
                          0.75 * model.power / np.sqrt(np.maximum(np.abs(force), self._floor)), model.weight)
             root = np.sqrt(c)
-            curvature = _turning_curvature(model.power[rot], np.maximum(np.abs(force[rot]), self._floor[rot]))
-            turn = np.sqrt(np.maximum(omega + curvature, 1e-12))
-            qp.update_matrix(np.concatenate(((t / root).ravel(), (dt[:, rot] * force[rot] / turn).ravel())),
-                             self._ax_index)
+            curvature = np.maximum(
+                _turning_curvature(model.power[rot], np.maximum(np.abs(force[rot]), self._floor[rot])),
+                -force[rot] * (self._multipliers @ t[:, rot]))
+            lever = np.maximum(np.abs(force[rot]), self._floor[rot])
+            self._p_diagonal[r:r + p] = 2.0 * (omega + curvature) / (lever * lever)
+            qp.update_matrix(np.concatenate(((t / root).ravel(), (dt[:, rot] * force[rot] / lever).ravel())),
+                             self._ax_index, self._p_diagonal)
             qp.low[self._equality] = qp.up[self._equality] = tau - t @ force
             qp.low[n:n + r] = root * (limits.low - force)
             qp.up[n:n + r] = root * (limits.high - force)
-            qp.low[n + r:] = turn * (angle_low - angle[rot])
-            qp.up[n + r:] = turn * (angle_high - angle[rot])
+            qp.low[n + r:] = np.maximum(angle_low - angle[rot], -trust) * lever
+            qp.up[n + r:] = np.minimum(angle_high - angle[rot], trust) * lever
             self._q[:r] = 2.0 * root * force
             if p and model.vehicle.singularity_rho > 0.0:
-                self._q[r:r + p] = self._singularity_gradient(t, dt, limits) / turn
+                self._q[r:r + p] = self._singularity_gradient(t, dt, limits) / lever
             qp.update_objective(q=self._q)
             solution = qp.solve(qp.low, qp.up)
             iterations += solution.iterations
             status = solution.status
             if not solution.usable:
                 return MethodOutput(force=np.zeros(model.m), status=status, iterations=iterations, solved=False)
+            self._multipliers = solution.y[self._equality]
             new_force = np.clip(force + solution.x[:r] / root, limits.low, limits.high)
             new_angle = angle.copy()
-            new_angle[rot] = np.clip(angle[rot] + solution.x[r:r + p] / turn, angle_low, angle_high)
+            new_angle[rot] = np.clip(angle[rot] + solution.x[r:r + p] / lever, angle_low, angle_high)
             if passes > 1:
                 # Another pass linearises around the new point; from a poor one (thrusters at
                 # rest: dT/dalpha f = 0) it can overshoot, so a pass that misses tau by more

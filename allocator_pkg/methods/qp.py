@@ -7,20 +7,31 @@ one slack per controlled DOF, and the largest force fbar:
     subject to T_e f_e - s = tau                          (equality of (1.35))
                low_i <= f_i <= high_i                     (thrust box, tightened by rate limits)
                -fbar <= f_i <= fbar                       (minimax, scalar actuators)
-               n_k . f_j <= R_j cos(pi/N),  k = 1..N      (|f_j| <= R_j, inscribed N-gon, rotatable j)
-               n_k . f_j <= fbar cos(pi/N)                (minimax, rotatable j)
-               f_j inside the cone of this sample's angles (two half-planes and the mid-ray row)
+               n_k . (u_j, v_j) <= B_j,  k = 1..N         (|f_j| <= B_j, the N-gon of 5.3, rotatable j)
+               n_k . (u_j, v_j) <= fbar                   (minimax, rotatable j)
+               u_j >= u_min,  v_j within this sample's angles (rate limit and sector edges)
 
-The polygon is inscribed in the circle |f| = R, so |f| <= R always holds and the worst-case
-loss of magnitude is 1 - cos(pi/N) (7.6 % for the survey's octagon, 1.9 % for N = 16).
+A rotatable thruster's two extended components are written in its own frame this sample:
+(u, v) = R(-d) f_j, with d the direction it pushes in now (its angle, or the opposite one
+when it pushes backwards), u along d and v across it. Its polygon has a face normal along d
+at distance B, the most it may push this sample (thrust limit with faults, thrust rate), so
+that along d the bound is exact: at rest, the thruster gives its full thrust, not the
+1 - cos(pi/N) less of a polygon fixed in the body frame, and off d the polygon overestimates
+by at most 1/cos(pi/N) (the final thrust is clipped to the exact limits). The angles
+reachable this sample are simple bounds on v (|v| <= B sin(step) for a rate step below
+90 degrees) and, where a forbidden sector, the feasible sector or the half-plane a wide window
+is cut to lies nearer than the rate step, a half-plane through the origin at that edge. Each
+sample changes only values: the entries of T_e R(d) in the equality rows and the edge rows
+(``Ax``), and the bounds (``l``, ``u``). P never changes. Why this form, and not a cone of
+two half-planes in the body frame, is in docs/theory.md (azimuths near capability).
 
 The matrices are built once per configuration with every entry that can ever be non-zero
 stored explicitly (T_e dense, both components of every half-plane), so that each sample
-only calls ``update(l=, u=)`` and, when rotatable thrusters turn, ``update(Ax=, Ax_idx=)``;
-OSQP keeps its previous primal and dual iterates and starts the next sample from them
-(warm start). A configuration change of values only (positions, directions, weights,
-limits) updates ``Ax``/``Px``/``q`` on the same pattern; only a change of the pattern itself
-(number or type of actuators, DOFs, polygon sides, saturation mode) sets the problem up again.
+only updates values on the same pattern; OSQP keeps its previous primal and dual iterates
+and starts the next sample from them (warm start). A configuration change of values only
+(positions, directions, weights, limits) updates ``Ax``/``Px``/``q`` on the same pattern;
+only a change of the pattern itself (number or type of actuators, DOFs, polygon sides,
+saturation mode) sets the problem up again.
 
 The problem is normalised once per configuration (:class:`~allocator_pkg.solvers.problem.ScaledProblem`):
 forces by their actuator's range, slacks by their DOF's authority, rows by their largest
@@ -37,7 +48,7 @@ solved only when the first problem reports the request unattainable.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -46,38 +57,49 @@ from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BackendFactory
 from ..solvers.problem import Rows, ScaledProblem, entry_index
 from ..vehicle import Vehicle
-from .base import AllocationMethod
+from .base import CIRCLE_SIDES, AllocationMethod
 
 INFINITY = math.inf
-HALF_PLANE = math.pi - 1e-9
-"""A cone this wide is the half-plane of its mid row alone; its edge rows are switched off."""
 PINNED = 1e-12
-"""[rad] A cone narrower than this is a single direction."""
-NARROWEST = 1e-3
-"""Smallest wedge factor e: a cone of zero width (a stuck thruster) keeps v bounded and costed."""
+"""[rad] A window of angles narrower than this is a single direction."""
+SLAB_STEP = 0.5 * math.pi
+"""Rate steps below this bound v by a slab |v| <= B sin(step); wider windows by their edges."""
+CURVATURE_CHANGE = 1e-3
+"""The thrust-limit curvature is sent to the solver again only when it changes by more than
+this fraction (a new P means a new factorisation)."""
+AT_LIMIT = 1e-3
+"""A thruster pushing within this fraction of its polygon's bound along its direction is at
+its limit: only then are the limit's multipliers read."""
 SATURATION_SLACK = 1e-6
 """Slack, as a fraction of its DOF's authority, above which a request counts as unattainable."""
 
 
 @dataclass
 class _Problem:
-    """One OSQP problem and the rows a sample writes."""
+    """One solver problem and the rows a sample writes (indices into its rows, and into the
+    stored entries of A for the values that follow the thrusters' directions)."""
 
     qp: ScaledProblem
     equality: np.ndarray
     box: np.ndarray
     polygon: np.ndarray
-    cone_a: np.ndarray
-    cone_b: np.ndarray
-    mid: np.ndarray
-    pair_index: list[np.ndarray]
-    pair_base: list[np.ndarray]
-    pair_rows: list[np.ndarray]
-    p_diagonal: np.ndarray
+    polygon_minimax: np.ndarray
+    along: np.ndarray
+    across: np.ndarray
+    edge_low: np.ndarray
+    edge_high: np.ndarray
+    rotated_index: np.ndarray
+    edge_index: np.ndarray
     scale_index: np.ndarray
-    transform: np.ndarray
-    pair_values: np.ndarray | None = None
-    narrowing: np.ndarray | None = None
+    p_diagonal: np.ndarray
+    rows: list[tuple]
+    directions: list[float] = field(default_factory=list)
+    cos: list[float] = field(default_factory=list)
+    sin: list[float] = field(default_factory=list)
+    edges: list[float] = field(default_factory=list)
+    multiplier: list[float] = field(default_factory=list)
+    curvature: list[float] = field(default_factory=list)
+    version: int = -1
 
 
 class QPAllocation(AllocationMethod):
@@ -87,12 +109,24 @@ class QPAllocation(AllocationMethod):
 
     def __init__(self, model: Model, backend: BackendFactory):
         super().__init__(model, backend)
+        self._use(model)
         self._main = self._setup(model, scale=False)
         self._scale = self._setup(model, scale=True) if model.vehicle.saturation == "preserve_direction" else None
 
     @classmethod
     def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
-        return vehicle.azimuth_polygon_sides
+        """The circle: at rest a thruster pushes along its polygon's face normal, where the
+        bound is its exact thrust limit."""
+        return CIRCLE_SIDES
+
+    def _use(self, model: Model) -> None:
+        """Per-configuration constants of the per-sample path, as the types it reads fastest."""
+        self._rot = model.rot.tolist()
+        self._angle_step = model.angle_step[model.rot].tolist()
+        self._rot_columns = [(int(c1), int(c2)) for c1, c2 in model.rot_columns]
+        self._u_columns = model.rot_columns[:, 0].copy()
+        self._first = model.t_ec[:, model.rot_columns[:, 0]]
+        self._second = model.t_ec[:, model.rot_columns[:, 1]]
 
     def update_model(self, model: Model) -> None:
         """Take a configuration with the same structure: values only, no new set-up."""
@@ -106,10 +140,11 @@ class QPAllocation(AllocationMethod):
             problem.qp.update_matrix(a.data)
             problem.qp.update_objective(p, q)
             problem.qp.update_settings(model.vehicle.solver)
-            problem.pair_base = [np.column_stack((a[rows, c1].toarray().ravel(), a[rows, c2].toarray().ravel()))
-                                 for rows, (c1, c2) in zip(problem.pair_rows, model.rot_columns)]
             problem.p_diagonal = p
-            problem.pair_values = problem.narrowing = None
+            problem.directions, problem.edges = [], []
+            problem.multiplier, problem.curvature = [0.0] * len(model.rot), [0.0] * len(model.rot)
+            problem.version = -1
+        self._use(model)
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         output, x = self._solve(self._main, tau, limits)
@@ -167,22 +202,23 @@ class QPAllocation(AllocationMethod):
                 minimax.append(rows.add([(int(c), 1.0), (top, -1.0)]))
                 minimax.append(rows.add([(int(c), 1.0), (top, 1.0)]))
         normals = [(math.cos(2.0 * math.pi * k / sides), math.sin(2.0 * math.pi * k / sides)) for k in range(sides)]
-        polygon, polygon_minimax, cone_a, cone_b, mid = [], [], [], [], []
+        polygon, polygon_minimax, along, across, edge_low, edge_high = [], [], [], [], [], []
         for c1, c2 in model.rot_columns:
             c1, c2 = int(c1), int(c2)
             polygon.append([rows.add([(c1, x), (c2, y)]) for x, y in normals])
             if not scale:
-                polygon_minimax.append([
-                    rows.add([(c1, x), (c2, y), (top, -math.cos(math.pi / sides))]) for x, y in normals
-                ])
-            cone_a.append(rows.add([(c1, 0.0), (c2, 1.0)]))
-            cone_b.append(rows.add([(c1, 0.0), (c2, 1.0)]))
-            mid.append(rows.add([(c1, 1.0), (c2, 0.0)]))
+                polygon_minimax.append([rows.add([(c1, x), (c2, y), (top, -1.0)]) for x, y in normals])
+            along.append(rows.add([(c1, 1.0)]))
+            across.append(rows.add([(c2, 1.0)]))
+            edge_low.append(rows.add([(c1, 0.0), (c2, 1.0)]))
+            edge_high.append(rows.add([(c1, 0.0), (c2, 1.0)]))
         last = rows.add([(extra, 1.0)] if scale else [(top, 1.0)])
         index = dict(equality=np.array(equality, int), box=np.array(box, int), minimax=np.array(minimax, int),
                      polygon=np.array(polygon, int).reshape(len(model.rot), sides),
-                     polygon_minimax=np.array(polygon_minimax, int), cone_a=np.array(cone_a, int),
-                     cone_b=np.array(cone_b, int), mid=np.array(mid, int), last=last)
+                     polygon_minimax=np.array(polygon_minimax, int).reshape(len(model.rot), 0 if scale else sides),
+                     along=np.array(along, int),
+                     across=np.array(across, int), edge_low=np.array(edge_low, int),
+                     edge_high=np.array(edge_high, int), last=last)
         return rows.matrix(columns), index
 
     @staticmethod
@@ -207,18 +243,23 @@ class QPAllocation(AllocationMethod):
                            effort=np.arange(0 if not scale else model.m, model.m if not scale else model.m + 1),
                            backend=self.backend())
         self._constant_bounds(qp, model, index, scale)
-        pair_rows = [np.sort(a.indices[a.indptr[int(c1)]:a.indptr[int(c1) + 1]]) for c1, _ in model.rot_columns]
-        pair_index = [np.array([entry_index(a, int(row), int(col)) for col in cols for row in rows], dtype=np.int64)
-                      for rows, cols in zip(pair_rows, model.rot_columns)]
-        pair_base = [np.column_stack((a[rows, c1].toarray().ravel(), a[rows, c2].toarray().ravel()))
-                     for rows, (c1, c2) in zip(pair_rows, model.rot_columns)]
-        scale_index = np.array([entry_index(a, row, extra) for row in index["equality"]] if scale else [],
-                               dtype=np.int64)
+        rows = index["equality"]
+        rotated_index = np.array([[[entry_index(a, int(row), int(col)) for col in pair] for row in rows]
+                                  for pair in model.rot_columns], dtype=np.int64).reshape(len(model.rot), 2 * len(rows))
+        edge_index = np.array([[entry_index(a, int(row), int(col)) for row in (low, high) for col in pair]
+                               for pair, low, high in zip(model.rot_columns, index["edge_low"], index["edge_high"])],
+                              dtype=np.int64).reshape(len(model.rot), 4)
+        scale_index = np.array([entry_index(a, row, extra) for row in rows] if scale else [], dtype=np.int64)
         self.setups += 1
-        return _Problem(qp=qp, equality=index["equality"], box=index["box"], polygon=index["polygon"],
-                        cone_a=index["cone_a"], cone_b=index["cone_b"], mid=index["mid"], pair_index=pair_index,
-                        pair_base=pair_base, pair_rows=pair_rows, p_diagonal=p, scale_index=scale_index,
-                        transform=np.tile(np.eye(2), (len(model.rot), 1, 1)))
+        rotatable = len(model.rot)
+        per_thruster = [(index["polygon"][k], int(index["along"][k]), int(index["across"][k]),
+                         int(index["edge_low"][k]), int(index["edge_high"][k])) for k in range(rotatable)]
+        return _Problem(qp=qp, equality=rows, box=index["box"], polygon=index["polygon"],
+                        polygon_minimax=index["polygon_minimax"], along=index["along"],
+                        across=index["across"], edge_low=index["edge_low"], edge_high=index["edge_high"],
+                        rotated_index=rotated_index.reshape(-1), edge_index=edge_index.reshape(-1),
+                        scale_index=scale_index, p_diagonal=p, rows=per_thruster,
+                        multiplier=[0.0] * rotatable, curvature=[0.0] * rotatable)
 
     # -- per sample ---------------------------------------------------------------------
 
@@ -229,101 +270,114 @@ class QPAllocation(AllocationMethod):
             qp.update_matrix(-tau, problem.scale_index)
         else:
             qp.low[problem.equality] = qp.up[problem.equality] = tau
-        qp.low[problem.box] = limits.low[model.scalar]
-        qp.up[problem.box] = limits.high[model.scalar]
+        if limits.version < 0 or limits.version != problem.version:
+            qp.low[problem.box] = limits.low[model.scalar]
+            qp.up[problem.box] = limits.high[model.scalar]
+            problem.version = limits.version
         if model.rot.size:
             self._azimuth_rows(problem, limits)
         solution = qp.solve(qp.low, qp.up)
-        force = solution.x[:model.m].copy()
-        for transform, (c1, c2) in zip(problem.transform, model.rot_columns):
-            force[[c1, c2]] = transform @ solution.x[[c1, c2]]
-        output = MethodOutput(force=force if solution.usable else np.zeros(model.m),
-                              status=solution.status, iterations=solution.iterations, solved=solution.usable)
-        return output, solution.x
+        x = solution.x
+        force = x[:model.m].copy()
+        if model.rot.size:
+            at_limit = False
+            for (c1, c2), cos, sin in zip(self._rot_columns, problem.cos, problem.sin):
+                u, v = float(x[c1]), float(x[c2])
+                force[c1], force[c2] = cos * u - sin * v, sin * u + cos * v
+            if solution.usable:
+                at_limit = any(u >= bound * (1.0 - AT_LIMIT) > 0.0 for u, bound in
+                               zip(x[self._u_columns].tolist(), qp.up[problem.polygon[:, 0]].tolist()))
+                problem.multiplier = (np.maximum(solution.y[problem.polygon], 0.0).sum(axis=1)
+                                      + np.maximum(solution.y[problem.polygon_minimax], 0.0).sum(axis=1)).tolist() \
+                    if at_limit else [0.0] * len(self._rot)
+        output = MethodOutput(force if solution.usable else np.zeros(model.m), solution.status,
+                              solution.iterations, 0.0, solution.usable)
+        return output, x
 
     def _azimuth_rows(self, problem: _Problem, limits: SampleLimits) -> None:
-        """Bounds of the rotatable thrusters' rows, and their wedge coordinates.
-
-        Each rotatable thruster's force is written f = R(c) diag(1, e) (u, v), with c the
-        middle of this sample's cone of directions and e = tan(half width) (at most 1): the
-        cone, often a sliver a few degrees wide because of the rate limit, becomes the right
-        angle |v| <= u, which OSQP converges on quickly (a thin wedge costs it thousands of
-        iterations). Only values change: the rows' two entries (Ax) and the curvature W e^2 of
-        v (Px, when the cone's width changes).
-        """
-        model = self.model
-        sides = model.vehicle.azimuth_polygon_sides
-        inscribed = math.cos(math.pi / sides)
-        values = []
-        narrowing = np.empty(len(limits.azimuth))
+        """Each rotatable thruster in its own frame (u along the direction d it pushes in, v
+        across it): the equality entries T_e R(d), the polygon's bound, and the bounds and
+        edges of this sample's angles. Only values change, and values are sent to the solver
+        only when they differ from the last sample's (at rest, none do)."""
+        qp = problem.qp
+        low, up = qp.low, qp.up
+        angles = limits.angle
+        directions, edges, bounds = [], [], []
         for k, lim in enumerate(limits.azimuth):
-            pinned = lim.line or lim.high - lim.low < PINNED or lim.magnitude_max == 0.0
-            if pinned:
-                a = b = lim.low if lim.high - lim.low < PINNED else float(limits.angle[model.rot[k]])
-            else:
-                flip = math.pi if lim.sigma < 0 else 0.0
-                a, b = lim.low + flip, lim.high + flip
-            half_width = 0.5 * (b - a)
-            centre = a + half_width
-            narrowing[k] = max(math.tan(half_width), NARROWEST) if half_width < 0.25 * math.pi else 1.0
-            cos, sin = math.cos(centre), math.sin(centre)
-            transform = np.array([[cos, -narrowing[k] * sin], [sin, narrowing[k] * cos]])
-            problem.transform[k] = transform
-            base = problem.pair_base[k]
-            rows = problem.pair_rows[k]
-            mechanical = a if pinned else 0.5 * (lim.low + lim.high)
-            base[rows == problem.cone_a[k]] = (-math.sin(a), math.cos(a))
-            base[rows == problem.cone_b[k]] = (-math.sin(b), math.cos(b))
-            base[rows == problem.mid[k]] = (math.cos(mechanical), math.sin(mechanical))
-            local = base @ transform
-            edges = (rows == problem.cone_a[k]) | (rows == problem.cone_b[k])
-            local[edges] /= np.linalg.norm(local[edges], axis=1, keepdims=True)   # rows with zero bounds
-            values.append(local.T.ravel())
-            self._azimuth_bounds(problem, k, lim, pinned, inscribed)
-        values = np.concatenate(values)
-        if problem.pair_values is None or not np.array_equal(values, problem.pair_values):
-            problem.qp.update_matrix(values, np.concatenate(problem.pair_index))
-            problem.pair_values = values
-        if problem.narrowing is None or not np.array_equal(narrowing, problem.narrowing):
-            p = problem.p_diagonal.copy()
-            p[model.rot_columns[:, 1]] *= narrowing ** 2
-            problem.qp.update_objective(p)
-            problem.narrowing = narrowing
+            i, step = self._rot[k], self._angle_step[k]
+            polygon, along, across, edge_low, edge_high = problem.rows[k]
+            alpha0 = float(angles[i])
+            low[edge_low] = low[edge_high] = -INFINITY
+            up[edge_low] = up[edge_high] = INFINITY
+            if lim.line or lim.high - lim.low < PINNED or lim.magnitude_max == 0.0:
+                # One direction: the force is F along it, F in [thrust_low, thrust_high].
+                directions.append(lim.low if math.isfinite(lim.low) else alpha0)
+                up[polygon] = INFINITY
+                low[along], up[along] = lim.thrust_low, lim.thrust_high
+                low[across] = up[across] = 0.0
+                edges += (0.0, 1.0, 0.0, 1.0)
+                bounds.append(0.0)
+                continue
+            directions.append(alpha0 + math.pi if lim.sigma < 0 else alpha0)
+            smallest, largest = (lim.thrust_low, lim.thrust_high) if lim.sigma > 0 else \
+                (-lim.thrust_high, -lim.thrust_low)
+            bound = max(min(lim.physical_max, largest), smallest)
+            bounds.append(bound)
+            up[polygon] = bound
+            narrow = step < SLAB_STEP
+            low[along], up[along] = (max(smallest, 0.0) if narrow or smallest > 0.0 else -INFINITY), INFINITY
+            slab = bound * math.sin(step) if narrow else INFINITY
+            offset_low, offset_high = lim.low - alpha0, lim.high - alpha0
+            edge = [0.0, 1.0, 0.0, 1.0]
+            up[across] = INFINITY
+            if offset_high >= step - PINNED and narrow:
+                up[across] = slab
+            elif math.isfinite(offset_high):
+                edge[2:] = (-math.sin(offset_high), math.cos(offset_high))
+                up[edge_high] = 0.0
+            low[across] = -INFINITY
+            if offset_low <= -step + PINNED and narrow:
+                low[across] = -slab
+            elif math.isfinite(offset_low):
+                edge[:2] = (-math.sin(offset_low), math.cos(offset_low))
+                low[edge_low] = 0.0
+            edges += edge
+        p_diagonal = self._circle_curvature(problem, bounds)
+        values, index = [], []
+        if directions != problem.directions:
+            problem.directions = directions
+            problem.cos = [math.cos(d) for d in directions]
+            problem.sin = [math.sin(d) for d in directions]
+            cos, sin = np.array(problem.cos), np.array(problem.sin)
+            rotated = np.stack((cos * self._first + sin * self._second, cos * self._second - sin * self._first),
+                               axis=-1)                                                 # n x p x 2
+            values.append(rotated.transpose(1, 0, 2).reshape(-1))
+            index.append(problem.rotated_index)
+        if edges != problem.edges:
+            problem.edges = edges
+            values.append(np.array(edges))
+            index.append(problem.edge_index)
+        if values:
+            qp.update_matrix(np.concatenate(values), np.concatenate(index), p_diagonal)
+        elif p_diagonal is not None:
+            qp.update_objective(p_diagonal)
 
+    def _circle_curvature(self, problem: _Problem, bounds: list[float]) -> np.ndarray | None:
+        """The curvature of |f| <= B across the pushing direction, weighted by the thrust
+        limit's multiplier of the last sample: 1/2 (lambda / B) v^2 added to the cost.
 
-    @staticmethod
-    def _azimuth_bounds(problem: _Problem, k: int, lim, pinned: bool, inscribed: float) -> None:
-        """Row bounds of one rotatable thruster; no row that another already implies is left
-        active (such degenerate corners slow OSQP down by orders of magnitude)."""
-        low, up = problem.qp.low, problem.qp.up
-        polygon, cone_a, cone_b, mid = problem.polygon[k], problem.cone_a[k], problem.cone_b[k], problem.mid[k]
-        if pinned:
-            # One direction: the force is F along it with F in [thrust_low, thrust_high].
-            low[cone_a], up[cone_a] = 0.0, 0.0
-            low[cone_b], up[cone_b] = -INFINITY, INFINITY
-            low[mid], up[mid] = lim.thrust_low, lim.thrust_high
-            up[polygon] = INFINITY
-            return
-        half_plane = lim.high - lim.low >= HALF_PLANE
-        low[cone_a], up[cone_a] = (-INFINITY if half_plane else 0.0), INFINITY
-        low[cone_b], up[cone_b] = -INFINITY, (INFINITY if half_plane else 0.0)
-        up[polygon] = _polygon_bound(lim, inscribed)
-        if lim.sigma > 0:
-            low[mid], up[mid] = (lim.thrust_low if lim.thrust_low > 0.0 or half_plane else -INFINITY), INFINITY
-        else:
-            low[mid], up[mid] = -INFINITY, (lim.thrust_high if lim.thrust_high < 0.0 or half_plane else INFINITY)
-
-
-def _polygon_bound(lim, inscribed: float) -> float:
-    """Right-hand side of the N-gon rows, n_k . f <= bound.
-
-    The actuator's own limit is inscribed (bound = f_max cos(pi/N): |f| <= f_max holds
-    exactly, at a worst-case loss of 1 - cos(pi/N)). A rate limit below it is circumscribed
-    (bound = F0 + rate dt): inscribing it would lose 1 - cos(pi/N) every sample and cap a
-    rate-limited thrust at about rate dt / (1 - cos(pi/N)). The final thrust is clipped to
-    the exact rate limit anyway. The bound never cuts off the smallest thrust the sample
-    demands (a rate limit from below, a ramp, a stuck thruster)."""
-    if lim.line:
-        return max(abs(lim.thrust_low), abs(lim.thrust_high))
-    smallest, largest = (lim.thrust_low, lim.thrust_high) if lim.sigma > 0 else (-lim.thrust_high, -lim.thrust_low)
-    return max(min(lim.physical_max * inscribed, largest), smallest)
+        The polygon's faces are flat; the circle they stand for curves by 1/B. At a thruster's
+        limit (lambda > 0) a flat face overestimates the force off its normal by B (1/cos - 1),
+        a second-order gain the QP takes by turning a full rate step, then turning back: a
+        two-sample cycle. With the circle's curvature in the Lagrangian, the QP is the
+        second-order model of the thrust circle (a sequential QP step), and the angle settles
+        where the circle's optimum is. A thruster below its limit has lambda = 0: nothing changes.
+        Returns the new diagonal of P, or None when it stays.
+        """
+        curvature = [m / b if b > 0.0 else 0.0 for m, b in zip(problem.multiplier, bounds)]
+        if all(abs(c - old) <= CURVATURE_CHANGE * max(c, old) for c, old in zip(curvature, problem.curvature)):
+            return None
+        problem.curvature = curvature
+        p = problem.p_diagonal.copy()
+        p[self.model.rot_columns[:, 1]] += curvature
+        return p
