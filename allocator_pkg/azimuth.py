@@ -29,11 +29,11 @@ from dataclasses import dataclass
 
 from .angles import ANGLE_TOLERANCE, wrap
 from .sectors import (
-    allowed_piece,
+    Surroundings,
     crosses,
     forbidden_offsets,
     in_forbidden_sector,
-    offset_domain,
+    surroundings,
     target_offsets,
 )
 from .vehicle import RotationConfig
@@ -48,7 +48,7 @@ HOLD_FRACTION = 1e-4
 """Below this fraction of thrust_max a force is too small to define an angle; the angle holds."""
 
 
-@dataclass
+@dataclass(slots=True)
 class AzimuthState:
     """What a rotatable thruster is doing: its angle, signed thrust and any crossing under way."""
 
@@ -59,12 +59,13 @@ class AzimuthState:
     turn_sigma: int = 1
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)
 class AzimuthLimits:
-    """Allowed this sample: angles in [low, high] (absolute, high - low <= pi, containing the
-    current angle unless a crossing moves it), thrust F in [thrust_low, thrust_high] along the
-    angle, on the side sigma (+1 forward, -1 reverse). ``line`` means the angle is fixed (STUCK)
-    and F may take either sign within its bounds. ``goal`` is the angle the wanted force
+    """Allowed this sample: angles in [low, high] (absolute; either the whole circle, -inf to
+    inf, or at most pi wide, containing the current angle unless a crossing moves it), thrust
+    F in [thrust_low, thrust_high] along the angle, on the side sigma (+1 forward, -1
+    reverse). ``line`` means the angle is fixed (STUCK) and F may take either sign within its
+    bounds. ``goal`` is the angle the wanted force
     points to (on this side): an idle thruster turns toward it. ``physical_max`` is the largest
     thrust magnitude on this side with faults applied, before any rate limit."""
 
@@ -100,13 +101,15 @@ def plan(
     desired: tuple[float, float],
     hold: float,
     stuck: float | None = None,
+    around: Surroundings | None = None,
 ) -> AzimuthLimits:
     """Limits of one rotatable thruster for this sample; updates ``state``'s crossing fields.
 
     ``thrust_range`` is the fault-adjusted signed thrust range, ``angle_step`` and
     ``thrust_step`` the largest changes in one sample (inf when unlimited), ``desired`` the
     extended force the unconstrained solution wants and ``hold`` the force below which the
-    angle is undefined.
+    angle is undefined; ``around`` is :func:`~allocator_pkg.sectors.surroundings` of the
+    current angle, when the caller has it already.
     """
     alpha0, thrust0 = state.angle, state.thrust
     window_low, window_high = thrust_window(thrust0, thrust_step, *thrust_range)
@@ -122,9 +125,7 @@ def plan(
 
     moving = abs(thrust0) > min(hold, thrust_step)        # cannot reach zero thrust this sample
     current_sigma = (1 if thrust0 > 0.0 else -1) if moving else state.sigma
-    forbidden = forbidden_offsets(rotation, alpha0)
-    domain = offset_domain(rotation, alpha0)
-    piece = allowed_piece(domain, forbidden)
+    domain, forbidden, piece = around or surroundings(rotation, alpha0)
     wanted = math.hypot(desired[0], desired[1]) > hold
     best = _best_path(rotation, alpha0, desired, forbidden, current_sigma, moving, thrust_range) if wanted else None
 
@@ -149,6 +150,16 @@ def plan(
             current_sigma = sigma
         state.sigma = current_sigma
 
+    if current_sigma > 0:
+        thrust_low, thrust_high = max(window_low, 0.0), max(window_high, 0.0)
+    else:
+        thrust_low, thrust_high = min(window_low, 0.0), min(window_high, 0.0)
+    goal = alpha0 + best[1] if best is not None and best[0] == current_sigma else None
+    physical = thrust_range[1] if current_sigma > 0 else -thrust_range[0]
+    if angle_step >= math.pi and rotation.continuous and not forbidden:
+        # Free to point anywhere this sample: the whole circle, no window at all.
+        return AzimuthLimits(-math.inf, math.inf, current_sigma, thrust_low, thrust_high, goal=goal,
+                             physical_max=physical)
     low, high = piece
     step = min(angle_step, math.pi)
     low, high = max(low, -step), min(high, step)
@@ -160,12 +171,6 @@ def plan(
     if high - low > math.pi:
         centre = max(-0.5 * math.pi, min(0.5 * math.pi, best[1] if best is not None else 0.0))
         low, high = max(low, centre - 0.5 * math.pi), min(high, centre + 0.5 * math.pi)
-    if current_sigma > 0:
-        thrust_low, thrust_high = max(window_low, 0.0), max(window_high, 0.0)
-    else:
-        thrust_low, thrust_high = min(window_low, 0.0), min(window_high, 0.0)
-    goal = alpha0 + best[1] if best is not None and best[0] == current_sigma else None
-    physical = thrust_range[1] if current_sigma > 0 else -thrust_range[0]
     return AzimuthLimits(alpha0 + low, alpha0 + high, current_sigma, thrust_low, thrust_high, goal=goal,
                          physical_max=physical)
 
@@ -262,3 +267,24 @@ def resolve(limits: AzimuthLimits, alpha0: float, force: tuple[float, float], ho
     thrust = f1 * math.cos(angle) + f2 * math.sin(angle)
     thrust = min(max(thrust, limits.thrust_low), limits.thrust_high)
     return thrust, angle
+
+
+def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float, desired: tuple[float, float],
+                      hold: float, around: Surroundings | None = None) -> bool:
+    """Whether a thruster's side of its forbidden sectors is in question this sample: an edge
+    of the allowed piece it is in (a forbidden sector, or the feasible sector's end) lies within
+    a rate step, or the direction the unconstrained solution wants lies beyond one. Only then
+    can the optimum the method converges to locally fail to be the global one
+    (:mod:`allocator_pkg.pieces`)."""
+    _, _, piece = around or surroundings(rotation, alpha0)
+    if piece is None:
+        return False                                        # inside a sector: a crossing is under way
+    reach = min(angle_step, math.pi) + CROSSING_MARGIN
+    if -piece[0] <= reach or piece[1] <= reach:
+        return True
+    if math.hypot(desired[0], desired[1]) <= hold:
+        return False
+    direction = math.atan2(desired[1], desired[0])
+    sides = (direction, direction + math.pi) if rotation.reversible else (direction,)
+    return not any(piece[0] <= offset <= piece[1]
+                   for side in sides for offset in target_offsets(rotation, alpha0, side))

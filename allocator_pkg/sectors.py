@@ -58,6 +58,21 @@ def forbidden_offsets(rotation: RotationConfig, alpha0: float) -> list[Interval]
     return intervals
 
 
+Surroundings = tuple[Interval, list[Interval], "Interval | None"]
+"""(offset domain, forbidden offset intervals, allowed piece around the current angle)."""
+
+
+def surroundings(rotation: RotationConfig, alpha0: float) -> Surroundings:
+    """What a thruster at alpha0 is among: the offsets it can turn through, the forbidden
+    intervals among them, and the allowed piece it is in (None inside a forbidden sector).
+    Computed once per thruster and sample, and shared by everything that needs it."""
+    domain = offset_domain(rotation, alpha0)
+    if not rotation.forbidden_sectors:
+        return domain, [], domain
+    forbidden = forbidden_offsets(rotation, alpha0)
+    return domain, forbidden, allowed_piece(domain, forbidden)
+
+
 def allowed_piece(domain: Interval, forbidden: list[Interval], point: float = 0.0) -> Interval | None:
     """The largest interval of the domain around ``point`` that avoids the forbidden
     intervals' interiors; None when the point is strictly inside one of them."""
