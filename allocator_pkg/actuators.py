@@ -55,6 +55,11 @@ class QuadraticMap:
         return self.force(self.command_min), self.force(self.command_max)
 
 
+FLAT_WIDTH = 1e-9
+"""Forces within this fraction of a curve's range of a flat stretch's force count as that
+force: the inverse is one interpolation through points that step across the stretch."""
+
+
 class TableMap:
     """Piecewise-linear map through measured (command, force) pairs, e.g. a published
     thruster curve. A flat stretch of the curve (a dead band) inverts to its middle, so zero
@@ -65,16 +70,24 @@ class TableMap:
         self._thrust = np.asarray(thrust, dtype=float)
         self.command_min = max(command_min, float(self._command[0]))
         self.command_max = min(command_max, float(self._command[-1]))
-        # The inverse: the curve's points with each flat stretch reduced to its two ends, so that
-        # interpolation jumps across it; a force met exactly by a flat stretch maps to its middle.
+        # The inverse: the curve's points, each flat stretch at force F (commands a to b)
+        # replaced by (F - e, a'), (F, middle), (F + e, b'), with a' and b' on the curve's
+        # neighbouring pieces: a force met exactly by the stretch maps to its middle, any other
+        # to the set-point that makes it (exactly so beyond e of the stretch).
         forces, first = np.unique(self._thrust, return_index=True)
         last = len(self._thrust) - 1 - np.unique(self._thrust[::-1], return_index=True)[1]
-        keep = sorted(set(first) | set(last))
-        self._inverse_force = self._thrust[keep]
-        self._inverse_command = self._command[keep]
-        flat = last > first
-        self._flat_force = forces[flat]
-        self._flat_middle = 0.5 * (self._command[first[flat]] + self._command[last[flat]])
+        width = FLAT_WIDTH * max(float(np.max(np.abs(self._thrust))), 1e-300)
+        ends = [(force, self._command[a], self._command[b]) for force, a, b in zip(forces, first, last)]
+        points: list[tuple[float, float]] = []
+        for k, (force, a, b) in enumerate(ends):
+            if a == b:
+                points.append((force, a))
+                continue
+            before = a if k == 0 else a + (ends[k - 1][2] - a) * width / (force - ends[k - 1][0])
+            after = b if k == len(ends) - 1 else b + (ends[k + 1][1] - b) * width / (ends[k + 1][0] - force)
+            points += [(force - width, before), (force, 0.5 * (a + b)), (force + width, after)]
+        self._inverse_force = np.array([force for force, _ in points])
+        self._inverse_command = np.array([command for _, command in points])
 
     def force(self, command: float) -> float:
         return float(np.interp(command, self._command, self._thrust))
@@ -84,10 +97,7 @@ class TableMap:
 
     def commands(self, force: np.ndarray) -> np.ndarray:
         """Set-points of several forces at once."""
-        result = np.interp(force, self._inverse_force, self._inverse_command)
-        for value, middle in zip(self._flat_force, self._flat_middle):
-            result[force == value] = middle
-        return result
+        return np.interp(force, self._inverse_force, self._inverse_command)
 
     def force_range(self) -> tuple[float, float]:
         return self.force(self.command_min), self.force(self.command_max)
@@ -127,11 +137,21 @@ class CommandMaps:
         self._gain_reverse = reverse
         self._low = np.array([m.command_min if m is not None else -np.inf for m in maps])
         self._high = np.array([m.command_max if m is not None else np.inf for m in maps])
+        # Shortcuts for the common vehicles: one measured curve for every actuator (a table
+        # clamps at its ends itself), or quadratic maps alike both ways.
+        self._one_table = maps[0] if len(self._tables) == 1 and len(self._tables[0][1]) == len(maps) else None
+        self._symmetric_quadratic = (len(self._quadratic) == len(maps) and np.array_equal(gains, reverse))
+        self._clip = bool(np.isfinite(self._low).any() or np.isfinite(self._high).any())
 
-    def commands(self, force: np.ndarray, efficiency: np.ndarray, lift_gain: np.ndarray) -> np.ndarray:
+    def commands(self, force: np.ndarray, efficiency: np.ndarray | None, lift_gain: np.ndarray) -> np.ndarray:
         """Set-points giving ``force``; a DEGRADED actuator (efficiency e < 1) is commanded
-        for force / e so that it still produces ``force``."""
-        nominal = force / efficiency
+        for force / e so that it still produces ``force`` (None: every actuator nominal)."""
+        nominal = force if efficiency is None else force / efficiency
+        if self._one_table is not None:
+            return self._one_table.commands(nominal)
+        if self._symmetric_quadratic:
+            command = np.copysign(np.sqrt(np.abs(nominal) / self._gain), nominal)
+            return np.minimum(np.maximum(command, self._low), self._high) if self._clip else command
         command = np.zeros(force.shape)
         if self._linear.size or self._quadratic.size:
             gain = np.where(nominal >= 0.0, self._gain, self._gain_reverse)

@@ -23,13 +23,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .actuators import CommandMaps, command_map, drag_gain
-from .azimuth import AzimuthLimits, AzimuthState, plan, resolve
+from .azimuth import AzimuthLimits, AzimuthState, piece_in_question, plan, resolve
 from .configuration_matrix import configuration_matrix
 from .faults import Fault, FaultMode, FaultSet, lift_gains, static_ranges
 from .methods import METHODS, AllocationMethod
 from .methods.pseudoinverse import PseudoInverseAllocation, PseudoInverseGains
 from .model import MethodOutput, Model, SampleLimits
-from .sectors import in_feasible_sector
+from .pieces import PiecePlanner
+from .sectors import in_feasible_sector, surroundings
 from .solvers import BACKENDS, DEFAULT_BACKEND, BackendFactory
 from .vehicle import DOF_NAMES, Vehicle
 
@@ -47,9 +48,10 @@ DRAG_PASSES = 4
 last pass's deflections, until the drag stops changing (two or three passes in practice)."""
 
 
-@dataclass
+@dataclass(slots=True)
 class AllocationResult:
-    """One sample's answer; arrays are per actuator in configuration order."""
+    """One sample's answer; arrays are per actuator in configuration order. ``thrust``,
+    ``azimuth``, ``mode`` and ``available`` are shared with the allocator and read-only."""
 
     thrust: np.ndarray
     azimuth: np.ndarray
@@ -111,6 +113,7 @@ class Allocator:
         self._methods: dict[str, AllocationMethod] = {}
         self._retired_setups = 0
         self._speed = 0.0
+        self._version = 0
         self._stats = AllocatorStats()
         self._fault_set = FaultSet(vehicle)
         self._configure(vehicle)
@@ -177,10 +180,12 @@ class Allocator:
         self.check_reconfigure(vehicle)
         self._fault_set = self._fault_set.rebound(vehicle)
         self._configure(vehicle)
+        angle = self._state.angle.copy()
         for state, i in zip(self._state.azimuth, self._model.rot):
             rotation = vehicle.actuators[i].rotation
             if not in_feasible_sector(rotation, state.angle):
-                state.angle = min(max(state.angle, rotation.azimuth_min), rotation.azimuth_max)
+                state.angle = angle[i] = min(max(state.angle, rotation.azimuth_min), rotation.azimuth_max)
+        self._state.angle = angle
 
     def _configure(self, vehicle: Vehicle) -> None:
         model = Model.build(vehicle, self._dt if self._dt is not None else 1.0 / vehicle.rate_hz)
@@ -190,6 +195,10 @@ class Allocator:
             self._retired_setups += self._methods.pop(key).setups
         self._inverse = PseudoInverseGains(model)
         self._fallback = PseudoInverseAllocation(model, self._backend, self._inverse)
+        if getattr(self, "_planner", None) is None:
+            self._planner = PiecePlanner(model)
+        else:
+            self._planner.update_model(model)
         for method in self._methods.values():
             method.update_model(model)
         if name not in self._methods:
@@ -202,16 +211,28 @@ class Allocator:
                                   for a in vehicle.actuators])
         self._warnings = _reachability_warnings(model)
         self._notes = _actuation_notes(model)
-        self._saturation_error = SATURATION_TOLERANCE * model.dof_scale
         rows = np.flatnonzero(model.dof_index == _SURGE)
-        self._surge_row = int(rows[0]) if rows.size else None
+        self._drag_row = int(rows[0]) if rows.size and model.surfaces.size else None
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
+        # Per-configuration constants of the per-sample path, as the types it reads fastest.
+        self._dof_index = model.dof_index
+        self._all_dofs = model.n == len(DOF_NAMES)
+        self._t_e = model.t_e
+        self._power = model.power
+        self._saturation_scale = 1.0 / (SATURATION_TOLERANCE * model.dof_scale)
+        self._rot_pairs = [(int(i), (int(c1), int(c2))) for i, (c1, c2) in zip(model.rot, model.rot_columns)]
+        self._rotations = [vehicle.actuators[i].rotation for i in model.rot]
+        self._continuous = [rotation.continuous for rotation in self._rotations]
+        self._angle_step = model.angle_step.tolist()
+        self._thrust_step_list = model.thrust_step.tolist()
+        self._hold = model.hold.tolist()
         self._apply_speed()
 
     @property
     def stats(self) -> AllocatorStats:
         """Counters since the allocator was made (solver set-ups counted when read)."""
-        self._stats.solver_setups = self._retired_setups + sum(m.setups for m in self._methods.values())
+        self._stats.solver_setups = (self._retired_setups + self._planner.setups
+                                     + sum(m.setups for m in self._methods.values()))
         return self._stats
 
     # -- state, speed and faults ------------------------------------------------------
@@ -281,94 +302,119 @@ class Allocator:
 
     def allocate(self, tau: Sequence[float]) -> AllocationResult:
         """Allocate the generalised force [X, Y, Z, K, M, N]; uncontrolled DOFs are ignored."""
-        requested = np.array(tau, dtype=float).reshape(-1)
+        requested = np.array(tau, dtype=float)
         if requested.shape != (6,):
-            raise ValueError(f"tau needs 6 components [X, Y, Z, K, M, N], got {requested.size}")
+            requested = requested.reshape(-1)
+            if requested.shape != (6,):
+                raise ValueError(f"tau needs 6 components [X, Y, Z, K, M, N], got {requested.size}")
         if not np.isfinite(requested).all():
             raise ValueError(f"tau must be finite, got {requested.tolist()}")
         start = time.perf_counter()
-        model = self._model
-        tau_c = requested[model.dof_index]
-        faults = self._fault_set
-        limits = self._limits(tau_c, faults.stuck)
+        tau_c = requested if self._all_dofs else requested[self._dof_index]
+        limits = self._limits(tau_c)
         output = self._solve(tau_c, limits)
-        thrust, angle = self._resolve(output, limits)
+        thrust, angle, extended = self._resolve(output, limits)
         drag = 0.0
-        surge = self._surge_row
-        if model.surfaces.size and surge is not None:
-            for _ in range(DRAG_PASSES):
-                new_drag = self._surface_drag(thrust)
-                if abs(new_drag - drag) <= 1e-9 * max(1.0, abs(tau_c[surge])):
-                    break
-                drag = new_drag
-                compensated = tau_c.copy()
-                compensated[surge] += drag
-                again = self._solve(compensated, limits)
-                again.iterations += output.iterations
-                output = again
-                thrust, angle = self._resolve(output, limits)
-            drag = self._surface_drag(thrust)
-        achieved = model.t_e @ self._extended(thrust, angle)
-        achieved[_SURGE] -= drag
-        saturated = bool((np.abs(achieved[model.dof_index] - tau_c) > self._saturation_error).any())
-        command = self._maps.commands(thrust, faults.command_efficiency, self._lift)
+        if self._drag_row is not None:
+            output, thrust, angle, extended, drag = self._compensate_drag(tau_c, limits, output, thrust, angle,
+                                                                          extended)
+        achieved = self._t_e @ extended
+        if drag:
+            achieved[_SURGE] -= drag
+        miss = (achieved if self._all_dofs else achieved[self._dof_index]) - tau_c
+        saturated = bool((np.abs(miss) * self._saturation_scale).max() > 1.0)
+        command = self._maps.commands(thrust, self._command_efficiency, self._lift)
         self._commit(thrust, angle)
         self._stats.samples += 1
-        return AllocationResult(
-            thrust=thrust, azimuth=angle, command=command, achieved=achieved, requested=requested,
-            saturated=saturated, status=output.status, iterations=output.iterations,
-            solve_time=time.perf_counter() - start, power=float(model.power @ np.abs(thrust) ** 1.5),
-            method=self._method.name, mode=faults.modes.copy(), available=self._availability.copy(), drag=drag)
+        return AllocationResult(thrust, angle, command, achieved, requested, saturated, output.status,
+                                output.iterations, time.perf_counter() - start,
+                                float(self._power @ (np.abs(thrust) ** 1.5)), self._method.name,
+                                self._fault_set.modes, self._availability, drag)
 
     def stop(self) -> AllocationResult:
         """Zero thrust at once, angles held (watchdog and shutdown); bypasses rate limits."""
-        model = self._model
-        thrust = np.zeros(model.r)
-        angle = self._state.angle.copy()
-        faults = self._fault_set
-        command = self._maps.commands(thrust, faults.command_efficiency, self._lift)
+        thrust = np.zeros(self._model.r)
+        angle = self._state.angle
+        command = self._maps.commands(thrust, self._command_efficiency, self._lift)
         self._commit(thrust, angle)
-        return AllocationResult(
-            thrust=thrust, azimuth=angle, command=command, achieved=np.zeros(6), requested=np.zeros(6),
-            saturated=False, status="stopped", iterations=0, solve_time=0.0, power=0.0,
-            method=self._method.name, mode=faults.modes.copy(), available=self._availability.copy())
+        return AllocationResult(thrust, angle, command, np.zeros(6), np.zeros(6), False, "stopped", 0, 0.0, 0.0,
+                                self._method.name, self._fault_set.modes, self._availability)
 
     def _refresh_ranges(self) -> None:
-        """The static force ranges and availability, computed when faults or speed change."""
-        self._range_low, self._range_high = static_ranges(self._vehicle, self._fault_set, self._speed)
-        available = self._fault_set.efficiency > 0.0
-        available[self._model.surfaces] &= self._lift[self._model.surfaces] > 0.0
-        self._availability = available
-
-    def _limits(self, tau: np.ndarray, stuck: dict[int, float]) -> SampleLimits:
+        """What faults and speed decide, computed when they change (never per sample): the
+        static force ranges, availability, the pseudo-inverse gain used to plan rotatable
+        thrusters, and the limits of a vehicle whose limits never change between samples."""
         model = self._model
+        self._range_low, self._range_high = static_ranges(self._vehicle, self._fault_set, self._speed)
+        self._range_low_list, self._range_high_list = self._range_low.tolist(), self._range_high.tolist()
+        available = self._fault_set.efficiency > 0.0
+        available[model.surfaces] &= self._lift[model.surfaces] > 0.0
+        available.flags.writeable = False
+        self._availability = available
+        self._fault_set.modes.flags.writeable = False
+        efficiency = self._fault_set.command_efficiency
+        self._command_efficiency = None if np.all(efficiency == 1.0) else efficiency
+        self._version += 1
+        if model.rot.size:
+            excluded = (self._range_low == 0.0) & (self._range_high == 0.0)
+            self._desired_gain = self._inverse.gain(excluded, {})
+        if model.surfaces.size:
+            lift = self._lift[model.surfaces]
+            self._surface_step = np.multiply(lift, model.thrust_step[model.surfaces], out=np.zeros(lift.size),
+                                             where=lift > 0.0)
+        self._static = None if (model.rot.size or model.surfaces.size or self._rate_limited) else SampleLimits(
+            self._range_low, self._range_high, model.rot, [], np.zeros(model.r), np.zeros(model.r), self._version)
+
+    def _limits(self, tau: np.ndarray) -> SampleLimits:
         state = self._state
+        if self._static is not None:
+            self._static.angle, self._static.thrust = state.angle, state.thrust
+            return self._static
+        model = self._model
         range_low, range_high = self._range_low, self._range_high
+        previous, step = state.thrust, model.thrust_step
         surfaces = model.surfaces
-        if not (surfaces.size or model.rot.size or self._rate_limited):
-            return SampleLimits(low=range_low.copy(), high=range_high.copy(), rot=model.rot, azimuth=[],
-                                angle=state.angle.copy(), thrust=state.thrust.copy())
-        previous = state.thrust.copy()
-        step = model.thrust_step.copy()
         if surfaces.size:
-            lift = self._lift[surfaces]
-            previous[surfaces] = lift * state.deflection[surfaces]
-            step[surfaces] = np.multiply(lift, model.thrust_step[surfaces], out=np.zeros(surfaces.size),
-                                         where=lift > 0.0)
+            previous = previous.copy()
+            previous[surfaces] = self._lift[surfaces] * state.deflection[surfaces]
+            step = step.copy()
+            step[surfaces] = self._surface_step
         low = np.minimum(np.maximum(previous - step, range_low), range_high)
         high = np.minimum(np.maximum(previous + step, range_low), range_high)
         azimuth: list[AzimuthLimits] = []
         if model.rot.size:
-            excluded = (range_low == 0.0) & (range_high == 0.0)
-            desired = self._inverse.desired(tau, excluded)
-            for state_k, i, (c1, c2) in zip(state.azimuth, model.rot, model.rot_columns):
-                actuator = self._vehicle.actuators[i]
-                limits_k = plan(actuator.rotation, state_k, model.angle_step[i], (range_low[i], range_high[i]),
-                                model.thrust_step[i], (desired[c1], desired[c2]), model.hold[i], stuck.get(i))
+            stuck = self._fault_set.stuck
+            desired = (self._desired_gain @ tau).tolist()
+            wanted = {i: (desired[c1], desired[c2]) for i, (c1, c2) in self._rot_pairs}
+            around = [surroundings(rotation, state_k.angle)
+                      for state_k, rotation in zip(state.azimuth, self._rotations)]
+            wanted.update(self._planned(tau, wanted, stuck, around))
+            for state_k, (i, _), rotation, around_k in zip(state.azimuth, self._rot_pairs, self._rotations, around):
+                limits_k = plan(rotation, state_k, self._angle_step[i], (self._range_low_list[i],
+                                self._range_high_list[i]), self._thrust_step_list[i], wanted[i], self._hold[i],
+                                stuck.get(i), around_k)
                 azimuth.append(limits_k)
                 low[i], high[i] = limits_k.thrust_low, limits_k.thrust_high
-        return SampleLimits(low=low, high=high, rot=model.rot, azimuth=azimuth, angle=state.angle.copy(),
-                            thrust=state.thrust.copy())
+        return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust)
+
+    def _planned(self, tau: np.ndarray, wanted: dict[int, tuple[float, float]], stuck: dict[int, float],
+                 around: list) -> dict[int, tuple[float, float]]:
+        """Where the piece planner sends each rotatable thruster, when some thruster's side of
+        a forbidden sector (or the feasible sector's end) is in question, and while a crossing
+        it decided is under way; else nothing (the pseudo-inverse's wish stands)."""
+        planner = self._planner
+        if not planner.needed:
+            return {}
+        state = self._state
+        question = any(
+            i not in stuck and self._range_high_list[i] > self._range_low_list[i] and not state_k.turning
+            and piece_in_question(rotation, state_k.angle, self._angle_step[i], wanted[i], self._hold[i], around_k)
+            for state_k, (i, _), rotation, around_k in zip(state.azimuth, self._rot_pairs, self._rotations, around))
+        if question:
+            return planner.targets(tau, self._range_low, self._range_high, stuck, state.angle)
+        if any(state_k.turning for state_k in state.azimuth):
+            return planner.last_targets
+        return {}
 
     def _solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         output = self._method.solve(tau, limits)
@@ -380,27 +426,44 @@ class Allocator:
             output = fallback
         return output
 
-    def _resolve(self, output: MethodOutput, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray]:
-        """Per-actuator thrust and angle from the extended force, inside every limit."""
+    def _resolve(self, output: MethodOutput, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Per-actuator thrust and angle from the extended force, inside every limit, and the
+        extended force (1.18) they give."""
         model = self._model
-        thrust = np.minimum(np.maximum(output.force[model.starts], limits.low), limits.high)
+        if not model.rot.size:
+            thrust = np.minimum(np.maximum(output.force, limits.low), limits.high)
+            return thrust, limits.angle, thrust
+        force = output.force
+        thrust = np.minimum(np.maximum(force[model.starts], limits.low), limits.high)
         angle = limits.angle.copy()
-        for k, (i, (c1, c2)) in enumerate(zip(model.rot, model.rot_columns)):
-            proposal = None if output.angle is None else float(output.angle[i])
-            thrust[i], angle[i] = resolve(limits.azimuth[k], float(limits.angle[i]),
-                                          (float(output.force[c1]), float(output.force[c2])), float(model.hold[i]),
-                                          self._vehicle.actuators[i].rotation.continuous, proposal)
-        return thrust, angle
+        extended = thrust[model.extended_owner]
+        proposals = output.angle
+        for k, (i, (c1, c2)) in enumerate(self._rot_pairs):
+            thrust_i, angle_i = resolve(limits.azimuth[k], float(angle[i]), (float(force[c1]), float(force[c2])),
+                                        self._hold[i], self._continuous[k],
+                                        None if proposals is None else float(proposals[i]))
+            thrust[i], angle[i] = thrust_i, angle_i
+            extended[c1], extended[c2] = thrust_i * math.cos(angle_i), thrust_i * math.sin(angle_i)
+        return thrust, angle, extended
 
-    def _extended(self, thrust: np.ndarray, angle: np.ndarray) -> np.ndarray:
-        """The extended force vector (1.18) of per-actuator thrust and angle."""
-        model = self._model
-        force = thrust[model.extended_owner]
-        rot = model.rot
-        if rot.size:
-            force[model.rot_columns[:, 0]] *= np.cos(angle[rot])
-            force[model.rot_columns[:, 1]] *= np.sin(angle[rot])
-        return force
+    def _compensate_drag(self, tau: np.ndarray, limits: SampleLimits, output: MethodOutput, thrust: np.ndarray,
+                         angle: np.ndarray, extended: np.ndarray):
+        """The drag feed-forward (1.56)-(1.58): solve again with the surge request grown by the
+        drag of the last pass's deflections until the drag settles."""
+        drag = 0.0
+        surge = self._drag_row
+        for _ in range(DRAG_PASSES):
+            new_drag = self._surface_drag(thrust)
+            if abs(new_drag - drag) <= 1e-9 * max(1.0, abs(tau[surge])):
+                break
+            drag = new_drag
+            compensated = tau.copy()
+            compensated[surge] += drag
+            again = self._solve(compensated, limits)
+            again.iterations += output.iterations
+            output = again
+            thrust, angle, extended = self._resolve(output, limits)
+        return output, thrust, angle, extended, self._surface_drag(thrust)
 
     def _surface_drag(self, thrust: np.ndarray) -> float:
         """X_cs of (1.57): the added resistance of all deflected control surfaces."""
@@ -410,16 +473,19 @@ class Allocator:
         return float(np.sum(self._drag[surfaces] * deflection * deflection))
 
     def _commit(self, thrust: np.ndarray, angle: np.ndarray) -> None:
+        """This sample's thrust and angles become the state (shared with the result, so both
+        are made read-only)."""
         state = self._state
         model = self._model
-        state.thrust = thrust.copy()
-        state.angle = angle.copy()
+        thrust.flags.writeable = False
+        angle.flags.writeable = False
+        state.thrust, state.angle = thrust, angle
         surfaces = model.surfaces
         if surfaces.size:
             lift = self._lift[surfaces]
             state.deflection[surfaces] = np.divide(thrust[surfaces], lift, out=np.zeros(surfaces.size),
                                                    where=lift > 0.0)
-        for azimuth_state, i in zip(state.azimuth, model.rot):
+        for azimuth_state, (i, _) in zip(state.azimuth, self._rot_pairs):
             azimuth_state.angle = float(angle[i])
             azimuth_state.thrust = float(thrust[i])
 

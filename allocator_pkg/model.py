@@ -176,12 +176,15 @@ FIXED_TOLERANCE = 1e-12
 """Bounds closer than this [N, rad] leave an actuator no freedom."""
 
 
-@dataclass
+@dataclass(slots=True)
 class SampleLimits:
     """What one sample allows. ``low``/``high``: signed force bounds of every actuator
     (for rotatable thrusters, along the angle, from their ``azimuth`` limits);
     ``azimuth``: one :class:`AzimuthLimits` per rotatable thruster, at indices ``rot``;
-    ``angle``/``thrust``: the state at the start of the sample."""
+    ``angle``/``thrust``: the state at the start of the sample. ``version`` changes whenever
+    ``low``, ``high`` or ``azimuth`` may have: a method keeps what it derives from them
+    (pseudo-inverse gains, the solver's box rows) while it stays; -1 means every sample.
+    Nothing here is changed by a method."""
 
     low: np.ndarray
     high: np.ndarray
@@ -189,6 +192,7 @@ class SampleLimits:
     azimuth: list[AzimuthLimits]
     angle: np.ndarray
     thrust: np.ndarray
+    version: int = -1
 
     def fixed(self) -> np.ndarray:
         """Actuators whose force the limits alone decide this sample (a rotatable thruster:
@@ -199,7 +203,7 @@ class SampleLimits:
         return fixed
 
 
-@dataclass
+@dataclass(slots=True)
 class MethodOutput:
     """A method's answer: the extended force vector (1.16), and how the solve went.
     ``angle`` optionally proposes the angle of each actuator (nonlinear method)."""

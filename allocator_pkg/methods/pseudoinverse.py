@@ -83,11 +83,15 @@ class PseudoInverseAllocation(AllocationMethod):
     def __init__(self, model: Model, backend: BackendFactory, gains: PseudoInverseGains | None = None):
         super().__init__(model, backend)
         self.inverse = gains or PseudoInverseGains(model)
+        self._version = -1
+        self._preserve_direction = model.vehicle.saturation == "preserve_direction"
 
     def update_model(self, model: Model) -> None:
         """A new configuration: new gains on the next sample (no solver to set up)."""
         self.model = model
         self.inverse = PseudoInverseGains(model)
+        self._version = -1
+        self._preserve_direction = model.vehicle.saturation == "preserve_direction"
 
     @classmethod
     def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
@@ -95,13 +99,20 @@ class PseudoInverseAllocation(AllocationMethod):
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         model = self.model
-        fixed = limits.fixed()
-        lines = {int(i): lim.low for i, lim in zip(model.rot, limits.azimuth) if lim.line and not fixed[i]}
-        pinned = fixed_forces(model, limits, fixed)
-        free = self.inverse.gain(fixed, lines) @ (tau - model.t_ec @ pinned)
-        if model.vehicle.saturation == "preserve_direction":
-            free *= scale_to_limits(model, limits, free, fixed)
-        return MethodOutput(force=free + pinned, status="solved")
+        if limits.version < 0 or limits.version != self._version:
+            self._fixed = fixed = limits.fixed()
+            lines = {int(i): lim.low for i, lim in zip(model.rot, limits.azimuth) if lim.line and not fixed[i]}
+            pinned = fixed_forces(model, limits, fixed)
+            self._pinned = pinned if pinned.any() else None
+            self._pinned_wrench = None if self._pinned is None else model.t_ec @ pinned
+            self._gain = self.inverse.gain(fixed, lines)
+            self._version = limits.version
+        force = self._gain @ (tau if self._pinned is None else tau - self._pinned_wrench)
+        if self._preserve_direction:
+            force *= scale_to_limits(model, limits, force, self._fixed)
+        if self._pinned is not None:
+            force += self._pinned
+        return MethodOutput(force, "solved")
 
 
 def fixed_forces(model: Model, limits: SampleLimits, fixed: np.ndarray) -> np.ndarray:
@@ -119,7 +130,9 @@ def fixed_forces(model: Model, limits: SampleLimits, fixed: np.ndarray) -> np.nd
 
 
 def scale_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, fixed: np.ndarray) -> float:
-    """The largest factor in [0, 1] that brings every free force within its limits."""
+    """The largest factor in [0, 1] that brings every free force within its limits. A bound
+    on the far side of zero (a thrust that a rate limit keeps from falling to zero) cannot be
+    met by scaling down: the final clip keeps it."""
     scale = 1.0
     for i, start in enumerate(model.starts):
         if fixed[i]:
@@ -130,9 +143,9 @@ def scale_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, fixed
             if magnitude > lim.magnitude_max:
                 scale = min(scale, lim.magnitude_max / magnitude)
         else:
-            f = force[start]
-            if f > limits.high[i]:
-                scale = min(scale, max(limits.high[i], 0.0) / f)
-            elif f < limits.low[i]:
-                scale = min(scale, min(limits.low[i], 0.0) / f)
+            f, low, high = float(force[start]), float(limits.low[i]), float(limits.high[i])
+            if f > high >= 0.0:
+                scale = min(scale, high / f)
+            elif f < low <= 0.0:
+                scale = min(scale, low / f)
     return scale
