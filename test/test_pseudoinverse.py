@@ -73,3 +73,18 @@ def test_azimuths_follow_1_33_1_34():
     assert result.azimuth[1] == pytest.approx(math.atan2(f_e[3], f_e[2]))
     assert result.thrust[2:] == pytest.approx(f_e[4:])
     assert result.achieved[[0, 1, 5]] == pytest.approx(tau[[0, 1, 5]])
+
+
+def test_scaling_down_leaves_a_ramped_thrust_to_the_clip():
+    """preserve_direction with thrust rate limits on the mains only: after full surge ahead
+    the mains can only ramp down (their lower bound is above zero), which no scaling toward
+    zero reaches; the free azimuths must still give the sway (they were scaled to nothing)."""
+    free_azimuths = {f"actuators__{name}__{key}": 0.0 for name in ("azimuth_fwd", "azimuth_aft")
+                     for key in ("azimuth_rate_max", "thrust_rate_max")}
+    vehicle = vehicle_from(ROOT / "config" / "example1_rov.yaml", saturation="preserve_direction", **free_azimuths)
+    alloc = Allocator(vehicle, method="pseudoinverse")
+    for _ in range(50):
+        alloc.allocate([400.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    result = alloc.allocate([-50.0, 30.0, 0.0, 0.0, 0.0, 5.0])
+    assert result.thrust[2:] == pytest.approx([88.0, 88.0])          # 100 N less one rate step of 12 N
+    assert result.achieved[1] == pytest.approx(30.0, rel=1e-6)

@@ -1,0 +1,39 @@
+"""Azimuths settle: a constant request held from rest comes to rest near the optimum.
+
+A smaller sweep than ``make bench`` (bench/settling.py: every 15 deg, magnitudes 0.5 to 1.5 by
+0.1): every 45 deg in the surge/sway plane at 0.5, 1.0 and 1.5 times the capability in that
+direction, on every shipped vessel with rotatable thrusters and on the DP vessel without rate
+limits or sectors, for both methods that turn thrusters."""
+
+import sys
+
+import numpy as np
+import pytest
+from conftest import ROOT
+
+sys.path.insert(0, str(ROOT / "bench"))
+
+import settling
+
+DIRECTIONS = np.arange(0.0, 360.0, 45.0)
+MAGNITUDES = (0.5, 1.0, 1.5)
+
+
+@pytest.fixture(scope="module", params=list(settling.VESSELS))
+def swept(request):
+    return request.param, settling.sweep(settling.VESSELS[request.param](), settling.METHODS, DIRECTIONS,
+                                         MAGNITUDES)
+
+
+@pytest.mark.parametrize("method", settling.METHODS)
+def test_held_requests_settle_near_the_optimum_within_every_limit(swept, method):
+    vessel, results = swept
+    cases = results[method]
+    unsettled = [(c.direction_deg, c.magnitude, round(c.angle_spread_deg, 3), c.late_fallbacks)
+                 for c in cases if not c.settled]
+    assert not unsettled, f"{vessel} {method}: still turning or falling back: {unsettled}"
+    samples = sum(len(c.times) for c in cases)
+    assert sum(c.fallbacks for c in cases) <= 0.005 * samples
+    far = [(c.direction_deg, c.magnitude, c.deviation) for c in cases if c.deviation > 2e-3]
+    assert not far, f"{vessel} {method}: settled away from the optimum: {far}"
+    assert not [c.violations for c in cases if c.violations]
