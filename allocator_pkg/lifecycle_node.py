@@ -67,9 +67,8 @@ class AllocatorLifecycleNode(AllocatorBase, LifecycleNode):
         return TransitionCallbackReturn.SUCCESS
 
     def _stop_and_release(self) -> None:
-        """One zero-thrust command if active, then free everything."""
-        if self._runtime is not None:
-            self._runtime.deactivate()
+        """One zero-thrust command if active (acknowledged if possible), then free everything."""
+        self.stop()
         self.release()
 
 

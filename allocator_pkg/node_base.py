@@ -125,7 +125,6 @@ class AllocatorBase(WholeSetParameters):
     def load(self) -> AllocationRuntime:
         """Check the parameters (and the robot description) as a whole, declare every key with
         its descriptor and build the runtime, not yet active. Raises NodeConfigError."""
-        ros_parameters.retype(self)
         parameters = ros_parameters.allocator_parameters(self)
         try:
             geometry = self._geometry(parameters)
@@ -133,6 +132,7 @@ class AllocatorBase(WholeSetParameters):
         except ConfigError as error:
             raise NodeConfigError(self.get_fully_qualified_name(), parameters, error.problems) from error
         ros_parameters.declare(self, vehicle)
+        ros_parameters.retype(self)
         runtime = AllocationRuntime(self, vehicle, settings, geometry)
         logger = self.get_logger()
         for warning in runtime.allocator.warnings:

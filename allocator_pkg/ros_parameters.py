@@ -100,6 +100,8 @@ def declare(node: Node, vehicle: Vehicle) -> None:
         keys += [(schema.actuator_parameter(actuator.name, key.name), key)
                  for key in schema.keys_for_type(actuator.type)]
     for name, key in keys:
+        if node.has_parameter(name) and node.describe_parameter(name).read_only:
+            continue                                 # described by an earlier configure (lifecycle)
         if node.has_parameter(name):
             node.set_descriptor(name, descriptor(key))
         else:
