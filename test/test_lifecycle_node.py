@@ -144,8 +144,8 @@ def test_shutdown_from_any_state_ends_the_process(ros_context, transitions):
         manager = Manager(ros_context, "/ending")
         for _ in transitions:
             assert manager.transition(Transition.TRANSITION_CONFIGURE)
-        shutdown = Transition.TRANSITION_INACTIVE_SHUTDOWN if transitions else Transition.TRANSITION_UNCONFIGURED_SHUTDOWN
-        assert manager.transition(shutdown)
+        assert manager.transition(Transition.TRANSITION_INACTIVE_SHUTDOWN if transitions
+                                  else Transition.TRANSITION_UNCONFIGURED_SHUTDOWN)
         assert process.wait(timeout=10) == 0
     finally:
         output = finish(process)

@@ -153,7 +153,8 @@ def test_every_shipped_file_runs_namespaced_and_renamed(ros_context):
         outputs = {path: stop(process) for path, process in processes.items()}
     for path in files:
         assert list(received[path][-1].name) == read_parameters(path)["actuators.names"], path
-        assert f"[{path.stem}.alloc]: wrench from /{path.stem}/wrench_command (geometry_msgs/msg/Wrench" in outputs[path]
+        assert (f"[{path.stem}.alloc]: wrench from /{path.stem}/wrench_command "
+                "(geometry_msgs/msg/Wrench") in outputs[path]
         assert (f"publishing /{path.stem}/thruster_commands, /{path.stem}/allocation_status, "
                 f"/{path.stem}/alloc/thrust_markers, /diagnostics") in outputs[path]
 
