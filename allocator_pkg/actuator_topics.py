@@ -18,7 +18,7 @@ class ActuatorTopics:
     def __init__(self, node: Node, vehicle: Vehicle):
         self._node = node
         def publisher(topic: str):
-            return node.create_publisher(Float64, topic, qos.OUTPUT, qos_overriding_options=qos.overridable())
+            return node.create_publisher(Float64, topic, qos.output(), qos_overriding_options=qos.overridable())
 
         self._publishers = [
             (i, publisher(f"thrusters/{actuator.name}/thrust"),

@@ -8,13 +8,14 @@ allocation, ``/rov1/thrust_allocator: actuator <name>`` for each actuator."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 
 from .allocator import AllocationResult, Allocator
-from .faults import FaultMode, static_ranges
+from .faults import Fault, FaultMode, static_ranges
 
 AT_LIMIT = 0.999
 """An actuator at or above this fraction of its limit in force is reported at its limit."""
@@ -60,7 +61,7 @@ def short_dofs(allocator: Allocator, result: AllocationResult) -> tuple[str, ...
 
 
 def diagnostic_statuses(node_name: str, allocator: Allocator, counters: Counters, stale: bool,
-                        last: AllocationResult | None, foreign: list[str] = ()) -> list[DiagnosticStatus]:
+                        last: AllocationResult | None, foreign: Sequence[str] = ()) -> list[DiagnosticStatus]:
     """The allocation's status, then one per actuator (:func:`actuator_status`)."""
     statuses = [allocation_status(node_name, allocator, counters, stale, last, foreign)]
     if last is not None:
@@ -72,7 +73,7 @@ def diagnostic_statuses(node_name: str, allocator: Allocator, counters: Counters
 
 
 def allocation_status(node_name: str, allocator: Allocator, counters: Counters, stale: bool,
-                      last: AllocationResult | None, foreign: list[str] = ()) -> DiagnosticStatus:
+                      last: AllocationResult | None, foreign: Sequence[str] = ()) -> DiagnosticStatus:
     """OK while allocating; WARN with faults, saturated samples (and the DOFs short), fallbacks,
     rejected inputs, publishers of the wrong type or unreachable DOFs; ERROR while the input is
     stale (zero thrust commanded)."""
@@ -131,7 +132,7 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
 
 
 def actuator_status(node_name: str, allocator: Allocator, index: int, last: AllocationResult,
-                    limits: tuple[float, float], fault) -> DiagnosticStatus:
+                    limits: tuple[float, float], fault: Fault | None) -> DiagnosticStatus:
     """One actuator: OK when NOMINAL, WARN when DEGRADED (its efficiency) or STUCK (its angle),
     ERROR when FAILED; its last thrust as a fraction of the limit in force on that side (fault
     and, for a control surface, speed included)."""

@@ -92,7 +92,7 @@ class AllocatorBase(WholeSetParameters):
         self._description_topic: str | None = None
         if given.get("geometry_source") == ROBOT_DESCRIPTION and not given.get("robot_description_file"):
             subscription = self.create_subscription(String, "robot_description", self._on_robot_description,
-                                                    qos.ROBOT_DESCRIPTION, qos_overriding_options=qos.overridable())
+                                                    qos.robot_description(), qos_overriding_options=qos.overridable())
             self._description_topic = subscription.topic_name
 
     @property

@@ -67,17 +67,17 @@ class AllocationRuntime:
         self._markers_due = 0
         self._reported: set[str] = set()
         self._wrench_type = wrench_input.message_type(settings)
-        self._commands = node.create_publisher(ThrusterCommands, "thruster_commands", qos.OUTPUT,
+        self._commands = node.create_publisher(ThrusterCommands, "thruster_commands", qos.output(),
                                                qos_overriding_options=qos.overridable())
-        self._status = node.create_publisher(AllocationStatus, "allocation_status", qos.OUTPUT,
+        self._status = node.create_publisher(AllocationStatus, "allocation_status", qos.output(),
                                              qos_overriding_options=qos.overridable())
-        self._diagnostics = node.create_publisher(DiagnosticArray, "/diagnostics", qos.DIAGNOSTICS,
+        self._diagnostics = node.create_publisher(DiagnosticArray, "/diagnostics", qos.diagnostics(),
                                                   qos_overriding_options=qos.overridable())
-        self._markers = node.create_publisher(MarkerArray, "~/thrust_markers", qos.OUTPUT,
+        self._markers = node.create_publisher(MarkerArray, "~/thrust_markers", qos.output(),
                                               qos_overriding_options=qos.overridable())
         self._wrench_subscription = node.create_subscription(self._wrench_type, "wrench_command", self._on_wrench,
-                                                             qos.WRENCH, qos_overriding_options=qos.overridable())
-        self._odometry = node.create_subscription(Odometry, "odometry", self._on_odometry, qos.ODOMETRY,
+                                                             qos.wrench(), qos_overriding_options=qos.overridable())
+        self._odometry = node.create_subscription(Odometry, "odometry", self._on_odometry, qos.odometry(),
                                                   qos_overriding_options=qos.overridable()) \
             if vehicle.has_surfaces else None
         self._per_actuator: ActuatorTopics | None = None

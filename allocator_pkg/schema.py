@@ -293,7 +293,7 @@ def markdown_reference() -> str:
 
     lines = ["### Vehicle-wide keys", ""]
     lines += table(VEHICLE_KEYS, show_types=False)
-    lines += ["", "### Node keys (only `allocator_node` reads them)", ""]
+    lines += ["", "### Node keys (only the nodes read them, not the library)", ""]
     lines += table(NODE_KEYS, show_types=False)
     lines += ["", "### Per-actuator keys (`actuators.<name>.<key>`)", ""]
     lines += table(ACTUATOR_KEYS, show_types=True)
