@@ -5,9 +5,11 @@ activates it, deactivates it and closes it; nothing here parses parameters.
 
 A sample runs on the timer at ``rate_hz`` (``trigger: timer``), or at once on each valid
 wrench (``trigger: input``) unless the last sample is less than a period old: the wrench then
-waits, replaced by any newer one, for the timer, which is reset at every sample so that it
-fires one period after it. In both modes the timer runs the watchdog, and while the input is
-stale it commands zero thrust every period.
+waits, replaced by any newer one, for the timer, set to fire one period after that sample. In
+both modes the timer runs the watchdog, and while the input is stale it commands zero thrust
+every period. With the input trigger the timer fires only when something is due (a waiting
+wrench, the moment the input would turn stale, every period while it is), so that a fast
+rate_hz costs no idle wake-ups.
 """
 
 from __future__ import annotations
@@ -82,13 +84,14 @@ class AllocationRuntime:
             if vehicle.has_surfaces else None
         self._per_actuator: ActuatorTopics | None = None
         self._apply_per_actuator(settings)
+        self._period_ns = round(1e9 / vehicle.rate_hz)
         self._timer = node.create_timer(1.0 / vehicle.rate_hz, self._on_timer, autostart=False)
         self._diagnostics_timer = node.create_timer(DIAGNOSTICS_PERIOD, self._on_diagnostics, autostart=False)
 
     @property
     def period(self) -> float:
-        """The allocation timer's period [s]."""
-        return self._timer.timer_period_ns * 1e-9
+        """The allocation period 1 / rate_hz [s]."""
+        return self._period_ns * 1e-9
 
     def topics(self) -> str:
         """The resolved names of the node's topics, for the start-up log."""
@@ -158,10 +161,13 @@ class AllocationRuntime:
                 self._wrench = verdict.wrench
                 self._wrench_time = now.nanoseconds
                 if self.active and self.settings.trigger == INPUT:
+                    waiting = self._pending
                     self._pending = True
-                    if self._last_sample is None or now.nanoseconds - self._last_sample >= self._timer.timer_period_ns:
+                    if self._last_sample is None or now.nanoseconds - self._last_sample >= self._period_ns:
                         self._sample(now)
-                        self._timer.reset()
+                        self._schedule(now.nanoseconds)
+                    elif not waiting:
+                        self._arm(self._last_sample + self._period_ns - now.nanoseconds)
         if verdict.wrench is None:
             self._node.get_logger().warn(verdict.reason, throttle_duration_sec=LOG_THROTTLE)
 
@@ -181,7 +187,24 @@ class AllocationRuntime:
     def _on_timer(self) -> None:
         with self._lock:
             if self.active:
-                self._sample(self._node.get_clock().now())
+                now = self._node.get_clock().now()
+                self._sample(now)
+                if self.settings.trigger == INPUT:
+                    self._schedule(now.nanoseconds)
+
+    def _schedule(self, now: int) -> None:
+        """Input trigger, after the timer or a sample: the next time the timer has work. Lock held."""
+        if self.watchdog.stale or self._pending:
+            self._arm(self._period_ns)
+        elif self.watchdog.timeout > 0.0 and self._wrench_time is not None:
+            self._arm(self._wrench_time + round(self.watchdog.timeout * 1e9) - now + self._period_ns)
+        else:
+            self._arm(round(1e9 * DIAGNOSTICS_PERIOD))          # nothing can fall due: a slow heartbeat
+
+    def _arm(self, delay: int) -> None:
+        """Fire the timer ``delay`` ns from now."""
+        self._timer.timer_period_ns = max(delay, 1)
+        self._timer.reset()
 
     def _sample(self, now: Time) -> None:
         """Check the watchdog; allocate the latest wrench (zero thrust while it is stale) unless
@@ -243,10 +266,10 @@ class AllocationRuntime:
     def apply(self, vehicle: Vehicle, settings: NodeSettings) -> None:
         """A checked configuration of the same actuators, between two samples."""
         with self._lock:
-            old = self.allocator.vehicle
             self.allocator.reconfigure(vehicle)
-            if vehicle.rate_hz != old.rate_hz:
-                self._timer.timer_period_ns = round(1e9 / vehicle.rate_hz)
+            self._period_ns = round(1e9 / vehicle.rate_hz)
+            if settings.trigger == TIMER and self._timer.timer_period_ns != self._period_ns:
+                self._timer.timer_period_ns = self._period_ns
             self._apply_per_actuator(settings)
             self.settings = settings
             self.watchdog.timeout = settings.wrench_timeout
