@@ -20,7 +20,7 @@ MSGS_SOURCES := $(wildcard allocator_msgs/CMakeLists.txt allocator_msgs/package.
 CONFIG ?= config/default.yaml
 PYTEST_ARGS ?=
 
-.PHONY: help setup run test lint lock docs capability demo bench soak clean prereqs
+.PHONY: help setup run test lint lock docs capability demo bench load soak clean prereqs
 
 help:
 	@echo "make run     set up (first time) and start allocator_node with CONFIG=$(CONFIG)"
@@ -28,9 +28,10 @@ help:
 	@echo "make demo    station keeping with a thruster failure, live table and a timeline PNG"
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
-	@echo "make docs    regenerate the key tables of docs/configuration.md from the schema"
+	@echo "make docs    regenerate docs/configuration.md (schema), docs/faults.md, docs/thrust_markers.png"
 	@echo "make capability  capability plots of every shipped vehicle into docs/capability/"
 	@echo "make bench   solver and node benchmarks into bench/results/latest.json and docs/performance.md"
+	@echo "make load    the node under a 10 kHz wrench flood and a busy core, LOAD_SECONDS=$(LOAD_SECONDS) per trigger"
 	@echo "make soak    the node for SOAK_MINUTES=$(SOAK_MINUTES) at 500 Hz under random faults and changes"
 	@echo "make lock    re-resolve requirements.in into requirements.lock"
 	@echo "make clean   remove .venv and build/"
@@ -83,6 +84,7 @@ test: lint
 
 docs: setup
 	$(PY) tools/update_docs.py
+	$(PY) tools/render_markers.py
 
 VEHICLES := $(filter-out config/default.yaml,$(wildcard config/*.yaml))
 capability: setup
@@ -91,6 +93,10 @@ capability: setup
 BENCH_ARGS ?=
 bench: setup
 	$(PY) bench/run.py $(BENCH_ARGS)
+
+LOAD_SECONDS ?= 60
+load: setup
+	$(PY) bench/load.py --seconds $(LOAD_SECONDS)
 
 SOAK_MINUTES ?= 10
 soak: setup

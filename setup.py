@@ -27,6 +27,7 @@ setup(
     entry_points={
         "console_scripts": [
             "allocator_node = allocator_pkg.node:main",
+            "allocator_lifecycle_node = allocator_pkg.lifecycle_node:main",
             "allocator-ctl = allocator_pkg.ctl:main",
             "allocator-capability = allocator_pkg.capability:main",
         ],

@@ -7,6 +7,7 @@ from __future__ import annotations
 from rclpy.node import Node
 from std_msgs.msg import Float64
 
+from . import qos
 from .allocator import AllocationResult
 from .vehicle import Vehicle
 
@@ -16,9 +17,12 @@ class ActuatorTopics:
 
     def __init__(self, node: Node, vehicle: Vehicle):
         self._node = node
+        def publisher(topic: str):
+            return node.create_publisher(Float64, topic, qos.output(), qos_overriding_options=qos.overridable())
+
         self._publishers = [
-            (i, node.create_publisher(Float64, f"thrusters/{actuator.name}/thrust", 1),
-             node.create_publisher(Float64, f"thrusters/{actuator.name}/azimuth", 1) if actuator.rotatable else None)
+            (i, publisher(f"thrusters/{actuator.name}/thrust"),
+             publisher(f"thrusters/{actuator.name}/azimuth") if actuator.rotatable else None)
             for i, actuator in enumerate(vehicle.actuators)
         ]
 

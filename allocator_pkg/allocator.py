@@ -165,6 +165,12 @@ class Allocator:
         """What the operator should know but is by design (an under-actuated vehicle)."""
         return list(self._notes)
 
+    @property
+    def dof_tolerance(self) -> np.ndarray:
+        """How far the achieved wrench may miss the request in each controlled DOF (``dofs``
+        order) before a sample counts as saturated."""
+        return self._saturation_error.copy()
+
     def check_reconfigure(self, vehicle: Vehicle) -> None:
         """Raise ValueError if :meth:`reconfigure` cannot take ``vehicle``."""
         old = self._vehicle

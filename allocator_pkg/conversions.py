@@ -4,12 +4,14 @@ demo and the benches build and read the same messages without importing the node
 from __future__ import annotations
 
 import numpy as np
-from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Wrench
+from std_msgs.msg import Header
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 
 from .allocator import AllocationResult
+from .frames import wrench_between
+from .node_settings import FRD
 
 
 def wrench_to_array(wrench: Wrench) -> np.ndarray:
@@ -26,10 +28,10 @@ def array_to_wrench(values) -> Wrench:
     return wrench
 
 
-def commands_message(result: AllocationResult, names: tuple[str, ...], stamp: Time) -> ThrusterCommands:
+def commands_message(result: AllocationResult, names: tuple[str, ...], header: Header) -> ThrusterCommands:
     """Every actuator's thrust, set-point, angle and fault mode of one sample."""
     message = ThrusterCommands()
-    message.header.stamp = stamp
+    message.header = header
     message.name = list(names)
     message.thrust = result.thrust.tolist()
     message.command = result.command.tolist()
@@ -38,12 +40,13 @@ def commands_message(result: AllocationResult, names: tuple[str, ...], stamp: Ti
     return message
 
 
-def status_message(result: AllocationResult, solver_status: str, stamp: Time) -> AllocationStatus:
-    """Requested and achieved wrench, saturation and solver figures of one sample."""
+def status_message(result: AllocationResult, solver_status: str, header: Header, frame: str = FRD) -> AllocationStatus:
+    """Requested and achieved wrench (in the body frame convention ``frame``), saturation and
+    solver figures of one sample."""
     message = AllocationStatus()
-    message.header.stamp = stamp
-    message.requested = array_to_wrench(result.requested)
-    message.achieved = array_to_wrench(result.achieved)
+    message.header = header
+    message.requested = array_to_wrench(wrench_between(result.requested, frame))
+    message.achieved = array_to_wrench(wrench_between(result.achieved, frame))
     message.saturated = result.saturated
     message.method = result.method
     message.solver_status = solver_status

@@ -70,7 +70,7 @@ def load_vehicle(path: str | Path, node_name: str | None = None) -> Vehicle:
     """Read a ROS 2 params file and build the vehicle of one node section.
 
     The first ``<node>: ros__parameters:`` section is used unless ``node_name`` picks one
-    (matched against the full key, e.g. ``/ns/thrust_allocator``, or its last part).
+    (see :func:`read_parameters`).
     """
     return vehicle_from_parameters(read_parameters(path, node_name))
 
@@ -87,8 +87,23 @@ _ParamsLoader.add_implicit_resolver(
 )
 
 
+def section_matches(section: str, node_name: str) -> bool:
+    """Whether a params file's section key applies to a node, as rcl matches them: ``/**``
+    stands for any namespace and name, ``*`` for one token, and a key without a leading
+    ``/`` is in the root namespace. A ``node_name`` without a namespace (no leading ``/``)
+    also matches a section of that name in any namespace."""
+    pattern = section if section.startswith("/") else f"/{section}"
+    expression = "".join("(?:/[^/]+)*" if token == "**" else "/" + re.escape(token).replace(r"\*", "[^/]*")
+                         for token in pattern.split("/")[1:])
+    if re.fullmatch(expression, node_name if node_name.startswith("/") else f"/{node_name}"):
+        return True
+    return not node_name.startswith("/") and pattern.rsplit("/", 1)[-1] == node_name
+
+
 def read_parameters(path: str | Path, node_name: str | None = None) -> dict[str, Any]:
-    """Flat parameters of one node section of a ROS 2 params file."""
+    """Flat parameters of one node section of a ROS 2 params file: the first section, or the
+    first that applies to ``node_name`` (a full name such as ``/rov1/thrust_allocator``, or
+    a name alone; :func:`section_matches`)."""
     path = Path(path)
     try:
         document = yaml.load(path.read_text(), Loader=_ParamsLoader)
@@ -108,7 +123,7 @@ def read_parameters(path: str | Path, node_name: str | None = None) -> dict[str,
     if node_name is None:
         section = next(iter(sections.values()))
     else:
-        matches = [body for name, body in sections.items() if node_name in (name, name.rsplit("/", 1)[-1])]
+        matches = [body for name, body in sections.items() if section_matches(name, node_name)]
         if not matches:
             raise ConfigError([(str(path), f"no section for node '{node_name}'; sections: {', '.join(sections)}")])
         section = matches[0]
@@ -191,12 +206,17 @@ class _Parser:
         names = self.value(names_key)
         known = set(VEHICLE_KEY_BY_NAME) | set(NODE_KEY_BY_NAME)
         actuators: list[ActuatorConfig] = []
+        links: dict[str, str] = {}
         if names is not _MISSING:
             names = self._check_names(names)
             for name in names:
                 actuator = self._actuator(name)
                 if actuator is not None:
                     actuators.append(actuator)
+                link = self.parameters.get(schema.actuator_parameter(name, "link"), name)
+                links[name] = link if isinstance(link, str) else name
+                if not link:
+                    self.fail(schema.actuator_parameter(name, "link"), "must not be empty")
                 known.update(schema.actuator_parameter(name, key) for key in ACTUATOR_KEY_BY_NAME)
         for name in self.parameters:
             if name not in known:
@@ -204,6 +224,8 @@ class _Parser:
 
         values = {key.name: self.value(key) for key in schema.VEHICLE_KEYS if key.name != "actuators.names"}
         node = {key.name: self.value(key) for key in schema.NODE_KEYS}
+        if node["base_frame"] == "":
+            self.fail("base_frame", "must not be empty")
         dofs = self._dofs(values["dofs"])
         slack = self._slack(values["weights.slack"], values["dofs"], dofs)
         if self.problems:
@@ -227,8 +249,7 @@ class _Parser:
         unfit = METHODS[vehicle.method].problems(vehicle)
         if unfit:
             raise ConfigError([("method", f"'{vehicle.method}' cannot serve this vehicle: {'; '.join(unfit)}")])
-        settings = NodeSettings(wrench_timeout=node["wrench_timeout"], per_actuator_topics=node["per_actuator_topics"],
-                                wrench_qos=node["wrench_qos"])
+        settings = NodeSettings(**{key.name: node[key.name] for key in schema.NODE_KEYS}, links=links)
         return vehicle, settings
 
     def _check_names(self, names: list[str]) -> list[str]:
@@ -256,7 +277,7 @@ class _Parser:
             actuator_type = self.parameters.get(schema.actuator_parameter(actuator, "type"))
             self.fail(name, f"unknown key '{key}' for a {actuator_type} actuator")
             return
-        self.fail(name, "unknown key")
+        self.fail(name, schema.REMOVED_KEYS.get(name, "unknown key"))
 
     def _actuator(self, name: str) -> ActuatorConfig | None:
         """One actuator: the keys common to every type here, the rest by its type's parser."""

@@ -21,7 +21,7 @@ from rclpy.parameter import Parameter
 from rclpy.qos import qos_profile_parameters
 
 from . import schema
-from .schema import FLOAT, INT, Key
+from .schema import FLOAT, FLOAT_LIST, INT, Key
 from .vehicle import Vehicle
 
 INT64_MAX = 2**63 - 1
@@ -62,6 +62,30 @@ def plain(value: Any) -> Any:
     return list(value) if isinstance(value, (array.array, tuple)) else value
 
 
+def typed(parameters: list[Parameter]) -> list[Parameter]:
+    """The parameters with the schema's types: an integer (or integer list) set for a float key
+    (``rate_hz:=25``) becomes a float, so that the parameter keeps its type. For rclpy's
+    pre-set callback, and for values read from the command line or a params file."""
+    result = []
+    for parameter in parameters:
+        key = schema.key_for(parameter.name)
+        if key is not None and key.kind == FLOAT and parameter.type_ == Parameter.Type.INTEGER:
+            parameter = Parameter(parameter.name, Parameter.Type.DOUBLE, float(parameter.value))
+        elif key is not None and key.kind == FLOAT_LIST and parameter.type_ == Parameter.Type.INTEGER_ARRAY:
+            parameter = Parameter(parameter.name, Parameter.Type.DOUBLE_ARRAY, [float(v) for v in parameter.value])
+        result.append(parameter)
+    return result
+
+
+def retype(node: Node) -> None:
+    """Give the node's parameters the schema's types (:func:`typed`)."""
+    current = [parameter for parameter in node.get_parameters_by_prefix("").values()
+               if is_allocator_parameter(parameter.name)]
+    changed = [new for old, new in zip(current, typed(current)) if new.type_ != old.type_]
+    if changed:
+        node.set_parameters(changed)
+
+
 def allocator_parameters(node: Node) -> dict[str, Any]:
     """The node's allocator parameters by name (unset ones left out)."""
     return {name: plain(parameter.value) for name, parameter in node.get_parameters_by_prefix("").items()
@@ -76,6 +100,8 @@ def declare(node: Node, vehicle: Vehicle) -> None:
         keys += [(schema.actuator_parameter(actuator.name, key.name), key)
                  for key in schema.keys_for_type(actuator.type)]
     for name, key in keys:
+        if node.has_parameter(name) and node.describe_parameter(name).read_only:
+            continue                                 # described by an earlier configure (lifecycle)
         if node.has_parameter(name):
             node.set_descriptor(name, descriptor(key))
         else:

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from .methods import METHODS
-from .node_settings import QOS_RELIABILITY
+from .node_settings import FRAMES, GEOMETRY_SOURCES, TRIGGERS, WRENCH_TYPES
 from .vehicle import (
     ACTUATOR_TYPES,
     COMMAND_MAPS,
@@ -49,7 +49,8 @@ class Key:
 
     ``default`` is the value used when the parameter is absent; ``None`` means the key is
     optional with a default that depends on other keys (``default_doc`` says which), and
-    ``required`` means it must be given.
+    ``required`` means it must be given. ``constraint`` says in words what the checks of
+    :mod:`allocator_pkg.parameters` want beyond type, choices, range and length.
     """
 
     name: str
@@ -66,6 +67,7 @@ class Key:
     applies_to: tuple[str, ...] = ()
     read_only: bool = False
     unit: str = ""
+    constraint: str = ""
 
     def documented_default(self) -> str:
         if self.required:
@@ -92,6 +94,10 @@ class Key:
             parts.append(f"<= {self.maximum:g}")
         if self.length is not None:
             parts.append(f"{self.length} elements")
+        if self.constraint:
+            parts.append(self.constraint)
+        if self.kind == BOOL:
+            parts.append("true or false")
         return ", ".join(parts)
 
 
@@ -100,7 +106,8 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         default=50.0, minimum=0.0, exclusive_minimum=True, maximum=10000.0, unit="Hz"),
     Key("method", STR, "Allocation method (see docs/theory.md).", default="qp", choices=tuple(METHODS)),
     Key("dofs", STR_LIST, "Controlled degrees of freedom; the others of the requested wrench are ignored.",
-        default=list(DOF_NAMES), default_doc="all six"),
+        default=list(DOF_NAMES), default_doc="all six",
+        constraint=f"at least one of {', '.join(DOF_NAMES)}, each at most once"),
     Key("saturation", STR, "Unattainable requests: `weighted` trades DOFs by weights.slack; "
         "`preserve_direction` scales the request down along its own direction first.",
         default="weighted", choices=SATURATION_MODES),
@@ -129,7 +136,8 @@ VEHICLE_KEYS: tuple[Key, ...] = (
     Key("water_density", FLOAT, "rho_w in the lift and drag of control surfaces (1.48), (1.49).",
         default=1025.0, minimum=0.0, exclusive_minimum=True, unit="kg/m^3"),
     Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
-        required=True, read_only=True),
+        required=True, read_only=True,
+        constraint="at least one; unique; letters, digits and '_', starting with a letter"),
 )
 
 NODE_KEYS: tuple[Key, ...] = (
@@ -137,10 +145,35 @@ NODE_KEYS: tuple[Key, ...] = (
         default=0.5, minimum=0.0, unit="s"),
     Key("per_actuator_topics", BOOL, "Also publish thrusters/<name>/thrust and thrusters/<name>/azimuth "
         "(std_msgs/Float64) each sample.", default=False),
-    Key("wrench_qos", STR, "Reliability of the wrench_command subscription.", default="reliable",
-        choices=QOS_RELIABILITY),
+    Key("frame", STR, "Body frame convention of wrench_command, of the wrenches in allocation_status, of "
+        "thrust_markers and of a URDF's geometry: `frd` x forward, y starboard, z down (marine); `flu` x forward, "
+        "y left, z up (REP-103 base_link). Converted at the node's boundary: the params file's positions and "
+        "directions and every azimuth angle stay FRD.", default="frd", choices=FRAMES, read_only=True),
+    Key("base_frame", STR, "Name of the body frame: the frame_id stamped on every output, the frame_id a "
+        "WrenchStamped must carry, and the URDF link the geometry is measured from.", default="base_link",
+        read_only=True, constraint="a non-empty frame name"),
+    Key("wrench_type", STR, "Message type of wrench_command: geometry_msgs/Wrench or geometry_msgs/WrenchStamped "
+        "(whose frame_id must be base_frame).", default="wrench", choices=WRENCH_TYPES, read_only=True),
+    Key("trigger", STR, "What starts a sample: `timer` every period of rate_hz on the latest wrench; `input` "
+        "each valid wrench at once, at most rate_hz times per second (earlier ones coalesced to the latest), "
+        "the timer kept as the watchdog.", default="timer", choices=TRIGGERS),
+    Key("markers_rate_hz", FLOAT, "Rate of ~/thrust_markers (visualization_msgs/MarkerArray), built only while "
+        "someone subscribes (0: never).", default=10.0, minimum=0.0, maximum=10.0, unit="Hz"),
+    Key("geometry_source", STR, "Where actuator positions and fixed thrusters' directions come from: this params "
+        "file, or the URDF robot description (see actuators.<name>.link).", default="params",
+        choices=GEOMETRY_SOURCES, read_only=True),
+    Key("robot_description_file", STR, "URDF file read with geometry_source robot_description; empty: the "
+        "robot_description topic (transient local, as robot_state_publisher offers it).", default="",
+        read_only=True, constraint="a file path, or empty"),
 )
 """Settings of the ROS node only (:class:`allocator_pkg.node_settings.NodeSettings`)."""
+
+REMOVED_KEYS = {
+    "wrench_qos": "removed (issue 14): wrench_command is best-effort by default, which takes reliable and "
+                  "best-effort publishers alike; to change it set "
+                  "qos_overrides./<namespace>/wrench_command.subscription.reliability",
+}
+"""Keys of earlier versions, with what replaced them."""
 
 _ALL = ACTUATOR_TYPES
 _THR = THRUSTER_TYPES
@@ -150,11 +183,18 @@ _DIRECTED = (FIXED, RUDDER, FIN)
 
 ACTUATOR_KEYS: tuple[Key, ...] = (
     Key("type", STR, "Actuator type.", required=True, choices=ACTUATOR_TYPES, applies_to=_ALL, read_only=True),
-    Key("position", FLOAT_LIST, "Point where the force acts, body frame (x forward, y starboard, z down).",
-        required=True, length=3, applies_to=_ALL, unit="m"),
+    Key("position", FLOAT_LIST, "Point where the force acts, body frame x forward, y starboard, z down (FRD, "
+        "whatever `frame` is). With geometry_source robot_description it comes from the URDF and must not be "
+        "set.", required=True, length=3, applies_to=_ALL, unit="m"),
     Key("direction", FLOAT_LIST, "Force direction of a fixed thruster, lift direction per positive deflection "
-        "of a control surface; normalised, must not be zero.", length=3, applies_to=_DIRECTED,
-        default_doc="required for fixed; [0, 1, 0] rudder, [0, 0, 1] fin"),
+        "of a control surface (FRD); normalised. A fixed thruster's comes from the URDF with geometry_source "
+        "robot_description and must not be set then.", length=3, applies_to=_DIRECTED,
+        default_doc="required for fixed; [0, 1, 0] rudder, [0, 0, 1] fin", constraint="not the zero vector"),
+    Key("link", STR, "URDF link of this actuator (geometry_source robot_description): the child link of a "
+        "revolute or continuous joint at the point where the force acts. A fixed thruster's force is along "
+        "that joint's axis (Gazebo's Thruster system); a rotatable thruster's joint turns it, about z "
+        "(azimuth) or y (azimuth_vertical).", applies_to=_ALL, default_doc="the actuator's name",
+        read_only=True, constraint="a link below base_frame through fixed joints"),
     Key("weight", FLOAT, "W_ii: weight of this actuator's squared force (1.24), (1.35).",
         minimum=0.0, exclusive_minimum=True, applies_to=_ALL, default_doc="1.0 thrusters, 0.1 control surfaces"),
     Key("power_coefficient", FLOAT, "P_i in the power estimate sum P_i |f_i|^(3/2) (1.44).",
@@ -172,26 +212,27 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
     Key("gain_reverse", FLOAT, "k for negative force (asymmetric propellers).", minimum=0.0,
         exclusive_minimum=True, applies_to=_THR, default_doc="gain"),
     Key("command_min", FLOAT, "Smallest actuator set-point; limits the force too.", applies_to=_THR,
-        default_doc="no limit"),
+        default_doc="no limit", constraint="below command_max, at or below the set-point of zero force"),
     Key("command_max", FLOAT, "Largest actuator set-point; limits the force too.", applies_to=_THR,
-        default_doc="no limit"),
+        default_doc="no limit", constraint="above command_min, at or above the set-point of zero force"),
     Key("table_command", FLOAT_LIST, "Measured set-points, strictly increasing (`table` map).", applies_to=_THR,
-        default_doc="required for table"),
+        default_doc="required for table", constraint="at least 2, strictly increasing"),
     Key("table_thrust", FLOAT_LIST, "Measured force at each set-point, non-decreasing, spanning 0 (`table` map).",
-        applies_to=_THR, default_doc="required for table", unit="N"),
+        applies_to=_THR, default_doc="required for table", unit="N",
+        constraint="one per table_command, non-decreasing, spanning 0"),
     Key("azimuth_min", FLOAT, "Feasible sector, lower end (the thruster cannot turn outside it).",
-        default=-math.pi, applies_to=_ROT, unit="rad"),
+        default=-math.pi, applies_to=_ROT, unit="rad", constraint="below azimuth_max"),
     Key("azimuth_max", FLOAT, "Feasible sector, upper end; azimuth_max - azimuth_min = 2 pi means free rotation.",
-        default=math.pi, applies_to=_ROT, unit="rad"),
+        default=math.pi, applies_to=_ROT, unit="rad", constraint="above azimuth_min, at most 2 pi above it"),
     Key("azimuth_rate_max", FLOAT, "Largest turning rate (0: unlimited).", default=0.0, minimum=0.0,
         applies_to=_ROT, unit="rad/s"),
     Key("forbidden_sectors", FLOAT_LIST, "Flat list of [start, end] pairs: angles, counter-clockwise from start "
         "to end, at which the thruster must not produce thrust (it may turn through them at zero thrust).",
-        applies_to=_ROT, default_doc="none", unit="rad"),
+        applies_to=_ROT, default_doc="none", unit="rad", constraint="an even number of angles: [start, end] pairs"),
     Key("reversible", BOOL, "Whether negative thrust along the current angle is allowed.", default=False,
         applies_to=_ROT),
     Key("azimuth_initial", FLOAT, "Angle at start-up; inside the feasible sector, outside forbidden ones.",
-        default=0.0, applies_to=_ROT, unit="rad"),
+        default=0.0, applies_to=_ROT, unit="rad", constraint="in the feasible sector, outside forbidden ones"),
     Key("area", FLOAT, "Foil area A (1.48).", required=True, minimum=0.0, exclusive_minimum=True,
         applies_to=_SURF, unit="m^2"),
     Key("lift_coefficient", FLOAT, "C_L, lift per radian of deflection (1.48).", required=True, minimum=0.0,
@@ -221,6 +262,13 @@ def actuator_parameter(actuator: str, key: str) -> str:
     return f"{ACTUATOR_PREFIX}{actuator}.{key}"
 
 
+def key_for(name: str) -> Key | None:
+    """The key of a parameter name (``actuators.<name>.<key>`` included), or None."""
+    if name.startswith(ACTUATOR_PREFIX) and name not in VEHICLE_KEY_BY_NAME:
+        return ACTUATOR_KEY_BY_NAME.get(name[len(ACTUATOR_PREFIX):].partition(".")[2])
+    return VEHICLE_KEY_BY_NAME.get(name) or NODE_KEY_BY_NAME.get(name)
+
+
 def keys_for_type(actuator_type: str) -> tuple[Key, ...]:
     """The per-actuator keys that apply to one actuator type."""
     return tuple(key for key in ACTUATOR_KEYS if actuator_type in key.applies_to)
@@ -247,7 +295,7 @@ def markdown_reference() -> str:
 
     lines = ["### Vehicle-wide keys", ""]
     lines += table(VEHICLE_KEYS, show_types=False)
-    lines += ["", "### Node keys (only `allocator_node` reads them)", ""]
+    lines += ["", "### Node keys (only the nodes read them, not the library)", ""]
     lines += table(NODE_KEYS, show_types=False)
     lines += ["", "### Per-actuator keys (`actuators.<name>.<key>`)", ""]
     lines += table(ACTUATOR_KEYS, show_types=True)

@@ -21,7 +21,12 @@ node's: at exactly the node's rate that phase would stay where the start left it
 publishes one wrench more per window ("probe_rate_hz" = rate + 1 / seconds) and the phase
 sweeps one whole period over the window.
 
+The "input trigger" cases (issue 14) run ``allocator_node`` with ``trigger: input`` and rate_hz
+1000 as a subprocess and publish at 100 Hz and 1 kHz: every wrench is allocated on arrival,
+so "publish to commands" has no wait for a tick in it.
+
     .venv/bin/python bench/node.py [--config config/bluerov2_heavy.yaml] [--rates 50 200 1000]
+                                   [--inputs 100 1000]
                                    [--seconds 10 | --quick] [--out bench/results/node.json]
 """
 
@@ -66,6 +71,8 @@ START_TIMEOUT = 30.0         # s for the node to appear and answer
 STOP_TIMEOUT = 10.0          # s for allocator_node to exit after SIGINT
 MISSED_FACTOR = 1.5          # a stamp interval above this many periods has missed periods
 QUICK_SECONDS = 2.0
+INPUT_NODE_RATE = 1000.0     # Hz: rate_hz of the input-trigger cases, at most one sample per ms
+INPUT_RATES = (100.0, 1000.0)
 ONE_PROCESS_CPU_NOTE = ("whole benchmark process (allocator node, probe and DDS threads): "
                         "time.process_time delta / wall time")
 TWO_PROCESSES_CPU_NOTE = "allocator_node process only: utime+stime from /proc/<pid>/stat / wall time"
@@ -161,6 +168,16 @@ class Probe:
                 raise TimeoutError(f"allocator node did not answer within {START_TIMEOUT:g} s")
             self.executor.spin_once(timeout_sec=0.05)
 
+    def wait_for_input_node(self) -> None:
+        """With the input trigger nothing comes before a wrench: send one until commands answer."""
+        deadline = time.monotonic() + START_TIMEOUT
+        while not self.commands:
+            if time.monotonic() > deadline:
+                raise TimeoutError(f"allocator node did not answer within {START_TIMEOUT:g} s")
+            if self.wrench.get_subscription_count():
+                self.wrench.publish(Wrench())
+            self.executor.spin_once(timeout_sec=0.05)
+
     def close(self) -> None:
         """Shut the executor down and destroy the node."""
         self.executor.shutdown()
@@ -214,15 +231,17 @@ def node_in_thread(context: Context, config: Path, rate_hz: float) -> Iterator[A
 
 
 @contextmanager
-def node_process(config: Path, rate_hz: float, output: IO[str] | None = None) -> Iterator[subprocess.Popen]:
-    """``allocator_node`` as a subprocess; stopped with SIGINT (killed if it hangs) and reaped on exit.
-    Its output goes to the file ``output`` (a temporary one by default: a pipe nobody reads
-    would block the node once full); an error raised inside gets that output as a note."""
+def node_process(config: Path, rate_hz: float, output: IO[str] | None = None,
+                 parameters: tuple[str, ...] = ("wrench_timeout:=0.0",)) -> Iterator[subprocess.Popen]:
+    """``allocator_node`` as a subprocess with ``rate_hz`` and ``parameters`` (``name:=value``);
+    stopped with SIGINT (killed if it hangs) and reaped on exit. Its output goes to the file
+    ``output`` (a temporary one by default: a pipe nobody reads would block the node once
+    full); an error raised inside gets that output as a note."""
     with contextlib.ExitStack() as stack:
         log = output or stack.enter_context(tempfile.TemporaryFile("w+"))
         process = subprocess.Popen(
-            [str(NODE_BINARY), "--ros-args", "--params-file", str(config),
-             "-p", f"rate_hz:={float(rate_hz)!r}", "-p", "wrench_timeout:=0.0"],
+            [str(NODE_BINARY), "--ros-args", "--params-file", str(config), "-p", f"rate_hz:={float(rate_hz)!r}",
+             *(argument for parameter in parameters for argument in ("-p", parameter))],
             env=os.environ, stdout=log, stderr=subprocess.STDOUT, text=True)
         try:
             yield process
@@ -339,6 +358,19 @@ def two_processes(config: Path, rate_hz: float, seconds: float) -> dict:
             "cpu_note": TWO_PROCESSES_CPU_NOTE}
 
 
+def input_trigger(config: Path, input_hz: float, seconds: float) -> dict:
+    """``allocator_node`` with ``trigger: input`` at rate_hz INPUT_NODE_RATE as a subprocess, the
+    probe here publishing at ``input_hz``: every wrench is allocated on arrival, so the
+    publish-to-commands latency has no wait for a tick in it."""
+    parameters = ("wrench_timeout:=0.0", "trigger:=input")
+    with node_process(config, INPUT_NODE_RATE, parameters=parameters) as process, ros_context() as context, \
+            probe_in(context, input_hz) as probe:
+        probe.wait_for_input_node()
+        figures = measure(probe, input_hz, seconds, lambda: process_cpu_seconds(process.pid))
+    return {"setup": "two processes", "trigger": "input", "rate_hz": INPUT_NODE_RATE, "input_hz": input_hz,
+            **figures, "cpu_note": TWO_PROCESSES_CPU_NOTE}
+
+
 def rmw_identifier() -> str:
     """The RMW implementation rclpy uses."""
     with ros_context():
@@ -347,7 +379,8 @@ def rmw_identifier() -> str:
 
 def print_case(case: dict) -> None:
     """One line per case on stdout."""
-    print(f"{case['setup']:>13} {case['rate_hz']:6g} Hz: {case['achieved_hz']:8.2f} Hz achieved, "
+    trigger = f"input {case['input_hz']:g} Hz" if case.get("trigger") == "input" else "timer"
+    print(f"{case['setup']:>13} {trigger:>16} {case['rate_hz']:6g} Hz: {case['achieved_hz']:8.2f} Hz achieved, "
           f"jitter p99 {case['jitter_ms']['p99']} ms, missed {case['missed_percent']} %, "
           f"tick->receipt p50/p99 {case['tick_to_receipt_ms']['p50']}/{case['tick_to_receipt_ms']['p99']} ms, "
           f"publish->commands p50 {case['publish_to_commands_ms']['p50']} ms, CPU {case['cpu_percent']} %",
@@ -364,6 +397,8 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     duration = parser.add_mutually_exclusive_group()
     duration.add_argument("--seconds", type=float, default=10.0, help="measuring window per case [s] (default: 10)")
     duration.add_argument("--quick", action="store_true", help=f"smoke run: {QUICK_SECONDS:g} s per case")
+    parser.add_argument("--inputs", type=float, nargs="*", default=list(INPUT_RATES),
+                        help="input rates [Hz] of the trigger: input cases (default: 100 1000; none: skip them)")
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "results" / "node.json",
                         help="JSON results (default: bench/results/node.json)")
     arguments = parser.parse_args(argv)
@@ -381,6 +416,9 @@ def main(argv: list[str] | None = None) -> int:
         for setup in (one_process, two_processes):
             cases.append(setup(config, rate_hz, arguments.seconds))
             print_case(cases[-1])
+    for input_hz in arguments.inputs:
+        cases.append(input_trigger(config, input_hz, arguments.seconds))
+        print_case(cases[-1])
     results = {
         "config": str(config.relative_to(ROOT)) if config.is_relative_to(ROOT) else str(config),
         "seconds": arguments.seconds,

@@ -5,6 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 TARGET_VEHICLE = "bluerov2_heavy"
+INPUT_RATES = (100.0, 1000.0)
+NOT_IN_THIS_RUN = "not in this run (the next `make bench` measures it)"
 
 INTRO = """# Performance
 
@@ -60,7 +62,7 @@ def _targets(result: dict) -> list[str]:
                 f"| wrench error on attainable samples <= 1e-4, {sequence} | {_fmt(error, 2)} | "
                 f"{'yes' if error is not None and error <= 1e-4 else 'no'} |",
             ]
-    for case in result["node"]["cases"]:
+    for case in _timer_cases(result):
         if case["setup"] == "one process" and case["rate_hz"] == 200:
             tick = case["tick_to_receipt_ms"]["p50"]
             publish = case["publish_to_commands_ms"]["p50"]
@@ -73,7 +75,36 @@ def _targets(result: dict) -> list[str]:
             rows.append(f"| node: 1000 Hz with < 1 % missed periods, {case['setup']} | "
                         f"{case['achieved_hz']:.1f} Hz, {case['missed_percent']:.2f} % missed | "
                         f"{'yes' if case['missed_percent'] < 1.0 else 'no'} |")
+    inputs = {case["input_hz"]: case for case in _input_cases(result)}
+    for input_hz in INPUT_RATES:
+        target = (f"| node, trigger input: publish to commands p50 <= 1 ms, p99 <= 3 ms at {input_hz:g} Hz input, "
+                  "from another process |")
+        case = inputs.get(input_hz)
+        if case is None:
+            rows.append(f"{target} {NOT_IN_THIS_RUN} | - |")
+            continue
+        publish = case["publish_to_commands_ms"]
+        met = publish["p50"] is not None and publish["p50"] <= 1.0 and publish["p99"] <= 3.0
+        rows.append(f"{target} {_fmt(publish['p50'], 3)} / {_fmt(publish['p99'], 3)} ms | {'yes' if met else 'no'} |")
+    load = result.get("load")
+    if load is None:
+        rows.append(f"| under load: rate_hz within 5 %, outputs never two periods stale, memory flat | "
+                    f"{NOT_IN_THIS_RUN} | - |")
+    else:
+        for case in load["cases"]:
+            rows.append(f"| under load, trigger {case['trigger']}: rate_hz within 5 %, outputs never two periods "
+                        f"stale, memory flat | {case['achieved_hz']:.1f} Hz, oldest output "
+                        f"{_fmt(case['output_age_ms']['max'], 1)} ms, RSS {case['rss_growth_mb']:+.1f} MB | "
+                        f"{'yes' if not case['failures'] else 'no'} |")
     return rows
+
+
+def _timer_cases(result: dict) -> list[dict]:
+    return [case for case in result["node"]["cases"] if case.get("trigger", "timer") == "timer"]
+
+
+def _input_cases(result: dict) -> list[dict]:
+    return [case for case in result["node"]["cases"] if case.get("trigger") == "input"]
 
 
 def _solver_tables(result: dict) -> list[str]:
@@ -114,7 +145,7 @@ def _node_table(result: dict) -> list[str]:
              "| set-up | rate Hz | achieved Hz | jitter p50 / p99 ms | missed | lost | "
              "tick to receipt p50 / p99 / max ms | publish to commands p50 / p99 ms | solve p50 / p99 ms | CPU % |",
              "|---|---|---|---|---|---|---|---|---|---|"]
-    for case in node["cases"]:
+    for case in _timer_cases(result):
         tick, publish, solve, jitter = (case[key] for key in ("tick_to_receipt_ms", "publish_to_commands_ms",
                                                              "solve_ms", "jitter_ms"))
         lines.append(
@@ -125,7 +156,48 @@ def _node_table(result: dict) -> list[str]:
             f"{_fmt(publish.get('p50'), 3)} / {_fmt(publish.get('p99'), 3)} | "
             f"{_fmt(solve['p50'], 3)} / {_fmt(solve['p99'], 3)} | {case['cpu_percent']:.0f} |")
     notes = {case.get("cpu_note") for case in node["cases"] if case.get("cpu_note")}
-    return lines + [""] + [f"CPU: {note}" for note in sorted(notes)]
+    return lines + [""] + [f"CPU: {note}" for note in sorted(notes)] + ["", *_input_table(result)]
+
+
+def _input_table(result: dict) -> list[str]:
+    lines = ["### Input trigger", "",
+             "`trigger: input`, rate_hz 1000, `allocator_node` as its own process and the probe publishing at the "
+             "input rate: each wrench is allocated on arrival, so \"publish to commands\" (from publishing a wrench "
+             "to receiving the commands of the sample that used it) has no wait for a tick in it.", ""]
+    cases = _input_cases(result)
+    if not cases:
+        return [*lines, f"Input rates {', '.join(f'{rate:g}' for rate in INPUT_RATES)} Hz: {NOT_IN_THIS_RUN}."]
+    lines += ["| input Hz | commands Hz | publish to commands p50 / p99 ms | matched / published | "
+              "solve p50 / p99 ms | CPU % |", "|---|---|---|---|---|---|"]
+    for case in cases:
+        publish, solve = case["publish_to_commands_ms"], case["solve_ms"]
+        lines.append(f"| {case['input_hz']:g} | {case['achieved_hz']:.1f} | {_fmt(publish['p50'], 3)} / "
+                     f"{_fmt(publish['p99'], 3)} | {publish['matched']} / {publish['published']} | "
+                     f"{_fmt(solve['p50'], 3)} / {_fmt(solve['p99'], 3)} | {case['cpu_percent']:.0f} |")
+    return lines
+
+
+def _load_section(result: dict) -> list[str]:
+    lines = ["## Under load", "",
+             "`bench/load.py` (`make load`): `allocator_node` as its own process while another process floods "
+             "wrench_command at 10 kHz and a third keeps one core busy. Achieved rate from the commands' stamps; "
+             "\"output age\": from a sample's stamp to its receipt; \"wrench age\": from a wrench's publication "
+             "to the stamp of the sample that used it (first and last fifth of the run, to see a queue grow); RSS "
+             "of the node after the warm-up.", ""]
+    load = result.get("load")
+    if load is None:
+        return [*lines, f"{NOT_IN_THIS_RUN[0].upper()}{NOT_IN_THIS_RUN[1:]}."]
+    lines += [f"Vehicle `{load['config']}`, {load['seconds']:g} s per case, flood {load['flood_hz']:g} Hz "
+              f"({load['flood_achieved_hz']:.0f} Hz achieved).", "",
+              "| trigger | rate Hz | achieved Hz | output age p50 / p99 / max ms | wrench age first / last fifth "
+              "p99 ms | RSS growth MB | CPU % | passed |", "|---|---|---|---|---|---|---|---|"]
+    for case in load["cases"]:
+        age, first, last = case["output_age_ms"], case["wrench_age_first_ms"], case["wrench_age_last_ms"]
+        lines.append(f"| {case['trigger']} | {case['rate_hz']:g} | {case['achieved_hz']:.1f} | "
+                     f"{_fmt(age['p50'], 2)} / {_fmt(age['p99'], 2)} / {_fmt(age['max'], 2)} | "
+                     f"{_fmt(first['p99'], 2)} / {_fmt(last['p99'], 2)} | {case['rss_growth_mb']:+.1f} | "
+                     f"{case['cpu_percent']:.0f} | {'yes' if not case['failures'] else '; '.join(case['failures'])} |")
+    return lines
 
 
 def write(result: dict, path: Path) -> None:
@@ -138,4 +210,5 @@ def write(result: dict, path: Path) -> None:
     lines += ["", "## Targets", "", *_targets(result)]
     lines += ["", "## Solver level", "", *_solver_tables(result)]
     lines += ["## Node level", "", *_node_table(result)]
+    lines += ["", *_load_section(result)]
     path.write_text("\n".join(lines) + "\n")

@@ -57,6 +57,10 @@ def main(argv: list[str] | None = None) -> int:
     subprocess.run([sys.executable, str(ROOT / "bench" / "node.py"), "--out", str(node_out)]
                    + (["--quick"] if arguments.quick else []), check=True)
     result["node"] = json.loads(node_out.read_text())
+    load_out = RESULTS / "load.json"
+    subprocess.run([sys.executable, str(ROOT / "bench" / "load.py"), "--out", str(load_out)]
+                   + (["--seconds", "10"] if arguments.quick else []), check=False)
+    result["load"] = json.loads(load_out.read_text())
     latest = RESULTS / "latest.json"
     latest.write_text(json.dumps(result, indent=1))
     report.write(result, ROOT / "docs" / "performance.md")

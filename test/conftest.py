@@ -42,7 +42,6 @@ class Harness:
     def __init__(self, context, params_file, parameters=()):
         import rclpy
         from diagnostic_msgs.msg import DiagnosticArray
-        from geometry_msgs.msg import Wrench
         from rcl_interfaces.srv import SetParameters, SetParametersAtomically
         from rclpy.executors import SingleThreadedExecutor
         from rclpy.parameter import Parameter
@@ -52,6 +51,7 @@ class Harness:
         from allocator_msgs.msg import AllocationStatus, ThrusterCommands
         from allocator_msgs.srv import SetActuatorFault
         from allocator_pkg.node import AllocatorNode
+        from allocator_pkg.wrench_input import message_type
 
         self.time_ns = 1_000_000_000
         overrides = [Parameter("use_sim_time", value=True), *parameters]
@@ -65,7 +65,8 @@ class Harness:
         self.probe.create_subscription(ThrusterCommands, "thruster_commands", self.commands.append, 100)
         self.probe.create_subscription(AllocationStatus, "allocation_status", self.status.append, 100)
         self.probe.create_subscription(DiagnosticArray, "/diagnostics", self.diagnostics.append, 100)
-        self.wrench = self.probe.create_publisher(Wrench, "wrench_command", 10)
+        self._wrench_type = message_type(self.node.runtime.settings)
+        self.wrench = self.probe.create_publisher(self._wrench_type, "wrench_command", 10)
         self.clock = self.probe.create_publisher(Clock, "/clock", 10)
         self.fault = self.probe.create_client(SetActuatorFault, "thrust_allocator/set_actuator_fault")
         self.clear = self.probe.create_client(Trigger, "thrust_allocator/clear_faults")
@@ -73,7 +74,6 @@ class Harness:
         self.set_atomically = self.probe.create_client(SetParametersAtomically,
                                                        "thrust_allocator/set_parameters_atomically")
         self._clock_type = Clock
-        self._wrench_type = Wrench
         self.spin_until(lambda: self.wrench.get_subscription_count() > 0 and self.clock.get_subscription_count() > 0)
         self.tick(0)
         # The jump from time 0 to the first /clock makes the timer fire once.
@@ -107,6 +107,14 @@ class Harness:
             self._publish_clock(Time(sec=self.time_ns // 10**9, nanosec=self.time_ns % 10**9))
             self.spin_until(lambda: self.node.get_clock().now().nanoseconds >= self.time_ns)
 
+    def advance(self, seconds):
+        """Advance simulated time without waiting for samples (the input trigger samples on input)."""
+        from builtin_interfaces.msg import Time
+        self.time_ns += round(seconds * 1e9)
+        self._publish_clock(Time(sec=self.time_ns // 10**9, nanosec=self.time_ns % 10**9))
+        self.spin_until(lambda: self.node.get_clock().now().nanoseconds >= self.time_ns)
+        self.spin_for(0.05)
+
     def diagnostics_after_a_second(self):
         """Step the clock one second and return the key-values of the diagnostics that follow."""
         count = len(self.diagnostics)
@@ -114,16 +122,25 @@ class Harness:
         self.spin_until(lambda: len(self.diagnostics) > count)
         return {kv.key: kv.value for kv in self.diagnostics[-1].status[0].values}
 
+    def sent(self, publisher, message):
+        """Publish a message to the node and spin until it has taken it."""
+        received = self.node.wrenches_received
+        publisher.publish(message)
+        self.spin_until(lambda: self.node.wrenches_received > received)
+
     def _publish_clock(self, stamp):
         self.clock.publish(self._clock_type(clock=stamp))
 
-    def send_wrench(self, values):
+    def send_wrench(self, values, frame_id=None):
+        """A Wrench, or a WrenchStamped in ``frame_id`` (default: the node's base_frame)."""
+        from allocator_pkg.conversions import array_to_wrench
         message = self._wrench_type()
-        (message.force.x, message.force.y, message.force.z,
-         message.torque.x, message.torque.y, message.torque.z) = (float(v) for v in values)
-        received = self.node.wrenches_received
-        self.wrench.publish(message)
-        self.spin_until(lambda: self.node.wrenches_received > received)
+        if hasattr(message, "header"):
+            message.header.frame_id = self.node.runtime.settings.base_frame if frame_id is None else frame_id
+            message.wrench = array_to_wrench(values)
+        else:
+            message = array_to_wrench(values)
+        self.sent(self.wrench, message)
 
     def call(self, client, request):
         self.spin_until(client.service_is_ready)

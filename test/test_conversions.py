@@ -3,6 +3,7 @@
 import numpy as np
 from builtin_interfaces.msg import Time
 from conftest import ROOT
+from std_msgs.msg import Header
 
 from allocator_pkg import Allocator, load_vehicle
 from allocator_pkg.conversions import array_to_wrench, commands_message, status_message, wrench_to_array
@@ -20,11 +21,21 @@ def test_commands_and_status_carry_one_sample():
     allocator = Allocator(load_vehicle(ROOT / "config" / "example1_rov.yaml"))
     result = allocator.allocate([50.0, 10.0, 0.0, 0.0, 0.0, 5.0])
     stamp = Time(sec=3, nanosec=7)
-    commands = commands_message(result, allocator.names, stamp)
-    assert commands.header.stamp == stamp and list(commands.name) == list(allocator.names)
+    commands = commands_message(result, allocator.names, Header(stamp=stamp, frame_id="base_link"))
+    assert commands.header.stamp == stamp and commands.header.frame_id == "base_link"
+    assert list(commands.name) == list(allocator.names)
     assert np.array_equal(commands.thrust, result.thrust) and np.array_equal(commands.azimuth, result.azimuth)
     assert np.array_equal(commands.command, result.command) and list(commands.mode) == [0, 0, 0, 0]
-    status = status_message(result, "solved here", stamp)
+    status = status_message(result, "solved here", Header(stamp=stamp, frame_id="base_link"))
     assert status.solver_status == "solved here" and status.method == "qp"
     assert np.allclose(wrench_to_array(status.achieved), result.achieved)
     assert status.requested.force.x == 50.0 and status.saturated == result.saturated
+    assert status.header.frame_id == "base_link"
+
+
+def test_status_in_flu_flips_y_and_z_of_forces_and_moments():
+    allocator = Allocator(load_vehicle(ROOT / "config" / "example1_rov.yaml"))
+    result = allocator.allocate([50.0, 10.0, 0.0, 0.0, 0.0, 5.0])
+    status = status_message(result, "solved", Header(), frame="flu")
+    assert list(wrench_to_array(status.requested)) == [50.0, -10.0, -0.0, 0.0, -0.0, -5.0]
+    assert np.allclose(wrench_to_array(status.achieved), result.achieved * [1, -1, -1, 1, -1, -1])

@@ -4,8 +4,10 @@ import math
 import textwrap
 
 import pytest
+from conftest import ROOT
 
 from allocator_pkg import ConfigError, load_vehicle, read_parameters, vehicle_from_parameters
+from allocator_pkg.parameters import section_matches
 
 VALID = {
     "dofs": ["surge", "yaw"],
@@ -174,7 +176,27 @@ def test_params_file_errors(tmp_path):
     with pytest.raises(ConfigError, match="cannot read"):
         load_vehicle(tmp_path / "missing.yaml")
     with pytest.raises(ConfigError, match="no section for node 'other'"):
-        load_vehicle("config/example1_rov.yaml", node_name="other")
+        load_vehicle(write(tmp_path, "/rov1/thrust_allocator: {ros__parameters: {rate_hz: 5}}"), node_name="other")
+
+
+@pytest.mark.parametrize(("section", "node", "applies"), [
+    ("/**", "/rov1/thrust_allocator", True),
+    ("/**/thrust_allocator", "/rov1/thrust_allocator", True),
+    ("/**/thrust_allocator", "/thrust_allocator", True),
+    ("/**/thrust_allocator", "/rov1/alloc", False),
+    ("thrust_allocator", "/thrust_allocator", True),
+    ("thrust_allocator", "/rov1/thrust_allocator", False),          # the failure of issue 14
+    ("/rov*/thrust_allocator", "/rov1/thrust_allocator", True),
+    ("/rov*/thrust_allocator", "/fleet/rov1/thrust_allocator", False),
+    ("/robot/thrust_allocator", "thrust_allocator", True),            # a name alone: any namespace
+])
+def test_sections_apply_to_nodes_as_rcl_matches_them(section, node, applies):
+    assert section_matches(section, node) == applies
+
+
+def test_shipped_files_apply_to_any_node_name():
+    for path in (ROOT / "config").glob("*.yaml"):
+        assert read_parameters(path, "/rov1/alloc") == read_parameters(path), path
 
 
 def test_empty_list_means_not_set(tmp_path):

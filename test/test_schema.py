@@ -20,5 +20,14 @@ def test_every_actuator_type_has_its_keys():
 
 
 def test_read_only_keys():
-    read_only = {key.name for key in schema.VEHICLE_KEYS + schema.ACTUATOR_KEYS if key.read_only}
-    assert read_only == {"actuators.names", "type"}
+    read_only = {key.name for key in schema.VEHICLE_KEYS + schema.NODE_KEYS + schema.ACTUATOR_KEYS if key.read_only}
+    assert read_only == {"actuators.names", "type", "link", "frame", "base_frame", "wrench_type", "geometry_source",
+                         "robot_description_file"}
+
+
+def test_every_key_says_what_it_accepts():
+    """The text of ROS descriptors' additional_constraints (issue 14: dofs and forbidden_sectors had none)."""
+    for key in schema.VEHICLE_KEYS + schema.NODE_KEYS + schema.ACTUATOR_KEYS:
+        assert key.documented_range(), key.name
+    assert "each at most once" in schema.VEHICLE_KEY_BY_NAME["dofs"].documented_range()
+    assert "[start, end] pairs" in schema.ACTUATOR_KEY_BY_NAME["forbidden_sectors"].documented_range()

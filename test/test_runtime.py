@@ -1,0 +1,158 @@
+"""The shared runtime in a node on simulated time: the input trigger, body frames, stamped
+input, thrust markers and parameter types (issue 14). Process-level behaviour: test_process.py."""
+
+import numpy as np
+import pytest
+from conftest import ROOT, vehicle_from
+
+from allocator_pkg import Allocator
+
+EXAMPLE = ROOT / "config" / "example1_rov.yaml"
+FLU = np.array([1.0, -1.0, -1.0, 1.0, -1.0, -1.0])
+
+
+def requested(status):
+    from allocator_pkg.conversions import wrench_to_array
+    return list(wrench_to_array(status.requested))
+
+
+@pytest.mark.params(EXAMPLE, trigger="input", wrench_timeout=0.5)
+def test_input_trigger_allocates_each_wrench_at_once_and_coalesces_the_rest(harness):
+    period = harness.node.period
+    harness.send_wrench([5.0, 0.0, 0.0, 0.0, 0.0, 0.0])          # at the start's (stale) sample: waits
+    harness.advance(period)                                       # for the timer, a period later
+    assert requested(harness.status[-1])[0] == 5.0
+    harness.advance(period)                                       # nothing new: no sample
+    before = harness.node.samples
+    harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])          # a period after the last sample
+    harness.spin_until(lambda: len(harness.status) > before)     # no clock step: allocated on arrival
+    assert harness.node.samples == before + 1 and requested(harness.status[-1])[0] == 10.0
+    stamp = harness.commands[-1].header.stamp
+    assert stamp.sec * 10**9 + stamp.nanosec == harness.time_ns
+    harness.send_wrench([20.0, 0.0, 0.0, 0.0, 0.0, 0.0])         # within the period: they wait,
+    harness.send_wrench([30.0, 0.0, 0.0, 0.0, 0.0, 0.0])         # the newest replacing the older
+    harness.spin_for(0.1)
+    assert harness.node.samples == before + 1
+    harness.advance(period)                                       # one period after the last sample
+    harness.spin_until(lambda: harness.node.samples == before + 2)
+    assert requested(harness.status[-1])[0] == 30.0
+    harness.advance(period)                                       # nothing new: no sample
+    assert harness.node.samples == before + 2
+    harness.advance(0.5)                                          # input stopped: the watchdog's zero
+    harness.spin_until(lambda: harness.status[-1].solver_status.startswith("stale"))
+    assert all(t == 0.0 for t in harness.commands[-1].thrust)
+    count = harness.node.samples
+    harness.advance(period)
+    assert harness.node.samples == count + 1                      # zero thrust every period while stale
+
+
+@pytest.mark.params(EXAMPLE, trigger="input", wrench_timeout=0.5)
+def test_input_trigger_never_samples_faster_than_rate_hz(harness):
+    period = harness.node.period
+    stamps = []
+    for _ in range(20):                      # a wrench every half period
+        harness.advance(period / 2)
+        harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 1.0])
+        stamps.append(harness.commands[-1].header.stamp.sec * 10**9 + harness.commands[-1].header.stamp.nanosec)
+    intervals = np.diff(sorted(set(stamps)))
+    assert intervals.min() >= round(period * 1e9)
+
+
+@pytest.mark.params(EXAMPLE, frame="flu", wrench_timeout=0.0)
+def test_a_flu_wrench_is_converted_at_the_boundary(harness):
+    core = Allocator(vehicle_from(EXAMPLE))
+    for _ in range(harness.node.samples):
+        core.allocate(np.zeros(6))
+    frd = np.array([100.0, 20.0, 0.0, 0.0, 0.0, 10.0])
+    harness.send_wrench(frd * FLU)                               # the same wrench, as base_link (FLU) gives it
+    harness.tick(5)
+    for _ in range(5):
+        expected = core.allocate(frd)
+    assert np.array(harness.commands[-1].thrust) == pytest.approx(expected.thrust)
+    assert np.array(harness.commands[-1].azimuth) == pytest.approx(expected.azimuth)
+    status = harness.status[-1]
+    assert requested(status) == list(frd * FLU)
+    from allocator_pkg.conversions import wrench_to_array
+    assert wrench_to_array(status.achieved) == pytest.approx(expected.achieved * FLU)
+    assert status.header.frame_id == harness.commands[-1].header.frame_id == "base_link"
+
+
+@pytest.mark.params(EXAMPLE, wrench_type="wrench_stamped", base_frame="base_link_frd", wrench_timeout=0.0)
+def test_a_stamped_wrench_in_another_frame_is_rejected_and_counted(harness):
+    harness.send_wrench([80.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.send_wrench([50.0, 0.0, 0.0, 0.0, 0.0, 0.0], frame_id="odom")
+    harness.send_wrench([40.0, 0.0, 0.0, 0.0, 0.0, 0.0], frame_id="")
+    harness.tick(2)
+    assert requested(harness.status[-1])[0] == 80.0
+    assert harness.commands[-1].header.frame_id == "base_link_frd"
+    values = harness.diagnostics_after_a_second()
+    assert values["rejected wrench frames"] == "2" and values["rejected wrenches"] == "2"
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0, frame="flu")
+def test_thrust_markers_at_most_ten_per_second_along_each_force(harness):
+    from visualization_msgs.msg import MarkerArray
+    markers = []
+    harness.probe.create_subscription(MarkerArray, "thrust_allocator/thrust_markers", markers.append, 100)
+    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/thrust_markers") > 0)
+    harness.send_wrench([150.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(50)                                              # one second at 50 Hz
+    harness.spin_for(0.2)
+    assert 9 <= len(markers) <= 10
+    last = markers[-1].markers
+    arrows = [m for m in last if m.ns == "thrust"]
+    assert len(arrows) == 4 and len([m for m in last if m.ns == "actuators"]) == 4
+    assert {m.header.frame_id for m in last} == {"base_link"}
+    port = arrows[2]                                              # main_port: [-1.3, -0.45, 0] FRD, along +x
+    start, end = port.points
+    assert (start.x, start.y, start.z) == pytest.approx((-1.3, 0.45, 0.0))        # FLU: y to port is +
+    sample = next(c for c in reversed(harness.commands) if c.header.stamp == port.header.stamp)
+    from allocator_pkg.markers import scale
+    length, force = scale(harness.node.allocator.vehicle)
+    assert end.x - start.x == pytest.approx(sample.thrust[2] / force * length)
+    assert (end.y, end.z) == pytest.approx((start.y, start.z))
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0, markers_rate_hz=0.0)
+def test_thrust_markers_off(harness):
+    from visualization_msgs.msg import MarkerArray
+    markers = []
+    harness.probe.create_subscription(MarkerArray, "thrust_allocator/thrust_markers", markers.append, 100)
+    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/thrust_markers") > 0)
+    harness.tick(20)
+    harness.spin_for(0.2)
+    assert markers == []
+
+
+@pytest.mark.params(EXAMPLE, rate_hz=25, actuators__main_port__position=[-1, 0, 0])
+def test_an_integer_for_a_float_key_keeps_the_float_type(harness):
+    from rclpy.parameter import Parameter
+    rate = harness.node.get_parameter("rate_hz")
+    assert rate.type_ == Parameter.Type.DOUBLE and rate.value == 25.0
+    position = harness.node.get_parameter("actuators.main_port.position")
+    assert position.type_ == Parameter.Type.DOUBLE_ARRAY and list(position.value) == [-1.0, 0.0, 0.0]
+    assert harness.node.set_parameters([Parameter("rate_hz", value=20)])[0].successful
+    rate = harness.node.get_parameter("rate_hz")
+    assert rate.type_ == Parameter.Type.DOUBLE and harness.node.period == pytest.approx(1 / 20)
+
+
+def test_a_qos_override_on_one_node_leaves_the_next_one_at_the_default(ros_context):
+    """rclpy writes overrides into the profile it is given: each topic gets a profile of its own."""
+    from rclpy.parameter import Parameter
+    from rclpy.qos import ReliabilityPolicy
+
+    from allocator_pkg.node import AllocatorNode
+    arguments = ["--ros-args", "--params-file", str(EXAMPLE)]
+    overridden = AllocatorNode(context=ros_context, cli_args=[*arguments, "-r", "__ns:=/qa"], parameter_overrides=[
+        Parameter("qos_overrides./qa/wrench_command.subscription.reliability", value="reliable")])
+    default = AllocatorNode(context=ros_context, cli_args=[*arguments, "-r", "__ns:=/qb"])
+    try:
+        def reliability(node, topic):
+            return node.get_subscriptions_info_by_topic(topic)[0].qos_profile.reliability
+
+        assert reliability(overridden, "/qa/wrench_command") == ReliabilityPolicy.RELIABLE
+        assert reliability(default, "/qb/wrench_command") == ReliabilityPolicy.BEST_EFFORT
+    finally:
+        for node in (overridden, default):
+            node.release()
+            node.destroy_node()
