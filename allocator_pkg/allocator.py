@@ -169,7 +169,7 @@ class Allocator:
     def dof_tolerance(self) -> np.ndarray:
         """How far the achieved wrench may miss the request in each controlled DOF (``dofs``
         order) before a sample counts as saturated."""
-        return self._saturation_error.copy()
+        return 1.0 / self._saturation_scale
 
     def check_reconfigure(self, vehicle: Vehicle) -> None:
         """Raise ValueError if :meth:`reconfigure` cannot take ``vehicle``."""
