@@ -92,16 +92,14 @@ INSIDE = 0.1
 its width): an optimum against a forbidden sector's far edge must read as beyond the sector,
 or the thruster would stay parked at its near edge. The method then finds the edge itself."""
 
+PLANNER_BACKEND = "daqp"
+"""The planner's solver: exact and dense. A planner run is a handful of cold solves of the
+Q >> W problem, where an active set needs a few iterations and ADMM (OSQP) thousands, and
+at its default iteration limit leaves some combinations unsolved."""
+
 PLAN_SIDES = 32
 """Sides of the planner's thrust polygons, circumscribed: they overestimate a thruster's force
 by at most 1/cos(pi/N) - 1 (0.5 %), which only a near tie between pieces could notice."""
-
-
-def planner_backend() -> BackendFactory:
-    """An exact dense active-set solver for the planner's small problems (DAQP) when it is
-    installed, else OSQP: a planner run is a handful of cold solves, where ADMM on the
-    Q >> W problem needs thousands of iterations and an active-set solver a few."""
-    return BACKENDS.get("daqp", BACKENDS["osqp"])
 
 
 class PiecePlanner:
@@ -112,7 +110,7 @@ class PiecePlanner:
     combination."""
 
     def __init__(self, model: Model, backend: BackendFactory | None = None):
-        self._backend = backend or planner_backend()
+        self._backend = backend or BACKENDS[PLANNER_BACKEND]
         self.setups = 0
         self.last_targets: dict[int, tuple[float, float]] = {}
         self._problem = None

@@ -88,7 +88,17 @@ class NonlinearAllocation(AllocationMethod):
         self._qp.update_settings(model.vehicle.solver)
 
     def _use(self, model: Model) -> None:
+        """The configuration and its per-configuration constants of the per-sample path."""
         self.model = model
+        rot = model.rot
+        self._first, self._second = model.t_ec[:, model.rot_columns[:, 0]], model.t_ec[:, model.rot_columns[:, 1]]
+        self._t_fixed = np.zeros((model.n, model.r))
+        self._t_fixed[:, model.scalar] = model.t_ec[:, model.scalar_columns]
+        self._no_turning = np.zeros((model.n, 0))
+        self._powered = model.power > 0.0
+        self._all_powered = bool(self._powered.all())
+        self._c_gain = 0.75 * model.power
+        self._turning_gain = 1.5 * model.power[rot]
         self._multipliers = np.zeros(model.n)
         self._trust = np.minimum(model.angle_step[model.rot], TRUST_STEP)
         self._p_diagonal = self._p(model)
@@ -133,78 +143,74 @@ class NonlinearAllocation(AllocationMethod):
         rot = model.rot
         qp = self._qp
         n, r, p = model.n, model.r, rot.size
-        force = np.clip(limits.thrust, limits.low, limits.high)
+        low, high = limits.low, limits.high
+        force = np.minimum(np.maximum(limits.thrust, low), high)
         angle = limits.angle.copy()
         angle_low = np.array([lim.low for lim in limits.azimuth])
         angle_high = np.array([lim.high for lim in limits.azimuth])
-        angle[rot] = np.clip(angle[rot], angle_low, angle_high)
-        trust = self._trust
-        omega = model.vehicle.weights.azimuth_change
+        angle[rot] = np.minimum(np.maximum(angle[rot], angle_low), angle_high)
+        trust, omega, floor = self._trust, model.vehicle.weights.azimuth_change, self._floor
         iterations = 0
         status = ""
         passes = model.vehicle.nonlinear_max_iterations
         miss = math.inf
-        t, dt = self._matrices(angle)
+        t, dt = self._matrices(angle[rot])
         for _ in range(passes):
-            c = np.where(model.power > 0.0,
-                         0.75 * model.power / np.sqrt(np.maximum(np.abs(force), self._floor)), model.weight)
+            size = np.maximum(np.abs(force), floor)
+            c = self._c_gain / np.sqrt(size) if self._all_powered else \
+                np.where(self._powered, self._c_gain / np.sqrt(size), model.weight)
             root = np.sqrt(c)
-            curvature = np.maximum(
-                _turning_curvature(model.power[rot], np.maximum(np.abs(force[rot]), self._floor[rot])),
-                -force[rot] * (self._multipliers @ t[:, rot]))
-            lever = np.maximum(np.abs(force[rot]), self._floor[rot])
-            self._p_diagonal[r:r + p] = 2.0 * (omega + curvature) / (lever * lever)
-            qp.update_matrix(np.concatenate(((t / root).ravel(), (dt[:, rot] * force[rot] / lever).ravel())),
-                             self._ax_index, self._p_diagonal)
-            qp.low[self._equality] = qp.up[self._equality] = tau - t @ force
-            qp.low[n:n + r] = root * (limits.low - force)
-            qp.up[n:n + r] = root * (limits.high - force)
-            qp.low[n + r:] = np.maximum(angle_low - angle[rot], -trust) * lever
-            qp.up[n + r:] = np.minimum(angle_high - angle[rot], trust) * lever
+            spun, lever = force[rot], size[rot]
+            curvature = np.maximum(self._turning_gain * lever ** 1.5, -spun * (self._multipliers @ t[:, rot]))
+            self._p_diagonal[r:r + p] = (2.0 * (omega + curvature)) / (lever * lever)
+            qp.update_matrix(np.concatenate(((t / root).ravel(), (dt * (spun / lever)).ravel())), self._ax_index,
+                             self._p_diagonal)
+            qp.low[:n] = qp.up[:n] = tau - t @ force
+            qp.low[n:n + r] = root * (low - force)
+            qp.up[n:n + r] = root * (high - force)
+            here = angle[rot]
+            qp.low[n + r:] = np.maximum(angle_low - here, -trust) * lever
+            qp.up[n + r:] = np.minimum(angle_high - here, trust) * lever
             self._q[:r] = 2.0 * root * force
             if p and model.vehicle.singularity_rho > 0.0:
                 self._q[r:r + p] = self._singularity_gradient(t, dt, limits) / lever
-            qp.update_objective(q=self._q)
-            solution = qp.solve(qp.low, qp.up)
+            solution = qp.solve(qp.low, qp.up, q=self._q)
             iterations += solution.iterations
             status = solution.status
             if not solution.usable:
-                return MethodOutput(force=np.zeros(model.m), status=status, iterations=iterations, solved=False)
-            self._multipliers = solution.y[self._equality]
-            new_force = np.clip(force + solution.x[:r] / root, limits.low, limits.high)
+                return MethodOutput(np.zeros(model.m), status, iterations, 0.0, False)
+            self._multipliers = solution.y[:n]
+            x = solution.x
+            new_force = np.minimum(np.maximum(force + x[:r] / root, low), high)
             new_angle = angle.copy()
-            new_angle[rot] = np.clip(angle[rot] + solution.x[r:r + p] / lever, angle_low, angle_high)
+            new_angle[rot] = np.minimum(np.maximum(here + x[r:r + p] / lever, angle_low), angle_high)
             if passes > 1:
                 # Another pass linearises around the new point; from a poor one (thrusters at
                 # rest: dT/dalpha f = 0) it can overshoot, so a pass that misses tau by more
                 # than the last one (each DOF against its authority, as the default Q weighs
                 # them) is dropped and the passes stop.
-                t_new, dt_new = self._matrices(new_angle)
+                t_new, dt_new = self._matrices(new_angle[rot])
                 new_miss = float(np.sum(((t_new @ new_force - tau) / self._dof_scale) ** 2))
                 if new_miss >= miss:
                     break
                 miss, t, dt = new_miss, t_new, dt_new
             force, angle = new_force, new_angle
-        extended = np.zeros(model.m)
-        extended[model.scalar_columns] = force[model.scalar]
-        extended[model.rot_columns[:, 0]] = force[rot] * np.cos(angle[rot])
-        extended[model.rot_columns[:, 1]] = force[rot] * np.sin(angle[rot])
-        return MethodOutput(force=extended, status=status, iterations=iterations, angle=angle)
+        extended = force[model.extended_owner]
+        if p:
+            spun = angle[rot]
+            extended[model.rot_columns[:, 0]] *= np.cos(spun)
+            extended[model.rot_columns[:, 1]] *= np.sin(spun)
+        return MethodOutput(extended, status, iterations, 0.0, True, angle)
 
-    def _matrices(self, angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """T(alpha) and dT/dalpha on the controlled DOFs (n x r), from the constant T_e."""
-        model = self.model
-        rot = model.rot
-        t = np.empty((model.n, model.r))
-        dt = np.zeros((model.n, model.r))
-        t[:, model.scalar] = model.t_ec[:, model.scalar_columns]
-        if rot.size:
-            first = model.t_ec[:, model.rot_columns[:, 0]]
-            second = model.t_ec[:, model.rot_columns[:, 1]]
-            cos, sin = np.cos(angle[rot]), np.sin(angle[rot])
-            t[:, rot] = cos * first + sin * second
-            dt[:, rot] = -sin * first + cos * second
-        return t, dt
+    def _matrices(self, spun: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """T(alpha) (n x r) and dT/dalpha of the rotatable thrusters (n x p) on the
+        controlled DOFs, from the constant T_e, at the rotatable thrusters' angles ``spun``."""
+        t = self._t_fixed.copy()
+        if not spun.size:
+            return t, self._no_turning
+        cos, sin = np.cos(spun), np.sin(spun)
+        t[:, self.model.rot] = cos * self._first + sin * self._second
+        return t, cos * self._second - sin * self._first
 
     def _singularity_gradient(self, t: np.ndarray, dt: np.ndarray, limits: SampleLimits) -> np.ndarray:
         """Gradient over the rotatable angles of rho / (eps + det(T W^-1 T')), the

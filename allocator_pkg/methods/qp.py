@@ -55,7 +55,7 @@ import scipy.sparse as sp
 
 from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.problem import Rows, ScaledProblem, entry_index
+from ..solvers.problem import Entries, Rows, ScaledProblem, entry_index
 from ..vehicle import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
 
@@ -93,6 +93,8 @@ class _Problem:
     scale_index: np.ndarray
     p_diagonal: np.ndarray
     rows: list[tuple]
+    moving: Entries
+    rotated: np.ndarray = field(default_factory=lambda: np.zeros(0))
     directions: list[float] = field(default_factory=list)
     cos: list[float] = field(default_factory=list)
     sin: list[float] = field(default_factory=list)
@@ -125,8 +127,11 @@ class QPAllocation(AllocationMethod):
         self._angle_step = model.angle_step[model.rot].tolist()
         self._rot_columns = [(int(c1), int(c2)) for c1, c2 in model.rot_columns]
         self._u_columns = model.rot_columns[:, 0].copy()
-        self._first = model.t_ec[:, model.rot_columns[:, 0]]
-        self._second = model.t_ec[:, model.rot_columns[:, 1]]
+        first, second = model.t_ec[:, model.rot_columns[:, 0]].T, model.t_ec[:, model.rot_columns[:, 1]].T
+        # Per thruster, the matrix taking (cos d, sin d) to its equality entries T_e R(d), row
+        # by row the u then the v column: u = t1 cos + t2 sin, v = t2 cos - t1 sin.
+        self._rotation = np.stack((np.stack((first, second), axis=-1), np.stack((second, -first), axis=-1)),
+                                  axis=2).reshape(len(self._rot), 2 * model.n, 2)
 
     def update_model(self, model: Model) -> None:
         """Take a configuration with the same structure: values only, no new set-up."""
@@ -259,6 +264,7 @@ class QPAllocation(AllocationMethod):
                         across=index["across"], edge_low=index["edge_low"], edge_high=index["edge_high"],
                         rotated_index=rotated_index.reshape(-1), edge_index=edge_index.reshape(-1),
                         scale_index=scale_index, p_diagonal=p, rows=per_thruster,
+                        moving=qp.entries(np.concatenate((rotated_index.reshape(-1), edge_index.reshape(-1)))),
                         multiplier=[0.0] * rotatable, curvature=[0.0] * rotatable)
 
     # -- per sample ---------------------------------------------------------------------
@@ -343,22 +349,14 @@ class QPAllocation(AllocationMethod):
                 low[edge_low] = 0.0
             edges += edge
         p_diagonal = self._circle_curvature(problem, bounds)
-        values, index = [], []
-        if directions != problem.directions:
-            problem.directions = directions
-            problem.cos = [math.cos(d) for d in directions]
-            problem.sin = [math.sin(d) for d in directions]
-            cos, sin = np.array(problem.cos), np.array(problem.sin)
-            rotated = np.stack((cos * self._first + sin * self._second, cos * self._second - sin * self._first),
-                               axis=-1)                                                 # n x p x 2
-            values.append(rotated.transpose(1, 0, 2).reshape(-1))
-            index.append(problem.rotated_index)
-        if edges != problem.edges:
+        if directions != problem.directions or edges != problem.edges:
+            if directions != problem.directions:
+                problem.directions = directions
+                problem.cos = [math.cos(d) for d in directions]
+                problem.sin = [math.sin(d) for d in directions]
+                problem.rotated = (self._rotation @ np.array([problem.cos, problem.sin]).T[:, :, None]).reshape(-1)
             problem.edges = edges
-            values.append(np.array(edges))
-            index.append(problem.edge_index)
-        if values:
-            qp.update_matrix(np.concatenate(values), np.concatenate(index), p_diagonal)
+            qp.update_entries(problem.moving, np.concatenate((problem.rotated, edges)), p_diagonal)
         elif p_diagonal is not None:
             qp.update_objective(p_diagonal)
 

@@ -3,28 +3,23 @@ scaling, a :class:`~.backend.Backend` solves the normalised problem.
 
 ``BACKENDS`` names every backend installed here: ``osqp`` (the package's solver: set up
 once, updated and warm-started), ``osqp_fresh`` (a new OSQP every solve, a benchmark
-pattern), and, when their libraries are installed, ``quadprog`` and ``daqp`` (dense
-active-set solvers, exact references). A new backend is one module with a class of the
+pattern), ``daqp`` (dense dual active set: exact, the forbidden-sector planner's solver) and,
+when installed, ``quadprog`` (dense active set, an exact reference). A new backend is one module with a class of the
 :class:`~.backend.Backend` protocol and one line here.
 """
 
 from __future__ import annotations
 
 from .backend import Backend, BackendFactory, BackendResult
+from .daqp_backend import DAQPBackend
 from .osqp_backend import FreshOSQPBackend, OSQPBackend
 
-BACKENDS: dict[str, BackendFactory] = {"osqp": OSQPBackend, "osqp_fresh": FreshOSQPBackend}
+BACKENDS: dict[str, BackendFactory] = {"osqp": OSQPBackend, "osqp_fresh": FreshOSQPBackend, "daqp": DAQPBackend}
 
 try:
     from .quadprog_backend import QuadprogBackend
     BACKENDS["quadprog"] = QuadprogBackend
 except ImportError:             # quadprog is a development dependency
-    pass
-
-try:
-    from .daqp_backend import DAQPBackend
-    BACKENDS["daqp"] = DAQPBackend
-except ImportError:             # DAQP is a development dependency
     pass
 
 DEFAULT_BACKEND = "osqp"

@@ -52,8 +52,9 @@ class Backend(Protocol):
     def update_settings(self, settings: SolverSettings) -> None:
         """Tolerances and limits changed by a reconfiguration."""
 
-    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
-        """Solve with these row bounds (the backend may change the arrays: they are scratch)."""
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+        """Solve with these row bounds (the backend may change the arrays: they are scratch)
+        and, if given, this q (sent with the bounds)."""
 
 
 BackendFactory = Callable[[], Backend]

@@ -55,7 +55,9 @@ class DAQPBackend:
     def update_settings(self, settings: SolverSettings) -> None:
         self.iter_limit = settings.max_iter
 
-    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+        if q is not None:
+            self.q = q.copy()
         sense = np.where(low == up, EQUALITY, np.where(self.active, ACTIVE, 0)).astype(np.int32)
         x, _, flag, info = daqp.solve(self.p, self.q, self.dense, np.minimum(up, BOUND), np.maximum(low, -BOUND),
                                       sense, iter_limit=self.iter_limit)

@@ -112,14 +112,14 @@ class OSQPBackend:
         self.solver.update_settings(**osqp_settings(settings))
         self.settings = settings
 
-    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
         np.maximum(low, -INFINITY, out=low)
         np.minimum(up, INFINITY, out=up)
         if self._raw is None:
-            self.solver.update(l=low, u=up)
+            self.solver.update(l=low, u=up) if q is None else self.solver.update(q=q, l=low, u=up)
             result = self.solver.solve(raise_error=False)
             return _result(result.info, result, self.settings)
-        self._raw.update_data_vec(q=None, l=low, u=up)
+        self._raw.update_data_vec(q=q, l=low, u=up)
         self._raw.solve()
         return _result(self._raw.info, self._raw.solution, self.settings)
 
@@ -157,7 +157,9 @@ class FreshOSQPBackend:
     def update_settings(self, settings: SolverSettings) -> None:
         self.settings = settings
 
-    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+        if q is not None:
+            self.q = q.copy()
         solver = osqp.OSQP()
         solver.setup(P=self.p, q=self.q, A=self.a, l=np.maximum(low, -INFINITY), u=np.minimum(up, INFINITY),
                      verbose=False, polishing=False, scaling=0, check_termination=CHECK_TERMINATION,

@@ -75,6 +75,16 @@ class Solution:
         return self._y
 
 
+class Entries:
+    """Stored entries of A updated together: their CSC positions and scales (see
+    :meth:`ScaledProblem.entries`)."""
+
+    __slots__ = ("index", "scale")
+
+    def __init__(self, index: np.ndarray, scale: np.ndarray):
+        self.index, self.scale = index, scale
+
+
 class ScaledProblem:
     """min 1/2 x'Px + q'x s.t. low <= Ax <= up with diagonal P, set up once on a backend.
 
@@ -128,13 +138,25 @@ class ScaledProblem:
         self.backend.update_matrix(values * (self._entry_scale if index is None else self._entry_scale[index]), index,
                                    None if p_diagonal is None else self._p(p_diagonal))
 
+    def entries(self, index: np.ndarray) -> Entries:
+        """A fixed set of stored entries of A that a method updates together, sample after
+        sample: their index and scale are prepared once here."""
+        index = np.asarray(index, dtype=np.int64)
+        return Entries(index, self._entry_scale[index])
+
+    def update_entries(self, entries: Entries, values: np.ndarray, p_diagonal: np.ndarray | None = None) -> None:
+        """New values of one set of entries (physical units) and, if given, of P's diagonal."""
+        self.backend.update_matrix(values * entries.scale, entries.index,
+                                   None if p_diagonal is None else self._p(p_diagonal))
+
     def update_settings(self, settings: SolverSettings) -> None:
         self.backend.update_settings(settings)
 
-    def solve(self, low: np.ndarray, up: np.ndarray) -> Solution:
-        """Solve for physical bounds; the solution comes back in physical units."""
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> Solution:
+        """Solve for physical bounds (and a new q, if given); the solution comes back in
+        physical units."""
         result = self.backend.solve(np.multiply(low, self.row_scale, out=self._low),
-                                    np.multiply(up, self.row_scale, out=self._up))
+                                    np.multiply(up, self.row_scale, out=self._up), None if q is None else self._q(q))
         x = result.x * self.column_scale
         usable = result.usable and math.isfinite(x.sum())
         return Solution(x, result.status, result.iterations, usable, result, self)

@@ -45,7 +45,9 @@ class QuadprogBackend:
     def update_settings(self, settings: SolverSettings) -> None:
         """quadprog has no tolerances to set."""
 
-    def solve(self, low: np.ndarray, up: np.ndarray) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+        if q is not None:
+            self.q = q.copy()
         equal = low == up
         lower = ~equal & (low > -math.inf)
         upper = ~equal & (up < math.inf)
