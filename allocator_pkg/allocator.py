@@ -169,7 +169,7 @@ class Allocator:
     def dof_tolerance(self) -> np.ndarray:
         """How far the achieved wrench may miss the request in each controlled DOF (``dofs``
         order) before a sample counts as saturated."""
-        return 1.0 / self._saturation_scale
+        return SATURATION_TOLERANCE * self._model.dof_scale
 
     def check_reconfigure(self, vehicle: Vehicle) -> None:
         """Raise ValueError if :meth:`reconfigure` cannot take ``vehicle``."""
@@ -224,11 +224,12 @@ class Allocator:
         self._dof_index = model.dof_index
         self._all_dofs = model.n == len(DOF_NAMES)
         self._t_e = model.t_e
-        self._power = model.power
-        self._saturation_scale = 1.0 / (SATURATION_TOLERANCE * model.dof_scale)
+        self._power = model.power.tolist()
+        self._tolerance = self.dof_tolerance.tolist()
         self._rot_pairs = [(int(i), (int(c1), int(c2))) for i, (c1, c2) in zip(model.rot, model.rot_columns)]
         self._rotations = [vehicle.actuators[i].rotation for i in model.rot]
         self._continuous = [rotation.continuous for rotation in self._rotations]
+        self._around: list = [None] * len(self._rotations)
         self._angle_step = model.angle_step.tolist()
         self._thrust_step_list = model.thrust_step.tolist()
         self._hold = model.hold.tolist()
@@ -313,7 +314,7 @@ class Allocator:
             requested = requested.reshape(-1)
             if requested.shape != (6,):
                 raise ValueError(f"tau needs 6 components [X, Y, Z, K, M, N], got {requested.size}")
-        if not np.isfinite(requested).all():
+        if not all(map(math.isfinite, requested.tolist())):
             raise ValueError(f"tau must be finite, got {requested.tolist()}")
         start = time.perf_counter()
         tau_c = requested if self._all_dofs else requested[self._dof_index]
@@ -328,13 +329,14 @@ class Allocator:
         if drag:
             achieved[_SURGE] -= drag
         miss = (achieved if self._all_dofs else achieved[self._dof_index]) - tau_c
-        saturated = bool((np.abs(miss) * self._saturation_scale).max() > 1.0)
+        saturated = any(abs(m) > tolerance for m, tolerance in zip(miss.tolist(), self._tolerance))
         command = self._maps.commands(thrust, self._command_efficiency, self._lift)
         self._commit(thrust, angle)
         self._stats.samples += 1
         return AllocationResult(thrust, angle, command, achieved, requested, saturated, output.status,
                                 output.iterations, time.perf_counter() - start,
-                                float(self._power @ (np.abs(thrust) ** 1.5)), self._method.name,
+                                sum(p * abs(t) ** 1.5 for p, t in zip(self._power, thrust.tolist())),
+                                self._method.name,
                                 self._fault_set.modes, self._availability, drag)
 
     def stop(self) -> AllocationResult:
@@ -392,8 +394,7 @@ class Allocator:
             stuck = self._fault_set.stuck
             desired = (self._desired_gain @ tau).tolist()
             wanted = {i: (desired[c1], desired[c2]) for i, (c1, c2) in self._rot_pairs}
-            around = [surroundings(rotation, state_k.angle)
-                      for state_k, rotation in zip(state.azimuth, self._rotations)]
+            around = self._surroundings()
             wanted.update(self._planned(tau, wanted, stuck, around))
             for state_k, (i, _), rotation, around_k in zip(state.azimuth, self._rot_pairs, self._rotations, around):
                 limits_k = plan(rotation, state_k, self._angle_step[i], (self._range_low_list[i],
@@ -402,6 +403,14 @@ class Allocator:
                 azimuth.append(limits_k)
                 low[i], high[i] = limits_k.thrust_low, limits_k.thrust_high
         return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust)
+
+    def _surroundings(self) -> list:
+        """Each rotatable thruster's `sectors.surroundings`, kept while its angle stays."""
+        cache = self._around
+        for k, (state_k, rotation) in enumerate(zip(self._state.azimuth, self._rotations)):
+            if cache[k] is None or cache[k][0] != state_k.angle:
+                cache[k] = (state_k.angle, surroundings(rotation, state_k.angle))
+        return [entry[1] for entry in cache]
 
     def _planned(self, tau: np.ndarray, wanted: dict[int, tuple[float, float]], stuck: dict[int, float],
                  around: list) -> dict[int, tuple[float, float]]:
@@ -483,8 +492,8 @@ class Allocator:
         are made read-only)."""
         state = self._state
         model = self._model
-        thrust.flags.writeable = False
-        angle.flags.writeable = False
+        thrust.setflags(write=False)
+        angle.setflags(write=False)
         state.thrust, state.angle = thrust, angle
         surfaces = model.surfaces
         if surfaces.size:

@@ -109,6 +109,9 @@ class PiecePlanner:
     half-planes, or a line), one small problem set up once and changed by values for each
     combination."""
 
+    needed: bool
+    """Whether any rotatable thruster's forces are not one convex piece (set with the model)."""
+
     def __init__(self, model: Model, backend: BackendFactory | None = None):
         self._backend = backend or BACKENDS[PLANNER_BACKEND]
         self.setups = 0
@@ -116,15 +119,11 @@ class PiecePlanner:
         self._problem = None
         self.update_model(model)
 
-    @property
-    def needed(self) -> bool:
-        """Whether any rotatable thruster's forces are not one convex piece."""
-        return any(not (a.rotation.continuous and not a.rotation.forbidden_sectors)
-                   for a in self.model.vehicle.actuators if a.rotatable)
-
     def update_model(self, model: Model) -> None:
         old = getattr(self, "model", None)
         self.model = model
+        self.needed = any(not (a.rotation.continuous and not a.rotation.forbidden_sectors)
+                          for a in model.vehicle.actuators if a.rotatable)
         self._key = None
         self.last_targets = {}
         if not self.needed:
