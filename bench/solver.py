@@ -89,9 +89,9 @@ class Timed:
         solve = backend.solve
         times = self.times
 
-        def timed_solve(low, up):
+        def timed_solve(low, up, q=None):
             begin = time.perf_counter()
-            result = solve(low, up)
+            result = solve(low, up, q)
             times.append(time.perf_counter() - begin)
             return result
 

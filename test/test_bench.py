@@ -3,14 +3,17 @@
 import json
 import sys
 
+import numpy as np
 from conftest import ROOT
 
 sys.path.insert(0, str(ROOT / "bench"))
 
 import report
 import soak
+import solver
 
 from allocator_pkg import load_vehicle
+from allocator_pkg.solvers import BACKENDS
 
 
 def test_the_report_is_rebuilt_from_the_committed_results(tmp_path):
@@ -37,3 +40,18 @@ def test_the_soak_judges_each_command_by_the_state_at_its_stamp():
     assert (low, high) == (0.0, 0.5 * vehicle.actuator("azimuth_port").thrust_max)
     history.forget(change)
     assert history.at(10.1, period) == (start, start, False) and len(history.changes) == 1
+
+
+def test_every_solver_pattern_of_the_bench_allocates_and_records_its_solver_calls():
+    """The bench's plumbing on a few samples: every method and backend pattern answers, and
+    each QP pattern's solver calls are recorded through the backend seam."""
+    for config in ("bluerov2_heavy", "dp_vessel"):
+        vehicle = load_vehicle(ROOT / "config" / f"{config}.yaml")
+        methods = solver.allocators(vehicle)
+        assert {name for name, backend in solver.PATTERNS.items() if backend in BACKENDS} <= set(methods)
+        tau = solver.sequences(vehicle, 5)["smooth"][2]
+        for name, (allocator, timed) in methods.items():
+            result = allocator.allocate(tau)
+            assert np.isfinite(result.thrust).all(), (config, name)
+            if name.startswith("qp"):
+                assert timed.times, (config, name)
