@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 TARGET_VEHICLE = "bluerov2_heavy"
 INPUT_RATES = (100.0, 1000.0)
+SETTLING_BEFORE = Path(__file__).resolve().parent / "results" / "settling_before.json"
+"""The settling sweep on the code before issue 12, measured once (see bench/settling.py)."""
 NOT_IN_THIS_RUN = "not in this run (the next `make bench` measures it)"
 
 INTRO = """# Performance
@@ -62,6 +65,8 @@ def _targets(result: dict) -> list[str]:
                 f"| wrench error on attainable samples <= 1e-4, {sequence} | {_fmt(error, 2)} | "
                 f"{'yes' if error is not None and error <= 1e-4 else 'no'} |",
             ]
+    rows += _speed_targets(result)
+    rows += _settling_targets(result)
     for case in _timer_cases(result):
         if case["setup"] == "one process" and case["rate_hz"] == 200:
             tick = case["tick_to_receipt_ms"]["p50"]
@@ -96,6 +101,49 @@ def _targets(result: dict) -> list[str]:
                         f"stale, memory flat | {case['achieved_hz']:.1f} Hz, oldest output "
                         f"{_fmt(case['output_age_ms']['max'], 1)} ms, RSS {case['rss_growth_mb']:+.1f} MB | "
                         f"{'yes' if not case['failures'] else 'no'} |")
+    return rows
+
+
+SPEED_TARGETS = (("bluerov2_heavy", "pseudoinverse", 8.0), ("bluerov2_heavy", "qp", 20.0),
+                 ("bluerov2_heavy", "explicit", 10.0), ("dp_vessel", "qp", 50.0), ("dp_vessel", "nonlinear", 60.0))
+"""(vehicle, method, median us on the smooth sequence) of issue 13."""
+
+SETTLING = {"fallback_share": 0.005, "worst_deviation": 2e-3, "p99_us": 1000.0, "dp_median_us": 150.0}
+"""Issue 12's limits on the settling sweep."""
+
+
+def _speed_targets(result: dict) -> list[str]:
+    rows = []
+    vehicles = result["solver"]["vehicles"]
+    for vehicle, method, target in SPEED_TARGETS:
+        run = vehicles.get(vehicle, {}).get("sequences", {}).get("smooth")
+        name = f"| {method} median <= {target:g} us, {vehicle}, smooth, Python included |"
+        if run is None or method not in run["methods"]:
+            rows.append(f"{name} {NOT_IN_THIS_RUN} | - |")
+            continue
+        median = run["methods"][method]["time_us"]["median"]
+        rows.append(f"{name} {_fmt(median)} us | {'yes' if median <= target else 'no'} |")
+    return rows
+
+
+def _settling_targets(result: dict) -> list[str]:
+    settling = result.get("settling")
+    name = ("| settling sweep: every case at rest, fallbacks <= 0.5 %, deviation <= 2e-3, no violation, p99 <= 1 ms"
+            " (DP vessel median <= 150 us)")
+    if settling is None:
+        return [f"{name} | {NOT_IN_THIS_RUN} | - |"]
+    rows = []
+    for vessel, methods in settling["vessels"].items():
+        for method, summary in methods.items():
+            times = summary["time_us"]
+            met = (summary["moving_or_falling_back"] == 0 and summary["fallback_share"] <= SETTLING["fallback_share"]
+                   and summary["worst_deviation"] <= SETTLING["worst_deviation"] and summary["violations"] == 0
+                   and times["p99"] <= SETTLING["p99_us"]
+                   and (not vessel.startswith("dp_vessel") or times["median"] <= SETTLING["dp_median_us"]))
+            rows.append(f"{name}, {vessel}, {method} | {summary['moving_or_falling_back']} of {summary['cases']} "
+                        f"not at rest, {100 * summary['fallback_share']:.2f} % fallbacks, deviation "
+                        f"{_fmt(summary['worst_deviation'], 2)}, {summary['violations']} violations, "
+                        f"{_fmt(times['median'], 0)} / {_fmt(times['p99'], 0)} us | {'yes' if met else 'no'} |")
     return rows
 
 
@@ -200,6 +248,41 @@ def _load_section(result: dict) -> list[str]:
     return lines
 
 
+def _settling_section(result: dict, before: dict | None) -> list[str]:
+    lines = ["## Rotatable thrusters near their capability", "",
+             "`bench/settling.py --full`: a constant request held from rest for {samples} samples and judged over "
+             "the last {judged}, in every direction of the surge/sway plane (every {step:g} deg) at {magnitudes} "
+             "times the vessel's capability in that direction (an independent LP). \"Not at rest\": peak-to-peak "
+             "angle change over {settled} deg, or a fallback, in the judged samples; \"deviation\": the largest "
+             "per-DOF distance of the settled wrench from an independent optimum of the same static problem "
+             "(SLSQP over every combination of convex pieces), as a fraction of the DOF's authority; "
+             "\"violations\": samples that broke a rate, thrust or sector limit, checked by the sweep's own "
+             "arithmetic. Times per sample over all samples of the sweep."]
+    settling = result.get("settling")
+    if settling is None:
+        return [lines[0], "", f"{NOT_IN_THIS_RUN[0].upper()}{NOT_IN_THIS_RUN[1:]}."]
+    directions, magnitudes = settling["directions_deg"], settling["magnitudes"]
+    lines[2] = lines[2].format(samples=settling["samples"], judged=settling["judged"],
+                               step=directions[1] - directions[0] if len(directions) > 1 else 360.0,
+                               magnitudes=f"{magnitudes[0]:g} to {magnitudes[-1]:g}", settled=0.1)
+    runs = [("this run", settling)]
+    if before is not None:
+        runs.insert(0, (f"before (#12; commit {before['commit']}, {before['date']})", before))
+        lines += ["", f"\"Before\" is the same sweep run on commit {before['commit']} ({before['note']}); it is "
+                  "kept in `bench/results/settling_before.json`, not re-measured by `make bench`."]
+    lines += ["", "| code | vessel | method | not at rest | fallbacks, all samples | worst deviation | violations | "
+              "median us | p99 us | max us |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for label, run in runs:
+        for vessel, methods in run["vessels"].items():
+            for method, summary in methods.items():
+                times = summary["time_us"]
+                lines.append(f"| {label} | {vessel} | {method} | {summary['moving_or_falling_back']} of "
+                             f"{summary['cases']} | {100 * summary['fallback_share']:.2f} % | "
+                             f"{_fmt(summary['worst_deviation'], 4)} | {summary['violations']} | "
+                             f"{_fmt(times['median'], 0)} | {_fmt(times['p99'], 0)} | {_fmt(times['max'], 0)} |")
+    return lines
+
+
 def write(result: dict, path: Path) -> None:
     m = result["machine"]
     lines = [INTRO.format(warm_up=result["solver"]["warm_up"], gc=result["solver"]["gc"]).rstrip(), ""]
@@ -209,6 +292,8 @@ def write(result: dict, path: Path) -> None:
     lines += [f"| {key} | {value} |" for key, value in m.items()]
     lines += ["", "## Targets", "", *_targets(result)]
     lines += ["", "## Solver level", "", *_solver_tables(result)]
+    before = json.loads(SETTLING_BEFORE.read_text()) if SETTLING_BEFORE.exists() else None
+    lines += [*_settling_section(result, before), ""]
     lines += ["## Node level", "", *_node_table(result)]
     lines += ["", *_load_section(result)]
     path.write_text("\n".join(lines) + "\n")

@@ -35,7 +35,7 @@ def machine() -> dict[str, str]:
                 cpu = line.split(":", 1)[1].strip()
                 break
     versions = {}
-    for name in ("numpy", "osqp", "scipy", "quadprog", "ros-jazzy-rclpy"):
+    for name in ("numpy", "osqp", "daqp", "scipy", "quadprog", "ros-jazzy-rclpy"):
         try:
             versions[name] = metadata.version(name)
         except metadata.PackageNotFoundError:
@@ -53,6 +53,8 @@ def main(argv: list[str] | None = None) -> int:
     result = {"machine": machine(), "quick": arguments.quick}
     result["solver"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "solver.py"), "--samples",
                                             str(samples)]))
+    result["settling"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "settling.py")]
+                                             + ([] if arguments.quick else ["--full"])))
     node_out = RESULTS / "node.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "node.py"), "--out", str(node_out)]
                    + (["--quick"] if arguments.quick else []), check=True)

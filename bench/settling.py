@@ -15,14 +15,19 @@ hold the request for 400 samples from rest and judge the last 100:
   checked here with arithmetic of its own;
 - time per sample (median, p99).
 
-``make bench`` runs the full sweep (``--full``); ``test/test_settling.py`` a small one.
+``make bench`` runs the full sweep (``--full``); ``test/test_settling.py`` a small one. The
+output names the commit of the ``allocator_pkg`` it ran, so the sweep can measure older code:
+``PYTHONPATH=<checkout> python bench/settling.py --full --note "..."`` (how
+``bench/results/settling_before.json`` was made).
 """
 
 from __future__ import annotations
 
 import argparse
+import datetime
 import json
 import math
+import subprocess
 import sys
 import time
 from dataclasses import dataclass, field
@@ -35,6 +40,7 @@ sys.path.insert(0, str(ROOT / "test"))
 
 from reference import best_attainable_wrench  # noqa: E402
 
+import allocator_pkg  # noqa: E402
 from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters  # noqa: E402
 from allocator_pkg.capability import Capability  # noqa: E402
 from allocator_pkg.faults import FaultSet, static_ranges  # noqa: E402
@@ -179,11 +185,13 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--full", action="store_true", help="every 15 deg, magnitudes 0.5 to 1.5 by 0.1")
     parser.add_argument("--out", type=Path, default=None)
+    parser.add_argument("--note", default="", help="what the measured code is (kept in the output)")
     arguments = parser.parse_args(argv)
     directions = np.arange(0.0, 360.0, 15.0 if arguments.full else 45.0)
     magnitudes = np.round(np.arange(0.5, 1.51, 0.1 if arguments.full else 0.5), 2)
     report = {"samples": SAMPLES, "judged": JUDGED, "directions_deg": directions.tolist(),
-              "magnitudes": magnitudes.tolist(), "vessels": {}}
+              "magnitudes": magnitudes.tolist(), "commit": _commit(), "date": datetime.date.today().isoformat(),
+              "note": arguments.note, "vessels": {}}
     for name, build in VESSELS.items():
         swept = sweep(build(), METHODS, directions, magnitudes)
         report["vessels"][name] = {method: summary(cases) for method, cases in swept.items()}
@@ -194,6 +202,15 @@ def main(argv: list[str] | None = None) -> int:
     else:
         print(text)
     return 0
+
+
+def _commit() -> str:
+    """The commit of the allocator_pkg this sweep imported (with "+changes" if its tree differs)."""
+    tree = Path(allocator_pkg.__file__).resolve().parents[1]
+    def git(*args: str) -> str:
+        return subprocess.run(["git", "-C", str(tree), *args], capture_output=True, text=True).stdout.strip()
+    commit = git("rev-parse", "--short", "HEAD") or "unknown"
+    return commit + ("+changes" if git("status", "--porcelain", "--untracked-files=no", "allocator_pkg") else "")
 
 
 if __name__ == "__main__":
