@@ -1,5 +1,5 @@
 """package.xml declares every ROS package the code imports (issue 14: rcl_interfaces was not),
-and the rosdep key of OSQP is defined in the repository's own rosdep.yaml."""
+and the rosdep keys of OSQP and HiGHS are defined in the repository's own rosdep.yaml."""
 
 import ast
 import xml.etree.ElementTree as ElementTree
@@ -30,9 +30,10 @@ def test_every_imported_ros_package_is_an_exec_depend():
     assert "lifecycle_msgs" in depends                      # rclpy.lifecycle's services
 
 
-def test_the_osqp_rosdep_key_is_defined_here():
+def test_the_pip_rosdep_keys_are_defined_here():
     depends = {element.text for element in ElementTree.parse(ROOT / "package.xml").getroot().iter("exec_depend")}
     rules = yaml.safe_load((ROOT / "rosdep.yaml").read_text())
     pip_keys = {key for key in depends if key.endswith("-pip")}
-    assert pip_keys == {"python3-osqp-pip"}
+    assert pip_keys == {"python3-osqp-pip", "python3-highspy-pip"} == set(rules)
     assert rules["python3-osqp-pip"]["ubuntu"]["pip"]["packages"] == ["osqp"]
+    assert rules["python3-highspy-pip"]["ubuntu"]["pip"]["packages"] == ["highspy"]
