@@ -23,7 +23,7 @@ ROTATABLE_TYPES = (AZIMUTH, AZIMUTH_VERTICAL)
 SURFACE_TYPES = (RUDDER, FIN)
 THRUSTER_TYPES = (FIXED, AZIMUTH, AZIMUTH_VERTICAL)
 
-SATURATION_MODES = ("weighted", "preserve_direction")
+SATURATION_MODES = ("weighted", "preserve_direction", "direct")
 COMMAND_MAPS = ("linear", "quadratic", "table")
 FLOW_MODELS = ("free", "propeller_wake")
 
