@@ -369,7 +369,8 @@ class Allocator:
             self._surface_step = np.multiply(lift, model.thrust_step[model.surfaces], out=np.zeros(lift.size),
                                              where=lift > 0.0)
         self._static = None if (model.rot.size or model.surfaces.size or self._rate_limited) else SampleLimits(
-            self._range_low, self._range_high, model.rot, [], np.zeros(model.r), np.zeros(model.r), self._version)
+            self._range_low, self._range_high, model.rot, [], np.zeros(model.r), np.zeros(model.r), self._version,
+            self._range_low, self._range_high)
 
     def _limits(self, tau: np.ndarray) -> SampleLimits:
         state = self._state
@@ -401,7 +402,8 @@ class Allocator:
                                 stuck.get(i), around_k)
                 azimuth.append(limits_k)
                 low[i], high[i] = limits_k.thrust_low, limits_k.thrust_high
-        return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust)
+        return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust, range_low=range_low,
+                            range_high=range_high)
 
     def _planned(self, tau: np.ndarray, wanted: dict[int, tuple[float, float]], stuck: dict[int, float],
                  around: list) -> dict[int, tuple[float, float]]:

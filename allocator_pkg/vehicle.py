@@ -142,6 +142,9 @@ class Vehicle:
     nonlinear_max_iterations: int
     solver: SolverSettings
     water_density: float
+    dynamic_gain: float = 0.5
+    svd_filter_time_constant: float = 1.0
+    svd_filter_damping_threshold: float = 0.05
 
     @property
     def names(self) -> tuple[str, ...]:

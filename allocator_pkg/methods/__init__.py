@@ -9,12 +9,14 @@ section in docs/theory.md.
 - ``qp``: the constrained QP (1.35) on one warm-started solver problem;
 - ``pseudoinverse``: the weighted generalised inverse (1.29)/(1.33) with clipping or scaling;
 - ``nonlinear``: the nonlinear problem (1.44) by sequential linearised QPs (1.45);
-- ``lp``: the survey's linear programme (section 5.3) on HiGHS, warm-started from the last basis.
+- ``lp``: the survey's linear programme (section 5.3) on HiGHS, warm-started from the last basis;
+- ``dynamic``: a control-Lyapunov update law whose equilibrium is the optimum (section 5.1).
 """
 
 from __future__ import annotations
 
 from .base import AllocationMethod
+from .dynamic import DynamicAllocation
 from .lp import LPAllocation
 from .nonlinear import NonlinearAllocation
 from .pseudoinverse import PseudoInverseAllocation
@@ -25,6 +27,7 @@ METHODS: dict[str, type[AllocationMethod]] = {
     PseudoInverseAllocation.name: PseudoInverseAllocation,
     NonlinearAllocation.name: NonlinearAllocation,
     LPAllocation.name: LPAllocation,
+    DynamicAllocation.name: DynamicAllocation,
 }
 
 __all__ = ["METHODS", "AllocationMethod"]
