@@ -134,7 +134,7 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         "fed forward whole).", default=0.5, minimum=0.0, exclusive_minimum=True, maximum=1.0),
     Key("svd_filter.time_constant", FLOAT, "Time constant of the filter that steers each rotatable thruster of the "
         "svd_filter method toward the direction the extended solution wants most force in (section 5.4; 0: no "
-        "filter).", default=1.0, minimum=0.0, unit="s"),
+        "filter).", default=0.2, minimum=0.0, unit="s"),
     Key("svd_filter.damping_threshold", FLOAT, "epsilon of the svd_filter method: singular values of the "
         "normalised configuration matrix T(alpha) below it are damped (damped least squares), so that no force "
         "exceeds 1/epsilon of the request in units of authority and range.", default=0.05, minimum=0.0,

@@ -143,7 +143,7 @@ class Vehicle:
     solver: SolverSettings
     water_density: float
     dynamic_gain: float = 0.5
-    svd_filter_time_constant: float = 1.0
+    svd_filter_time_constant: float = 0.2
     svd_filter_damping_threshold: float = 0.05
 
     @property
