@@ -19,7 +19,7 @@ from allocator_pkg.solvers import BACKENDS
 
 sys.path.insert(0, str(ROOT / "bench"))
 
-import sparsity  # noqa: E402
+import sparsity
 
 EIGHT = DATA / "eight_thrusters.yaml"
 Q = [1e5] * 6
