@@ -200,3 +200,15 @@ def circle_allocation(t_e, w_ext, q, columns, boxes, circles, tau):
     result = minimize(cost, start, jac=gradient, method="SLSQP", bounds=bounds, constraints=constraints,
                       options={"maxiter": 1000, "ftol": 1e-16})
     return result.x * scale
+
+
+def bounded_least_squares(t, w, q, low, high, tau):
+    """(1.35) with beta = 0 and the slack eliminated, min f'Wf + (Tf - tau)'Q(Tf - tau) with
+    low <= f <= high, as the bounded least-squares problem it is: scipy's BVLS on
+    [sqrt(Q) T; sqrt(W)] f ~ [sqrt(Q) tau; 0] (QR based, so a Q a million times W costs no
+    accuracy, as it can in a dual active-set QP)."""
+    from scipy.optimize import lsq_linear
+
+    a = np.vstack([np.sqrt(q)[:, None] * t, np.diag(np.sqrt(w))])
+    b = np.concatenate([np.sqrt(q) * tau, np.zeros(t.shape[1])])
+    return lsq_linear(a, b, bounds=(low, high), method="bvls", tol=1e-14).x

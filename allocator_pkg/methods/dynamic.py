@@ -204,22 +204,23 @@ class DynamicAllocation(AllocationMethod):
 def _static(lim: AzimuthLimits, rotation: RotationConfig, alpha0: float, angle_step: float, range_low: float,
             range_high: float) -> AzimuthLimits:
     """A rotatable thruster's limits without its rate limits: the thrust window opened to the
-    static range on its side, and a window edge that is only the rate step moved out to the
-    end of the allowed piece the thruster is in, at most a quarter turn from its angle (so the
-    set stays a convex cone, as the planner keeps every window). Sectors, the feasible sector
-    and a crossing's zero thrust stay."""
+    static range on its side, and, when the rate step bounds its angles, the allowed piece the
+    thruster is in within a quarter turn of the direction the planner sends it to (its goal;
+    its present angle when it has none): a convex cone, as the planner keeps every window,
+    that holds where the thruster is going rather than where it is. Sectors, the feasible
+    sector and a crossing's zero thrust stay."""
     if lim.magnitude_max == 0.0:
         return lim
     if lim.line:
         return replace(lim, thrust_low=range_low, thrust_high=range_high)
     low, high = lim.low, lim.high
-    rate_low, rate_high = abs(alpha0 - angle_step - low) <= RATE_EDGE, abs(alpha0 + angle_step - high) <= RATE_EDGE
-    if rate_low or rate_high:
+    if abs(alpha0 - angle_step - low) <= RATE_EDGE or abs(alpha0 + angle_step - high) <= RATE_EDGE:
         piece = surroundings(rotation, alpha0)[2] or (0.0, 0.0)
-        if rate_low:
-            low = alpha0 + max(piece[0], -QUARTER_TURN)
-        if rate_high:
-            high = alpha0 + min(piece[1], QUARTER_TURN)
+        centre = alpha0 if lim.goal is None else alpha0 + wrap(lim.goal - alpha0)
+        low = max(alpha0 + piece[0], centre - QUARTER_TURN)
+        high = min(alpha0 + piece[1], centre + QUARTER_TURN)
+        if low > high:
+            low, high = alpha0 + max(piece[0], -QUARTER_TURN), alpha0 + min(piece[1], QUARTER_TURN)
     side = (0.0, lim.physical_max) if lim.sigma > 0 else (-lim.physical_max, 0.0)
     return replace(lim, low=low, high=high, thrust_low=side[0], thrust_high=side[1])
 
