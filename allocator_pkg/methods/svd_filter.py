@@ -11,8 +11,8 @@ Two steps per sample:
    sectors): toward the direction where most force is needed, smoothly, whatever the extended
    solution does from one sample to the next (the jumps of (1.34)).
 2. Thrusts at those angles. With the angles fixed, tau = T(alpha) f is linear in one force per
-   actuator; written in units of each DOF's authority D and each actuator's range F, weighted,
-   A = D^-1 T(alpha) F W^-1/2 = U S V', and
+   actuator; written in units of each DOF's authority D and of the largest actuator's range F,
+   weighted, A = D^-1 T(alpha) F W^-1/2 = U S V' (W normalised to a largest weight of 1), and
        x = V diag(g(s_i)) U' D^-1 tau,  g(s) = 1/s for s >= eps,  s / eps^2 below it,
    the damped least-squares inverse with the damping lambda_i^2 = eps^2 - s_i^2 for the
    singular values below eps = ``svd_filter.damping_threshold``: equal to the weighted
@@ -42,9 +42,9 @@ from .pseudoinverse import PseudoInverseGains, fixed_forces, scale_to_limits
 
 
 class SVDFilterAllocation(AllocationMethod):
-    """Allocation method ``svd_filter``. ``singular_values`` holds the last sample's singular
-    values of the normalised T(alpha) (largest first) and ``gains`` the damped inverse's gains
-    g(s_i), for the record."""
+    """Allocation method ``svd_filter``. For the record, of the last sample: ``singular_values``
+    of the normalised T(alpha) of the free actuators (largest first), ``gains`` g(s_i) of the
+    damped inverse, and ``thrust``, each actuator's thrust before any limit clips it."""
 
     name = "svd_filter"
 
@@ -56,6 +56,7 @@ class SVDFilterAllocation(AllocationMethod):
         self._start = self._filtered
         self.singular_values = np.zeros(0)
         self.gains = np.zeros(0)
+        self.thrust = np.zeros(model.r)
 
     @classmethod
     def problems(cls, vehicle: Vehicle) -> list[str]:
@@ -81,7 +82,7 @@ class SVDFilterAllocation(AllocationMethod):
         constant = vehicle.svd_filter_time_constant
         self._kappa = 1.0 - math.exp(-model.dt / constant) if constant > 0.0 else 1.0
         self._epsilon = vehicle.svd_filter_damping_threshold
-        self._force = np.maximum(model.force_scale, 1e-9)
+        self._force_unit = float(np.max(model.force_scale, initial=1e-9))
         self._root_weight = np.sqrt(model.weight / float(np.max(model.weight)))
         self._dof = model.dof_scale
         self._preserve_direction = vehicle.saturation == "preserve_direction"
@@ -111,8 +112,9 @@ class SVDFilterAllocation(AllocationMethod):
         thrust = np.zeros(model.r)
         if free.size:
             columns = self._columns(angle)[:, free]
-            scale = self._force[free] / self._root_weight[free]
+            scale = self._force_unit / self._root_weight[free]
             thrust[free] = scale * self._damped(columns * scale / self._dof[:, None], request / self._dof)
+        self.thrust = thrust
         force = np.zeros(model.m)
         force[model.scalar_columns] = thrust[model.scalar]
         force[model.rot_columns[:, 0]] = thrust[model.rot] * np.cos(angle[model.rot])
