@@ -25,10 +25,12 @@ at most ``HALVINGS`` times. ``h`` is ``dynamic.gain``.
 
 Rate limits are constraints on the update: the forces commanded are the state brought into
 this sample's limits (thrust windows around the last thrusts, the angle window of the rate
-step), so the commanded allocation follows the state at the actuators' rates and the state
-is never wound up by them; the equilibrium is the optimum once the rate limits stop binding.
-A sample costs one small linear solve (the free directions, at most the number of extended
-forces) and a few closed-form projections, no iteration.
+step), and where that moved them, one more Newton step of J within those limits lets the
+actuators that are free this sample make up what the held ones miss. The commanded
+allocation follows the state at the actuators' rates, and the state is never wound up by
+them; the equilibrium is the optimum once the rate limits stop binding. A sample costs one
+or two small linear solves (the free directions, at most the number of extended forces) and
+a few closed-form projections, no iteration.
 
 The drag feed-forward solves a sample more than once (allocator, (1.56)-(1.58)); those solves
 restart from the sample's starting state, so the law moves once per sample.
@@ -136,7 +138,45 @@ class DynamicAllocation(AllocationMethod):
         if not np.isfinite(new).all():
             return MethodOutput(np.zeros(self.model.m), "not finite", tries, solved=False)
         self._x, self._request = new, request
-        return MethodOutput(self._project(new, None, limits) * self._column_force, "solved", tries)
+        return MethodOutput(self._commanded(new, request, limits) * self._column_force, "solved", tries)
+
+    def _commanded(self, x: np.ndarray, request: np.ndarray, limits: SampleLimits) -> np.ndarray:
+        """The state brought into this sample's limits, then one Newton step of J within them
+        (actuators a rate limit holds stay, the others make up what those miss; a rotatable
+        thruster only along the angle the state gives it, so that it keeps turning toward the
+        state), kept if it lowers J."""
+        sample = self._project(x, None, limits)
+        if not np.array_equal(sample, x):
+            gradient = self._weight * sample + self._weighted_t @ (self._t @ sample - request)
+            basis, curvature = self._free_directions(sample, gradient, limits.azimuth, limits, sample=True)
+            if basis.shape[1]:
+                reduced = basis.T @ self._hessian @ basis + np.diag(curvature)
+                trial = self._along(sample, sample - basis @ np.linalg.solve(reduced, basis.T @ gradient), limits)
+                if self._cost(trial, request) < self._cost(sample, request):
+                    return trial
+        return sample
+
+    def _along(self, sample: np.ndarray, trial: np.ndarray, limits: SampleLimits) -> np.ndarray:
+        """``trial`` within this sample's limits, each rotatable thruster kept on the angle it has
+        in ``sample`` (its thrust clipped to its window)."""
+        model = self.model
+        out = trial.copy()
+        if model.scalar.size:
+            columns = self._scalar_columns
+            force = self._column_force[columns]
+            out[columns] = np.minimum(np.maximum(trial[columns], limits.low[model.scalar] / force),
+                                      limits.high[model.scalar] / force)
+        for lim, (_, c1, c2) in zip(limits.azimuth, self._rot_pairs):
+            magnitude = math.hypot(sample[c1], sample[c2])
+            if magnitude == 0.0:
+                out[c1], out[c2] = sample[c1], sample[c2]
+                continue
+            sign = 1.0 if lim.sigma > 0 else -1.0
+            cos, sin = sign * sample[c1] / magnitude, sign * sample[c2] / magnitude
+            scale = float(self._column_force[c1])
+            thrust = min(max(trial[c1] * cos + trial[c2] * sin, lim.thrust_low / scale), lim.thrust_high / scale)
+            out[c1], out[c2] = thrust * cos, thrust * sin
+        return out
 
     def _cost(self, x: np.ndarray, request: np.ndarray) -> float:
         miss = self._t @ x - request
@@ -172,14 +212,15 @@ class DynamicAllocation(AllocationMethod):
         return out
 
     def _free_directions(self, x: np.ndarray, gradient: np.ndarray, static: list[AzimuthLimits],
-                         limits: SampleLimits) -> tuple[np.ndarray, np.ndarray]:
-        """Z (m x k) and the curvature C (k) the circle adds along each column of Z."""
+                         limits: SampleLimits, sample: bool = False) -> tuple[np.ndarray, np.ndarray]:
+        """Z (m x k) and the curvature C (k) the circle adds along each column of Z, within the
+        static limits (or this sample's, ``sample``)."""
         model = self.model
         columns: list[np.ndarray] = []
         curvature: list[float] = []
         if model.scalar.size:
-            range_low = limits.low if limits.range_low is None else limits.range_low
-            range_high = limits.high if limits.range_high is None else limits.range_high
+            range_low = limits.low if sample or limits.range_low is None else limits.range_low
+            range_high = limits.high if sample or limits.range_high is None else limits.range_high
             for i, c in zip(model.scalar.tolist(), self._scalar_columns.tolist()):
                 low, high = range_low[i] / self._column_force[c], range_high[i] / self._column_force[c]
                 held = (x[c] <= low + AT_LIMIT and gradient[c] > 0.0) or (x[c] >= high - AT_LIMIT and gradient[c] < 0.0)
@@ -189,9 +230,11 @@ class DynamicAllocation(AllocationMethod):
                     columns.append(column)
                     curvature.append(0.0)
         for k, (i, c1, c2) in enumerate(self._rot_pairs):
-            for direction, bend in _free_in_plane(static[k], float(limits.angle[i]), float(x[c1]), float(x[c2]),
-                                                  float(gradient[c1]), float(gradient[c2]),
-                                                  float(self._column_force[c1]), self._hold[i]):
+            free = _free_along(static[k], float(limits.angle[i]), float(x[c1]), float(x[c2]), float(gradient[c1]),
+                               float(gradient[c2]), float(self._column_force[c1]), self._hold[i]) if sample else \
+                _free_in_plane(static[k], float(limits.angle[i]), float(x[c1]), float(x[c2]), float(gradient[c1]),
+                               float(gradient[c2]), float(self._column_force[c1]), self._hold[i])
+            for direction, bend in free:
                 column = np.zeros(model.m)
                 column[c1], column[c2] = direction
                 columns.append(column)
@@ -291,3 +334,16 @@ def _free_in_plane(lim: AzimuthLimits, alpha0: float, x1: float, x2: float, g1: 
     if at_edge:
         return [(radial, 0.0)]
     return [((1.0, 0.0), 0.0), ((0.0, 1.0), 0.0)]
+
+
+def _free_along(lim: AzimuthLimits, alpha0: float, x1: float, x2: float, g1: float, g2: float, scale: float,
+                hold: float) -> list[tuple[tuple[float, float], float]]:
+    """Within this sample: a rotatable thruster's force may change along the angle the state
+    gives it, unless its thrust window holds it there."""
+    angle, _ = _angle(lim, alpha0, x1, x2, hold)
+    cos, sin = math.cos(angle), math.sin(angle)
+    along, push = x1 * cos + x2 * sin, -(g1 * cos + g2 * sin)
+    low, high = lim.thrust_low / scale, lim.thrust_high / scale
+    held = (along >= high - AT_LIMIT and push > 0.0) or (along <= low + AT_LIMIT and push < 0.0) or high - low <= 0.0
+    return [] if held else [((cos, sin), 0.0)]
+
