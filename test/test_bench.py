@@ -37,3 +37,17 @@ def test_the_soak_judges_each_command_by_the_state_at_its_stamp():
     assert (low, high) == (0.0, 0.5 * vehicle.actuator("azimuth_port").thrust_max)
     history.forget(change)
     assert history.at(10.1, period) == (start, start, False) and len(history.changes) == 1
+
+
+def test_the_report_renders_the_convergence_rows_when_a_run_has_them(tmp_path):
+    result = json.loads((ROOT / "bench" / "results" / "latest.json").read_text())
+    vehicle = next(iter(result["solver"]["vehicles"].values()))
+    smooth = vehicle["sequences"]["smooth"]["methods"]
+    smooth["qp"]["distance_to_qp"] = {"median": 0.0, "p90": 0.0, "p99": 0.0, "max": 0.0}
+    vehicle["convergence"] = {"qp": {"samples": [3, 9], "never": 0, "median": 6.0, "max": 9},
+                              "lp": {"samples": [None, None], "never": 2, "median": None, "max": None}}
+    out = tmp_path / "performance.md"
+    report.write(result, out)
+    text = out.read_text()
+    assert "| qp | 6 | 9 | 0 | 0.00 | 0.00 |" in text
+    assert "| lp | - | - | 2 | - | - |" in text
