@@ -25,7 +25,7 @@ from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BackendFactory
 from ..vehicle import Vehicle
 from .base import AllocationMethod
-from .direct import DirectSolution
+from .direct import DirectSolution, direct_sides
 
 _CACHE_SIZE = 64
 
@@ -105,7 +105,9 @@ class PseudoInverseAllocation(AllocationMethod):
 
     @classmethod
     def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
-        return None
+        """None: the pseudo-inverse's own reach; with ``saturation: direct``, the polygon of the
+        direct method's LP, which reaches the whole attainable set."""
+        return direct_sides(vehicle.azimuth_polygon_sides) if vehicle.saturation == "direct" else None
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         model = self.model
