@@ -5,8 +5,8 @@ Each sample :meth:`Allocator.allocate` turns the requested generalised force int
 1. this sample's limits: thrust boxes scaled by faults and tightened by rate limits,
    control-surface ranges from the speed (1.48), and the allowed angles of every
    rotatable thruster (:func:`allocator_pkg.azimuth.plan`);
-2. an extended force vector from the configured method (``qp``, ``pseudoinverse`` or
-   ``nonlinear``), or from the pseudo-inverse with clipping if the solver fails;
+2. an extended force vector from the configured method (a key of ``METHODS``), or from the
+   pseudo-inverse if the method fails;
 3. thrust, angle and command of every actuator, inside every limit whatever the solver
    returned, with the drag of the control surfaces compensated (1.56)-(1.58): the surge
    request grows by the drag of the deflections and is solved again, until the drag settles;
