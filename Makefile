@@ -29,7 +29,7 @@ help:
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
 	@echo "make docs    regenerate docs/configuration.md (schema), docs/faults.md, docs/thrust_markers.png"
-	@echo "make capability  capability plots of every shipped vehicle into docs/capability/"
+	@echo "make capability  capability plots of every shipped vehicle (and of each method that differs) into docs/capability/"
 	@echo "make bench   solver and node benchmarks into bench/results/latest.json and docs/performance.md"
 	@echo "make load    the node under a 10 kHz wrench flood and a busy core, LOAD_SECONDS=$(LOAD_SECONDS) per trigger"
 	@echo "make soak    the node for SOAK_MINUTES=$(SOAK_MINUTES) at 500 Hz under random faults and changes"
@@ -88,7 +88,7 @@ docs: setup
 
 VEHICLES := $(filter-out config/default.yaml,$(wildcard config/*.yaml))
 capability: setup
-	@for vehicle in $(VEHICLES); do $(VENV)/bin/allocator-capability $$vehicle --out docs/capability || exit 1; done
+	@for vehicle in $(VEHICLES); do $(VENV)/bin/allocator-capability $$vehicle --all-methods --out docs/capability || exit 1; done
 
 BENCH_ARGS ?=
 bench: setup

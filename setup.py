@@ -16,7 +16,7 @@ setup(
         (f"share/{PACKAGE}/config", sorted(glob("config/*.yaml"))),
         (f"share/{PACKAGE}/launch", sorted(glob("launch/*.py"))),
     ],
-    install_requires=["setuptools", "numpy", "osqp", "daqp", "pyyaml"],
+    install_requires=["setuptools", "numpy", "osqp", "daqp", "highspy", "pyyaml"],
     extras_require={"tools": ["scipy", "matplotlib"]},     # allocator-capability and the demo
     zip_safe=True,
     maintainer="allocator_pkg maintainers",

@@ -1,6 +1,6 @@
 """Thrust allocation for marine and underwater vehicles.
 
-The core is plain Python (numpy, OSQP, PyYAML); ROS lives only in ``allocator_pkg.node``
+The core is plain Python (numpy, OSQP, HiGHS, PyYAML); ROS lives only in ``allocator_pkg.node``
 and the command-line tools::
 
     from allocator_pkg import load_vehicle, Allocator, FaultMode

@@ -5,8 +5,8 @@ Each sample :meth:`Allocator.allocate` turns the requested generalised force int
 1. this sample's limits: thrust boxes scaled by faults and tightened by rate limits,
    control-surface ranges from the speed (1.48), and the allowed angles of every
    rotatable thruster (:func:`allocator_pkg.azimuth.plan`);
-2. an extended force vector from the configured method (``qp``, ``pseudoinverse`` or
-   ``nonlinear``), or from the pseudo-inverse with clipping if the solver fails;
+2. an extended force vector from the configured method (a key of ``METHODS``), or from the
+   pseudo-inverse if the method fails;
 3. thrust, angle and command of every actuator, inside every limit whatever the solver
    returned, with the drag of the control surfaces compensated (1.56)-(1.58): the surge
    request grows by the drag of the deflections and is solved again, until the drag settles;
@@ -371,7 +371,8 @@ class Allocator:
             self._surface_step = np.multiply(lift, model.thrust_step[model.surfaces], out=np.zeros(lift.size),
                                              where=lift > 0.0)
         self._static = None if (model.rot.size or model.surfaces.size or self._rate_limited) else SampleLimits(
-            self._range_low, self._range_high, model.rot, [], np.zeros(model.r), np.zeros(model.r), self._version)
+            self._range_low, self._range_high, model.rot, [], np.zeros(model.r), np.zeros(model.r), self._version,
+            self._range_low, self._range_high)
 
     def _limits(self, tau: np.ndarray) -> SampleLimits:
         state = self._state
@@ -402,7 +403,8 @@ class Allocator:
                                 stuck.get(i), around_k)
                 azimuth.append(limits_k)
                 low[i], high[i] = limits_k.thrust_low, limits_k.thrust_high
-        return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust)
+        return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust, range_low=range_low,
+                            range_high=range_high)
 
     def _surroundings(self) -> list:
         """Each rotatable thruster's `sectors.surroundings`, kept while its angle stays."""

@@ -5,9 +5,11 @@ capability plot), with the other controlled DOFs held at given values (yaw momen
 default), a small linear programme finds the largest magnitude the actuators can produce with
 the configured limits, faults and the configured method's constraints: each method says
 which polygon its constraints put on a rotatable thruster's force
-(:meth:`~allocator_pkg.methods.base.AllocationMethod.thrust_region_sides`: the inscribed N-gon
-of ``azimuth_polygon_sides`` for ``qp``, the circle itself for ``nonlinear``), or that it
-cannot redistribute force (``pseudoinverse``), in which case only forces the weighted
+(:meth:`~allocator_pkg.methods.base.AllocationMethod.thrust_region_sides` and
+``thrust_region_apothem``: the circle itself for ``qp``, ``nonlinear`` and ``dynamic``, the
+survey's polygon of ``azimuth_polygon_sides`` sides for ``lp``, cut by the circle where it
+reaches beyond it, since every thrust is clipped to its limit), or that it cannot redistribute
+force (``pseudoinverse``, ``svd_filter``), in which case only forces the weighted
 pseudo-inverse gives within every limit count, found by bisection on the pseudo-inverse.
 
 Rotatable thrusters may turn to any allowed angle (steady state: rate limits do not apply).
@@ -36,6 +38,7 @@ from scipy.optimize import linprog
 from .angles import TWO_PI
 from .faults import Fault, FaultMode, FaultSet, static_ranges
 from .methods import METHODS
+from .methods.base import CIRCLE_SIDES
 from .methods.pseudoinverse import PseudoInverseGains
 from .model import Model
 from .parameters import load_vehicle
@@ -67,6 +70,7 @@ class Capability:
         if self.method not in METHODS:
             raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
         self.sides = METHODS[self.method].thrust_region_sides(vehicle)
+        self.apothem = METHODS[self.method].thrust_region_apothem(vehicle)
         self.speed = speed
         self.model = Model.build(vehicle, 1.0 / vehicle.rate_hz)
         self.plane = plane or default_plane(vehicle)
@@ -140,17 +144,21 @@ class Capability:
         for i, column in zip(model.scalar, model.scalar_columns):
             bounds[column] = (low[i], high[i])
         a_ub, b_ub = [], []
-        normals = [(math.cos(TWO_PI * k / sides), math.sin(TWO_PI * k / sides)) for k in range(sides)]
+        polygons = [(sides, self.apothem)]
+        if self.apothem > math.cos(math.pi / sides) + 1e-12:       # reaches beyond the circle: cut by it
+            polygons.append((CIRCLE_SIDES, math.cos(math.pi / CIRCLE_SIDES)))
+        faces = [(math.cos(TWO_PI * k / count), math.sin(TWO_PI * k / count), apothem)
+                 for count, apothem in polygons for k in range(count)]
         for (c1, c2), piece in zip(model.rot_columns, pieces):
             start, end, radius, line = piece
             if radius <= 0.0:
                 bounds[c1] = bounds[c2] = (0.0, 0.0)
                 continue
-            for nx, ny in normals:                                  # inscribed polygon of the radius
+            for nx, ny, apothem in faces:                           # the method's polygon of the radius
                 row = np.zeros(columns)
                 row[c1], row[c2] = nx, ny
                 a_ub.append(row)
-                b_ub.append(radius * math.cos(math.pi / sides))
+                b_ub.append(radius * apothem)
             for angle, sign in ((start, -1.0), (end, 1.0)):         # the cone [start, end]
                 row = np.zeros(columns)
                 row[c1], row[c2] = sign * -math.sin(angle), sign * math.cos(angle)
@@ -299,29 +307,64 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--method", choices=list(METHODS), help="default: the file's")
     parser.add_argument("--plane", nargs=2, metavar=("X", "Y"), choices=DOF_NAMES,
                         help="the two DOFs of the plot (default: surge sway, else the first two controlled)")
+    parser.add_argument("--all-methods", action="store_true",
+                        help="also <vehicle>_<method>_capability.png and .csv for each group of registered methods "
+                             "whose constraints give another capability than the file's method")
     arguments = parser.parse_args(argv)
     vehicle = load_vehicle(arguments.config)
+    plane = tuple(arguments.plane) if arguments.plane else None
     try:
-        capability = Capability(vehicle, arguments.method, arguments.speed,
-                                tuple(arguments.plane) if arguments.plane else None)
+        capability = Capability(vehicle, arguments.method, arguments.speed, plane)
     except ValueError as error:
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2
-    cases = {"nominal": capability.envelope(arguments.step, arguments.yaw_moment)}
-    for actuator in vehicle.actuators:
-        cases[f"{actuator.name} failed"] = capability.envelope(arguments.step, arguments.yaw_moment,
-                                                               {actuator.name: FaultMode.FAILED})
-    out = Path(arguments.out)
-    out.mkdir(parents=True, exist_ok=True)
     stem = Path(arguments.config).stem
-    write_csv(out / f"{stem}_capability.csv", capability.plane, cases)
-    polar = all(d in ("surge", "sway") for d in capability.plane)
-    held = "" if "yaw" in capability.plane or "yaw" not in vehicle.dofs else \
-        f", yaw moment {arguments.yaw_moment:g} N m held"
-    plot(out / f"{stem}_capability.png", f"{stem} ({capability.method}{held})", capability.plane, cases, polar)
-    print(out / f"{stem}_capability.png")
-    print(out / f"{stem}_capability.csv")
+    _write(capability, Path(arguments.out), stem, "", capability.method, arguments.step, arguments.yaw_moment)
+    if arguments.all_methods:
+        for names in differing_methods(vehicle, capability.method):
+            other = Capability(vehicle, names[0], arguments.speed, plane)
+            _write(other, Path(arguments.out), stem, f"_{names[0]}", ", ".join(names), arguments.step,
+                   arguments.yaw_moment)
     return 0
+
+
+def region(vehicle: Vehicle, method: str) -> tuple:
+    """What decides a method's capability: the polygon it puts on a rotatable thruster (sides and
+    apothem; none on a vehicle without one), or None when it cannot redistribute force."""
+    sides = METHODS[method].thrust_region_sides(vehicle)
+    if sides is None:
+        return (None,)
+    if not vehicle.has_rotatable:
+        return ("box",)
+    return (sides, round(METHODS[method].thrust_region_apothem(vehicle), 12))
+
+
+def differing_methods(vehicle: Vehicle, method: str) -> list[list[str]]:
+    """Groups of the registered methods that can serve ``vehicle`` with the same capability,
+    other than ``method``'s, each in registry order."""
+    groups: dict[tuple, list[str]] = {}
+    for name in METHODS:
+        if not METHODS[name].problems(vehicle):
+            groups.setdefault(region(vehicle, name), []).append(name)
+    mine = region(vehicle, method)
+    return [names for key, names in groups.items() if key != mine]
+
+
+def _write(capability: Capability, out: Path, stem: str, suffix: str, title: str, step: float,
+           yaw_moment: float) -> None:
+    """The nominal envelope and every single-actuator failure as <stem><suffix>_capability.png
+    and .csv, titled with the vehicle and ``title`` (the methods)."""
+    vehicle = capability.vehicle
+    cases = {"nominal": capability.envelope(step, yaw_moment)}
+    for actuator in vehicle.actuators:
+        cases[f"{actuator.name} failed"] = capability.envelope(step, yaw_moment, {actuator.name: FaultMode.FAILED})
+    out.mkdir(parents=True, exist_ok=True)
+    write_csv(out / f"{stem}{suffix}_capability.csv", capability.plane, cases)
+    polar = all(d in ("surge", "sway") for d in capability.plane)
+    held = "" if "yaw" in capability.plane or "yaw" not in vehicle.dofs else f", yaw moment {yaw_moment:g} N m held"
+    plot(out / f"{stem}{suffix}_capability.png", f"{stem} ({title}{held})", capability.plane, cases, polar)
+    print(out / f"{stem}{suffix}_capability.png")
+    print(out / f"{stem}{suffix}_capability.csv")
 
 
 if __name__ == "__main__":

@@ -184,7 +184,8 @@ class SampleLimits:
     ``angle``/``thrust``: the state at the start of the sample. ``version`` changes whenever
     ``low``, ``high`` or ``azimuth`` may have: a method keeps what it derives from them
     (pseudo-inverse gains, the solver's box rows) while it stays; -1 means every sample.
-    Nothing here is changed by a method."""
+    ``range_low``/``range_high``: the static force ranges that faults and speed leave, before
+    any rate limit (None: the same as ``low``/``high``). Nothing here is changed by a method."""
 
     low: np.ndarray
     high: np.ndarray
@@ -193,6 +194,8 @@ class SampleLimits:
     angle: np.ndarray
     thrust: np.ndarray
     version: int = -1
+    range_low: np.ndarray | None = None
+    range_high: np.ndarray | None = None
 
     def fixed(self) -> np.ndarray:
         """Actuators whose force the limits alone decide this sample (a rotatable thruster:

@@ -245,6 +245,9 @@ class _Parser:
             solver=SolverSettings(eps_abs=values["solver.eps_abs"], eps_rel=values["solver.eps_rel"],
                                   max_iter=values["solver.max_iter"], time_limit=values["solver.time_limit"]),
             water_density=values["water_density"],
+            dynamic_gain=values["dynamic.gain"],
+            svd_filter_time_constant=values["svd_filter.time_constant"],
+            svd_filter_damping_threshold=values["svd_filter.damping_threshold"],
         )
         unfit = METHODS[vehicle.method].problems(vehicle)
         if unfit:

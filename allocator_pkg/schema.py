@@ -109,7 +109,8 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         default=list(DOF_NAMES), default_doc="all six",
         constraint=f"at least one of {', '.join(DOF_NAMES)}, each at most once"),
     Key("saturation", STR, "Unattainable requests: `weighted` trades DOFs by weights.slack; "
-        "`preserve_direction` scales the request down along its own direction first.",
+        "`preserve_direction` scales the request down along its own direction first; `direct` answers with "
+        "Durham's solution on the boundary of the attainable set along the request (qp, lp, pseudoinverse).",
         default="weighted", choices=SATURATION_MODES),
     Key("weights.slack", FLOAT_LIST, "Q: weight of the wrench error of each controlled DOF, in `dofs` order (1.35).",
         default_doc="derived per DOF (see above)", minimum=0.0, exclusive_minimum=True),
@@ -128,6 +129,16 @@ VEHICLE_KEYS: tuple[Key, ...] = (
     Key("nonlinear.max_iterations", INT, "Linearised QPs solved per sample by the nonlinear method (1.45), "
         "at most; a pass that misses the request by more than the one before ends them.",
         default=1, minimum=1, maximum=50),
+    Key("dynamic.gain", FLOAT, "h of the dynamic method's update law (section 5.1): the share of the remaining "
+        "error of the optimality conditions removed per sample (1: a full Newton step; changes of the request are "
+        "fed forward whole).", default=0.5, minimum=0.0, exclusive_minimum=True, maximum=1.0),
+    Key("svd_filter.time_constant", FLOAT, "Time constant of the filter that steers each rotatable thruster of the "
+        "svd_filter method toward the direction the extended solution wants most force in (section 5.4; 0: no "
+        "filter).", default=0.2, minimum=0.0, unit="s"),
+    Key("svd_filter.damping_threshold", FLOAT, "epsilon of the svd_filter method: singular values of the "
+        "normalised configuration matrix T(alpha) below it are damped (damped least squares), so that no force "
+        "exceeds 1/epsilon of the request in units of authority and range.", default=0.05, minimum=0.0,
+        exclusive_minimum=True, maximum=1.0),
     Key("solver.eps_abs", FLOAT, "OSQP absolute tolerance, as a fraction of each variable's range.",
         default=1e-5, minimum=0.0, exclusive_minimum=True),
     Key("solver.eps_rel", FLOAT, "OSQP relative tolerance.", default=1e-5, minimum=0.0),

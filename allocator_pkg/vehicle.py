@@ -23,7 +23,7 @@ ROTATABLE_TYPES = (AZIMUTH, AZIMUTH_VERTICAL)
 SURFACE_TYPES = (RUDDER, FIN)
 THRUSTER_TYPES = (FIXED, AZIMUTH, AZIMUTH_VERTICAL)
 
-SATURATION_MODES = ("weighted", "preserve_direction")
+SATURATION_MODES = ("weighted", "preserve_direction", "direct")
 COMMAND_MAPS = ("linear", "quadratic", "table")
 FLOW_MODELS = ("free", "propeller_wake")
 
@@ -142,6 +142,9 @@ class Vehicle:
     nonlinear_max_iterations: int
     solver: SolverSettings
     water_density: float
+    dynamic_gain: float = 0.5
+    svd_filter_time_constant: float = 0.2
+    svd_filter_damping_threshold: float = 0.05
 
     @property
     def names(self) -> tuple[str, ...]:

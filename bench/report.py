@@ -180,6 +180,32 @@ def _solver_tables(result: dict) -> list[str]:
     return lines
 
 
+def _convergence_tables(result: dict) -> list[str]:
+    """Per vehicle: how many samples a held request takes each method to reach qp's optimum,
+    and how far each lags qp's answer on the smooth sequence."""
+    lines = ["## Convergence to the qp optimum", "",
+             "Held requests from rest, every 45 deg in the plane of the first two controlled DOFs at half the "
+             "vehicle's capability in that direction: the samples after which a method stays within 1e-3 of each "
+             "actuator's range of qp's settled answer (median and largest over the directions; \"never\": "
+             "directions where it settles elsewhere, as a method with another criterion does). \"Distance to "
+             "qp\": on the smooth sequence, the largest difference of an extended force from qp's in the same "
+             "sample, as a fraction of the actuator's range.", ""]
+    vehicles = {name: data for name, data in result["solver"]["vehicles"].items() if "convergence" in data}
+    if not vehicles:
+        return [*lines, f"{NOT_IN_THIS_RUN[0].upper()}{NOT_IN_THIS_RUN[1:]}.", ""]
+    for vehicle, data in vehicles.items():
+        smooth = data["sequences"]["smooth"]["methods"]
+        lines += [f"### {vehicle}", "",
+                  "| method | held: samples to 1e-3 median | max | never | smooth: distance to qp p99 | max |",
+                  "|---|---|---|---|---|---|"]
+        for name, held in data["convergence"].items():
+            distance = smooth.get(name, {}).get("distance_to_qp", {})
+            lines.append(f"| {name} | {_fmt(held['median'], 0)} | {_fmt(held['max'], 0)} | {held['never']} | "
+                         f"{_fmt(distance.get('p99'), 2)} | {_fmt(distance.get('max'), 2)} |")
+        lines.append("")
+    return lines
+
+
 def _node_table(result: dict) -> list[str]:
     node = result["node"]
     lines = [f"Vehicle `{node['config']}`, {node['seconds']} s per case after 1 s of warm-up; "
@@ -292,6 +318,7 @@ def write(result: dict, path: Path) -> None:
     lines += [f"| {key} | {value} |" for key, value in m.items()]
     lines += ["", "## Targets", "", *_targets(result)]
     lines += ["", "## Solver level", "", *_solver_tables(result)]
+    lines += _convergence_tables(result)
     before = json.loads(SETTLING_BEFORE.read_text()) if SETTLING_BEFORE.exists() else None
     lines += [*_settling_section(result, before), ""]
     lines += ["## Node level", "", *_node_table(result)]

@@ -58,7 +58,7 @@ EXTREMES_PERIOD = 10.0       # s between a NaN wrench and a 1e12 wrench
 EXTREME_SAMPLES = 6          # wrench periods a 1e12 wrench is held (three node periods)
 SILENCE = 0.5                # s without commands that counts as the node hanging
 MAX_VIOLATIONS_KEPT = 50
-FIRST_ACTIONS = ("method nonlinear", "method pseudoinverse", "method qp", "fault DEGRADED", "fault FAILED",
+FIRST_ACTIONS = (*(f"method {name}" for name in reversed(METHODS)), "fault DEGRADED", "fault FAILED",
                  "fault STUCK", "fault NOMINAL", "clear", "thrust_max", "weights", "max_iter", "invalid")
 """Warm-up: every kind of change once, so that later allocations are not taken for a leak."""
 

@@ -13,10 +13,13 @@ largest force or moment all actuators together can give in it), the largest over
 
 Methods, each timed as a whole sample (``Allocator.allocate``, Python included):
 
-1. every registered method (``allocator_pkg.METHODS``): ``qp`` on one OSQP problem per
-   configuration, updated and warm-started, ``pseudoinverse`` with clipping, ``nonlinear``;
+1. every registered method (``allocator_pkg.METHODS``) that can serve the vehicle: ``qp`` on
+   one OSQP problem per configuration, updated and warm-started, ``pseudoinverse`` with
+   clipping, ``nonlinear``, ``lp`` on HiGHS, ``dynamic``, ``svd_filter`` (vehicles with
+   rotatable thrusters);
 2. ``pseudoinverse (scale)``: the weighted pseudo-inverse with uniform scale-down (the common
-   ROS thruster-manager pattern);
+   ROS thruster-manager pattern); ``qp (direct)`` and ``pseudoinverse (direct)``: Durham's
+   direct method for unattainable requests (``saturation: direct``);
 3. ``qp`` on other solver backends (``allocator_pkg.solvers.BACKENDS``): ``qp, fresh OSQP``,
    a new OSQP object set up and solved cold every sample (what several open-source allocators
    do), and the dense active-set solvers ``qp, quadprog`` and ``qp, DAQP`` as exact speed
@@ -25,6 +28,14 @@ Methods, each timed as a whole sample (``Allocator.allocate``, Python included):
    from three starts, on the attainable samples among every 40th, as the reference for power.
 
 Solver calls are timed through the backend seam (bounds and solve, in the backend).
+
+Each method's distance to ``qp`` per sample (the largest difference of an extended force, as a
+fraction of its actuator's range) says how far it lags the QP's optimum on the smooth
+sequence. Convergence (``convergence``): requests held from rest in every 45 deg of the plane
+of the first two controlled DOFs at half the vehicle's capability in that direction (an LP,
+Capability), ``HELD`` samples each; the number of samples after which a method stays within
+1e-3 of each actuator's range of qp's settled answer (None: it never gets there, as a method
+with another criterion does not).
 
 Run by ``make bench``; writes JSON to stdout or ``--out``.
 """
@@ -54,6 +65,9 @@ WARM_UP = 200
 SAMPLES = 2000
 REFERENCE_EVERY = 40
 SPEED = 2.0
+HELD = 300
+HELD_DIRECTIONS = 8
+CLOSE = 1e-3
 
 
 def sequences(vehicle, samples: int, seed: int = 1) -> dict[str, np.ndarray]:
@@ -108,6 +122,8 @@ def allocators(vehicle) -> dict[str, tuple[Allocator, Timed]]:
     record of its solver calls."""
     result = {}
     for name in METHODS:
+        if METHODS[name].problems(vehicle):
+            continue
         timed_backend = Timed(DEFAULT_BACKEND)
         result[name] = (Allocator(vehicle, method=name, backend=timed_backend), timed_backend)
     for name, backend in PATTERNS.items():
@@ -116,6 +132,10 @@ def allocators(vehicle) -> dict[str, tuple[Allocator, Timed]]:
             result[name] = (Allocator(vehicle, method="qp", backend=timed_backend), timed_backend)
     scaled = replace(vehicle, saturation="preserve_direction")
     result["pseudoinverse (scale)"] = (Allocator(scaled, method="pseudoinverse"), Timed(DEFAULT_BACKEND))
+    direct = replace(vehicle, saturation="direct")
+    for name in ("qp", "pseudoinverse"):
+        timed_backend = Timed(DEFAULT_BACKEND)
+        result[f"{name} (direct)"] = (Allocator(direct, method=name, backend=timed_backend), timed_backend)
     for allocator, _ in result.values():
         allocator.set_speed(SPEED)
     return result
@@ -184,6 +204,42 @@ def percentiles(values) -> dict[str, float]:
             "p99": float(np.percentile(values, 99)), "max": float(np.max(values))}
 
 
+def extended(result) -> np.ndarray:
+    """The extended forces (1.16) of a sample, each actuator's x and y components."""
+    return np.concatenate((result.thrust * np.cos(result.azimuth), result.thrust * np.sin(result.azimuth)))
+
+
+def convergence(vehicle, directions: int = HELD_DIRECTIONS, samples: int = HELD) -> dict[str, dict]:
+    """Per method, the samples each held request takes to stay within CLOSE of qp's settled
+    answer (see the module)."""
+    model = Model.build(vehicle, 1.0 / vehicle.rate_hz)
+    capability = Capability(vehicle, method="qp", speed=SPEED)
+    first, second = model.dof_index[:2]
+    scale = np.tile(model.force_scale, 2)
+    names = [name for name in METHODS if not METHODS[name].problems(vehicle)]
+    reached: dict[str, list] = {name: [] for name in names}
+    for angle in np.arange(directions) * 2.0 * math.pi / directions:
+        unit = np.zeros(6)
+        unit[first] = model.authority[0] * math.cos(angle)
+        unit[second] = model.authority[1] * math.sin(angle)
+        tau = 0.5 * min(capability.scale(unit), 10.0) * unit
+        answers = {}
+        for name in names:
+            allocator = Allocator(vehicle, method=name)
+            allocator.set_speed(SPEED)
+            answers[name] = np.array([extended(allocator.allocate(tau)) for _ in range(samples)])
+        optimum = answers["qp"][-1]
+        for name in names:
+            distance = np.max(np.abs(answers[name] - optimum) / scale, axis=1)
+            far = np.flatnonzero(distance >= CLOSE)
+            reached[name].append(None if far.size and far[-1] == samples - 1 else int(far[-1] + 1) if far.size else 0)
+    return {name: {"samples": values, "never": sum(v is None for v in values),
+                   "median": float(np.median([v for v in values if v is not None])) if any(
+                       v is not None for v in values) else None,
+                   "max": max((v for v in values if v is not None), default=None)}
+            for name, values in reached.items()}
+
+
 def run_sequence(vehicle, requests: np.ndarray) -> dict:
     capability = Capability(vehicle, method="nonlinear", speed=SPEED)
     rows = list(vehicle.dof_indices)
@@ -191,6 +247,8 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
     attainable = np.array([capability.scale(tau) >= 1.0 for tau in requests[WARM_UP:]])
     methods = allocators(vehicle)
     results = {}
+    forces = {}
+    scale = np.tile(Model.build(vehicle, 1.0 / vehicle.rate_hz).force_scale, 2)
     rng = np.random.default_rng(7)
     reference = {}
     start = None
@@ -207,10 +265,12 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
         times, errors, iterations, power_ratio, saturated = [], [], [], [], 0
         previous = allocator.azimuth
         travel = 0.0
+        forces[name] = []
         for k, tau in enumerate(requests[WARM_UP:], start=WARM_UP):
             begin = time.perf_counter()
             result = allocator.allocate(tau)
             times.append(time.perf_counter() - begin)
+            forces[name].append(extended(result))
             iterations.append(result.iterations)
             saturated += result.saturated
             errors.append(float(np.max(np.abs(result.achieved[rows] - tau[rows]) / authority)))
@@ -230,6 +290,8 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
             "azimuth_travel_rad": travel,
             "fallbacks": allocator.stats.fallbacks,
             "solver_setups": allocator.stats.solver_setups,
+            "distance_to_qp": percentiles(np.max(np.abs(np.array(forces[name]) - np.array(forces["qp"])) / scale,
+                                                 axis=1)),
         }
     return {"samples": len(requests) - WARM_UP, "attainable": int(attainable.sum()),
             "reference_samples": len(reference), "methods": results}
@@ -239,6 +301,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--configs", nargs="*", default=None, help="vehicle files (default: every shipped one)")
     parser.add_argument("--samples", type=int, default=SAMPLES)
+    parser.add_argument("--held-directions", type=int, default=HELD_DIRECTIONS,
+                        help="held requests per vehicle for the convergence rows (default %(default)s)")
     parser.add_argument("--out", type=Path, default=None)
     arguments = parser.parse_args(argv)
     root = Path(__file__).resolve().parents[1]
@@ -252,6 +316,7 @@ def main(argv: list[str] | None = None) -> int:
             "actuators": len(vehicle.actuators), "dofs": list(vehicle.dofs),
             "sequences": {name: run_sequence(vehicle, requests)
                           for name, requests in sequences(vehicle, arguments.samples + WARM_UP).items()},
+            "convergence": convergence(vehicle, arguments.held_directions),
         }
         print(f"bench: {stem} done", file=sys.stderr, flush=True)
     text = json.dumps(report, indent=1)

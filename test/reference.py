@@ -152,3 +152,63 @@ def best_attainable_wrench(vehicle, tau, weights, low, high, starts=3, seed=0):
             if feasible and result.fun < best_value:
                 best_value, best_wrench = result.fun, t @ (result.x * scale)
     return best_wrench
+
+
+def weighted_l1_allocation(t, w, q, low, high, tau):
+    """The survey's LP criterion (5.3) for non-rotating actuators, by scipy's HiGHS:
+    min sum w_i |f_i| + sum q_k |s_k| s.t. T f - s = tau, low <= f <= high. Variables
+    [f+, f-, s+, s-] >= 0; returns (f, the optimal cost)."""
+    n, r = t.shape
+    cost = np.concatenate([w, w, q, q])
+    a_eq = np.hstack([t, -t, -np.eye(n), np.eye(n)])
+    bounds = ([(max(lo, 0.0), max(hi, 0.0)) for lo, hi in zip(low, high)]
+              + [(max(-hi, 0.0), max(-lo, 0.0)) for lo, hi in zip(low, high)] + [(0.0, None)] * (2 * n))
+    result = linprog(cost, A_eq=a_eq, b_eq=tau, bounds=bounds, method="highs")
+    return result.x[:r] - result.x[r:2 * r], result.fun
+
+
+def circle_allocation(t_e, w_ext, q, columns, boxes, circles, tau):
+    """min 1/2 f'Wf + 1/2 s'Qs, s = T_e f - tau, with box limits on the columns of non-rotating
+    actuators and |(f_2j, f_2j+1)| <= B_j for rotatable ones, by SLSQP from the unconstrained
+    optimum (a convex problem). ``columns``: per actuator, its column or its pair; ``boxes``
+    and ``circles``: {actuator: (low, high)} and {actuator: B}. Returns the extended forces."""
+    from scipy.optimize import minimize
+
+    scale = np.ones(t_e.shape[1])
+    for i, (low, high) in boxes.items():
+        scale[columns[i]] = max(high, -low, 1e-9)
+    for i, radius in circles.items():
+        scale[list(columns[i])] = radius
+    weight = w_ext * scale * scale
+    matrix = t_e * scale
+    reference = float(np.max(weight))
+
+    def cost(x):
+        miss = matrix @ x - tau
+        return 0.5 * float(x @ (weight * x) + miss @ (q * miss)) / reference
+
+    def gradient(x):
+        return (weight * x + matrix.T @ (q * (matrix @ x - tau))) / reference
+
+    bounds = [(None, None)] * t_e.shape[1]
+    for i, (low, high) in boxes.items():
+        bounds[columns[i]] = (low / scale[columns[i]], high / scale[columns[i]])
+    constraints = [{"type": "ineq", "fun": lambda x, a=a, b=b: 1.0 - x[a] ** 2 - x[b] ** 2,
+                    "jac": lambda x, a=a, b=b: -2.0 * np.eye(len(x))[a] * x[a] - 2.0 * np.eye(len(x))[b] * x[b]}
+                   for a, b in (columns[i] for i in circles)]
+    start = np.zeros(t_e.shape[1])
+    result = minimize(cost, start, jac=gradient, method="SLSQP", bounds=bounds, constraints=constraints,
+                      options={"maxiter": 1000, "ftol": 1e-16})
+    return result.x * scale
+
+
+def bounded_least_squares(t, w, q, low, high, tau):
+    """(1.35) with beta = 0 and the slack eliminated, min f'Wf + (Tf - tau)'Q(Tf - tau) with
+    low <= f <= high, as the bounded least-squares problem it is: scipy's BVLS on
+    [sqrt(Q) T; sqrt(W)] f ~ [sqrt(Q) tau; 0] (QR based, so a Q a million times W costs no
+    accuracy, as it can in a dual active-set QP)."""
+    from scipy.optimize import lsq_linear
+
+    a = np.vstack([np.sqrt(q)[:, None] * t, np.diag(np.sqrt(w))])
+    b = np.concatenate([np.sqrt(q) * tau, np.zeros(t.shape[1])])
+    return lsq_linear(a, b, bounds=(low, high), method="bvls", tol=1e-14).x

@@ -55,3 +55,17 @@ def test_every_solver_pattern_of_the_bench_allocates_and_records_its_solver_call
             assert np.isfinite(result.thrust).all(), (config, name)
             if name.startswith("qp"):
                 assert timed.times, (config, name)
+
+
+def test_the_report_renders_the_convergence_rows_when_a_run_has_them(tmp_path):
+    result = json.loads((ROOT / "bench" / "results" / "latest.json").read_text())
+    vehicle = next(iter(result["solver"]["vehicles"].values()))
+    smooth = vehicle["sequences"]["smooth"]["methods"]
+    smooth["qp"]["distance_to_qp"] = {"median": 0.0, "p90": 0.0, "p99": 0.0, "max": 0.0}
+    vehicle["convergence"] = {"qp": {"samples": [3, 9], "never": 0, "median": 6.0, "max": 9},
+                              "lp": {"samples": [None, None], "never": 2, "median": None, "max": None}}
+    out = tmp_path / "performance.md"
+    report.write(result, out)
+    text = out.read_text()
+    assert "| qp | 6 | 9 | 0 | 0.00 | 0.00 |" in text
+    assert "| lp | - | - | 2 | - | - |" in text

@@ -98,3 +98,43 @@ def test_scale_of_a_request():
     assert capability.scale([100.0, 50.0, 999.0, 0.0, 0.0, 0.0]) == pytest.approx(2.0, rel=1e-6)   # heave ignored
     assert capability.scale([400.0, 0.0, 0.0, 0.0, 0.0, 0.0], faults={"surge_port": FaultMode.FAILED}) == \
         pytest.approx(0.25, rel=1e-6)
+
+
+def test_lp_capability_is_the_survey_polygon_cut_by_the_circle():
+    """One free azimuth of 100 N under lp: along a face normal of its octagon the polygon's
+    96.04 N (2 cos(pi/8) / (1 + cos(pi/8))), at a corner the circle's 100 N (the polygon
+    reaches 103.96 N there, but every thrust is clipped to the circle)."""
+    parameters = {"dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
+                  "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0,
+                  "azimuth_polygon_sides": 8}
+    capability = Capability(vehicle_from_parameters(parameters), method="lp")
+    c = math.cos(math.pi / 8)
+    assert capability.max_force(0.0) == pytest.approx(100.0 * 2.0 * c / (1.0 + c), rel=1e-6)
+    assert capability.max_force(math.pi / 8) == pytest.approx(100.0, rel=1e-4)
+    assert capability.max_force(math.pi / 2) == pytest.approx(100.0 * 2.0 * c / (1.0 + c), rel=1e-6)
+
+
+def test_with_saturation_direct_the_pseudo_inverse_reaches_the_attainable_set():
+    weighted = Capability(vehicle_from_parameters({**SYMMETRIC, "actuators.surge_port.thrust_max": 50.0}),
+                          method="pseudoinverse")
+    direct = Capability(vehicle_from_parameters({**SYMMETRIC, "actuators.surge_port.thrust_max": 50.0,
+                                                 "saturation": "direct"}), method="pseudoinverse")
+    lp = Capability(vehicle_from_parameters({**SYMMETRIC, "actuators.surge_port.thrust_max": 50.0}), method="qp")
+    for degrees in (0, 30, 90, 200):
+        theta = math.radians(degrees)
+        assert direct.max_force(theta) == pytest.approx(lp.max_force(theta), rel=1e-6)
+        assert weighted.max_force(theta) <= direct.max_force(theta) + 1e-6
+    assert weighted.max_force(0.0) < 0.9 * direct.max_force(0.0)
+
+
+def test_all_methods_writes_a_plot_per_group_of_methods_with_another_capability(tmp_path):
+    from allocator_pkg.capability import differing_methods, main
+    from allocator_pkg.parameters import load_vehicle
+
+    vehicle = load_vehicle(ROOT / "config" / "example1_rov.yaml")
+    assert differing_methods(vehicle, "qp") == [["pseudoinverse", "svd_filter"], ["lp"]]
+    assert differing_methods(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"), "qp") == [["pseudoinverse"]]
+    assert main([str(ROOT / "config" / "example1_rov.yaml"), "--out", str(tmp_path), "--step", "45",
+                 "--all-methods"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        f"example1_rov{suffix}_capability.{ext}" for suffix in ("", "_lp", "_pseudoinverse") for ext in ("csv", "png")]

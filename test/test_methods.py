@@ -27,7 +27,7 @@ EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 
 def test_the_schema_offers_exactly_the_registered_methods():
     assert schema.VEHICLE_KEY_BY_NAME["method"].choices == tuple(METHODS)
-    assert set(METHODS) == {"qp", "pseudoinverse", "nonlinear"}
+    assert set(METHODS) == {"qp", "pseudoinverse", "nonlinear", "lp", "dynamic", "svd_filter"}
 
 
 @pytest.mark.parametrize("name", list(METHODS))
@@ -89,9 +89,36 @@ def test_a_method_that_cannot_serve_a_vehicle_is_refused_with_its_reason(registe
 
 
 def test_an_unknown_method_is_refused_everywhere():
-    with pytest.raises(ValueError, match="unknown method 'magic'; choose from qp, pseudoinverse, nonlinear"):
+    with pytest.raises(ValueError, match=f"unknown method 'magic'; choose from {', '.join(METHODS)}"):
         Allocator(load_vehicle(EXAMPLE), method="magic")
     with pytest.raises(ValueError, match="unknown method 'magic'"):
         Capability(load_vehicle(EXAMPLE), method="magic")
-    with pytest.raises(ConfigError, match="'magic' is not one of qp, pseudoinverse, nonlinear"):
+    with pytest.raises(ConfigError, match=f"'magic' is not one of {', '.join(METHODS)}"):
         vehicle_from(EXAMPLE, method="magic")
+
+
+def test_svd_filter_is_refused_for_a_vehicle_without_rotatable_thrusters():
+    parameters = read_parameters(ROOT / "config" / "bluerov2_heavy.yaml")
+    parameters["method"] = "svd_filter"
+    with pytest.raises(ConfigError, match="method: 'svd_filter' cannot serve this vehicle: it steers rotatable "
+                                          "thrusters and this vehicle has none"):
+        vehicle_from_parameters(parameters)
+    with pytest.raises(ValueError, match="'svd_filter' cannot serve this vehicle"):
+        Allocator(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"), method="svd_filter")
+
+
+@pytest.mark.parametrize("name", [name for name in METHODS if "direct" not in METHODS[name].saturation_modes])
+def test_a_saturation_mode_a_method_does_not_implement_is_refused_with_its_reason(name):
+    parameters = read_parameters(EXAMPLE)
+    parameters.update(method=name, saturation="direct")
+    with pytest.raises(ConfigError, match=f"'{name}' cannot serve this vehicle: it does not implement saturation "
+                                          "'direct'"):
+        vehicle_from_parameters(parameters)
+
+
+@pytest.mark.parametrize("name", [name for name in METHODS if "direct" in METHODS[name].saturation_modes])
+def test_saturation_direct_is_taken_by_the_methods_that_implement_it(name):
+    vehicle = vehicle_from(EXAMPLE, method=name, saturation="direct")
+    assert Allocator(vehicle).method == name
+    assert set(METHODS) - {n for n in METHODS if "direct" in METHODS[n].saturation_modes} == \
+        {"nonlinear", "dynamic", "svd_filter"}

@@ -34,8 +34,8 @@ def test_every_solver_the_code_imports_has_a_pip_rosdep_key_defined_here():
     depends = {element.text for element in ElementTree.parse(ROOT / "package.xml").getroot().iter("exec_depend")}
     rules = yaml.safe_load((ROOT / "rosdep.yaml").read_text())
     pip_keys = {key for key in depends if key.endswith("-pip")}
-    solvers = imported_modules() & {"osqp", "daqp", "quadprog"}
-    assert {"osqp", "daqp"} <= solvers
-    assert pip_keys == {f"python3-{name}-pip" for name in solvers if name != "quadprog"}
+    solvers = imported_modules() & {"osqp", "daqp", "highspy", "quadprog"}
+    assert {"osqp", "daqp", "highspy"} <= solvers
+    assert pip_keys == {f"python3-{name}-pip" for name in solvers if name != "quadprog"} == set(rules)
     for name in solvers - {"quadprog"}:
         assert rules[f"python3-{name}-pip"]["ubuntu"]["pip"]["packages"] == [name]

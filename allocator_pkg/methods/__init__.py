@@ -8,20 +8,29 @@ section in docs/theory.md.
 
 - ``qp``: the constrained QP (1.35) on one warm-started solver problem;
 - ``pseudoinverse``: the weighted generalised inverse (1.29)/(1.33) with clipping or scaling;
-- ``nonlinear``: the nonlinear problem (1.44) by sequential linearised QPs (1.45).
+- ``nonlinear``: the nonlinear problem (1.44) by sequential linearised QPs (1.45);
+- ``lp``: the survey's linear programme (section 5.3) on HiGHS, warm-started from the last basis;
+- ``dynamic``: a control-Lyapunov update law whose equilibrium is the optimum (section 5.1);
+- ``svd_filter``: azimuths steered by a filter, thrusts by a damped least-squares inverse (5.4).
 """
 
 from __future__ import annotations
 
 from .base import AllocationMethod
+from .dynamic import DynamicAllocation
+from .lp import LPAllocation
 from .nonlinear import NonlinearAllocation
 from .pseudoinverse import PseudoInverseAllocation
 from .qp import QPAllocation
+from .svd_filter import SVDFilterAllocation
 
 METHODS: dict[str, type[AllocationMethod]] = {
     QPAllocation.name: QPAllocation,
     PseudoInverseAllocation.name: PseudoInverseAllocation,
     NonlinearAllocation.name: NonlinearAllocation,
+    LPAllocation.name: LPAllocation,
+    DynamicAllocation.name: DynamicAllocation,
+    SVDFilterAllocation.name: SVDFilterAllocation,
 }
 
 __all__ = ["METHODS", "AllocationMethod"]

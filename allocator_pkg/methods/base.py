@@ -10,6 +10,7 @@ per actuator, command maps, the fallback and the achieved wrench are the allocat
 
 from __future__ import annotations
 
+import math
 from abc import ABC, abstractmethod
 from typing import ClassVar
 
@@ -29,6 +30,9 @@ class AllocationMethod(ABC):
     check that faults and value changes add none)."""
 
     name: ClassVar[str]
+    saturation_modes: ClassVar[tuple[str, ...]] = ("weighted", "preserve_direction")
+    """The values of ``saturation`` this method implements; a configuration with another one
+    is refused when it is parsed (:meth:`problems`)."""
 
     def __init__(self, model: Model, backend: BackendFactory):
         self.model = model
@@ -53,6 +57,9 @@ class AllocationMethod(ABC):
     def problems(cls, vehicle: Vehicle) -> list[str]:
         """Why this method cannot serve ``vehicle`` (empty when it can): checked when a
         configuration is parsed, so that a method is refused with its reason."""
+        if vehicle.saturation not in cls.saturation_modes:
+            return [f"it does not implement saturation '{vehicle.saturation}' (it takes "
+                    f"{', '.join(cls.saturation_modes)})"]
         return []
 
     @classmethod
@@ -61,3 +68,12 @@ class AllocationMethod(ABC):
         """Sides of the polygon this method's constraints put on a rotatable thruster's
         force, for the capability analysis; None when the method cannot redistribute force
         and its capability is that of the weighted pseudo-inverse along the request."""
+
+    @classmethod
+    def thrust_region_apothem(cls, vehicle: Vehicle) -> float:
+        """Distance of the faces of that polygon from its centre, as a fraction of the thrust
+        limit: the inscribed polygon, cos(pi/N), unless the method says otherwise. A polygon
+        that reaches outside the circle is cut by the circle in the capability analysis: the
+        allocator clips every thrust to its limit."""
+        sides = cls.thrust_region_sides(vehicle)
+        return 1.0 if sides is None else math.cos(math.pi / sides)

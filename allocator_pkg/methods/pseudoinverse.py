@@ -8,7 +8,10 @@ stuck angles and actuators the sample's limits pin down change which set is used
 Saturation: ``weighted`` clips each actuator to its limits (the allocator's final
 step); ``preserve_direction`` first scales every free force by one factor so that the most
 loaded actuator just reaches its limit (the uniform scale-down of common ROS thruster
-managers), then clips what rate limits still leave outside.
+managers), then clips what rate limits still leave outside; ``direct`` keeps the
+pseudo-inverse while it is within every limit of the sample and otherwise takes Durham's
+solution (:mod:`~.direct`): the request met exactly when it is attainable, else scaled back to
+the boundary of the attainable set along its own direction.
 """
 
 from __future__ import annotations
@@ -17,10 +20,12 @@ import math
 
 import numpy as np
 
+from ..angles import wrap
 from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BackendFactory
 from ..vehicle import Vehicle
 from .base import AllocationMethod
+from .direct import DirectSolution, direct_sides
 
 _CACHE_SIZE = 64
 
@@ -79,12 +84,15 @@ class PseudoInverseAllocation(AllocationMethod):
     the allocator (which also uses it for the fallback and azimuth planning)."""
 
     name = "pseudoinverse"
+    saturation_modes = ("weighted", "preserve_direction", "direct")
 
     def __init__(self, model: Model, backend: BackendFactory, gains: PseudoInverseGains | None = None):
         super().__init__(model, backend)
         self.inverse = gains or PseudoInverseGains(model)
         self._version = -1
         self._preserve_direction = model.vehicle.saturation == "preserve_direction"
+        self._direct = DirectSolution(model) if model.vehicle.saturation == "direct" else None
+        self.setups += self._direct is not None
 
     def update_model(self, model: Model) -> None:
         """A new configuration: new gains on the next sample (no solver to set up)."""
@@ -92,10 +100,14 @@ class PseudoInverseAllocation(AllocationMethod):
         self.inverse = PseudoInverseGains(model)
         self._version = -1
         self._preserve_direction = model.vehicle.saturation == "preserve_direction"
+        if self._direct is not None:
+            self._direct.update_model(model)
 
     @classmethod
     def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
-        return None
+        """None: the pseudo-inverse's own reach; with ``saturation: direct``, the polygon of the
+        direct method's LP, which reaches the whole attainable set."""
+        return direct_sides(vehicle.azimuth_polygon_sides) if vehicle.saturation == "direct" else None
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         model = self.model
@@ -112,6 +124,10 @@ class PseudoInverseAllocation(AllocationMethod):
             force *= scale_to_limits(model, limits, force, self._fixed)
         if self._pinned is not None:
             force += self._pinned
+        if self._direct is not None and not within_limits(model, limits, force, self._fixed):
+            boundary = self._direct.solve(tau, limits)
+            if boundary.solved:
+                return boundary
         return MethodOutput(force, "solved")
 
 
@@ -149,3 +165,42 @@ def scale_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, fixed
             elif f < low <= 0.0:
                 scale = min(scale, low / f)
     return scale
+
+
+WITHIN = 1e-9
+"""Relative tolerance of :func:`within_limits` (forces) and its angle tolerance [rad]."""
+
+
+def within_limits(model: Model, limits: SampleLimits, force: np.ndarray, fixed: np.ndarray) -> bool:
+    """Whether every free actuator's force is inside this sample's limits: its thrust box, and
+    for a rotatable thruster its thrust window and allowed angles (a force below the hold
+    threshold has no direction to check)."""
+    for i, start in enumerate(model.starts):
+        if fixed[i]:
+            continue
+        slack = WITHIN * max(model.force_scale[i], 1.0)
+        if not model.rotatable[i]:
+            if not limits.low[i] - slack <= force[start] <= limits.high[i] + slack:
+                return False
+            continue
+        lim = limits.azimuth[int(np.searchsorted(model.rot, i))]
+        f1, f2 = float(force[start]), float(force[start + 1])
+        magnitude = math.hypot(f1, f2)
+        if magnitude <= model.hold[i]:
+            if lim.thrust_low > magnitude + slack or lim.thrust_high < -magnitude - slack:
+                return False
+            continue
+        alpha0 = float(limits.angle[i])
+        if lim.line:
+            along = f1 * math.cos(alpha0) + f2 * math.sin(alpha0)
+            if abs(f1 * math.sin(alpha0) - f2 * math.cos(alpha0)) > slack or not \
+                    lim.thrust_low - slack <= along <= lim.thrust_high + slack:
+                return False
+            continue
+        direction = math.atan2(f2, f1) if lim.sigma > 0 else math.atan2(-f2, -f1)
+        angle = alpha0 + wrap(direction - alpha0)
+        thrust = lim.sigma * magnitude
+        if not (lim.low - WITHIN <= angle <= lim.high + WITHIN
+                and lim.thrust_low - slack <= thrust <= lim.thrust_high + slack):
+            return False
+    return True

@@ -43,6 +43,10 @@ scale lambda in place of the slack: maximise lambda subject to T_e f_e = lambda 
 same limits (Durham's direct idea, section 4.3), minus a small multiple of the effort
 f_e' W f_e, so that among the forces reaching the largest lambda it takes the cheapest. It is
 solved only when the first problem reports the request unattainable.
+
+``saturation: direct`` answers an unattainable request with Durham's boundary solution from a
+linear programme instead (:mod:`~.direct`): exact where the scale problem above stops at
+OSQP's tolerance, and trading no scale for effort.
 """
 
 from __future__ import annotations
@@ -58,6 +62,7 @@ from ..solvers import BackendFactory
 from ..solvers.problem import Entries, Rows, ScaledProblem, entry_index
 from ..vehicle import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
+from .direct import DirectSolution
 
 INFINITY = math.inf
 PINNED = 1e-12
@@ -108,12 +113,15 @@ class QPAllocation(AllocationMethod):
     """Allocation method ``qp``."""
 
     name = "qp"
+    saturation_modes = ("weighted", "preserve_direction", "direct")
 
     def __init__(self, model: Model, backend: BackendFactory):
         super().__init__(model, backend)
         self._use(model)
         self._main = self._setup(model, scale=False)
         self._scale = self._setup(model, scale=True) if model.vehicle.saturation == "preserve_direction" else None
+        self._direct = DirectSolution(model) if model.vehicle.saturation == "direct" else None
+        self.setups += self._direct is not None
 
     @classmethod
     def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
@@ -149,15 +157,21 @@ class QPAllocation(AllocationMethod):
             problem.directions, problem.edges = [], []
             problem.multiplier, problem.curvature = [0.0] * len(model.rot), [0.0] * len(model.rot)
             problem.version = -1
+        if self._direct is not None:
+            self._direct.update_model(model)
         self._use(model)
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         output, x = self._solve(self._main, tau, limits)
-        if self._scale is None or not output.solved:
+        if (self._scale is None and self._direct is None) or not output.solved:
             return output
         slack = x[self.model.m:self.model.m + self.model.n]
         if np.all(np.abs(slack) <= SATURATION_SLACK * self.model.authority):
             return output
+        if self._direct is not None:
+            boundary = self._direct.solve(tau, limits)
+            boundary.iterations += output.iterations
+            return boundary if boundary.solved else output
         scaled, _ = self._solve(self._scale, tau, limits)
         scaled.iterations += output.iterations
         return scaled if scaled.solved else output
