@@ -134,16 +134,17 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
 def actuator_status(node_name: str, allocator: Allocator, index: int, last: AllocationResult,
                     limits: tuple[float, float], fault: Fault | None) -> DiagnosticStatus:
     """One actuator: OK when NOMINAL, WARN when DEGRADED (its efficiency) or STUCK (its angle),
-    ERROR when FAILED; its last thrust as a fraction of the limit in force on that side (fault
-    and, for a control surface, speed included)."""
+    ERROR when FAILED (its fault now, which a service may have changed since ``last``); its
+    last thrust as a fraction of the limit in force on that side (fault and, for a control
+    surface, speed included)."""
     actuator = allocator.vehicle.actuators[index]
-    mode = FaultMode(int(last.mode[index]))
+    mode = FaultMode.NOMINAL if fault is None else fault.mode
     thrust = float(last.thrust[index])
     limit = limits[1] if thrust >= 0.0 else limits[0]
     fraction = abs(thrust / limit) if limit != 0.0 else 0.0
     words = [mode.name]
     values = {"mode": mode.name, "thrust [N]": f"{thrust:.6g}", "fraction of limit": f"{fraction:.3f}",
-              "limits in force [N]": f"[{limits[0]:.6g}, {limits[1]:.6g}]"}
+              "limits in force [N]": f"[{limits[0] + 0.0:.6g}, {limits[1] + 0.0:.6g}]"}
     if mode == FaultMode.DEGRADED:
         words.append(f"efficiency {fault.efficiency:g}")
         values["efficiency"] = f"{fault.efficiency:g}"

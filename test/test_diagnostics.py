@@ -86,6 +86,19 @@ def test_one_status_per_actuator_with_mode_efficiency_angle_and_fraction_of_its_
     assert aft.level == DiagnosticStatus.OK
 
 
+def test_a_fault_changed_after_the_last_sample_is_reported_as_it_is_now():
+    """A fault service may run between a sample and the diagnostics timer: the statuses say
+    what holds now (and do not read the efficiency of a fault that is gone)."""
+    allocator = Allocator(load_vehicle(EXAMPLE))
+    allocator.set_fault("main_stbd", FaultMode.DEGRADED, efficiency=0.5)
+    last = allocator.allocate([100.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    allocator.clear_faults()
+    allocator.set_fault("main_port", FaultMode.FAILED)
+    result, values = statuses(allocator, Counters(), last=last)
+    assert result[4].level == DiagnosticStatus.OK and "efficiency" not in values[4]
+    assert result[3].level == DiagnosticStatus.ERROR and values[3]["limits in force [N]"] == "[0, 0]"
+
+
 def test_publishers_of_another_type_are_a_warning():
     allocator = Allocator(load_vehicle(EXAMPLE))
     result, values = statuses(allocator, Counters(), foreign=["/controller (geometry_msgs/msg/WrenchStamped)"])
