@@ -26,9 +26,16 @@ keeps the circle itself at rest (within 1 - cos(pi/256) = 0.008 %)."""
 
 class AllocationMethod(ABC):
     """One allocation method. ``setups`` counts the solver set-ups it has made (the tests
-    check that faults and value changes add none)."""
+    check that faults and value changes add none).
+
+    ``implements_priorities`` says whether :meth:`solve` honours the vehicle's DOF
+    priorities (``Vehicle.priority_levels``: an unattainable request meets a higher level as
+    far as it can before a lower one gets anything). False by default, so that a new method
+    is safe: the configuration check refuses ``priorities`` with a method that does not
+    declare them."""
 
     name: ClassVar[str]
+    implements_priorities: ClassVar[bool] = False
 
     def __init__(self, model: Model, backend: BackendFactory):
         self.model = model

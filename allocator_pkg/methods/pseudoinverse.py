@@ -9,6 +9,15 @@ Saturation: ``weighted`` clips each actuator to its limits (the allocator's fina
 step); ``preserve_direction`` first scales every free force by one factor so that the most
 loaded actuator just reaches its limit (the uniform scale-down of common ROS thruster
 managers), then clips what rate limits still leave outside.
+
+DOF priorities (``Vehicle.priority_levels``): sequential desaturation. Level by level, highest
+first, the weighted pseudo-inverse of that level's rows restricted to the null space of the
+levels above (the task-priority inverse: what it adds leaves their wrench unchanged) gives the
+force the level still wants, scaled by the largest factor in [0, 1] that keeps every actuator
+within its limits. A higher level thus gets as much of its request along its own direction
+as the limits allow before a lower level gets anything, and a lower level only uses what the
+higher ones leave. When every level fits, the sum is the ordinary weighted pseudo-inverse
+(the nested row spaces add up to the stacked one). The gains are cached like the others.
 """
 
 from __future__ import annotations
@@ -36,16 +45,50 @@ class PseudoInverseGains:
     def gain(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray:
         """G (m x n) with f_e = G tau for the actuators not ``excluded``; a rotatable
         thruster in ``lines`` may only push along its given angle."""
-        key = (excluded.tobytes(), tuple(sorted(lines.items())))
-        gain = self._cache.get(key)
-        if gain is None:
+        return self._cached(("gain", excluded.tobytes(), tuple(sorted(lines.items()))),
+                            lambda: self._compute(excluded, lines))
+
+    def cascade(self, excluded: np.ndarray, lines: dict[int, float],
+                levels: tuple[tuple[int, ...], ...]) -> list[tuple[np.ndarray, np.ndarray]]:
+        """Per priority level, highest first, (its rows of tau, G_k): the force a level adds
+        for a residual r_k of its rows is G_k r_k, in the weighted null space of every level
+        above it."""
+        return self._cached(("cascade", excluded.tobytes(), tuple(sorted(lines.items())), levels),
+                            lambda: self._compute_cascade(excluded, lines, levels))
+
+    def _cached(self, key: tuple, compute):
+        value = self._cache.get(key)
+        if value is None:
             if len(self._cache) >= _CACHE_SIZE:
                 self._cache.clear()
-            gain = self._compute(excluded, lines)
-            self._cache[key] = gain
-        return gain
+            value = compute()
+            self._cache[key] = value
+        return value
 
     def _compute(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray:
+        basis = self._basis(excluded, lines)
+        if basis is None:
+            return np.zeros((self.model.m, self.model.n))
+        return basis @ np.linalg.pinv(self.model.t_ec @ basis, rcond=1e-10)
+
+    def _compute_cascade(self, excluded: np.ndarray, lines: dict[int, float],
+                         levels: tuple[tuple[int, ...], ...]) -> list[tuple[np.ndarray, np.ndarray]]:
+        basis = self._basis(excluded, lines)
+        result = []
+        projector = None if basis is None else np.eye(basis.shape[1])
+        for level in levels:
+            rows = np.array(level, dtype=int)
+            if basis is None:
+                result.append((rows, np.zeros((self.model.m, rows.size))))
+                continue
+            restricted = self.model.t_ec[rows] @ basis @ projector
+            inverse = np.linalg.pinv(restricted, rcond=1e-10)
+            result.append((rows, basis @ inverse))
+            projector = projector - inverse @ restricted
+        return result
+
+    def _basis(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray | None:
+        """The usable extended directions scaled by W^-1/2 (m x b), or None when none is."""
         model = self.model
         basis_columns: list[np.ndarray] = []
         weights: list[float] = []
@@ -65,9 +108,8 @@ class PseudoInverseGains:
                 basis_columns.append(column)
                 weights.append(model.weight[i])
         if not basis_columns:
-            return np.zeros((model.m, model.n))
-        basis = np.column_stack(basis_columns) / np.sqrt(np.asarray(weights))
-        return basis @ np.linalg.pinv(model.t_ec @ basis, rcond=1e-10)
+            return None
+        return np.column_stack(basis_columns) / np.sqrt(np.asarray(weights))
 
     def desired(self, tau: np.ndarray, excluded: np.ndarray) -> np.ndarray:
         """The unconstrained extended solution (1.33) with the usable actuators."""
@@ -79,12 +121,14 @@ class PseudoInverseAllocation(AllocationMethod):
     the allocator (which also uses it for the fallback and azimuth planning)."""
 
     name = "pseudoinverse"
+    implements_priorities = True
 
     def __init__(self, model: Model, backend: BackendFactory, gains: PseudoInverseGains | None = None):
         super().__init__(model, backend)
         self.inverse = gains or PseudoInverseGains(model)
         self._version = -1
         self._preserve_direction = model.vehicle.saturation == "preserve_direction"
+        self._levels = model.vehicle.priority_levels
 
     def update_model(self, model: Model) -> None:
         """A new configuration: new gains on the next sample (no solver to set up)."""
@@ -92,6 +136,7 @@ class PseudoInverseAllocation(AllocationMethod):
         self.inverse = PseudoInverseGains(model)
         self._version = -1
         self._preserve_direction = model.vehicle.saturation == "preserve_direction"
+        self._levels = model.vehicle.priority_levels
 
     @classmethod
     def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
@@ -105,9 +150,21 @@ class PseudoInverseAllocation(AllocationMethod):
             pinned = fixed_forces(model, limits, fixed)
             self._pinned = pinned if pinned.any() else None
             self._pinned_wrench = None if self._pinned is None else model.t_ec @ pinned
-            self._gain = self.inverse.gain(fixed, lines)
+            if self._levels:
+                self._cascade = self.inverse.cascade(fixed, lines, self._levels)
+            else:
+                self._gain = self.inverse.gain(fixed, lines)
             self._version = limits.version
-        force = self._gain @ (tau if self._pinned is None else tau - self._pinned_wrench)
+        wanted = tau if self._pinned is None else tau - self._pinned_wrench
+        if self._levels:
+            force = np.zeros(model.m)
+            for rows, gain in self._cascade:
+                step = gain @ (wanted[rows] - model.t_ec[rows] @ force)
+                force += step_to_limits(model, limits, force, step, self._fixed) * step
+            if self._pinned is not None:
+                force += self._pinned
+            return MethodOutput(force, "solved")
+        force = self._gain @ wanted
         if self._preserve_direction:
             force *= scale_to_limits(model, limits, force, self._fixed)
         if self._pinned is not None:
@@ -149,3 +206,31 @@ def scale_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, fixed
             elif f < low <= 0.0:
                 scale = min(scale, low / f)
     return scale
+
+
+def step_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, step: np.ndarray,
+                   fixed: np.ndarray) -> float:
+    """The largest factor lambda in [0, 1] that keeps every free force within its limits on
+    force + lambda step, for a force already within them. A bound that ``force`` already
+    breaks (a thrust that a rate limit keeps from falling to zero) cannot be met by this
+    step: the final clip keeps it."""
+    scale = 1.0
+    for i, start in enumerate(model.starts):
+        if fixed[i]:
+            continue
+        if model.rotatable[i]:
+            lim = limits.azimuth[int(np.searchsorted(model.rot, i))]
+            f, d = force[start:start + 2], step[start:start + 2]
+            bound = lim.magnitude_max
+            outside = float(f @ f) - bound * bound
+            if outside <= 0.0 and float((f + d) @ (f + d)) > bound * bound:
+                a, b = float(d @ d), 2.0 * float(f @ d)
+                scale = min(scale, (-b + math.sqrt(max(b * b - 4.0 * a * outside, 0.0))) / (2.0 * a))
+        else:
+            f, d = float(force[start]), float(step[start])
+            low, high = float(limits.low[i]), float(limits.high[i])
+            if d > 0.0 and f <= high < f + d:
+                scale = min(scale, (high - f) / d)
+            elif d < 0.0 and f >= low > f + d:
+                scale = min(scale, (low - f) / d)
+    return max(scale, 0.0)
