@@ -32,6 +32,9 @@ from ..vehicle import Vehicle
 from .base import AllocationMethod
 
 _CACHE_SIZE = 64
+STEP_MARGIN = 1e-9
+"""A level's step may pass a limit by this fraction of the actuator's range without being
+scaled (rounding in the null space of the levels above; the final clip takes it)."""
 
 
 class PseudoInverseGains:
@@ -210,8 +213,8 @@ def scale_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, fixed
 
 def step_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, step: np.ndarray,
                    fixed: np.ndarray) -> float:
-    """The largest factor lambda in [0, 1] that keeps every free force within its limits on
-    force + lambda step, for a force already within them. A bound that ``force`` already
+    """The largest factor lambda in [0, 1] that keeps every free force within its limits (to
+    ``STEP_MARGIN``) on force + lambda step, for a force already within them. A bound that ``force`` already
     breaks (a thrust that a rate limit keeps from falling to zero) cannot be met by this
     step: the final clip keeps it."""
     scale = 1.0
@@ -222,15 +225,17 @@ def step_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, step: 
             lim = limits.azimuth[int(np.searchsorted(model.rot, i))]
             f, d = force[start:start + 2], step[start:start + 2]
             bound = lim.magnitude_max
-            outside = float(f @ f) - bound * bound
-            if outside <= 0.0 and float((f + d) @ (f + d)) > bound * bound:
+            outside = min(float(f @ f) - bound * bound, 0.0)
+            if math.sqrt(float(f @ f)) <= bound * (1.0 + STEP_MARGIN) \
+                    and math.sqrt(float((f + d) @ (f + d))) > bound * (1.0 + STEP_MARGIN):
                 a, b = float(d @ d), 2.0 * float(f @ d)
-                scale = min(scale, (-b + math.sqrt(max(b * b - 4.0 * a * outside, 0.0))) / (2.0 * a))
+                scale = min(scale, max(-b + math.sqrt(max(b * b - 4.0 * a * outside, 0.0)), 0.0) / (2.0 * a))
         else:
             f, d = float(force[start]), float(step[start])
             low, high = float(limits.low[i]), float(limits.high[i])
-            if d > 0.0 and f <= high < f + d:
-                scale = min(scale, (high - f) / d)
-            elif d < 0.0 and f >= low > f + d:
-                scale = min(scale, (low - f) / d)
+            margin = STEP_MARGIN * max(high, -low)
+            if d > 0.0 and f <= high + margin and high < f + d - margin:
+                scale = min(scale, max(high - f, 0.0) / d)
+            elif d < 0.0 and f >= low - margin and low > f + d + margin:
+                scale = min(scale, min(low - f, 0.0) / d)
     return max(scale, 0.0)
