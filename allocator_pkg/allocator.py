@@ -119,6 +119,7 @@ class Allocator:
         unfit = METHODS[method or vehicle.method].problems(vehicle)
         if unfit:
             raise ValueError(f"method '{method or vehicle.method}' cannot serve this vehicle: {'; '.join(unfit)}")
+        _check_priorities(method or vehicle.method, vehicle)
         if dt is not None and not (math.isfinite(dt) and dt > 0.0):
             raise ValueError(f"dt must be a positive number of seconds, got {dt}")
         if isinstance(backend, str):
@@ -195,6 +196,7 @@ class Allocator:
         old = self._vehicle
         if [(a.name, a.type) for a in vehicle.actuators] != [(a.name, a.type) for a in old.actuators]:
             raise ValueError("reconfigure keeps the actuators (names and types); build a new Allocator instead")
+        _check_priorities(self._method_override or vehicle.method, vehicle)
 
     def reconfigure(self, vehicle: Vehicle) -> None:
         """Use a new configuration of the same actuators; state and faults carry over.
@@ -617,6 +619,13 @@ class Allocator:
         for azimuth_state, (i, _) in zip(state.azimuth, self._rot_pairs):
             azimuth_state.angle = float(angle[i])
             azimuth_state.thrust = float(thrust[i])
+
+
+def _check_priorities(method: str, vehicle: Vehicle) -> None:
+    """Raise ValueError when the vehicle orders its DOFs and the method does not implement it."""
+    if vehicle.priority_levels and not METHODS[method].implements_priorities:
+        able = ", ".join(name for name, kind in METHODS.items() if kind.implements_priorities)
+        raise ValueError(f"priorities: method '{method}' does not implement DOF priorities; methods that do: {able}")
 
 
 def _reachability_warnings(model: Model) -> list[str]:

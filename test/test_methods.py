@@ -95,3 +95,28 @@ def test_an_unknown_method_is_refused_everywhere():
         Capability(load_vehicle(EXAMPLE), method="magic")
     with pytest.raises(ConfigError, match="'magic' is not one of qp, pseudoinverse, nonlinear"):
         vehicle_from(EXAMPLE, method="magic")
+
+
+@pytest.mark.parametrize("name", list(METHODS))
+def test_a_method_implements_priorities_or_is_refused_with_them(name):
+    """Safe by default: a method that does not declare priorities never runs with them."""
+    parameters = read_parameters(ROOT / "config" / "otter_usv.yaml")
+    parameters.update(method=name, priorities=[1, 0])
+    if METHODS[name].implements_priorities:
+        vehicle = vehicle_from_parameters(parameters)
+        assert vehicle.priority_levels == ((1,), (0,))
+        Allocator(vehicle).allocate([500.0, 0.0, 0.0, 0.0, 0.0, 300.0])
+        return
+    with pytest.raises(ConfigError, match=f"priorities: method '{name}' does not implement DOF priorities"):
+        vehicle_from_parameters(parameters)
+    prioritised = vehicle_from(ROOT / "config" / "otter_usv.yaml", priorities=[1, 0])
+    with pytest.raises(ValueError, match=f"method '{name}' does not implement DOF priorities"):
+        Allocator(prioritised, method=name)
+    overridden = Allocator(load_vehicle(ROOT / "config" / "otter_usv.yaml"), method=name)
+    with pytest.raises(ValueError, match="does not implement DOF priorities"):
+        overridden.reconfigure(prioritised)
+
+
+def test_a_new_method_does_not_implement_priorities_unless_it_says_so():
+    assert HalfPseudoInverse.implements_priorities is False
+    assert {name for name, kind in METHODS.items() if kind.implements_priorities} == {"qp", "pseudoinverse"}

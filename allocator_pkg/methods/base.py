@@ -32,10 +32,17 @@ class AllocationMethod(ABC):
     priorities (``Vehicle.priority_levels``: an unattainable request meets a higher level as
     far as it can before a lower one gets anything). False by default, so that a new method
     is safe: the configuration check refuses ``priorities`` with a method that does not
-    declare them."""
+    declare them, and a subclass does not inherit the declaration."""
 
     name: ClassVar[str]
     implements_priorities: ClassVar[bool] = False
+
+    def __init_subclass__(cls, **kwargs) -> None:
+        """A subclass declares priorities itself: one that overrides a method that implements
+        them (its ``solve``) does not inherit the declaration."""
+        super().__init_subclass__(**kwargs)
+        if "implements_priorities" not in cls.__dict__:
+            cls.implements_priorities = False
 
     def __init__(self, model: Model, backend: BackendFactory):
         self.model = model
