@@ -91,7 +91,7 @@ class AllocationRuntime:
         self._odometry = node.create_subscription(Odometry, "odometry", self._on_odometry, qos.odometry(),
                                                   qos_overriding_options=qos.overridable()) \
             if vehicle.has_surfaces else None
-        self._battery = node.create_subscription(BatteryState, "battery_state", self._on_battery, qos.odometry(),
+        self._battery = node.create_subscription(BatteryState, "battery_state", self._on_battery, qos.battery(),
                                                  qos_overriding_options=qos.overridable()) \
             if vehicle.voltage_range is not None else None
         self._battery_time: int | None = None
