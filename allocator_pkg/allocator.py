@@ -60,7 +60,8 @@ last pass's deflections, until the drag stops changing (two or three passes in p
 @dataclass(slots=True)
 class AllocationResult:
     """One sample's answer; arrays are per actuator in configuration order. ``thrust``,
-    ``azimuth``, ``mode`` and ``available`` are shared with the allocator and read-only.
+    ``azimuth``, ``mode``, ``available`` (and ``at_rate_limit`` of a vehicle without rate
+    limits) are shared with the allocator and read-only.
 
     ``unallocated`` (6, [X, Y, Z, K, M, N]) is requested minus achieved in the controlled DOFs
     (0 in the others), what a controller needs for anti-windup; ``at_thrust_limit`` flags
@@ -244,6 +245,9 @@ class Allocator:
         self._thrust_rated = np.flatnonzero(thrusters & np.isfinite(model.thrust_step))
         self._surface_rated = model.surfaces[np.isfinite(model.thrust_step[model.surfaces])]
         self._angle_rated = model.rot[np.isfinite(model.angle_step[model.rot]) & (model.angle_step[model.rot] > 0.0)]
+        self._any_rated = bool(self._thrust_rated.size or self._surface_rated.size or self._angle_rated.size)
+        self._never = np.zeros(model.r, dtype=bool)
+        self._never.flags.writeable = False
         self._warnings = _reachability_warnings(model)
         self._notes = _actuation_notes(model)
         rows = np.flatnonzero(model.dof_index == _SURGE)
@@ -428,6 +432,9 @@ class Allocator:
         self._range_low, self._range_high = static_ranges(self._vehicle, self._fault_set, self._speed, self._voltage)
         if self._deadband_index.size:
             self._deadband = self._deadband_edges * self._fault_set.command_efficiency[self._deadband_index, None]
+        # Where a thrust counts as at its limit (an end of zero is no limit to report).
+        self._at_high = np.where(self._range_high > 0.0, self._range_high * (1.0 - LIMIT_FRACTION), np.inf)
+        self._at_low = np.where(self._range_low < 0.0, self._range_low * (1.0 - LIMIT_FRACTION), -np.inf)
         self._range_low_list, self._range_high_list = self._range_low.tolist(), self._range_high.tolist()
         available = self._fault_set.efficiency > 0.0
         available[model.surfaces] &= self._lift[model.surfaces] > 0.0
@@ -575,9 +582,9 @@ class Allocator:
     def _limit_flags(self, thrust: np.ndarray, angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Which actuators sit at an end of their force range in force, and which moved by a
         full rate step (thrust, a control surface's deflection, or angle) this sample."""
-        low, high = self._range_low, self._range_high
-        at_thrust = ((high > 0.0) & (thrust >= high * (1.0 - LIMIT_FRACTION))) | \
-            ((low < 0.0) & (thrust <= low * (1.0 - LIMIT_FRACTION)))
+        at_thrust = (thrust >= self._at_high) | (thrust <= self._at_low)
+        if not self._any_rated:
+            return at_thrust, self._never
         at_rate = np.zeros(thrust.shape, dtype=bool)
         state, model = self._state, self._model
         if self._thrust_rated.size:
