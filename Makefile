@@ -28,7 +28,7 @@ help:
 	@echo "make demo    station keeping with a thruster failure, live table and a timeline PNG"
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
-	@echo "make docs    regenerate docs/configuration.md (schema), docs/faults.md, docs/thrust_markers.png"
+	@echo "make docs    regenerate docs/configuration.md (schema), docs/faults.md, docs/thrust_markers.png, docs/priorities.png"
 	@echo "make capability  capability plots of every shipped vehicle (and of each method that differs) into docs/capability/"
 	@echo "make bench   solver and node benchmarks into bench/results/latest.json and docs/performance.md"
 	@echo "make load    the node under a 10 kHz wrench flood and a busy core, LOAD_SECONDS=$(LOAD_SECONDS) per trigger"
@@ -85,6 +85,7 @@ test: lint
 docs: setup
 	$(PY) tools/update_docs.py
 	$(PY) tools/render_markers.py
+	$(PY) tools/plot_priorities.py
 
 VEHICLES := $(filter-out config/default.yaml,$(wildcard config/*.yaml))
 capability: setup

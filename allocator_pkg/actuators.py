@@ -17,14 +17,18 @@ from .vehicle import CommandMapConfig, SurfaceConfig
 
 @dataclass(frozen=True)
 class LinearMap:
-    """F = k u (1.3), with its own k for negative force."""
+    """F = k u (1.3), with its own k for negative force; no force for a command smaller in
+    magnitude than ``deadband`` (the propeller does not turn)."""
 
     gain: float
     gain_reverse: float
     command_min: float
     command_max: float
+    deadband: float = 0.0
 
     def force(self, command: float) -> float:
+        if abs(command) < self.deadband:
+            return 0.0
         return self.gain * command if command >= 0.0 else self.gain_reverse * command
 
     def command(self, force: float) -> float:
@@ -36,14 +40,18 @@ class LinearMap:
 
 @dataclass(frozen=True)
 class QuadraticMap:
-    """F = k |u| u (1.4); its inverse u = sign(F) sqrt(|F| / k)."""
+    """F = k |u| u (1.4); its inverse u = sign(F) sqrt(|F| / k); no force for a command
+    smaller in magnitude than ``deadband``."""
 
     gain: float
     gain_reverse: float
     command_min: float
     command_max: float
+    deadband: float = 0.0
 
     def force(self, command: float) -> float:
+        if abs(command) < self.deadband:
+            return 0.0
         gain = self.gain if command >= 0.0 else self.gain_reverse
         return gain * abs(command) * command
 
@@ -106,12 +114,36 @@ class TableMap:
 CommandMap = LinearMap | QuadraticMap | TableMap
 
 
-def command_map(config: CommandMapConfig) -> CommandMap:
-    """The map a thruster's configuration describes."""
+def thrust_row(config: CommandMapConfig, voltage: float | None) -> np.ndarray:
+    """A table's thrust at each of its set-points at a supply voltage: linear between the
+    two measured voltages around it (the only row of a table without voltages, whatever the
+    voltage; None: that row, or the table's first voltage)."""
+    rows = np.array(config.thrust_rows, dtype=float)
+    if len(rows) == 1 or voltage is None:
+        return rows[0]
+    position = float(np.interp(voltage, config.table_voltage, np.arange(len(rows))))
+    below = min(int(position), len(rows) - 2)
+    share = position - below
+    return (1.0 - share) * rows[below] + share * rows[below + 1]
+
+
+def command_map(config: CommandMapConfig, voltage: float | None = None) -> CommandMap:
+    """The map a thruster's configuration describes (a voltage-indexed table at ``voltage``)."""
     if config.kind == "table":
-        return TableMap(config.table_command, config.table_thrust, config.command_min, config.command_max)
+        return TableMap(config.table_command, thrust_row(config, voltage), config.command_min, config.command_max)
     kind = QuadraticMap if config.kind == "quadratic" else LinearMap
-    return kind(config.gain, config.gain_reverse, config.command_min, config.command_max)
+    return kind(config.gain, config.gain_reverse, config.command_min, config.command_max, config.deadband)
+
+
+def deadband_forces(config: CommandMapConfig) -> tuple[float, float]:
+    """The forces at the dead band's edges of a linear or quadratic map, (negative, positive):
+    the smallest force either way that a turning propeller gives ((0, 0) without a dead band)."""
+    if config.kind == "table" or config.deadband <= 0.0:
+        return 0.0, 0.0
+    band = config.deadband
+    if config.kind == "quadratic":
+        return -config.gain_reverse * band * band, config.gain * band * band
+    return -config.gain_reverse * band, config.gain * band
 
 
 class CommandMaps:
@@ -121,8 +153,11 @@ class CommandMaps:
     (1.48); their lift gains come with each call because they change with speed.
     """
 
-    def __init__(self, maps: Sequence[CommandMap | None]):
+    def __init__(self, maps: Sequence[CommandMap | None], reversed_: Sequence[bool] = ()):
         self.maps = list(maps)
+        # A reversed thruster's command is mirrored about its set-point of zero force.
+        self._reversed = np.array([i for i, flag in enumerate(reversed_) if flag], dtype=int)
+        self._neutral = np.array([maps[i].command(0.0) for i in self._reversed])
         self._linear = np.array([i for i, m in enumerate(maps) if isinstance(m, LinearMap)], dtype=int)
         self._quadratic = np.array([i for i, m in enumerate(maps) if isinstance(m, QuadraticMap)], dtype=int)
         tables: dict[int, list[int]] = {}
@@ -146,6 +181,12 @@ class CommandMaps:
     def commands(self, force: np.ndarray, efficiency: np.ndarray | None, lift_gain: np.ndarray) -> np.ndarray:
         """Set-points giving ``force``; a DEGRADED actuator (efficiency e < 1) is commanded
         for force / e so that it still produces ``force`` (None: every actuator nominal)."""
+        command = self._commands(force, efficiency, lift_gain)
+        if self._reversed.size:
+            command[self._reversed] = 2.0 * self._neutral - command[self._reversed]
+        return command
+
+    def _commands(self, force: np.ndarray, efficiency: np.ndarray | None, lift_gain: np.ndarray) -> np.ndarray:
         nominal = force if efficiency is None else force / efficiency
         if self._one_table is not None:
             return self._one_table.commands(nominal)

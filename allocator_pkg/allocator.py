@@ -10,7 +10,13 @@ Each sample :meth:`Allocator.allocate` turns the requested generalised force int
 3. thrust, angle and command of every actuator, inside every limit whatever the solver
    returned, with the drag of the control surfaces compensated (1.56)-(1.58): the surge
    request grows by the drag of the deflections and is solved again, until the drag settles;
-4. the achieved wrench, saturation flag and power estimate.
+4. a force that a linear or quadratic map's dead band cannot give snapped to zero or the
+   band's edge, whichever is nearer;
+5. the achieved wrench, the unallocated rest, saturation and limit flags, the power estimate.
+
+The supply voltage (:meth:`Allocator.set_voltage`), like the speed and the faults, changes
+values only: the command maps at that voltage and the thrust limits they leave, sent to the
+running solver as new bounds.
 """
 
 from __future__ import annotations
@@ -22,7 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .actuators import CommandMaps, command_map, drag_gain
+from .actuators import CommandMaps, command_map, deadband_forces, drag_gain
 from .azimuth import AzimuthLimits, AzimuthState, piece_in_question, plan, resolve
 from .configuration_matrix import configuration_matrix
 from .faults import Fault, FaultMode, FaultSet, lift_gains, static_ranges
@@ -38,6 +44,9 @@ SATURATION_TOLERANCE = 1e-3
 """A request counts as met when every controlled DOF is within this fraction of the DOF's
 authority of it (Model.dof_scale)."""
 
+LIMIT_FRACTION = 1e-3
+"""An actuator within this fraction of a limit sits at it (thrust range, rate step)."""
+
 _SURGE = DOF_NAMES.index("surge")
 PLANE = ("surge", "sway", "yaw")
 """The horizontal plane, in which a vehicle is under-actuated if its actuators cannot give
@@ -51,7 +60,14 @@ last pass's deflections, until the drag stops changing (two or three passes in p
 @dataclass(slots=True)
 class AllocationResult:
     """One sample's answer; arrays are per actuator in configuration order. ``thrust``,
-    ``azimuth``, ``mode`` and ``available`` are shared with the allocator and read-only."""
+    ``azimuth``, ``mode``, ``available`` (and ``at_rate_limit`` of a vehicle without rate
+    limits) are shared with the allocator and read-only.
+
+    ``unallocated`` (6, [X, Y, Z, K, M, N]) is requested minus achieved in the controlled DOFs
+    (0 in the others), what a controller needs for anti-windup; ``at_thrust_limit`` flags
+    the actuators at an end of the force range in force (faults, voltage, speed),
+    ``at_rate_limit`` those that moved their thrust (a control surface: its deflection) or
+    their angle by a full rate step this sample."""
 
     thrust: np.ndarray
     azimuth: np.ndarray
@@ -66,6 +82,9 @@ class AllocationResult:
     method: str
     mode: np.ndarray
     available: np.ndarray
+    unallocated: np.ndarray
+    at_thrust_limit: np.ndarray
+    at_rate_limit: np.ndarray
     drag: float = 0.0
 
 
@@ -101,6 +120,7 @@ class Allocator:
         unfit = METHODS[method or vehicle.method].problems(vehicle)
         if unfit:
             raise ValueError(f"method '{method or vehicle.method}' cannot serve this vehicle: {'; '.join(unfit)}")
+        _check_priorities(method or vehicle.method, vehicle)
         if dt is not None and not (math.isfinite(dt) and dt > 0.0):
             raise ValueError(f"dt must be a positive number of seconds, got {dt}")
         if isinstance(backend, str):
@@ -113,6 +133,7 @@ class Allocator:
         self._methods: dict[str, AllocationMethod] = {}
         self._retired_setups = 0
         self._speed = 0.0
+        self._voltage: float | None = None
         self._version = 0
         self._stats = AllocatorStats()
         self._fault_set = FaultSet(vehicle)
@@ -176,6 +197,7 @@ class Allocator:
         old = self._vehicle
         if [(a.name, a.type) for a in vehicle.actuators] != [(a.name, a.type) for a in old.actuators]:
             raise ValueError("reconfigure keeps the actuators (names and types); build a new Allocator instead")
+        _check_priorities(self._method_override or vehicle.method, vehicle)
 
     def reconfigure(self, vehicle: Vehicle) -> None:
         """Use a new configuration of the same actuators; state and faults carry over.
@@ -212,9 +234,20 @@ class Allocator:
         self._method = self._methods[name]
         self._model = model
         self._vehicle = vehicle
-        maps: dict = {}                      # actuators with the same map share it (one vectorised call)
-        self._maps = CommandMaps([None if a.is_surface else maps.setdefault(a.command, command_map(a.command))
-                                  for a in vehicle.actuators])
+        voltages = vehicle.voltage_range
+        if self._voltage is None or (voltages is not None and not voltages[0] <= self._voltage <= voltages[1]):
+            self._voltage = vehicle.nominal_voltage
+        self._build_maps()
+        edges = [(0.0, 0.0) if a.is_surface else deadband_forces(a.command) for a in vehicle.actuators]
+        self._deadband_index = np.array([i for i, (low, high) in enumerate(edges) if high > 0.0], dtype=int)
+        self._deadband_edges = np.array([edges[i] for i in self._deadband_index]).reshape(-1, 2)
+        thrusters = ~np.isin(np.arange(model.r), model.surfaces)
+        self._thrust_rated = np.flatnonzero(thrusters & np.isfinite(model.thrust_step))
+        self._surface_rated = model.surfaces[np.isfinite(model.thrust_step[model.surfaces])]
+        self._angle_rated = model.rot[np.isfinite(model.angle_step[model.rot]) & (model.angle_step[model.rot] > 0.0)]
+        self._any_rated = bool(self._thrust_rated.size or self._surface_rated.size or self._angle_rated.size)
+        self._never = np.zeros(model.r, dtype=bool)
+        self._never.flags.writeable = False
         self._warnings = _reachability_warnings(model)
         self._notes = _actuation_notes(model)
         rows = np.flatnonzero(model.dof_index == _SURGE)
@@ -273,6 +306,45 @@ class Allocator:
         self._speed = speed
         self._apply_speed()
 
+    @property
+    def voltage(self) -> float | None:
+        """The supply voltage the command maps and thrust limits follow [V] (None: the
+        configuration has no nominal_voltage)."""
+        return self._voltage
+
+    def set_voltage(self, volts: float) -> None:
+        """Supply voltage [V]: tables measured at several voltages are interpolated at it and
+        the thrust limits follow them; values only (new bounds for the running solver).
+        Raises ValueError for a voltage that is not finite and positive or outside a table's
+        voltages; nothing changes then."""
+        volts = float(volts)
+        if not (math.isfinite(volts) and volts > 0.0):
+            raise ValueError(f"voltage must be finite and positive, got {volts}")
+        covered = self._vehicle.voltage_range
+        if covered is not None and not covered[0] <= volts <= covered[1]:
+            raise ValueError(f"voltage {volts:g} V is outside the thrust tables ({covered[0]:g} to {covered[1]:g} V)")
+        if volts == self._voltage:
+            return
+        self._voltage = volts
+        if covered is not None:
+            self._build_maps()
+            self._refresh_ranges()
+
+    def _build_maps(self) -> None:
+        """The command maps at the current voltage: actuators with the same map share it (one
+        vectorised call)."""
+        maps: dict = {}
+        actuators = self._vehicle.actuators
+        self._maps = CommandMaps([None if a.is_surface else maps.setdefault(a.command, command_map(a.command,
+                                                                                                  self._voltage))
+                                  for a in actuators], [not a.is_surface and a.command.reversed for a in actuators])
+
+    @property
+    def ranges(self) -> tuple[np.ndarray, np.ndarray]:
+        """Signed force range [low, high] of every actuator in force (faults, speed and voltage;
+        before rate limits)."""
+        return self._range_low.copy(), self._range_high.copy()
+
     def _apply_speed(self) -> None:
         v = self._vehicle
         self._lift = lift_gains(v, self._speed)
@@ -325,19 +397,27 @@ class Allocator:
         if self._drag_row is not None:
             output, thrust, angle, extended, drag = self._compensate_drag(tau_c, limits, output, thrust, angle,
                                                                           extended)
+        if self._deadband_index.size:
+            self._snap_deadband(thrust, extended, limits)
         achieved = self._t_e @ extended
         if drag:
             achieved[_SURGE] -= drag
         miss = (achieved if self._all_dofs else achieved[self._dof_index]) - tau_c
         saturated = any(abs(m) > tolerance for m, tolerance in zip(miss.tolist(), self._tolerance))
+        if self._all_dofs:
+            unallocated = -miss
+        else:
+            unallocated = np.zeros(6)
+            unallocated[self._dof_index] = -miss
         command = self._maps.commands(thrust, self._command_efficiency, self._lift)
+        at_thrust, at_rate = self._limit_flags(thrust, angle)
         self._commit(thrust, angle)
         self._stats.samples += 1
         return AllocationResult(thrust, angle, command, achieved, requested, saturated, output.status,
                                 output.iterations, time.perf_counter() - start,
                                 sum(p * abs(t) ** 1.5 for p, t in zip(self._power, thrust.tolist())),
-                                self._method.name,
-                                self._fault_set.modes, self._availability, drag)
+                                self._method.name, self._fault_set.modes, self._availability, unallocated, at_thrust,
+                                at_rate, drag)
 
     def stop(self) -> AllocationResult:
         """Zero thrust at once, angles held (watchdog and shutdown); bypasses rate limits."""
@@ -346,14 +426,20 @@ class Allocator:
         command = self._maps.commands(thrust, self._command_efficiency, self._lift)
         self._commit(thrust, angle)
         return AllocationResult(thrust, angle, command, np.zeros(6), np.zeros(6), False, "stopped", 0, 0.0, 0.0,
-                                self._method.name, self._fault_set.modes, self._availability)
+                                self._method.name, self._fault_set.modes, self._availability, np.zeros(6),
+                                np.zeros(self._model.r, dtype=bool), np.zeros(self._model.r, dtype=bool))
 
     def _refresh_ranges(self) -> None:
         """What faults and speed decide, computed when they change (never per sample): the
         static force ranges, availability, the pseudo-inverse gain used to plan rotatable
         thrusters, and the limits of a vehicle whose limits never change between samples."""
         model = self._model
-        self._range_low, self._range_high = static_ranges(self._vehicle, self._fault_set, self._speed)
+        self._range_low, self._range_high = static_ranges(self._vehicle, self._fault_set, self._speed, self._voltage)
+        if self._deadband_index.size:
+            self._deadband = self._deadband_edges * self._fault_set.command_efficiency[self._deadband_index, None]
+        # Where a thrust counts as at its limit (an end of zero is no limit to report).
+        self._at_high = np.where(self._range_high > 0.0, self._range_high * (1.0 - LIMIT_FRACTION), np.inf)
+        self._at_low = np.where(self._range_low < 0.0, self._range_low * (1.0 - LIMIT_FRACTION), -np.inf)
         self._range_low_list, self._range_high_list = self._range_low.tolist(), self._range_high.tolist()
         available = self._fault_set.efficiency > 0.0
         available[model.surfaces] &= self._lift[model.surfaces] > 0.0
@@ -482,6 +568,55 @@ class Allocator:
             thrust, angle, extended = self._resolve(output, limits)
         return output, thrust, angle, extended, self._surface_drag(thrust)
 
+    def _snap_deadband(self, thrust: np.ndarray, extended: np.ndarray, limits: SampleLimits) -> None:
+        """A force inside a dead band (between zero and the force at the band's edge) cannot
+        be commanded: it becomes zero or the edge, whichever is nearer and within this
+        sample's limits (zero when neither is, or on a tie). In place, the extended force
+        with it."""
+        index = self._deadband_index
+        force = thrust[index]
+        low_edge, high_edge = self._deadband[:, 0], self._deadband[:, 1]
+        inside = (force != 0.0) & (force > low_edge) & (force < high_edge)
+        if not inside.any():
+            return
+        model = self._model
+        for k in np.flatnonzero(inside):
+            i = int(index[k])
+            f = float(force[k])
+            edge = float(high_edge[k] if f > 0.0 else low_edge[k])
+            fits = limits.low[i] - 1e-12 <= edge <= limits.high[i] + 1e-12
+            new = edge if fits and abs(edge - f) < abs(f) else 0.0
+            thrust[i] = new
+            start = int(model.starts[i])
+            if model.rotatable[i]:
+                extended[start:start + 2] *= new / f
+            else:
+                extended[start] = new
+
+    def _limit_flags(self, thrust: np.ndarray, angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Which actuators sit at an end of their force range in force, and which moved by a
+        full rate step (thrust, a control surface's deflection, or angle) this sample."""
+        at_thrust = (thrust >= self._at_high) | (thrust <= self._at_low)
+        if not self._any_rated:
+            return at_thrust, self._never
+        at_rate = np.zeros(thrust.shape, dtype=bool)
+        state, model = self._state, self._model
+        if self._thrust_rated.size:
+            index = self._thrust_rated
+            at_rate[index] = np.abs(thrust[index] - state.thrust[index]) >= model.thrust_step[index] * (
+                1.0 - LIMIT_FRACTION)
+        if self._surface_rated.size:
+            index = self._surface_rated
+            lift = self._lift[index]
+            deflection = np.divide(thrust[index], lift, out=np.zeros(index.size), where=lift > 0.0)
+            at_rate[index] = np.abs(deflection - state.deflection[index]) >= model.thrust_step[index] * (
+                1.0 - LIMIT_FRACTION)
+        if self._angle_rated.size:
+            index = self._angle_rated
+            turned = np.abs(np.angle(np.exp(1j * (angle[index] - state.angle[index]))))
+            at_rate[index] |= turned >= model.angle_step[index] * (1.0 - LIMIT_FRACTION)
+        return at_thrust, at_rate
+
     def _surface_drag(self, thrust: np.ndarray) -> float:
         """X_cs of (1.57): the added resistance of all deflected control surfaces."""
         surfaces = self._model.surfaces
@@ -505,6 +640,13 @@ class Allocator:
         for azimuth_state, (i, _) in zip(state.azimuth, self._rot_pairs):
             azimuth_state.angle = float(angle[i])
             azimuth_state.thrust = float(thrust[i])
+
+
+def _check_priorities(method: str, vehicle: Vehicle) -> None:
+    """Raise ValueError when the vehicle orders its DOFs and the method does not implement it."""
+    if vehicle.priority_levels and not METHODS[method].implements_priorities:
+        able = ", ".join(name for name, kind in METHODS.items() if kind.implements_priorities)
+        raise ValueError(f"priorities: method '{method}' does not implement DOF priorities; methods that do: {able}")
 
 
 def _reachability_warnings(model: Model) -> list[str]:

@@ -15,7 +15,8 @@ pseudo-inverse gives within every limit count, found by bisection on the pseudo-
 Rotatable thrusters may turn to any allowed angle (steady state: rate limits do not apply).
 A forbidden sector makes the set of forces a thruster can give non-convex; it is split into
 convex pieces (cones at most pi wide) and every combination of pieces is solved, keeping the
-best. Control surfaces give the lift of the given speed.
+best. Control surfaces give the lift of the given speed, thrusters with voltage-indexed
+tables the thrust of the given supply voltage.
 
 ``allocator-capability`` writes the polar plot (nominal and every single-actuator failure)
 as PNG and the numbers as CSV.
@@ -92,13 +93,25 @@ class Capability:
     def scale(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
         """The largest lambda with lambda * tau attainable ([X, Y, Z, K, M, N]; uncontrolled DOFs
         ignored): a request is attainable when this is at least 1."""
+        return self.reach(tau, faults)[0]
+
+    def reach(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None, speed: float | None = None,
+              voltage: float | None = None) -> tuple[float, np.ndarray]:
+        """(lambda, wrench): the largest lambda with lambda * tau attainable (uncontrolled DOFs
+        of tau ignored; inf for a zero request) at a surge speed and supply voltage (None: the
+        analysis' speed, the nominal voltage), and the whole wrench [X, Y, Z, K, M, N] the
+        actuators give there (in the uncontrolled DOFs what they give on the way)."""
         request = np.asarray(tau, dtype=float)[self.model.dof_index]
         if not np.any(request):
-            return math.inf
+            return math.inf, np.zeros(6)
         faults = FaultSet.of(self.vehicle, faults)
+        low, high = static_ranges(self.vehicle, faults, self.speed if speed is None else speed, voltage)
+        zero = np.zeros(self.model.n)
         if self.sides is None:
-            return self._pseudo_inverse_limit(request, np.zeros(self.model.n), faults)
-        return self._linear_programme(request, np.zeros(self.model.n), faults)
+            magnitude, force = self._pseudo_inverse_limit(request, zero, faults, low, high)
+        else:
+            magnitude, force = self._linear_programme(request, zero, faults, low, high)
+        return magnitude, self.model.t_e @ force
 
     def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
                  faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:
@@ -120,23 +133,27 @@ class Capability:
 
     def _max_point(self, direction: float, yaw_moment: float, faults: FaultSet) -> np.ndarray:
         unit, fixed = self._request(direction, yaw_moment)
+        low, high = static_ranges(self.vehicle, faults, self.speed)
         if self.sides is None:
-            magnitude = self._pseudo_inverse_limit(unit, fixed, faults)
+            magnitude = self._pseudo_inverse_limit(unit, fixed, faults, low, high)[0]
         else:
-            magnitude = self._linear_programme(unit, fixed, faults)
+            magnitude = self._linear_programme(unit, fixed, faults, low, high)[0]
         return magnitude * self.axis_scale * np.array([math.cos(direction), math.sin(direction)])
 
-    def _linear_programme(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet) -> float:
+    def _linear_programme(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet, low: np.ndarray,
+                          high: np.ndarray) -> tuple[float, np.ndarray]:
+        """The largest magnitude over every combination of convex pieces, and its extended forces."""
         model = self.model
-        low, high = static_ranges(self.vehicle, faults, self.speed)
         choices = [_pieces(self.vehicle.actuators[i], faults.faults.get(self.vehicle.actuators[i].name), low[i],
                            high[i]) for i in model.rot]
-        best = 0.0
+        best, force = 0.0, np.zeros(model.m)
         for combination in itertools.product(*choices):
-            best = max(best, self._solve(unit, fixed, low, high, combination, self.sides))
-        return best
+            magnitude, solution = self._solve(unit, fixed, low, high, combination, self.sides)
+            if magnitude > best:
+                best, force = magnitude, solution
+        return best, force
 
-    def _solve(self, unit, fixed, low, high, pieces, sides) -> float:
+    def _solve(self, unit, fixed, low, high, pieces, sides) -> tuple[float, np.ndarray]:
         """max F s.t. T_e f = F unit + fixed, boxes, and each rotatable force in its piece."""
         model = self.model
         columns = model.m + 1
@@ -177,12 +194,14 @@ class Capability:
         cost[-1] = -1.0
         result = linprog(cost, A_ub=np.array(a_ub) if a_ub else None, b_ub=np.array(b_ub) if b_ub else None,
                          A_eq=a_eq, b_eq=fixed, bounds=bounds, method="highs")
-        return float(result.x[-1]) if result.status == 0 else 0.0
+        if result.status != 0:
+            return 0.0, np.zeros(model.m)
+        return float(result.x[-1]), result.x[:model.m]
 
-    def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet) -> float:
-        """Largest F whose pseudo-inverse forces stay within every limit (bisection)."""
+    def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet, low: np.ndarray,
+                              high: np.ndarray) -> tuple[float, np.ndarray]:
+        """Largest F whose pseudo-inverse forces stay within every limit (bisection), and those forces."""
         model = self.model
-        low, high = static_ranges(self.vehicle, faults, self.speed)
         excluded = (low == 0.0) & (high == 0.0)
         lines = {int(i): faults.stuck[int(i)] for i in model.rot if int(i) in faults.stuck}
         gain = PseudoInverseGains(model).gain(excluded, lines)
@@ -204,13 +223,13 @@ class Capability:
             return True
 
         if not feasible(0.0):
-            return 0.0
+            return 0.0, gain @ fixed
         upper = 2.0 * float(np.sum(np.maximum(high, -low) * np.abs(model.t_ec[:, model.starts]).max(axis=0)))
         lower = 0.0
         for _ in range(60):
             middle = 0.5 * (lower + upper)
             lower, upper = (middle, upper) if feasible(middle) else (lower, middle)
-        return lower
+        return lower, gain @ (lower * unit + fixed)
 
 
 def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float) -> list[tuple]:

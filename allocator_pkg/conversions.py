@@ -3,6 +3,8 @@ demo and the benches build and read the same messages without importing the node
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from geometry_msgs.msg import Wrench
 from std_msgs.msg import Header
@@ -40,9 +42,11 @@ def commands_message(result: AllocationResult, names: tuple[str, ...], header: H
     return message
 
 
-def status_message(result: AllocationResult, solver_status: str, header: Header, frame: str = FRD) -> AllocationStatus:
-    """Requested and achieved wrench (in the body frame convention ``frame``), saturation and
-    solver figures of one sample."""
+def status_message(result: AllocationResult, solver_status: str, header: Header, frame: str = FRD,
+                   voltage: float | None = None) -> AllocationStatus:
+    """Requested, achieved and unallocated wrench (in the body frame convention ``frame``),
+    saturation, per-actuator limit flags, the supply voltage in use (None: NaN) and solver
+    figures of one sample."""
     message = AllocationStatus()
     message.header = header
     message.requested = array_to_wrench(wrench_between(result.requested, frame))
@@ -53,4 +57,8 @@ def status_message(result: AllocationResult, solver_status: str, header: Header,
     message.iterations = result.iterations
     message.solve_time = result.solve_time
     message.power = result.power
+    message.unallocated = array_to_wrench(wrench_between(result.unallocated, frame))
+    message.at_thrust_limit = result.at_thrust_limit.tolist()
+    message.at_rate_limit = result.at_rate_limit.tolist()
+    message.voltage = math.nan if voltage is None else float(voltage)
     return message

@@ -4,6 +4,7 @@
     allocator-ctl fault main_port failed | degraded 0.5 | stuck 0.3 | nominal
     allocator-ctl clear
     allocator-ctl echo [--csv FILE]
+    allocator-ctl capability 1 0 0 0 0 0                      (~/get_capability along a wrench)
     allocator-ctl params get [NAME ...]
     allocator-ctl params set NAME=VALUE [NAME=VALUE ...]      (applied atomically)
 
@@ -30,9 +31,9 @@ from rclpy.parameter import Parameter, parameter_value_to_python
 from std_srvs.srv import Trigger
 
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
-from allocator_msgs.srv import SetActuatorFault
+from allocator_msgs.srv import GetCapability, SetActuatorFault
 
-from .conversions import array_to_wrench
+from .conversions import array_to_wrench, wrench_to_array
 from .node_settings import NODE_NAME
 
 FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
@@ -85,6 +86,9 @@ class Controller:
     def clear_faults(self) -> Trigger.Response:
         return self.call(Trigger, "clear_faults", Trigger.Request())
 
+    def capability(self, direction: list[float]) -> GetCapability.Response:
+        return self.call(GetCapability, "get_capability", GetCapability.Request(direction=array_to_wrench(direction)))
+
     def get_parameters(self, names: list[str]) -> dict[str, object]:
         if not names:
             listed = self.call(ListParameters, "list_parameters", ListParameters.Request())
@@ -109,7 +113,8 @@ def parse_value(text: str) -> object:
 
 def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -> str:
     """One compact line: every actuator's thrust [N], command (set-point) and azimuth [deg] if it
-    has one, then the solver figures."""
+    has one, then the solver figures; when saturated the unallocated wrench, the actuators at a
+    thrust (!) or rate (~) limit, and the supply voltage in use."""
     parts = []
     for name, thrust, command, azimuth in zip(commands.name, commands.thrust, commands.command, commands.azimuth):
         angle = f" @{math.degrees(azimuth):6.1f}" if azimuth != 0.0 else " " * 8
@@ -118,7 +123,24 @@ def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -
     if status is not None:
         line += (f" || sat {'YES' if status.saturated else 'no '} {status.solve_time * 1e6:7.0f} us "
                  f"{status.iterations:5d} it {status.solver_status}")
+        if status.saturated:
+            line += " | unallocated " + " ".join(f"{v:.1f}" for v in wrench_to_array(status.unallocated))
+        flagged = [f"{name}{'!' if thrust else ''}{'~' if rate else ''}" for name, thrust, rate
+                   in zip(commands.name, status.at_thrust_limit, status.at_rate_limit) if thrust or rate]
+        if flagged:
+            line += f" | at limit (! thrust, ~ rate): {' '.join(flagged)}"
+        if status.voltage > 0.0:                     # NaN: no voltage tables
+            line += f" | {status.voltage:.2f} V"
     return line
+
+
+def format_capability(direction: list[float], response: GetCapability.Response) -> str:
+    """The answer of ~/get_capability in words."""
+    if not response.success:
+        return f"no capability: {response.message}"
+    achieved = " ".join(f"{v:.2f}" for v in wrench_to_array(response.achieved))
+    return (f"scale {response.scale:.4g} along [{' '.join(f'{v:g}' for v in direction)}]; achieved there "
+            f"[{achieved}] ({response.message})")
 
 
 class Echo:
@@ -151,14 +173,21 @@ class Echo:
             header = ["stamp"]
             for name in message.name:
                 header += [f"{name}.thrust", f"{name}.command", f"{name}.azimuth", f"{name}.mode"]
-            header += ["saturated", "solve_time", "iterations", "solver_status"]
+            header += [f"{name}.at_{kind}_limit" for kind in ("thrust", "rate") for name in message.name]
+            header += ["saturated", "solve_time", "iterations", "solver_status", "voltage"]
+            header += [f"unallocated.{axis}" for axis in ("x", "y", "z", "k", "m", "n")]
             self.writer.writerow(header)
             self.header_done = True
         row = [message.header.stamp.sec + message.header.stamp.nanosec * 1e-9]
         for values in zip(message.thrust, message.command, message.azimuth, message.mode):
             row += list(values)
         status = self.status
-        row += [status.saturated, status.solve_time, status.iterations, status.solver_status] if status else [""] * 4
+        if status is None:
+            row += [""] * (2 * len(message.name) + 11)
+        else:
+            row += list(status.at_thrust_limit) + list(status.at_rate_limit)
+            row += [status.saturated, status.solve_time, status.iterations, status.solver_status, status.voltage]
+            row += wrench_to_array(status.unallocated).tolist()
         self.writer.writerow(row)
 
 
@@ -179,6 +208,9 @@ def _parser() -> argparse.ArgumentParser:
     fault.add_argument("value", nargs="?", type=float, default=None,
                        help="efficiency in (0, 1] for degraded, angle [rad] for stuck")
     commands.add_parser("clear", help="all actuators back to NOMINAL")
+    capability = commands.add_parser("capability", help="largest scale along a wrench the actuators can give now")
+    for name in ("FX", "FY", "FZ", "MX", "MY", "MZ"):
+        capability.add_argument(name, type=float)
     echo = commands.add_parser("echo", help="print a live table of thrust, command, azimuth and status")
     echo.add_argument("--csv", type=argparse.FileType("w"), help="also write every sample to this CSV file")
     echo.add_argument("--rate", type=float, default=2.0, help="printed lines per second (default %(default)s)")
@@ -231,6 +263,11 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
     if arguments.command == "clear":
         print(controller.clear_faults().message)
         return 0
+    if arguments.command == "capability":
+        direction = [arguments.FX, arguments.FY, arguments.FZ, arguments.MX, arguments.MY, arguments.MZ]
+        response = controller.capability(direction)
+        print(format_capability(direction, response))
+        return 0 if response.success else 1
     if arguments.command == "echo":
         Echo(controller, sys.stdout, arguments.csv, arguments.rate)
         _spin_for(node, arguments.duration)

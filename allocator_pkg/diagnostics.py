@@ -15,7 +15,7 @@ import numpy as np
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 
 from .allocator import AllocationResult, Allocator
-from .faults import Fault, FaultMode, static_ranges
+from .faults import Fault, FaultMode
 
 AT_LIMIT = 0.999
 """An actuator at or above this fraction of its limit in force is reported at its limit."""
@@ -31,6 +31,7 @@ class Counters:
     rejected_wrenches: int = 0
     rejected_frames: int = 0
     rejected_odometry: int = 0
+    rejected_battery: int = 0
     rejected_in_period: int = 0
     samples: int = 0
     saturated: int = 0
@@ -61,11 +62,12 @@ def short_dofs(allocator: Allocator, result: AllocationResult) -> tuple[str, ...
 
 
 def diagnostic_statuses(node_name: str, allocator: Allocator, counters: Counters, stale: bool,
-                        last: AllocationResult | None, foreign: Sequence[str] = ()) -> list[DiagnosticStatus]:
+                        last: AllocationResult | None, foreign: Sequence[str] = (),
+                        battery: tuple[str, bool] | None = None) -> list[DiagnosticStatus]:
     """The allocation's status, then one per actuator (:func:`actuator_status`)."""
-    statuses = [allocation_status(node_name, allocator, counters, stale, last, foreign)]
+    statuses = [allocation_status(node_name, allocator, counters, stale, last, foreign, battery)]
     if last is not None:
-        low, high = static_ranges(allocator.vehicle, allocator.fault_set, allocator.speed)
+        low, high = allocator.ranges
         faults = allocator.faults
         statuses += [actuator_status(node_name, allocator, i, last, (low[i], high[i]), faults.get(name))
                      for i, name in enumerate(allocator.names)]
@@ -73,10 +75,13 @@ def diagnostic_statuses(node_name: str, allocator: Allocator, counters: Counters
 
 
 def allocation_status(node_name: str, allocator: Allocator, counters: Counters, stale: bool,
-                      last: AllocationResult | None, foreign: Sequence[str] = ()) -> DiagnosticStatus:
+                      last: AllocationResult | None, foreign: Sequence[str] = (),
+                      battery: tuple[str, bool] | None = None) -> DiagnosticStatus:
     """OK while allocating; WARN with faults, saturated samples (and the DOFs short), fallbacks,
-    rejected inputs, publishers of the wrong type or unreachable DOFs; ERROR while the input is
-    stale (zero thrust commanded)."""
+    rejected inputs, publishers of the wrong type, unreachable DOFs or no battery voltage (the
+    thrust limits at nominal_voltage); ERROR while the input is stale (zero thrust commanded).
+    ``battery`` is (topic, whether the nominal voltage stands in) when the thrust tables follow
+    a battery voltage."""
     modes = allocator.modes()
     problems = []
     level = DiagnosticStatus.OK
@@ -93,6 +98,9 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
         warnings.append(f"{counters.rejected_in_period} rejected inputs")
     if foreign:
         warnings.append(f"wrench_command publishers of another type: {', '.join(foreign)}")
+    if battery is not None and battery[1]:
+        warnings.append(f"no valid battery voltage on {battery[0]}: thrust limits at nominal_voltage "
+                        f"{allocator.voltage:g} V")
     warnings += allocator.warnings
     if warnings and level == DiagnosticStatus.OK:
         level = DiagnosticStatus.WARN
@@ -112,6 +120,7 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
         "rejected wrenches": str(counters.rejected_wrenches),
         "rejected wrench frames": str(counters.rejected_frames),
         "rejected odometry": str(counters.rejected_odometry),
+        "rejected battery states": str(counters.rejected_battery),
         "stale input": str(stale).lower(),
         "wrong-type publishers": ", ".join(foreign) or "none",
     }
@@ -123,6 +132,10 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
         unavailable = [a.name for a, ok in zip(allocator.vehicle.actuators, last.available) if not ok] \
             if last is not None else []
         values["unavailable"] = ", ".join(unavailable) or "none"
+    if allocator.voltage is not None:
+        values["voltage [V]"] = f"{allocator.voltage:g}"
+    if battery is not None:
+        values["voltage source"] = "nominal_voltage (no battery voltage)" if battery[1] else battery[0]
     if allocator.notes:
         values["actuation"] = "; ".join(allocator.notes)
     for actuator, mode in zip(allocator.names, modes):

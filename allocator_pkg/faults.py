@@ -6,7 +6,8 @@ capability analysis for every case it draws:
 - :class:`FaultSet` validates faults against a vehicle and holds them as the arrays a
   sample reads (efficiency, stuck angles, modes);
 - :func:`static_ranges` gives each actuator's signed force range with those faults at a
-  speed: thrust limits scaled by efficiency, a control surface's lift at full deflection
+  speed and supply voltage: thrust limits (following the voltage where a table has voltage
+  rows) scaled by efficiency, a control surface's lift at full deflection
   (1.48), a stuck control surface pinned at its deflection.
 """
 
@@ -19,7 +20,7 @@ from enum import IntEnum
 
 import numpy as np
 
-from .actuators import lift_gain
+from .actuators import command_map, lift_gain
 from .sectors import in_feasible_sector
 from .vehicle import ActuatorConfig, Vehicle
 
@@ -145,12 +146,30 @@ def lift_gains(vehicle: Vehicle, speed: float) -> np.ndarray:
                      for a in vehicle.actuators])
 
 
-def static_ranges(vehicle: Vehicle, faults: FaultSet, speed: float) -> tuple[np.ndarray, np.ndarray]:
-    """Signed force range [low, high] of every actuator with its fault at a surge speed,
-    before any rate limit: thrust limits times efficiency; a control surface's lift at full
-    deflection either way times efficiency, or pinned at a stuck deflection's lift."""
-    low = np.array([0.0 if a.is_surface else a.thrust_min for a in vehicle.actuators]) * faults.efficiency
-    high = np.array([0.0 if a.is_surface else a.thrust_max for a in vehicle.actuators]) * faults.efficiency
+def thrust_limits(vehicle: Vehicle, voltage: float | None) -> tuple[np.ndarray, np.ndarray]:
+    """Every thruster's thrust range at a supply voltage (0 for control surfaces): thrust_min
+    and thrust_max, narrowed for a table measured at several voltages to what its curve at
+    ``voltage`` gives between command_min and command_max (None: the nominal voltage)."""
+    if voltage is None:
+        voltage = vehicle.nominal_voltage
+    low = np.array([0.0 if a.is_surface else a.thrust_min for a in vehicle.actuators])
+    high = np.array([0.0 if a.is_surface else a.thrust_max for a in vehicle.actuators])
+    for i, actuator in enumerate(vehicle.actuators):
+        if actuator.command is not None and actuator.command.table_voltage:
+            curve_low, curve_high = command_map(actuator.command, voltage).force_range()
+            low[i], high[i] = max(low[i], curve_low), min(high[i], curve_high)
+    return low, high
+
+
+def static_ranges(vehicle: Vehicle, faults: FaultSet, speed: float,
+                  voltage: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Signed force range [low, high] of every actuator with its fault at a surge speed and
+    supply voltage, before any rate limit: thrust limits (:func:`thrust_limits`) times
+    efficiency; a control surface's lift at full deflection either way times efficiency, or
+    pinned at a stuck deflection's lift."""
+    low, high = thrust_limits(vehicle, voltage)
+    low *= faults.efficiency
+    high *= faults.efficiency
     lift = lift_gains(vehicle, speed)
     for i, actuator in enumerate(vehicle.actuators):
         if not actuator.is_surface:

@@ -121,7 +121,8 @@ class Model:
         """What fixes the sparsity pattern of the solver matrices; a configuration change
         that keeps it is applied by updating values only."""
         v = self.vehicle
-        return (tuple(a.type for a in v.actuators), v.dofs, v.azimuth_polygon_sides, v.saturation)
+        return (tuple(a.type for a in v.actuators), v.dofs, v.azimuth_polygon_sides, v.saturation,
+                bool(v.priority_levels))
 
     @classmethod
     def build(cls, vehicle: Vehicle, dt: float) -> Model:

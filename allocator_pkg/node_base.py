@@ -25,10 +25,11 @@ from rclpy.signals import SignalHandlerOptions
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
-from allocator_msgs.srv import SetActuatorFault
+from allocator_msgs.srv import GetCapability, SetActuatorFault
 
 from . import qos, ros_parameters, urdf
 from .allocator import Allocator
+from .conversions import array_to_wrench, wrench_to_array
 from .node_settings import ROBOT_DESCRIPTION, NodeSettings
 from .parameters import parse_parameters
 from .ros_parameters import WholeSetParameters
@@ -85,6 +86,7 @@ class AllocatorBase(WholeSetParameters):
         self._description: str | None = None
         self.create_service(SetActuatorFault, "~/set_actuator_fault", self._on_set_fault)
         self.create_service(Trigger, "~/clear_faults", self._on_clear_faults)
+        self.create_service(GetCapability, "~/get_capability", self._on_get_capability)
         self.add_pre_set_parameters_callback(ros_parameters.typed)
         self.add_on_set_parameters_callback(self._check_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
@@ -197,6 +199,15 @@ class AllocatorBase(WholeSetParameters):
             return response
         response.success, response.message = True, self._runtime.clear_faults()
         self.get_logger().info(response.message)
+        return response
+
+    def _on_get_capability(self, request: GetCapability.Request, response: GetCapability.Response):
+        if self._runtime is None:
+            response.success, response.message = False, self._not_configured()
+            return response
+        response.success, response.message, response.scale, achieved = \
+            self._runtime.capability(wrench_to_array(request.direction))
+        response.achieved = array_to_wrench(achieved)
         return response
 
     # -- parameters ---------------------------------------------------------------------

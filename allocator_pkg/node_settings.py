@@ -35,7 +35,8 @@ class NodeSettings:
     and the name ``base_frame`` stamped on the outputs; the wrench message type; what starts a
     sample (``timer`` or ``input``); the rate of the thrust markers (0: none); where positions
     and directions come from, the URDF file (empty: the ``robot_description`` topic) and each
-    actuator's link in it.
+    actuator's link in it; how long [s] the thrust limits follow the last battery voltage
+    before they fall back to the nominal voltage.
     """
 
     wrench_timeout: float
@@ -47,4 +48,5 @@ class NodeSettings:
     markers_rate_hz: float = 10.0
     geometry_source: str = PARAMS
     robot_description_file: str = ""
+    battery_timeout: float = 5.0
     links: dict[str, str] = field(default_factory=dict)

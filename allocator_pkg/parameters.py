@@ -32,6 +32,7 @@ from .schema import (
     FLOAT,
     FLOAT_LIST,
     INT,
+    INT_LIST,
     NODE_KEY_BY_NAME,
     STR,
     VEHICLE_KEY_BY_NAME,
@@ -228,6 +229,8 @@ class _Parser:
             self.fail("base_frame", "must not be empty")
         dofs = self._dofs(values["dofs"])
         slack = self._slack(values["weights.slack"], values["dofs"], dofs)
+        priorities = self._priorities(values, dofs)
+        nominal_voltage = self._nominal_voltage(values["nominal_voltage"], actuators)
         if self.problems:
             raise ConfigError(self.problems)
         vehicle = Vehicle(
@@ -248,10 +251,16 @@ class _Parser:
             dynamic_gain=values["dynamic.gain"],
             svd_filter_time_constant=values["svd_filter.time_constant"],
             svd_filter_damping_threshold=values["svd_filter.damping_threshold"],
+            priorities=priorities,
+            nominal_voltage=nominal_voltage,
         )
         unfit = METHODS[vehicle.method].problems(vehicle)
         if unfit:
             raise ConfigError([("method", f"'{vehicle.method}' cannot serve this vehicle: {'; '.join(unfit)}")])
+        if vehicle.priority_levels and not METHODS[vehicle.method].implements_priorities:
+            able = ", ".join(name for name, method in METHODS.items() if method.implements_priorities)
+            raise ConfigError([("priorities", f"method '{vehicle.method}' does not implement DOF priorities; "
+                                              f"methods that do: {able}")])
         settings = NodeSettings(**{key.name: node[key.name] for key in schema.NODE_KEYS}, links=links)
         return vehicle, settings
 
@@ -362,37 +371,59 @@ class _Parser:
             return None
         table_command: tuple[float, ...] = ()
         table_thrust: tuple[float, ...] = ()
+        table_voltage: tuple[float, ...] = ()
+        deadband = v["command_deadband"]
         if kind == "table":
             if v["table_command"] is None or v["table_thrust"] is None:
                 self.fail(param("table_command" if v["table_command"] is None else "table_thrust"),
                           "required with command_map: table")
                 return None
             table_command, table_thrust = tuple(v["table_command"]), tuple(v["table_thrust"])
-            if len(table_command) != len(table_thrust) or len(table_command) < 2:
-                self.fail(param("table_thrust"), f"needs as many entries as table_command (>= 2); got "
-                                                 f"{len(table_thrust)} and {len(table_command)}")
+            table_voltage = tuple(v["table_voltage"] or ())
+            if deadband > 0.0:
+                self.fail(param("command_deadband"), "applies to linear and quadratic maps; a table's flat "
+                                                     "stretch of zero force is its dead band")
+                return None
+            if any(b <= a for a, b in pairwise(table_voltage)) or any(volts <= 0.0 for volts in table_voltage):
+                self.fail(param("table_voltage"), f"must be positive and strictly increasing, got "
+                                                  f"{list(table_voltage)}")
+                return None
+            rows = max(len(table_voltage), 1)
+            if len(table_command) < 2 or len(table_thrust) != rows * len(table_command):
+                per = f" (one row of {len(table_command)} per voltage of table_voltage, {rows})" if table_voltage \
+                    else ""
+                self.fail(param("table_thrust"), f"needs {rows * len(table_command)} entries{per}, as many per row "
+                                                 f"as table_command (>= 2); got {len(table_thrust)}")
                 return None
             if any(b <= a for a, b in pairwise(table_command)):
                 self.fail(param("table_command"), "must be strictly increasing")
                 return None
-            if any(b < a for a, b in pairwise(table_thrust)):
-                self.fail(param("table_thrust"), "must not decrease as the command increases")
-                return None
-            if not table_thrust[0] <= 0.0 <= table_thrust[-1]:
-                self.fail(param("table_thrust"), f"must span zero force; spans [{table_thrust[0]:g}, "
-                                                 f"{table_thrust[-1]:g}]")
-                return None
+            width = len(table_command)
+            for row_index in range(rows):
+                row = table_thrust[row_index * width:(row_index + 1) * width]
+                at = f" (the row at {table_voltage[row_index]:g} V)" if table_voltage else ""
+                if any(b < a for a, b in pairwise(row)):
+                    self.fail(param("table_thrust"), f"must not decrease as the command increases{at}")
+                    return None
+                if not row[0] <= 0.0 <= row[-1]:
+                    self.fail(param("table_thrust"), f"must span zero force{at}; spans [{row[0]:g}, {row[-1]:g}]")
+                    return None
         else:
-            for key in ("table_command", "table_thrust"):
+            for key in ("table_command", "table_thrust", "table_voltage"):
                 if v[key] is not None:
                     self.fail(param(key), f"only used with command_map: table (this one is {kind})")
                     return None
+            if deadband > 0.0 and not (deadband < command_max and -deadband > command_min):
+                self.fail(param("command_deadband"), f"{deadband:g} leaves no command beyond it in "
+                                                     f"[{command_min:g}, {command_max:g}]")
+                return None
         gain = v["gain"]
         config = CommandMapConfig(kind=kind, gain=gain,
                                   gain_reverse=v["gain_reverse"] if v["gain_reverse"] is not None else gain,
                                   command_min=command_min, command_max=command_max,
-                                  table_command=table_command, table_thrust=table_thrust)
-        low, high = command_map(config).force_range()
+                                  table_command=table_command, table_thrust=table_thrust,
+                                  table_voltage=table_voltage, deadband=deadband, reversed=v["reversed"])
+        low, high = command_map(config, table_voltage[0] if table_voltage else None).force_range()
         if not low <= 0.0 <= high:
             self.fail(param("command_min"), f"the command range [{command_min:g}, {command_max:g}] must include "
                                             "the set-point of zero force")
@@ -448,6 +479,40 @@ class _Parser:
         if not dofs:
             self.fail("dofs", "at least one DOF is needed")
         return tuple(d for d in DOF_NAMES if d in dofs)
+
+    def _priorities(self, values: dict[str, Any], dofs: tuple[str, ...]) -> tuple[int, ...]:
+        """One level per controlled DOF in the order of ``dofs`` as given, returned in DOF order."""
+        priorities, given_order = values["priorities"], values["dofs"]
+        if priorities is None or priorities is _MISSING or given_order is _MISSING or not dofs:
+            return ()
+        if len(priorities) != len(given_order):
+            self.fail("priorities", f"needs one level per controlled DOF in `dofs` order ({len(given_order)}: "
+                                    f"{', '.join(given_order)}); got {len(priorities)}")
+            return ()
+        if len(set(priorities)) > 1 and values["saturation"] in ("preserve_direction", "direct"):
+            self.fail("priorities", f"orders DOFs of an unattainable request; saturation {values['saturation']} "
+                                    "scales them all alike instead: use one or the other")
+            return ()
+        by_dof = dict(zip(given_order, priorities))
+        return tuple(by_dof[d] for d in dofs)
+
+    def _nominal_voltage(self, nominal: Any, actuators: list[ActuatorConfig]) -> float | None:
+        """The nominal supply voltage, required by and within every table measured at several voltages."""
+        if nominal is _MISSING:
+            return None
+        tables = [(a.name, a.command.table_voltage) for a in actuators
+                  if a.command is not None and a.command.table_voltage]
+        if not tables:
+            return nominal
+        if nominal is None:
+            self.fail("nominal_voltage", f"required with table_voltage (set for {', '.join(n for n, _ in tables)})")
+            return None
+        for name, voltages in tables:
+            if not voltages[0] <= nominal <= voltages[-1]:
+                self.fail("nominal_voltage", f"{nominal:g} V is outside the table of '{name}' "
+                                             f"({voltages[0]:g} to {voltages[-1]:g} V)")
+                return None
+        return nominal
 
     def _slack(self, slack: Any, given_order: Any, dofs: tuple[str, ...]) -> tuple[float, ...]:
         if slack is _MISSING or given_order is _MISSING:
@@ -506,6 +571,11 @@ def _coerce(key: Key, raw: Any) -> Any:
         return raw
     if not isinstance(raw, (list, tuple)):
         return _Invalid(f"expected a list ({key.kind}), got {_describe(raw)}")
+    if key.kind == INT_LIST:
+        values = [_number(item) for item in raw]
+        if any(item is None or not math.isfinite(item) or item != int(item) for item in values):
+            return _Invalid(f"expected a list of integers, got {_describe(raw)}")
+        return [int(item) for item in values]
     if key.kind == FLOAT_LIST:
         values = [_number(item) for item in raw]
         if any(item is None for item in values):
@@ -525,7 +595,7 @@ def _check_limits(key: Key, value: Any) -> str:
     if key.length is not None and len(value) != key.length:
         return f"needs {key.length} elements, got {len(value)}"
     items = value if isinstance(value, list) else [value]
-    if key.kind in (FLOAT, INT, FLOAT_LIST):
+    if key.kind in (FLOAT, INT, FLOAT_LIST, INT_LIST):
         for item in items:
             if key.minimum is not None:
                 if key.exclusive_minimum and item <= key.minimum:

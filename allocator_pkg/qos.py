@@ -22,6 +22,11 @@ def odometry() -> QoSProfile:
     return QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
 
 
+def battery() -> QoSProfile:
+    """battery_state: a sensor stream, latest only (takes best-effort and reliable publishers)."""
+    return QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
+
+
 def output() -> QoSProfile:
     """thruster_commands, allocation_status, per-actuator topics and markers."""
     return QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)

@@ -10,6 +10,12 @@ both modes the timer runs the watchdog, and while the input is stale it commands
 every period. With the input trigger the timer fires only when something is due (a waiting
 wrench, the moment the input would turn stale, every period while it is), so that a fast
 rate_hz costs no idle wake-ups.
+
+With thrust tables measured at several supply voltages, the runtime follows the voltage of
+``battery_state`` (sensor_msgs/BatteryState): a NaN or out-of-table voltage is rejected,
+counted and logged, the last valid one kept; with none for ``battery_timeout`` seconds the
+thrust limits go back to ``nominal_voltage`` (checked with the diagnostics, once a second),
+and the diagnostics say so.
 """
 
 from __future__ import annotations
@@ -23,6 +29,7 @@ from nav_msgs.msg import Odometry
 from rclpy.duration import Duration
 from rclpy.node import Node
 from rclpy.time import Time
+from sensor_msgs.msg import BatteryState
 from std_msgs.msg import Header
 from visualization_msgs.msg import MarkerArray
 
@@ -31,9 +38,11 @@ from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 from . import qos, wrench_input
 from .actuator_topics import ActuatorTopics
 from .allocator import AllocationResult, Allocator
+from .capability import Capability
 from .conversions import commands_message, status_message
 from .diagnostics import Counters, diagnostic_statuses, short_dofs
-from .faults import FaultMode, static_ranges
+from .faults import FaultMode
+from .frames import wrench_between
 from .markers import thrust_markers
 from .node_settings import INPUT, TIMER, NodeSettings
 from .vehicle import Vehicle
@@ -82,6 +91,12 @@ class AllocationRuntime:
         self._odometry = node.create_subscription(Odometry, "odometry", self._on_odometry, qos.odometry(),
                                                   qos_overriding_options=qos.overridable()) \
             if vehicle.has_surfaces else None
+        self._battery = node.create_subscription(BatteryState, "battery_state", self._on_battery, qos.battery(),
+                                                 qos_overriding_options=qos.overridable()) \
+            if vehicle.voltage_range is not None else None
+        self._battery_time: int | None = None
+        self.battery_fallback = vehicle.voltage_range is not None
+        self._capability: Capability | None = None
         self._per_actuator: ActuatorTopics | None = None
         self._apply_per_actuator(settings)
         self._period_ns = round(1e9 / vehicle.rate_hz)
@@ -102,6 +117,8 @@ class AllocationRuntime:
                 f"{self.settings.frame.upper()} '{self.settings.base_frame}', trigger {self.settings.trigger})")
         if self._odometry is not None:
             text += f", speed from {self._odometry.topic_name}"
+        if self._battery is not None:
+            text += f", supply voltage from {self._battery.topic_name}"
         return text + f"; publishing {', '.join(outputs)}"
 
     # -- life cycle ---------------------------------------------------------------------
@@ -138,7 +155,7 @@ class AllocationRuntime:
             self.active = False
             for timer in (self._timer, self._diagnostics_timer):
                 node.destroy_timer(timer)
-            for subscription in (self._wrench_subscription, self._odometry):
+            for subscription in (self._wrench_subscription, self._odometry, self._battery):
                 if subscription is not None:
                     node.destroy_subscription(subscription)
             if self._per_actuator is not None:
@@ -181,6 +198,36 @@ class AllocationRuntime:
             self.counters.rejected_in_period += 1
         self._node.get_logger().warn("rejected odometry with a non-finite surge speed",
                                      throttle_duration_sec=LOG_THROTTLE)
+
+    def _on_battery(self, message: BatteryState) -> None:
+        voltage = message.voltage
+        with self._lock:
+            try:
+                self.allocator.set_voltage(voltage)
+            except ValueError as error:
+                self.counters.rejected_battery += 1
+                self.counters.rejected_in_period += 1
+                reason = str(error)
+            else:
+                self._battery_time = self._node.get_clock().now().nanoseconds
+                if self.battery_fallback:
+                    self.battery_fallback = False
+                    self._node.get_logger().info(f"supply voltage from {self._battery.topic_name}: {voltage:.2f} V")
+                return
+        self._node.get_logger().warn(f"rejected battery state: {reason}; keeping "
+                                     f"{self.allocator.voltage:g} V", throttle_duration_sec=LOG_THROTTLE)
+
+    def _check_battery(self, now: int) -> None:
+        """Back to the nominal voltage when no valid battery voltage came for battery_timeout. Lock held."""
+        if self._battery is None or self.battery_fallback:
+            return
+        if self._battery_time is None or now - self._battery_time > self.settings.battery_timeout * 1e9:
+            self.battery_fallback = True
+            nominal = self.allocator.vehicle.nominal_voltage
+            self.allocator.set_voltage(nominal)
+            self._node.get_logger().warn(f"no valid battery voltage on {self._battery.topic_name} for "
+                                         f"{self.settings.battery_timeout:g} s: thrust limits at nominal_voltage "
+                                         f"{nominal:g} V")
 
     # -- the sample ---------------------------------------------------------------------
 
@@ -228,14 +275,14 @@ class AllocationRuntime:
     def _publish(self, result: AllocationResult, now: Time, status: str) -> None:
         header = Header(stamp=now.to_msg(), frame_id=self.settings.base_frame)
         self._commands.publish(commands_message(result, self.allocator.names, header))
-        self._status.publish(status_message(result, status, header, self.settings.frame))
+        self._status.publish(status_message(result, status, header, self.settings.frame, self.allocator.voltage))
         if self._per_actuator is not None:
             self._per_actuator.publish(result)
         rate = self.settings.markers_rate_hz
         if rate > 0.0 and now.nanoseconds >= self._markers_due:
             self._markers_due = now.nanoseconds + round(1e9 / rate)
             if self._markers.get_subscription_count():
-                limits = static_ranges(self.allocator.vehicle, self.allocator.fault_set, self.allocator.speed)
+                limits = self.allocator.ranges
                 self._markers.publish(thrust_markers(self.allocator.vehicle, result, limits, header,
                                                      self.settings.frame))
 
@@ -262,6 +309,30 @@ class AllocationRuntime:
             had = sorted(self.allocator.faults)
             self.allocator.clear_faults()
         return f"cleared faults of {', '.join(had)}" if had else "no faults were set"
+
+    def capability(self, direction: np.ndarray) -> tuple[bool, str, float, np.ndarray]:
+        """The largest scale along ``direction`` (a wrench in the node's frame) under the faults,
+        voltage and speed in force, and the wrench there in the node's frame: (success,
+        message, scale, wrench). The analysis is built once per configuration."""
+        if not np.all(np.isfinite(direction)):
+            return False, f"the direction must be finite, got {direction.tolist()}", 0.0, np.zeros(6)
+        body = wrench_between(direction, self.settings.frame)
+        with self._lock:
+            allocator = self.allocator
+            if self._capability is None or self._capability.vehicle is not allocator.vehicle:
+                try:
+                    self._capability = Capability(allocator.vehicle, allocator.method, allocator.speed)
+                except ValueError as error:
+                    return False, str(error), 0.0, np.zeros(6)
+            faults, speed, voltage = allocator.faults, allocator.speed, allocator.voltage
+            capability = self._capability
+        if not np.any(body[list(capability.vehicle.dof_indices)]):
+            return False, (f"the direction has no component in the controlled DOFs "
+                           f"({', '.join(capability.vehicle.dofs)})"), 0.0, np.zeros(6)
+        scale, wrench = capability.reach(body, faults, speed, voltage)
+        where = f", {voltage:g} V" if voltage is not None else ""
+        return True, (f"steady state with {len(faults)} faults, speed {speed:g} m/s{where}, method "
+                      f"{capability.method}"), scale, wrench_between(wrench, self.settings.frame)
 
     def apply(self, vehicle: Vehicle, settings: NodeSettings) -> None:
         """A checked configuration of the same actuators, between two samples."""
@@ -293,8 +364,10 @@ class AllocationRuntime:
                                    f"(wrench_type: {self.settings.wrench_type})")
         self._reported.update(foreign)
         with self._lock:
+            self._check_battery(node.get_clock().now().nanoseconds)
+            battery = None if self._battery is None else (self._battery.topic_name, self.battery_fallback)
             statuses = diagnostic_statuses(node.get_fully_qualified_name(), self.allocator, self.counters,
-                                           self.watchdog.stale, self._last, foreign)
+                                           self.watchdog.stale, self._last, foreign, battery)
             self.counters.reset_period()
         self._diagnostics.publish(DiagnosticArray(header=Header(stamp=node.get_clock().now().to_msg()),
                                                   status=statuses))

@@ -40,6 +40,7 @@ INT = "int"
 BOOL = "bool"
 STR = "str"
 FLOAT_LIST = "float[]"
+INT_LIST = "integer[]"
 STR_LIST = "string[]"
 
 
@@ -114,6 +115,17 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         default="weighted", choices=SATURATION_MODES),
     Key("weights.slack", FLOAT_LIST, "Q: weight of the wrench error of each controlled DOF, in `dofs` order (1.35).",
         default_doc="derived per DOF (see above)", minimum=0.0, exclusive_minimum=True),
+    Key("priorities", INT_LIST, "DOF priorities, one integer per controlled DOF in `dofs` order, 0 the highest "
+        "(e.g. [2, 2, 0, 0, 0, 1] for depth and attitude first, then yaw, then surge and sway): an unattainable "
+        "request meets a higher level as far as it can before a lower one gets anything (lexicographic; see "
+        "docs/theory.md). DOFs of one level are traded by weights.slack.",
+        default_doc="none (all DOFs traded by weights.slack)", minimum=0.0,
+        constraint="one per DOF of `dofs`; only with a method that implements priorities (qp, pseudoinverse) "
+                   "and saturation weighted"),
+    Key("nominal_voltage", FLOAT, "Supply voltage the thrust limits and tables with table_voltage follow at start "
+        "and whenever no battery voltage is known (the node: none within battery_timeout).",
+        default_doc="required with table_voltage", minimum=0.0, exclusive_minimum=True, unit="V",
+        constraint="within every table_voltage range"),
     Key("weights.minimax", FLOAT, "beta: weight of the largest actuator force (1.35).", default=0.0, minimum=0.0),
     Key("weights.azimuth_change", FLOAT,
         "Omega: weight of the squared azimuth change per sample (1.44), nonlinear method.",
@@ -173,6 +185,9 @@ NODE_KEYS: tuple[Key, ...] = (
     Key("geometry_source", STR, "Where actuator positions and fixed thrusters' directions come from: this params "
         "file, or the URDF robot description (see actuators.<name>.link).", default="params",
         choices=GEOMETRY_SOURCES, read_only=True),
+    Key("battery_timeout", FLOAT, "With tables measured at several voltages: with no valid sensor_msgs/BatteryState "
+        "on battery_state for this long, the thrust limits follow nominal_voltage again (diagnostics say so).",
+        default=5.0, minimum=0.0, exclusive_minimum=True, unit="s"),
     Key("robot_description_file", STR, "URDF file read with geometry_source robot_description; empty: the "
         "robot_description topic (transient local, as robot_state_publisher offers it).", default="",
         read_only=True, constraint="a file path, or empty"),
@@ -228,9 +243,21 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
         default_doc="no limit", constraint="above command_min, at or above the set-point of zero force"),
     Key("table_command", FLOAT_LIST, "Measured set-points, strictly increasing (`table` map).", applies_to=_THR,
         default_doc="required for table", constraint="at least 2, strictly increasing"),
-    Key("table_thrust", FLOAT_LIST, "Measured force at each set-point, non-decreasing, spanning 0 (`table` map).",
+    Key("table_thrust", FLOAT_LIST, "Measured force at each set-point (`table` map); with table_voltage one such "
+        "row per voltage, row after row (ROS parameters cannot nest lists).",
         applies_to=_THR, default_doc="required for table", unit="N",
-        constraint="one per table_command, non-decreasing, spanning 0"),
+        constraint="one per table_command (per voltage), each row non-decreasing and spanning 0"),
+    Key("table_voltage", FLOAT_LIST, "Supply voltages at which the rows of table_thrust were measured: the curve in "
+        "use is interpolated between the two around the battery voltage, and the thrust limits follow it.",
+        applies_to=_THR, default_doc="none (one curve)", unit="V",
+        constraint="strictly increasing, positive; only with command_map table"),
+    Key("command_deadband", FLOAT, "Smallest command magnitude that turns the propeller (`linear` and `quadratic` "
+        "maps; a table's flat stretch is its own dead band): a force that would need less is commanded as zero "
+        "or as the band's edge, whichever is nearer (docs/theory.md).", default=0.0, minimum=0.0,
+        applies_to=_THR, constraint="below command_max and above command_min in magnitude"),
+    Key("reversed", BOOL, "The thruster is wired or propped backwards: its command is mirrored about the "
+        "set-point of zero force (0, or a table's neutral), its force model unchanged (ArduSub's MOT_n_DIRECTION).",
+        default=False, applies_to=_THR),
     Key("azimuth_min", FLOAT, "Feasible sector, lower end (the thruster cannot turn outside it).",
         default=-math.pi, applies_to=_ROT, unit="rad", constraint="below azimuth_max"),
     Key("azimuth_max", FLOAT, "Feasible sector, upper end; azimuth_max - azimuth_min = 2 pi means free rotation.",

@@ -38,7 +38,13 @@ class ConfigError(ValueError):
 
 @dataclass(frozen=True)
 class CommandMapConfig:
-    """Force-to-command map of a thruster (1.3), (1.4) or a measured table."""
+    """Force-to-command map of a thruster (1.3), (1.4) or a measured table.
+
+    A table measured at several supply voltages holds one thrust row per voltage in
+    ``table_voltage`` (strictly increasing), flattened into ``table_thrust`` row after row;
+    without voltages it has one row. ``deadband`` is the smallest command magnitude that
+    turns the propeller of a linear or quadratic map (0: none); ``reversed`` flips the sign of
+    the command about the set-point of zero force (a thruster wired or propped backwards)."""
 
     kind: str
     gain: float
@@ -47,6 +53,15 @@ class CommandMapConfig:
     command_max: float
     table_command: tuple[float, ...] = ()
     table_thrust: tuple[float, ...] = ()
+    table_voltage: tuple[float, ...] = ()
+    deadband: float = 0.0
+    reversed: bool = False
+
+    @property
+    def thrust_rows(self) -> tuple[tuple[float, ...], ...]:
+        """The table's thrust rows, one per voltage (one row without voltages)."""
+        n = len(self.table_command)
+        return tuple(self.table_thrust[k:k + n] for k in range(0, len(self.table_thrust), n)) if n else ()
 
 
 @dataclass(frozen=True)
@@ -145,6 +160,25 @@ class Vehicle:
     dynamic_gain: float = 0.5
     svd_filter_time_constant: float = 0.2
     svd_filter_damping_threshold: float = 0.05
+    priorities: tuple[int, ...] = ()
+    nominal_voltage: float | None = None
+
+    @property
+    def priority_levels(self) -> tuple[tuple[int, ...], ...]:
+        """Indices into ``dofs`` of each priority level, highest first; empty without
+        priorities or when every DOF has the same one (nothing to order)."""
+        levels = sorted(set(self.priorities))
+        if len(levels) < 2:
+            return ()
+        return tuple(tuple(k for k, p in enumerate(self.priorities) if p == level) for level in levels)
+
+    @property
+    def voltage_range(self) -> tuple[float, float] | None:
+        """The supply voltages every voltage-indexed table covers, or None without such tables."""
+        tables = [a.command.table_voltage for a in self.actuators if a.command is not None and a.command.table_voltage]
+        if not tables:
+            return None
+        return max(t[0] for t in tables), min(t[-1] for t in tables)
 
     @property
     def names(self) -> tuple[str, ...]:

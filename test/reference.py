@@ -212,3 +212,40 @@ def bounded_least_squares(t, w, q, low, high, tau):
     a = np.vstack([np.sqrt(q)[:, None] * t, np.diag(np.sqrt(w))])
     b = np.concatenate([np.sqrt(q) * tau, np.zeros(t.shape[1])])
     return lsq_linear(a, b, bounds=(low, high), method="bvls", tol=1e-14).x
+
+
+def lexicographic_allocation(t, low, high, tau, levels, weights):
+    """DOF priorities solved independently: level by level (rows of ``t`` in ``levels``,
+    highest first), scipy's SLSQP minimises that level's weighted squared wrench error
+    sum_j weights_j (t_j f - tau_j)^2 within the force bounds, with every higher level's
+    achieved wrench held as an equality constraint. Returns the achieved wrench t f."""
+    from scipy.optimize import minimize
+
+    scale = np.maximum(np.abs(low), np.abs(high))
+    ts = t * scale                                  # variables x = f / scale, of order one
+    bounds = list(zip(low / scale, high / scale))
+    x = np.zeros(t.shape[1])
+    held: list[tuple[np.ndarray, np.ndarray]] = []
+    for level in levels:
+        rows = np.array(level)
+        a, b, w = ts[rows], tau[rows], weights[rows]
+
+        def cost(x, a=a, b=b, w=w):
+            r = a @ x - b
+            return float(np.sum(w * r * r))
+
+        def gradient(x, a=a, b=b, w=w):
+            return 2.0 * a.T @ (w * (a @ x - b))
+
+        constraints = [{"type": "eq", "fun": (lambda x, a=ha, v=hv: a @ x - v), "jac": (lambda x, a=ha: a)}
+                       for ha, hv in held]
+        starts = [x, np.zeros_like(x), *np.random.default_rng(0).uniform(-0.5, 0.5, (4, x.size))]
+        for start in starts:                         # SLSQP may stall at a degenerate start: try others
+            result = minimize(cost, start, jac=gradient, bounds=bounds, constraints=constraints, method="SLSQP",
+                              options={"ftol": 1e-12, "maxiter": 1000})
+            if result.success:
+                break
+        assert result.success, result.message
+        x = result.x
+        held.append((a, a @ x))
+    return ts @ x

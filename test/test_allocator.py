@@ -145,3 +145,126 @@ def test_saturation_is_judged_in_each_dof_against_its_own_authority(yaw_factor, 
         assert abs(result.achieved[5] - tau[5]) < 1e-3 * 1e5       # below the force-based tolerance
     else:
         assert result.achieved[[0, 5]] == pytest.approx(tau[[0, 5]], abs=1e-3 * 2e4)
+
+
+BLUEROV = ROOT / "config" / "bluerov2_heavy.yaml"
+T200_VOLTS = [10.0, 12.0, 14.0, 16.0, 18.0, 20.0]
+T200_AT_1900 = [28.7, 36.4, 44.3, 51.5, 59.0, 65.9]       # Blue Robotics' data, the curves' forward ends [N]
+
+
+@pytest.mark.parametrize("method", ["qp", "pseudoinverse"])
+def test_thrust_limits_follow_the_supply_voltage_without_a_new_solver(method):
+    alloc = Allocator(load_vehicle(BLUEROV), method=method)
+    assert alloc.voltage == 16.0
+    heave = alloc.allocate([0.0, 0.0, 400.0, 0.0, 0.0, 0.0])
+    assert heave.achieved[2] == pytest.approx(4 * 51.5, rel=1e-5)
+    setups = alloc.stats.solver_setups
+    for volts in np.arange(10.0, 20.01, 0.5):
+        alloc.set_voltage(volts)
+        result = alloc.allocate([0.0, 0.0, 400.0, 0.0, 0.0, 0.0])
+        expected = np.interp(volts, T200_VOLTS, T200_AT_1900)
+        assert result.achieved[2] == pytest.approx(4 * expected, rel=1e-4)
+        assert result.saturated and result.at_thrust_limit[4:].all() and not result.at_thrust_limit[:4].any()
+        assert result.command[4:] == pytest.approx(1900.0, abs=0.1)      # the end of the curve in use
+        assert alloc.ranges[1][4] == pytest.approx(expected)
+    assert alloc.stats.solver_setups == setups
+
+
+@pytest.mark.parametrize("volts", [math.nan, math.inf, -12.0, 0.0, 9.9, 20.1])
+def test_a_voltage_that_is_not_finite_or_outside_the_tables_is_refused_and_changes_nothing(volts):
+    alloc = Allocator(load_vehicle(BLUEROV))
+    alloc.set_voltage(12.0)
+    before = alloc.ranges
+    with pytest.raises(ValueError, match="finite and positive" if not 0.0 < volts < math.inf else "10 to 20 V"):
+        alloc.set_voltage(volts)
+    assert alloc.voltage == 12.0
+    assert np.array_equal(alloc.ranges[0], before[0]) and np.array_equal(alloc.ranges[1], before[1])
+
+
+def test_a_vehicle_without_voltage_tables_takes_a_voltage_and_keeps_its_limits():
+    alloc = Allocator(vehicle_from(DATA / "eight_thrusters.yaml"))
+    assert alloc.voltage is None
+    alloc.set_voltage(12.0)
+    assert alloc.voltage == 12.0 and alloc.ranges[1].tolist() == [40.0] * 8
+
+
+def test_reconfiguration_keeps_the_voltage():
+    alloc = Allocator(load_vehicle(BLUEROV))
+    alloc.set_voltage(13.0)
+    alloc.reconfigure(vehicle_from(BLUEROV, weights__minimax=1.0))
+    assert alloc.voltage == 13.0
+    assert alloc.ranges[1][0] == pytest.approx(np.interp(13.0, T200_VOLTS, T200_AT_1900))
+
+
+def test_unallocated_is_requested_minus_achieved_in_the_controlled_dofs():
+    alloc = Allocator(load_vehicle(EXAMPLE))              # surge, sway, yaw
+    for _ in range(200):
+        result = alloc.allocate([900.0, 300.0, 50.0, 5.0, 5.0, 400.0])
+    assert result.saturated
+    controlled = [0, 1, 5]
+    assert result.unallocated[controlled] == pytest.approx(result.requested[controlled] - result.achieved[controlled])
+    assert result.unallocated[[2, 3, 4]].tolist() == [0.0, 0.0, 0.0]
+    assert np.abs(result.unallocated[controlled]).max() > 1.0
+    for _ in range(300):                                                   # rate limits: thrust ramps down
+        calm = alloc.allocate([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    assert not calm.saturated and np.abs(calm.unallocated).max() < 1e-3 * 10.0
+    assert alloc.stop().unallocated.tolist() == [0.0] * 6
+
+
+def test_limit_flags_name_the_actuators_at_their_thrust_and_rate_limits():
+    eight = DATA / "eight_thrusters.yaml"
+    alloc = Allocator(vehicle_from(eight, **{f"actuators__t{i}__thrust_rate_max": 50.0 for i in range(5, 9)}),
+                      dt=0.1)                                                 # verticals: 5 N per sample
+    first = alloc.allocate([0.0, 0.0, 400.0, 0.0, 0.0, 0.0])
+    assert first.at_rate_limit.tolist() == [False] * 4 + [True] * 4 and not first.at_thrust_limit.any()
+    for _ in range(8):
+        result = alloc.allocate([0.0, 0.0, 400.0, 0.0, 0.0, 0.0])
+    assert result.thrust[4:] == pytest.approx(40.0)
+    assert result.at_thrust_limit.tolist() == [False] * 4 + [True] * 4 and not result.at_rate_limit.any()
+    alloc.set_fault("t5", FaultMode.DEGRADED, efficiency=0.5)      # 20 N now: the limit in force
+    result = alloc.allocate([0.0, 0.0, 400.0, 0.0, 0.0, 0.0])
+    assert result.thrust[4] == pytest.approx(20.0) and result.at_thrust_limit[4]
+    reverse = Allocator(vehicle_from(eight)).allocate([0.0, 0.0, -400.0, 0.0, 0.0, 0.0])
+    assert reverse.thrust[4:] == pytest.approx(-30.0) and reverse.at_thrust_limit[4:].all()
+
+
+def test_a_turning_azimuth_is_flagged_at_its_rate_limit():
+    alloc = Allocator(load_vehicle(EXAMPLE))
+    turning = alloc.allocate([0.0, 200.0, 0.0, 0.0, 0.0, 0.0])     # the azimuths turn from 0 toward sway
+    step = [a.rotation.rate_max * alloc.dt for a in alloc.vehicle.actuators[:2]]
+    assert np.abs(turning.azimuth[:2]) == pytest.approx(step)
+    assert turning.at_rate_limit[:2].all()
+
+
+@pytest.mark.parametrize("kind", ["linear", "quadratic"])
+def test_a_dead_band_force_is_zero_or_the_edge_whichever_is_nearer(kind):
+    """Eight thrusters, the four verticals sharing heave: each gets a quarter of it."""
+    gain = {"linear": 1.0, "quadratic": 0.5}[kind]
+    band = {"linear": 2.0, "quadratic": 2.0}[kind]
+    edge = gain * band if kind == "linear" else gain * band * band               # 2 N either way
+    overrides = {f"actuators__t{i}__{key}": value for i in range(1, 9)
+                 for key, value in (("command_map", kind), ("gain", gain), ("command_deadband", band))}
+    alloc = Allocator(vehicle_from(DATA / "eight_thrusters.yaml", **overrides))
+    for heave, each in ((3.2, 0.0), (4.4, edge), (6.0, edge), (8.0, edge), (12.0, 3.0)):
+        result = alloc.allocate([0.0, 0.0, heave, 0.0, 0.0, 0.0])
+        assert result.thrust[4:] == pytest.approx(each, abs=1e-4)      # the solver's tolerance
+        assert result.achieved[2] == pytest.approx(4 * result.thrust[4:].mean(), abs=1e-9)   # what is commanded
+        assert result.saturated == (abs(4 * each - heave) > 1e-3 * 160.0)
+        command = result.command[4:]
+        assert np.all((command == 0.0) | (np.abs(command) >= band - 1e-9))
+    small = alloc.allocate([0.0, 0.0, -3.2, 0.0, 0.0, 0.0])
+    assert small.thrust[4:] == pytest.approx(0.0) and small.command[4:] == pytest.approx(0.0)
+
+
+def test_a_reversed_thruster_gets_the_same_force_with_its_command_flipped():
+    eight = DATA / "eight_thrusters.yaml"
+    plain = Allocator(vehicle_from(eight)).allocate([20.0, 5.0, 30.0, 1.0, 0.0, 2.0])
+    flipped = Allocator(vehicle_from(eight, actuators__t1__reversed=True,
+                                     actuators__t6__reversed=True)).allocate([20.0, 5.0, 30.0, 1.0, 0.0, 2.0])
+    assert flipped.thrust == pytest.approx(plain.thrust)
+    assert flipped.command[[0, 5]] == pytest.approx(-plain.command[[0, 5]])
+    assert flipped.command[[1, 2, 3, 4, 6, 7]] == pytest.approx(plain.command[[1, 2, 3, 4, 6, 7]])
+    table = Allocator(vehicle_from(BLUEROV, actuators__thruster_1__reversed=True))
+    forward = table.allocate([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    reference = Allocator(load_vehicle(BLUEROV)).allocate([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    assert forward.command[0] == pytest.approx(3000.0 - reference.command[0])     # mirrored about 1500 us

@@ -36,6 +36,11 @@ BAD_PARAMETERS = [
     ("actuators.azimuth_fwd.forbidden_sectors", [-0.5, 0.5], "azimuth_initial: 0 rad is inside a forbidden sector"),
     ("solver.max_iter", 0, "Parameter solver.max_iter out of range"),
     ("per_actuator_topics", "yes", "per_actuator_topics: expected true or false"),
+    ("priorities", [0, 1], "priorities: needs one level per controlled DOF in `dofs` order (3: surge, sway, yaw)"),
+    ("priorities", [0, 1, -2], "priorities: must be >= 0, got -2"),
+    ("actuators.main_port.table_voltage", [12.0, 16.0], "actuators.main_port.table_voltage: only used with"),
+    ("actuators.main_port.command_deadband", -1.0, "Parameter actuators.main_port.command_deadband out of range"),
+    ("nominal_voltage", -3.0, "Parameter nominal_voltage out of range"),
 ]
 
 

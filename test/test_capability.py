@@ -6,10 +6,11 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 from conftest import ROOT
 
-from allocator_pkg import METHODS, Allocator, FaultMode, vehicle_from_parameters
+from allocator_pkg import METHODS, Allocator, FaultMode, load_vehicle, vehicle_from_parameters
 from allocator_pkg.capability import Capability
 
 # A symmetric vessel: surge thrusters at y = -+1 m, sway thrusters at x = -+1 m, +-100 N each.
@@ -138,3 +139,20 @@ def test_all_methods_writes_a_plot_per_group_of_methods_with_another_capability(
                  "--all-methods"]) == 0
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         f"example1_rov{suffix}_capability.{ext}" for suffix in ("", "_lp", "_pseudoinverse") for ext in ("csv", "png")]
+
+
+def test_reach_gives_the_wrench_there_and_follows_speed_and_voltage():
+    capability = Capability(vehicle_from_parameters(SYMMETRIC))
+    scale, wrench = capability.reach([100.0, 50.0, 0.0, 0.0, 0.0, 0.0])
+    assert scale == pytest.approx(2.0, rel=1e-6)
+    assert wrench[[0, 1, 5]] == pytest.approx([200.0, 100.0, 0.0], abs=1e-6)
+    assert capability.reach([0.0, 0.0, 5.0, 0.0, 0.0, 0.0]) == (math.inf, pytest.approx([0.0] * 6))
+    bluerov = Capability(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"))
+    heave = [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]
+    for volts, forward_end in ((16.0, 51.5), (12.0, 36.4), (13.0, (36.4 + 44.3) / 2.0), (20.0, 65.9)):
+        scale, wrench = bluerov.reach(heave, voltage=volts)
+        assert scale == pytest.approx(4 * forward_end, rel=1e-6)            # four verticals at the curve's end
+        assert wrench == pytest.approx(np.array(heave) * 4 * forward_end, abs=1e-6)
+    assert bluerov.reach(heave)[0] == pytest.approx(4 * 51.5, rel=1e-6)     # the nominal 16 V
+    assert bluerov.reach(heave, faults={"thruster_5": FaultMode.FAILED}, voltage=12.0)[0] == \
+        pytest.approx(2 * 36.4, rel=1e-6)                                   # a diagonal pair: no roll or pitch

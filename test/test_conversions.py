@@ -39,3 +39,19 @@ def test_status_in_flu_flips_y_and_z_of_forces_and_moments():
     status = status_message(result, "solved", Header(), frame="flu")
     assert list(wrench_to_array(status.requested)) == [50.0, -10.0, -0.0, 0.0, -0.0, -5.0]
     assert np.allclose(wrench_to_array(status.achieved), result.achieved * [1, -1, -1, 1, -1, -1])
+
+
+def test_status_carries_the_unallocated_wrench_in_the_nodes_frame_the_limit_flags_and_the_voltage():
+    import math
+    allocator = Allocator(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"))
+    result = allocator.allocate([0.0, 30.0, 400.0, 0.0, 0.0, 0.0])
+    assert result.saturated
+    frd = status_message(result, "solved", Header(), voltage=allocator.voltage)
+    flu = status_message(result, "solved", Header(), frame="flu", voltage=allocator.voltage)
+    assert np.allclose(wrench_to_array(frd.unallocated), result.requested - result.achieved)
+    assert np.allclose(wrench_to_array(flu.unallocated), (result.requested - result.achieved) * [1, -1, -1, 1, -1, -1])
+    assert frd.unallocated.force.z > 100.0
+    assert list(frd.at_thrust_limit) == result.at_thrust_limit.tolist() and any(frd.at_thrust_limit)
+    assert list(frd.at_rate_limit) == [False] * 8
+    assert frd.voltage == 16.0
+    assert math.isnan(status_message(result, "solved", Header()).voltage)

@@ -13,4 +13,30 @@ def test_a_sample_line_shows_thrust_command_azimuth_and_the_solver():
     line = format_sample(commands, status)
     assert "azimuth_fwd     120.0 N cmd   219.09 @  30.0" in line
     assert "main_port     -35.2 N cmd    -0.50" in line and "@" not in line.split("main_port")[1]
-    assert line.endswith("|| sat YES      80 us    25 it solved")
+    assert "|| sat YES      80 us    25 it solved | unallocated 0.0 0.0 0.0 0.0 0.0 0.0" in line
+    assert "at limit" not in line and " V" not in line           # no flags; voltage not set
+
+
+def test_a_sample_line_shows_the_unallocated_wrench_the_actuators_at_a_limit_and_the_voltage():
+    from allocator_pkg.conversions import array_to_wrench
+    commands = ThrusterCommands(name=["a", "b", "c"], thrust=[10.0, 20.0, 30.0], command=[1.0, 2.0, 3.0],
+                                azimuth=[0.0, 0.0, 0.0], mode=[0, 0, 0])
+    status = AllocationStatus(saturated=True, solver_status="solved",
+                              unallocated=array_to_wrench([12.5, 0, 0, 0, 0, -3]),
+                              at_thrust_limit=[True, False, True], at_rate_limit=[False, False, True], voltage=14.8)
+    line = format_sample(commands, status)
+    assert line.endswith("| unallocated 12.5 0.0 0.0 0.0 0.0 -3.0 | at limit (! thrust, ~ rate): a! c!~ | 14.80 V")
+    status.voltage = math.nan
+    assert not format_sample(commands, status).endswith(" V")
+
+
+def test_a_capability_answer_in_words():
+    from allocator_msgs.srv import GetCapability
+    from allocator_pkg.conversions import array_to_wrench
+    from allocator_pkg.ctl import format_capability
+    response = GetCapability.Response(success=True, message="steady state", scale=2.5,
+                                      achieved=array_to_wrench([250.0, 0, 0, 0, 0, 0]))
+    assert format_capability([100.0, 0, 0, 0, 0, 0], response) == (
+        "scale 2.5 along [100 0 0 0 0 0]; achieved there [250.00 0.00 0.00 0.00 0.00 0.00] (steady state)")
+    refused = GetCapability.Response(success=False, message="not configured")
+    assert format_capability([1.0, 0, 0, 0, 0, 0], refused) == "no capability: not configured"

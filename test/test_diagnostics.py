@@ -105,3 +105,24 @@ def test_publishers_of_another_type_are_a_warning():
     assert result[0].level == DiagnosticStatus.WARN
     assert "wrench_command publishers of another type: /controller" in result[0].message
     assert values[0]["wrong-type publishers"] == "/controller (geometry_msgs/msg/WrenchStamped)"
+
+
+def test_the_voltage_in_use_and_a_missing_battery_voltage_are_reported():
+    allocator = Allocator(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"))
+    counters = Counters()
+    last = allocator.allocate(np.zeros(6))
+    result = diagnostic_statuses(NODE, allocator, counters, False, last, [], ("/battery_state", True))
+    values = {kv.key: kv.value for kv in result[0].values}
+    assert result[0].level == DiagnosticStatus.WARN
+    assert "no valid battery voltage on /battery_state: thrust limits at nominal_voltage 16 V" in result[0].message
+    assert values["voltage [V]"] == "16" and values["voltage source"] == "nominal_voltage (no battery voltage)"
+    allocator.set_voltage(12.5)
+    counters.rejected_battery = 2
+    result = diagnostic_statuses(NODE, allocator, counters, False, last, [], ("/battery_state", False))
+    values = {kv.key: kv.value for kv in result[0].values}
+    assert result[0].level == DiagnosticStatus.OK
+    assert values["voltage [V]"] == "12.5" and values["voltage source"] == "/battery_state"
+    assert values["rejected battery states"] == "2"
+    thruster = {kv.key: kv.value for kv in result[1].values}
+    quarter = 0.25                                           # 12.5 V: a quarter of the way from 12 to 14 V
+    assert thruster["limits in force [N]"] == f"[{-28.4 - quarter * 6.1:.6g}, {36.4 + quarter * 7.9:.6g}]"

@@ -2,7 +2,7 @@
 the exact fields and constants other packages rely on."""
 
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
-from allocator_msgs.srv import SetActuatorFault
+from allocator_msgs.srv import GetCapability, SetActuatorFault
 
 
 def test_actuator_fault_constants_and_fields():
@@ -21,9 +21,16 @@ def test_allocation_status_fields():
     assert AllocationStatus.get_fields_and_field_types() == {
         "header": "std_msgs/Header", "requested": "geometry_msgs/Wrench", "achieved": "geometry_msgs/Wrench",
         "saturated": "boolean", "method": "string", "solver_status": "string", "iterations": "uint32",
-        "solve_time": "double", "power": "double"}
+        "solve_time": "double", "power": "double", "unallocated": "geometry_msgs/Wrench",
+        "at_thrust_limit": "sequence<boolean>", "at_rate_limit": "sequence<boolean>", "voltage": "double"}
 
 
 def test_set_actuator_fault_service():
     assert SetActuatorFault.Request.get_fields_and_field_types() == {"fault": "allocator_msgs/ActuatorFault"}
     assert SetActuatorFault.Response.get_fields_and_field_types() == {"success": "boolean", "message": "string"}
+
+
+def test_get_capability_service():
+    assert GetCapability.Request.get_fields_and_field_types() == {"direction": "geometry_msgs/Wrench"}
+    assert GetCapability.Response.get_fields_and_field_types() == {
+        "success": "boolean", "message": "string", "scale": "double", "achieved": "geometry_msgs/Wrench"}

@@ -122,3 +122,32 @@ def test_saturation_direct_is_taken_by_the_methods_that_implement_it(name):
     assert Allocator(vehicle).method == name
     assert set(METHODS) - {n for n in METHODS if "direct" in METHODS[n].saturation_modes} == \
         {"nonlinear", "dynamic", "svd_filter"}
+
+
+@pytest.mark.parametrize("name", list(METHODS))
+def test_a_method_implements_priorities_or_is_refused_with_them(name):
+    """Safe by default: a method that does not declare priorities never runs with them."""
+    # the Otter (surge, yaw), or for a method that steers rotatable thrusters the DP vessel (surge, sway, yaw)
+    path, levels = ((ROOT / "config" / "otter_usv.yaml", [1, 0]) if not METHODS[name].problems(
+        replace(load_vehicle(ROOT / "config" / "otter_usv.yaml"), method=name))
+        else (ROOT / "config" / "dp_vessel.yaml", [1, 1, 0]))
+    parameters = read_parameters(path)
+    parameters.update(method=name, priorities=levels)
+    if METHODS[name].implements_priorities:
+        vehicle = vehicle_from_parameters(parameters)
+        assert len(vehicle.priority_levels) == 2
+        Allocator(vehicle).allocate([500.0, 0.0, 0.0, 0.0, 0.0, 300.0])
+        return
+    with pytest.raises(ConfigError, match=f"priorities: method '{name}' does not implement DOF priorities"):
+        vehicle_from_parameters(parameters)
+    prioritised = vehicle_from(path, priorities=levels)
+    with pytest.raises(ValueError, match=f"method '{name}' does not implement DOF priorities"):
+        Allocator(prioritised, method=name)
+    overridden = Allocator(load_vehicle(path), method=name)
+    with pytest.raises(ValueError, match="does not implement DOF priorities"):
+        overridden.reconfigure(prioritised)
+
+
+def test_a_new_method_does_not_implement_priorities_unless_it_says_so():
+    assert HalfPseudoInverse.implements_priorities is False
+    assert {name for name, kind in METHODS.items() if kind.implements_priorities} == {"qp", "pseudoinverse"}

@@ -290,3 +290,57 @@ def test_an_under_actuated_vehicle_says_so_in_diagnostics(harness):
     values = harness.diagnostics_after_a_second()
     assert values["actuation"].startswith("under-actuated: the actuators give 2 independent directions")
     assert "sway is left to the vehicle's dynamics" in values["actuation"]
+
+
+BLUEROV = ROOT / "config" / "bluerov2_heavy.yaml"
+
+
+@pytest.mark.params(BLUEROV, wrench_timeout=0.0, battery_timeout=2.0)
+def test_the_battery_voltage_sets_the_thrust_limits_and_bad_ones_are_counted(harness):
+    from sensor_msgs.msg import BatteryState
+    battery = harness.probe.create_publisher(BatteryState, "battery_state", 10)
+    harness.spin_until(lambda: battery.get_subscription_count() > 0)
+    values = harness.diagnostics_after_a_second()
+    assert values["voltage source"] == "nominal_voltage (no battery voltage)" and values["voltage [V]"] == "16"
+    battery.publish(BatteryState(voltage=12.0))
+    harness.spin_until(lambda: harness.node.allocator.voltage == 12.0)
+    harness.send_wrench([0.0, 0.0, 400.0, 0.0, 0.0, 0.0])
+    harness.tick(2)
+    status = harness.status[-1]
+    assert status.voltage == 12.0 and status.saturated
+    assert status.achieved.force.z == pytest.approx(4 * 36.4, rel=1e-4)          # 12 V: 36.4 N a thruster
+    assert status.unallocated.force.z == pytest.approx(400.0 - 4 * 36.4, rel=1e-3)
+    assert list(status.at_thrust_limit) == [False] * 4 + [True] * 4
+    for count, bad in enumerate((math.nan, 25.0, -1.0), start=1):
+        battery.publish(BatteryState(voltage=bad))
+        harness.spin_until(lambda count=count: harness.node.runtime.counters.rejected_battery == count)
+    assert harness.node.allocator.voltage == 12.0
+    values = harness.diagnostics_after_a_second()
+    assert values["rejected battery states"] == "3" and values["voltage source"].endswith("battery_state")
+    harness.tick(round(2.0 / harness.node.period))                              # no battery for battery_timeout
+    values = harness.diagnostics_after_a_second()
+    assert values["voltage [V]"] == "16" and values["voltage source"] == "nominal_voltage (no battery voltage)"
+    assert harness.node.allocator.voltage == 16.0
+
+
+@pytest.mark.params(BLUEROV, wrench_timeout=0.0, frame="flu")
+def test_get_capability_answers_along_a_direction_in_the_nodes_frame(harness):
+    from allocator_msgs.srv import GetCapability
+    from allocator_pkg.conversions import array_to_wrench, wrench_to_array
+    client = harness.probe.create_client(GetCapability, "thrust_allocator/get_capability")
+    up = harness.call(client, GetCapability.Request(direction=array_to_wrench([0.0, 0.0, 1.0, 0.0, 0.0, 0.0])))
+    assert up.success and up.scale == pytest.approx(4 * 39.9, rel=1e-6)          # FLU up: the verticals reversed
+    assert wrench_to_array(up.achieved) == pytest.approx([0.0, 0.0, 4 * 39.9, 0.0, 0.0, 0.0], abs=1e-6)
+    harness.call(harness.fault, _fault_request("thruster_5", 2))
+    down = harness.call(client, GetCapability.Request(direction=array_to_wrench([0.0, 0.0, -1.0, 0.0, 0.0, 0.0])))
+    assert down.scale == pytest.approx(2 * 51.5, rel=1e-6)                       # a diagonal pair left
+    zero = harness.call(client, GetCapability.Request(direction=array_to_wrench([0.0] * 6)))
+    assert not zero.success and "no component in the controlled DOFs" in zero.message
+    bad = harness.call(client, GetCapability.Request(direction=array_to_wrench([math.nan, 0, 0, 0, 0, 0])))
+    assert not bad.success and "finite" in bad.message
+
+
+def _fault_request(actuator, mode):
+    from allocator_msgs.msg import ActuatorFault
+    from allocator_msgs.srv import SetActuatorFault
+    return SetActuatorFault.Request(fault=ActuatorFault(actuator=actuator, mode=mode))

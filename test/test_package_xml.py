@@ -8,7 +8,8 @@ import yaml
 from conftest import ROOT
 
 ROS_PACKAGES = {"rclpy", "rcl_interfaces", "lifecycle_msgs", "geometry_msgs", "std_msgs", "std_srvs", "nav_msgs",
-                "diagnostic_msgs", "visualization_msgs", "builtin_interfaces", "rosgraph_msgs", "allocator_msgs"}
+                "diagnostic_msgs", "visualization_msgs", "builtin_interfaces", "rosgraph_msgs", "allocator_msgs",
+                "sensor_msgs"}
 
 
 def imported_modules() -> set[str]:

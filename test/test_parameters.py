@@ -37,7 +37,7 @@ def with_changes(**changes):
     for key, value in changes.items():
         key = key.replace("__", ".")
         if value is None:
-            parameters.pop(key)
+            parameters.pop(key, None)
         else:
             parameters[key] = value
     return parameters
@@ -222,3 +222,72 @@ def test_rotation_limits_and_initial_angle():
     assert "outside the feasible sector" in message
     assert "2 pi" in problem_for(actuators__azi__azimuth_min=-4.0, actuators__azi__azimuth_max=4.0)
     assert math.isclose(vehicle_from_parameters(VALID).actuator("azi").rotation.azimuth_max, math.pi)
+
+
+VOLTAGE_TABLE = {"actuators__port__command_map": "table", "actuators__port__table_command": [1100.0, 1500.0, 1900.0],
+                 "actuators__port__table_voltage": [12.0, 16.0],
+                 "actuators__port__table_thrust": [-30.0, 0.0, 40.0, -40.0, 0.0, 50.0], "nominal_voltage": 14.0}
+
+
+def test_a_voltage_table_and_the_nominal_voltage():
+    vehicle = vehicle_from_parameters(with_changes(**VOLTAGE_TABLE))
+    command = vehicle.actuator("port").command
+    assert command.table_voltage == (12.0, 16.0)
+    assert command.thrust_rows == ((-30.0, 0.0, 40.0), (-40.0, 0.0, 50.0))
+    assert vehicle.nominal_voltage == 14.0 and vehicle.voltage_range == (12.0, 16.0)
+
+
+@pytest.mark.parametrize(
+    ("changes", "key", "reason"),
+    [
+        ({"actuators__port__table_voltage": [16.0, 12.0]}, "actuators.port.table_voltage", "strictly increasing"),
+        ({"actuators__port__table_voltage": [12.0, 12.0]}, "actuators.port.table_voltage", "strictly increasing"),
+        ({"actuators__port__table_voltage": [-1.0, 12.0]}, "actuators.port.table_voltage", "positive"),
+        ({"actuators__port__table_thrust": [-30.0, 0.0, 40.0, -40.0, 0.0]}, "actuators.port.table_thrust",
+         "needs 6 entries (one row of 3 per voltage of table_voltage, 2)"),
+        ({"actuators__port__table_thrust": [-30.0, 0.0, 40.0, -40.0, 10.0, 5.0]}, "actuators.port.table_thrust",
+         "must not decrease as the command increases (the row at 16 V)"),
+        ({"actuators__port__table_thrust": [-30.0, 0.0, 40.0, 1.0, 2.0, 5.0]}, "actuators.port.table_thrust",
+         "must span zero force (the row at 16 V)"),
+        ({"nominal_voltage": None}, "nominal_voltage", "required with table_voltage (set for port)"),
+        ({"nominal_voltage": 17.0}, "nominal_voltage", "17 V is outside the table of 'port' (12 to 16 V)"),
+        ({"nominal_voltage": float("nan")}, "nominal_voltage", "finite"),
+        ({"actuators__port__command_deadband": 1.0}, "actuators.port.command_deadband", "flat stretch"),
+        ({"actuators__port__command_map": "linear", "actuators__port__table_command": None,
+          "actuators__port__table_thrust": None}, "actuators.port.table_voltage", "only used with command_map: table"),
+    ],
+)
+def test_each_invalid_voltage_key_is_named_with_its_reason(changes, key, reason):
+    message = problem_for(**{**VOLTAGE_TABLE, **changes})
+    assert f"{key}:" in message and reason in message
+
+
+@pytest.mark.parametrize(
+    ("changes", "key", "reason"),
+    [
+        ({"priorities": [0]}, "priorities",
+         "needs one level per controlled DOF in `dofs` order (2: surge, yaw); got 1"),
+        ({"priorities": [0, 1, 2]}, "priorities", "got 3"),
+        ({"priorities": [0, -1]}, "priorities", "must be >= 0, got -1"),
+        ({"priorities": [0.5, 1.0]}, "priorities", "expected a list of integers"),
+        ({"priorities": ["yaw", "surge"]}, "priorities", "expected a list of integers"),
+        ({"priorities": [1, 0], "method": "nonlinear"}, "priorities",
+         "method 'nonlinear' does not implement DOF priorities; methods that do: qp, pseudoinverse"),
+        ({"priorities": [1, 0], "saturation": "preserve_direction"}, "priorities", "use one or the other"),
+        ({"actuators__port__command_deadband": -1.0}, "actuators.port.command_deadband", "must be >= 0"),
+        ({"actuators__port__command_max": 2.0, "actuators__port__command_deadband": 2.0},
+         "actuators.port.command_deadband", "leaves no command beyond it"),
+        ({"actuators__port__reversed": "yes"}, "actuators.port.reversed", "true or false"),
+    ],
+)
+def test_each_invalid_priority_or_command_key_is_named_with_its_reason(changes, key, reason):
+    message = problem_for(**changes)
+    assert f"{key}:" in message and reason in message
+
+
+def test_priorities_are_given_in_dofs_order_and_kept_in_dof_order():
+    vehicle = vehicle_from_parameters(with_changes(dofs=["yaw", "surge"], priorities=[0, 1]))
+    assert vehicle.dofs == ("surge", "yaw") and vehicle.priorities == (1, 0)
+    assert vehicle.priority_levels == ((1,), (0,))
+    same = vehicle_from_parameters(with_changes(priorities=[3, 3]))
+    assert same.priority_levels == ()                       # one level: nothing to order

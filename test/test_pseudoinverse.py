@@ -88,3 +88,54 @@ def test_scaling_down_leaves_a_ramped_thrust_to_the_clip():
     result = alloc.allocate([-50.0, 30.0, 0.0, 0.0, 0.0, 5.0])
     assert result.thrust[2:] == pytest.approx([88.0, 88.0])          # 100 N less one rate step of 12 N
     assert result.achieved[1] == pytest.approx(30.0, rel=1e-6)
+
+
+def _largest_scale(force, low, high):
+    """The largest lambda in [0, 1] with lambda * force within [low, high] (force from zero)."""
+    ratios = [hi / f if f > 0 else lo / f for f, lo, hi in zip(force, low, high) if abs(f) > 1e-12]
+    return min([1.0, *ratios])
+
+
+def test_attainable_requests_with_priorities_equal_the_weighted_pseudo_inverse():
+    t = configuration_matrix(vehicle_from(EIGHT).actuators, [0.0] * 8)
+    alloc = Allocator(vehicle_from(EIGHT, priorities=[1, 1, 0, 0, 0, 2]), method="pseudoinverse")
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        tau = rng.normal(size=6) * [8.0, 8.0, 10.0, 1.0, 1.0, 1.0]
+        result = alloc.allocate(tau)
+        expected = weighted_pseudo_inverse(t, np.ones(8)) @ tau
+        if np.all((expected <= 40.0) & (expected >= -30.0)):
+            assert result.thrust == pytest.approx(expected, abs=1e-9)
+
+
+def test_sequential_desaturation_gives_the_top_level_its_largest_share_first():
+    """Level 0 (heave, roll, pitch) gets the largest scale of its own weighted pseudo-inverse
+    (computed here from its rows alone) that the limits allow; the lower levels only what is
+    left in its null space; every limit holds."""
+    t = configuration_matrix(vehicle_from(EIGHT).actuators, [0.0] * 8)
+    low, high = np.full(8, -30.0), np.full(8, 40.0)
+    alloc = Allocator(vehicle_from(EIGHT, priorities=[1, 1, 0, 0, 0, 2]), method="pseudoinverse")
+    rng = np.random.default_rng(7)
+    top = [2, 3, 4]
+    for _ in range(40):
+        tau = rng.normal(size=6) * [150.0, 150.0, 200.0, 20.0, 15.0, 20.0]
+        result = alloc.allocate(tau)
+        own = weighted_pseudo_inverse(t[top], np.ones(8)) @ tau[top]
+        share = _largest_scale(own, low, high)
+        assert result.achieved[top] == pytest.approx(share * tau[top], abs=1e-6)
+        alone = alloc.allocate(np.where(np.isin(np.arange(6), top), tau, 0.0))
+        assert alone.achieved[top] == pytest.approx(result.achieved[top], abs=1e-6)   # lower levels take nothing
+        assert np.all(result.thrust <= high + 1e-9) and np.all(result.thrust >= low - 1e-9)
+
+
+def test_a_lower_level_gets_what_the_higher_ones_leave():
+    """Heave first, beyond the verticals: they saturate; surge, a lower level, is still met by
+    the horizontals, which heave does not use (here in the plane of the centre, so that their
+    surge needs no pitch from the saturated verticals)."""
+    level = {f"actuators__t{i}__position": [0.156 if i < 3 else -0.156, 0.111 if i in (1, 3) else -0.111, 0.0]
+             for i in range(1, 5)}
+    alloc = Allocator(vehicle_from(EIGHT, priorities=[1, 1, 0, 0, 0, 0], **level), method="pseudoinverse")
+    result = alloc.allocate([50.0, 0.0, 400.0, 0.0, 0.0, 0.0])
+    assert result.achieved[2] == pytest.approx(160.0)
+    assert result.achieved[0] == pytest.approx(50.0, abs=1e-6)
+    assert result.saturated and result.at_thrust_limit[4:].all()

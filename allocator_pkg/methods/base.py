@@ -27,12 +27,27 @@ keeps the circle itself at rest (within 1 - cos(pi/256) = 0.008 %)."""
 
 class AllocationMethod(ABC):
     """One allocation method. ``setups`` counts the solver set-ups it has made (the tests
-    check that faults and value changes add none)."""
+    check that faults and value changes add none).
+
+    ``implements_priorities`` says whether :meth:`solve` honours the vehicle's DOF
+    priorities (``Vehicle.priority_levels``: an unattainable request meets a higher level as
+    far as it can before a lower one gets anything). False by default, so that a new method
+    is safe: the configuration check refuses ``priorities`` with a method that does not
+    declare them, and a subclass does not inherit the declaration."""
 
     name: ClassVar[str]
     saturation_modes: ClassVar[tuple[str, ...]] = ("weighted", "preserve_direction")
     """The values of ``saturation`` this method implements; a configuration with another one
     is refused when it is parsed (:meth:`problems`)."""
+
+    implements_priorities: ClassVar[bool] = False
+
+    def __init_subclass__(cls, **kwargs) -> None:
+        """A subclass declares priorities itself: one that overrides a method that implements
+        them (its ``solve``) does not inherit the declaration."""
+        super().__init_subclass__(**kwargs)
+        if "implements_priorities" not in cls.__dict__:
+            cls.implements_priorities = False
 
     def __init__(self, model: Model, backend: BackendFactory):
         self.model = model

@@ -12,6 +12,15 @@ managers), then clips what rate limits still leave outside; ``direct`` keeps the
 pseudo-inverse while it is within every limit of the sample and otherwise takes Durham's
 solution (:mod:`~.direct`): the request met exactly when it is attainable, else scaled back to
 the boundary of the attainable set along its own direction.
+
+DOF priorities (``Vehicle.priority_levels``): sequential desaturation. Level by level, highest
+first, the weighted pseudo-inverse of that level's rows restricted to the null space of the
+levels above (the task-priority inverse: what it adds leaves their wrench unchanged) gives the
+force the level still wants, scaled by the largest factor in [0, 1] that keeps every actuator
+within its limits. A higher level thus gets as much of its request along its own direction
+as the limits allow before a lower level gets anything, and a lower level only uses what the
+higher ones leave. When every level fits, the sum is the ordinary weighted pseudo-inverse
+(the nested row spaces add up to the stacked one). The gains are cached like the others.
 """
 
 from __future__ import annotations
@@ -28,6 +37,9 @@ from .base import AllocationMethod
 from .direct import DirectSolution, direct_sides
 
 _CACHE_SIZE = 64
+STEP_MARGIN = 1e-9
+"""A level's step may pass a limit by this fraction of the actuator's range without being
+scaled (rounding in the null space of the levels above; the final clip takes it)."""
 
 
 class PseudoInverseGains:
@@ -41,16 +53,50 @@ class PseudoInverseGains:
     def gain(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray:
         """G (m x n) with f_e = G tau for the actuators not ``excluded``; a rotatable
         thruster in ``lines`` may only push along its given angle."""
-        key = (excluded.tobytes(), tuple(sorted(lines.items())))
-        gain = self._cache.get(key)
-        if gain is None:
+        return self._cached(("gain", excluded.tobytes(), tuple(sorted(lines.items()))),
+                            lambda: self._compute(excluded, lines))
+
+    def cascade(self, excluded: np.ndarray, lines: dict[int, float],
+                levels: tuple[tuple[int, ...], ...]) -> list[tuple[np.ndarray, np.ndarray]]:
+        """Per priority level, highest first, (its rows of tau, G_k): the force a level adds
+        for a residual r_k of its rows is G_k r_k, in the weighted null space of every level
+        above it."""
+        return self._cached(("cascade", excluded.tobytes(), tuple(sorted(lines.items())), levels),
+                            lambda: self._compute_cascade(excluded, lines, levels))
+
+    def _cached(self, key: tuple, compute):
+        value = self._cache.get(key)
+        if value is None:
             if len(self._cache) >= _CACHE_SIZE:
                 self._cache.clear()
-            gain = self._compute(excluded, lines)
-            self._cache[key] = gain
-        return gain
+            value = compute()
+            self._cache[key] = value
+        return value
 
     def _compute(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray:
+        basis = self._basis(excluded, lines)
+        if basis is None:
+            return np.zeros((self.model.m, self.model.n))
+        return basis @ np.linalg.pinv(self.model.t_ec @ basis, rcond=1e-10)
+
+    def _compute_cascade(self, excluded: np.ndarray, lines: dict[int, float],
+                         levels: tuple[tuple[int, ...], ...]) -> list[tuple[np.ndarray, np.ndarray]]:
+        basis = self._basis(excluded, lines)
+        result = []
+        projector = None if basis is None else np.eye(basis.shape[1])
+        for level in levels:
+            rows = np.array(level, dtype=int)
+            if basis is None:
+                result.append((rows, np.zeros((self.model.m, rows.size))))
+                continue
+            restricted = self.model.t_ec[rows] @ basis @ projector
+            inverse = np.linalg.pinv(restricted, rcond=1e-10)
+            result.append((rows, basis @ inverse))
+            projector = projector - inverse @ restricted
+        return result
+
+    def _basis(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray | None:
+        """The usable extended directions scaled by W^-1/2 (m x b), or None when none is."""
         model = self.model
         basis_columns: list[np.ndarray] = []
         weights: list[float] = []
@@ -70,9 +116,8 @@ class PseudoInverseGains:
                 basis_columns.append(column)
                 weights.append(model.weight[i])
         if not basis_columns:
-            return np.zeros((model.m, model.n))
-        basis = np.column_stack(basis_columns) / np.sqrt(np.asarray(weights))
-        return basis @ np.linalg.pinv(model.t_ec @ basis, rcond=1e-10)
+            return None
+        return np.column_stack(basis_columns) / np.sqrt(np.asarray(weights))
 
     def desired(self, tau: np.ndarray, excluded: np.ndarray) -> np.ndarray:
         """The unconstrained extended solution (1.33) with the usable actuators."""
@@ -85,6 +130,7 @@ class PseudoInverseAllocation(AllocationMethod):
 
     name = "pseudoinverse"
     saturation_modes = ("weighted", "preserve_direction", "direct")
+    implements_priorities = True
 
     def __init__(self, model: Model, backend: BackendFactory, gains: PseudoInverseGains | None = None):
         super().__init__(model, backend)
@@ -93,6 +139,7 @@ class PseudoInverseAllocation(AllocationMethod):
         self._preserve_direction = model.vehicle.saturation == "preserve_direction"
         self._direct = DirectSolution(model) if model.vehicle.saturation == "direct" else None
         self.setups += self._direct is not None
+        self._levels = model.vehicle.priority_levels
 
     def update_model(self, model: Model) -> None:
         """A new configuration: new gains on the next sample (no solver to set up)."""
@@ -102,6 +149,7 @@ class PseudoInverseAllocation(AllocationMethod):
         self._preserve_direction = model.vehicle.saturation == "preserve_direction"
         if self._direct is not None:
             self._direct.update_model(model)
+        self._levels = model.vehicle.priority_levels
 
     @classmethod
     def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
@@ -117,9 +165,21 @@ class PseudoInverseAllocation(AllocationMethod):
             pinned = fixed_forces(model, limits, fixed)
             self._pinned = pinned if pinned.any() else None
             self._pinned_wrench = None if self._pinned is None else model.t_ec @ pinned
-            self._gain = self.inverse.gain(fixed, lines)
+            if self._levels:
+                self._cascade = self.inverse.cascade(fixed, lines, self._levels)
+            else:
+                self._gain = self.inverse.gain(fixed, lines)
             self._version = limits.version
-        force = self._gain @ (tau if self._pinned is None else tau - self._pinned_wrench)
+        wanted = tau if self._pinned is None else tau - self._pinned_wrench
+        if self._levels:
+            force = np.zeros(model.m)
+            for rows, gain in self._cascade:
+                step = gain @ (wanted[rows] - model.t_ec[rows] @ force)
+                force += step_to_limits(model, limits, force, step, self._fixed) * step
+            if self._pinned is not None:
+                force += self._pinned
+            return MethodOutput(force, "solved")
+        force = self._gain @ wanted
         if self._preserve_direction:
             force *= scale_to_limits(model, limits, force, self._fixed)
         if self._pinned is not None:
@@ -204,3 +264,33 @@ def within_limits(model: Model, limits: SampleLimits, force: np.ndarray, fixed: 
                 and lim.thrust_low - slack <= thrust <= lim.thrust_high + slack):
             return False
     return True
+
+
+def step_to_limits(model: Model, limits: SampleLimits, force: np.ndarray, step: np.ndarray,
+                   fixed: np.ndarray) -> float:
+    """The largest factor lambda in [0, 1] that keeps every free force within its limits (to
+    ``STEP_MARGIN``) on force + lambda step, for a force already within them. A bound that ``force`` already
+    breaks (a thrust that a rate limit keeps from falling to zero) cannot be met by this
+    step: the final clip keeps it."""
+    scale = 1.0
+    for i, start in enumerate(model.starts):
+        if fixed[i]:
+            continue
+        if model.rotatable[i]:
+            lim = limits.azimuth[int(np.searchsorted(model.rot, i))]
+            f, d = force[start:start + 2], step[start:start + 2]
+            bound = lim.magnitude_max
+            outside = min(float(f @ f) - bound * bound, 0.0)
+            if math.sqrt(float(f @ f)) <= bound * (1.0 + STEP_MARGIN) \
+                    and math.sqrt(float((f + d) @ (f + d))) > bound * (1.0 + STEP_MARGIN):
+                a, b = float(d @ d), 2.0 * float(f @ d)
+                scale = min(scale, max(-b + math.sqrt(max(b * b - 4.0 * a * outside, 0.0)), 0.0) / (2.0 * a))
+        else:
+            f, d = float(force[start]), float(step[start])
+            low, high = float(limits.low[i]), float(limits.high[i])
+            margin = STEP_MARGIN * max(high, -low)
+            if d > 0.0 and f <= high + margin and high < f + d - margin:
+                scale = min(scale, max(high - f, 0.0) / d)
+            elif d < 0.0 and f >= low - margin and low > f + d + margin:
+                scale = min(scale, min(low - f, 0.0) / d)
+    return max(scale, 0.0)
