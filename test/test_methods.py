@@ -27,7 +27,7 @@ EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 
 def test_the_schema_offers_exactly_the_registered_methods():
     assert schema.VEHICLE_KEY_BY_NAME["method"].choices == tuple(METHODS)
-    assert set(METHODS) == {"qp", "pseudoinverse", "nonlinear"}
+    assert set(METHODS) == {"qp", "pseudoinverse", "nonlinear", "explicit"}
 
 
 @pytest.mark.parametrize("name", list(METHODS))
@@ -35,6 +35,8 @@ def test_every_registered_method_implements_the_interface(name):
     method = METHODS[name]
     assert issubclass(method, AllocationMethod) and method.name == name
     vehicle = load_vehicle(EXAMPLE)
+    if method.problems(vehicle):                      # explicit: actuators of fixed direction only
+        vehicle = load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml")
     allocator = Allocator(vehicle, method=name)
     assert allocator.method == name
     assert METHODS[name].problems(vehicle) == []
@@ -89,9 +91,9 @@ def test_a_method_that_cannot_serve_a_vehicle_is_refused_with_its_reason(registe
 
 
 def test_an_unknown_method_is_refused_everywhere():
-    with pytest.raises(ValueError, match="unknown method 'magic'; choose from qp, pseudoinverse, nonlinear"):
+    with pytest.raises(ValueError, match="unknown method 'magic'; choose from qp, pseudoinverse, nonlinear, explicit"):
         Allocator(load_vehicle(EXAMPLE), method="magic")
     with pytest.raises(ValueError, match="unknown method 'magic'"):
         Capability(load_vehicle(EXAMPLE), method="magic")
-    with pytest.raises(ConfigError, match="'magic' is not one of qp, pseudoinverse, nonlinear"):
+    with pytest.raises(ConfigError, match="'magic' is not one of qp, pseudoinverse, nonlinear, explicit"):
         vehicle_from(EXAMPLE, method="magic")

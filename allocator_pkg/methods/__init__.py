@@ -8,12 +8,15 @@ section in docs/theory.md.
 
 - ``qp``: the constrained QP (1.35) on one warm-started solver problem;
 - ``pseudoinverse``: the weighted generalised inverse (1.29)/(1.33) with clipping or scaling;
-- ``nonlinear``: the nonlinear problem (1.44) by sequential linearised QPs (1.45).
+- ``nonlinear``: the nonlinear problem (1.44) by sequential linearised QPs (1.45);
+- ``explicit``: the piecewise-affine law of (1.35) (section 4.1), region by region, for
+  actuators of fixed direction.
 """
 
 from __future__ import annotations
 
 from .base import AllocationMethod
+from .explicit import ExplicitAllocation
 from .nonlinear import NonlinearAllocation
 from .pseudoinverse import PseudoInverseAllocation
 from .qp import QPAllocation
@@ -22,6 +25,7 @@ METHODS: dict[str, type[AllocationMethod]] = {
     QPAllocation.name: QPAllocation,
     PseudoInverseAllocation.name: PseudoInverseAllocation,
     NonlinearAllocation.name: NonlinearAllocation,
+    ExplicitAllocation.name: ExplicitAllocation,
 }
 
 __all__ = ["METHODS", "AllocationMethod"]
