@@ -125,7 +125,7 @@ def test_a_repeated_region_is_a_hit_and_computes_no_law():
     built = method.built
     again = allocator.allocate([12.0, 4.0, -2.0, 0.1, 0.2, 0.4])      # unsaturated too: same region
     assert first.status.startswith("new region by OSQP")
-    assert again.status == "hit; 1 regions, 1/2 hits"
+    assert again.status == "hit; regions 1, hits 1/2"
     assert method.built == built and method.hits == 1 and method.regions == 1
 
 
@@ -266,11 +266,11 @@ def test_the_status_and_diagnostics_report_regions_and_hit_rate():
     allocator = Allocator(load_vehicle(BLUEROV), method="explicit")
     for _ in range(3):
         result = allocator.allocate([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
-    assert status_message(result, result.status, Header()).solver_status == "hit; 1 regions, 2/3 hits"
+    assert status_message(result, result.status, Header()).solver_status == "hit; regions 1, hits 2/3"
     counters = Counters()
     counters.count(result)
     values = {kv.key: kv.value for kv in allocation_status("/n", allocator, counters, False, result).values}
-    assert values["solver status"] == "hit; 1 regions, 2/3 hits" and values["fallbacks in period"] == "0"
+    assert values["solver status"] == "hit; regions 1, hits 2/3" and values["fallbacks in period"] == "0"
 
 
 def test_a_smooth_sequence_stays_in_few_regions():

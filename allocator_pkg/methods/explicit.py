@@ -257,6 +257,11 @@ class ExplicitAllocation(AllocationMethod):
         """Laws in the cache."""
         return len(self.laws)
 
+    def statistics(self) -> dict[str, int]:
+        """The counters and the number of laws cached (benchmarks, diagnostics)."""
+        return {"regions": len(self.laws), "calls": self.calls, "hits": self.hits, "moved": self.moved,
+                "solved": self.solved, "inexact": self.inexact, "built": self.built}
+
     def _use(self, model: Model) -> None:
         self.model = model
         self.law = Law(model)
@@ -299,11 +304,11 @@ class ExplicitAllocation(AllocationMethod):
             checks = out[r:].tolist()
             if max(checks) <= 0.0:
                 self.hits += 1
-                return MethodOutput(out[:r], f"hit; {len(self.laws)} regions, {self.hits}/{self.calls} hits")
+                return MethodOutput(out[:r], f"hit; regions {len(self.laws)}, hits {self.hits}/{self.calls}")
             found = self._moves(region, checks, p)
             if found is not None:
                 self.moved += 1
-                return MethodOutput(found, f"neighbour; {len(self.laws)} regions, {self.hits}/{self.calls} hits")
+                return MethodOutput(found, f"neighbour; regions {len(self.laws)}, hits {self.hits}/{self.calls}")
         return self._solve(p, limits)
 
     def _moves(self, region: Region, checks: list[float], p: np.ndarray, moves: int = MOVES) -> np.ndarray | None:
@@ -353,7 +358,7 @@ class ExplicitAllocation(AllocationMethod):
         if self.law.minimax:
             qp.up[index["last"]] = max(float(np.max(np.abs(limits.low))), float(np.max(np.abs(limits.high))))
         solution = qp.solve(qp.low, qp.up)
-        counts = f"{len(self.laws)} regions, {self.hits}/{self.calls} hits"
+        counts = f"regions {len(self.laws)}, hits {self.hits}/{self.calls}"
         if not solution.usable:
             return MethodOutput(np.zeros(r), f"OSQP: {solution.status}; {counts}", solution.iterations, 0.0, False)
         x = solution.x
@@ -363,12 +368,12 @@ class ExplicitAllocation(AllocationMethod):
             checks = out[r:].tolist()
             if max(checks) <= 0.0:
                 self._keep(start)
-                return MethodOutput(out[:r], f"new region by OSQP; {len(self.laws)} regions, "
-                                    f"{self.hits}/{self.calls} hits", solution.iterations)
+                return MethodOutput(out[:r], f"new region by OSQP; regions {len(self.laws)}, "
+                                    f"hits {self.hits}/{self.calls}", solution.iterations)
             found = self._moves(start, checks, p, POLISH_MOVES)
             if found is not None:
-                return MethodOutput(found, f"new region by OSQP and moves; {len(self.laws)} regions, "
-                                    f"{self.hits}/{self.calls} hits", solution.iterations)
+                return MethodOutput(found, f"new region by OSQP and moves; regions {len(self.laws)}, "
+                                    f"hits {self.hits}/{self.calls}", solution.iterations)
         self.inexact += 1
         return MethodOutput(x[:r].copy(), f"OSQP, no exact region ({solution.status}); {counts}",
                             solution.iterations)
