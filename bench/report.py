@@ -62,6 +62,7 @@ def _targets(result: dict) -> list[str]:
                 f"| wrench error on attainable samples <= 1e-4, {sequence} | {_fmt(error, 2)} | "
                 f"{'yes' if error is not None and error <= 1e-4 else 'no'} |",
             ]
+    rows += _explicit_targets(vehicle)
     for case in _timer_cases(result):
         if case["setup"] == "one process" and case["rate_hz"] == 200:
             tick = case["tick_to_receipt_ms"]["p50"]
@@ -99,6 +100,34 @@ def _targets(result: dict) -> list[str]:
     return rows
 
 
+def _explicit_targets(vehicle: dict | None) -> list[str]:
+    """The explicit method on the target vehicle's smooth sequence (issue 13)."""
+    run = vehicle["sequences"].get("smooth", {}).get("methods", {}).get("explicit") if vehicle else None
+    rows = []
+    for figure, limit in (("median", 10.0), ("p99", 30.0)):
+        target = f"| explicit {figure} <= {limit:g} us, {TARGET_VEHICLE}, smooth |"
+        if run is None:
+            rows.append(f"{target} {NOT_IN_THIS_RUN} | - |")
+        else:
+            value = run["time_us"][figure]
+            rows.append(f"{target} {_fmt(value)} us | {'yes' if value <= limit else 'no'} |")
+    return rows
+
+
+def _regions(run: dict) -> list[str]:
+    """The cache figures of the methods that keep regions (explicit), under a sequence's table."""
+    lines = []
+    for name, m in run["methods"].items():
+        regions = m.get("regions")
+        if regions:
+            count = regions["regions"]
+            lines.append(f"{name}: {count} region{'' if count == 1 else 's'} cached; of its solves in the timed "
+                         f"samples {100.0 * regions['hit_rate']:.1f} % answered by the previous region, "
+                         f"{100.0 * regions['neighbour_rate']:.1f} % by a neighbouring one, "
+                         f"{100.0 * regions['osqp_rate']:.1f} % after OSQP ({regions['inexact']} left inexact).")
+    return [*lines, ""] if lines else []
+
+
 def _timer_cases(result: dict) -> list[dict]:
     return [case for case in result["node"]["cases"] if case.get("trigger", "timer") == "timer"]
 
@@ -129,6 +158,7 @@ def _solver_tables(result: dict) -> list[str]:
                     f"{_fmt(m['power_vs_reference'].get('median'), 3)} | {_fmt(m['azimuth_travel_rad'])} | "
                     f"{m['fallbacks']} |")
             lines.append("")
+            lines += _regions(run)
     return lines
 
 

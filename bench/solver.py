@@ -13,8 +13,11 @@ largest force or moment all actuators together can give in it), the largest over
 
 Methods, each timed as a whole sample (``Allocator.allocate``, Python included):
 
-1. every registered method (``allocator_pkg.METHODS``): ``qp`` on one OSQP problem per
-   configuration, updated and warm-started, ``pseudoinverse`` with clipping, ``nonlinear``;
+1. every registered method (``allocator_pkg.METHODS``) that serves the vehicle: ``qp`` on one
+   OSQP problem per configuration, updated and warm-started, ``pseudoinverse`` with clipping,
+   ``nonlinear``, ``explicit`` (vehicles without rotatable thrusters; with its cache of laws:
+   the regions cached at the end, and over the timed samples the share of solves the previous
+   region answered, those a neighbouring region answered and those OSQP was needed for);
 2. ``pseudoinverse (scale)``: the weighted pseudo-inverse with uniform scale-down (the common
    ROS thruster-manager pattern);
 3. ``qp`` on other solver backends (``allocator_pkg.solvers.BACKENDS``): ``qp, fresh OSQP``,
@@ -108,6 +111,8 @@ def allocators(vehicle) -> dict[str, tuple[Allocator, Timed]]:
     record of its solver calls."""
     result = {}
     for name in METHODS:
+        if METHODS[name].problems(vehicle):
+            continue
         timed_backend = Timed(DEFAULT_BACKEND)
         result[name] = (Allocator(vehicle, method=name, backend=timed_backend), timed_backend)
     for name, backend in PATTERNS.items():
@@ -184,6 +189,17 @@ def percentiles(values) -> dict[str, float]:
             "p99": float(np.percentile(values, 99)), "max": float(np.max(values))}
 
 
+def region_figures(before: dict[str, int], after: dict[str, int]) -> dict[str, float]:
+    """The explicit method's cache over the timed samples: laws cached at the end, and the
+    shares of its solves (several a sample with the drag feed-forward) that the previous region,
+    a neighbouring one, or OSQP answered."""
+    calls = max(after["calls"] - before["calls"], 1)
+    return {"regions": after["regions"], "hit_rate": (after["hits"] - before["hits"]) / calls,
+            "neighbour_rate": (after["moved"] - before["moved"]) / calls,
+            "osqp_rate": (after["solved"] - before["solved"]) / calls,
+            "inexact": after["inexact"] - before["inexact"]}
+
+
 def run_sequence(vehicle, requests: np.ndarray) -> dict:
     capability = Capability(vehicle, method="nonlinear", speed=SPEED)
     rows = list(vehicle.dof_indices)
@@ -204,6 +220,8 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
             allocator.allocate(tau)
         solver_times = timed_backend.times
         solver_times.clear()
+        statistics = getattr(allocator._method, "statistics", None)
+        before = statistics() if statistics else None
         times, errors, iterations, power_ratio, saturated = [], [], [], [], 0
         previous = allocator.azimuth
         travel = 0.0
@@ -231,6 +249,8 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
             "fallbacks": allocator.stats.fallbacks,
             "solver_setups": allocator.stats.solver_setups,
         }
+        if before is not None:
+            results[name]["regions"] = region_figures(before, statistics())
     return {"samples": len(requests) - WARM_UP, "attainable": int(attainable.sum()),
             "reference_samples": len(reference), "methods": results}
 
