@@ -245,6 +245,7 @@ class _Parser:
             solver=SolverSettings(eps_abs=values["solver.eps_abs"], eps_rel=values["solver.eps_rel"],
                                   max_iter=values["solver.max_iter"], time_limit=values["solver.time_limit"]),
             water_density=values["water_density"],
+            explicit_regions=values["explicit.regions"],
         )
         unfit = METHODS[vehicle.method].problems(vehicle)
         if unfit:

@@ -128,6 +128,9 @@ VEHICLE_KEYS: tuple[Key, ...] = (
     Key("nonlinear.max_iterations", INT, "Linearised QPs solved per sample by the nonlinear method (1.45), "
         "at most; a pass that misses the request by more than the one before ends them.",
         default=1, minimum=1, maximum=50),
+    Key("explicit.regions", STR, "Method explicit: a file of its regions from `allocator-explicit precompute`, "
+        "loaded when the method is set up (empty: the regions are found as requests reach them).", default="",
+        constraint="a file path, or empty"),
     Key("solver.eps_abs", FLOAT, "OSQP absolute tolerance, as a fraction of each variable's range.",
         default=1e-5, minimum=0.0, exclusive_minimum=True),
     Key("solver.eps_rel", FLOAT, "OSQP relative tolerance.", default=1e-5, minimum=0.0),

@@ -142,6 +142,7 @@ class Vehicle:
     nonlinear_max_iterations: int
     solver: SolverSettings
     water_density: float
+    explicit_regions: str = ""
 
     @property
     def names(self) -> tuple[str, ...]:

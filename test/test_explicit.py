@@ -8,7 +8,7 @@ from conftest import DATA, ROOT, vehicle_from
 from reference import constrained_allocation
 from scipy.optimize import lsq_linear
 
-from allocator_pkg import Allocator, ConfigError, FaultMode, load_vehicle
+from allocator_pkg import Allocator, ConfigError, FaultMode, explicit_tool, load_vehicle
 from allocator_pkg.configuration_matrix import configuration_matrix
 from allocator_pkg.methods.explicit import ExplicitAllocation
 from allocator_pkg.model import SampleLimits
@@ -119,14 +119,16 @@ def test_the_minimax_term_matches_an_independent_qp(path, speed):
 
 
 def test_a_repeated_region_is_a_hit_and_computes_no_law():
+    """The method starts in the region where no limit is active; a saturating request moves it
+    to another, and the same request again is a hit there."""
     allocator = Allocator(load_vehicle(BLUEROV), method="explicit")
     method = allocator._method
-    first = allocator.allocate([10.0, 5.0, -3.0, 0.2, 0.1, 0.5])
+    assert allocator.allocate([10.0, 5.0, -3.0, 0.2, 0.1, 0.5]).status == "hit; regions 1, hits 1/1"
+    first = allocator.allocate([150.0, 5.0, -3.0, 0.2, 0.1, 0.5])
     built = method.built
-    again = allocator.allocate([12.0, 4.0, -2.0, 0.1, 0.2, 0.4])      # unsaturated too: same region
-    assert first.status.startswith("new region by OSQP")
-    assert again.status == "hit; regions 1, hits 1/2"
-    assert method.built == built and method.hits == 1 and method.regions == 1
+    again = allocator.allocate([150.0, 5.0, -3.0, 0.2, 0.1, 0.5])
+    assert not first.status.startswith("hit") and again.status == "hit; regions 2, hits 2/3"
+    assert method.built == built and method._region.key != 0
 
 
 def test_a_failure_leaves_the_laws_and_moves_to_the_region_where_the_actuator_is_at_zero():
@@ -239,7 +241,7 @@ def test_reconfiguration_keeps_the_laws_for_new_limits_and_clears_them_for_new_w
     allocator.reconfigure(vehicle_from(BLUEROV, weights__slack=[1e7] * 6, actuators__thruster_1__thrust_max=40.0))
     assert method.regions == regions
     allocator.reconfigure(vehicle_from(BLUEROV, weights__slack=[1e7] * 6, actuators__thruster_1__weight=2.0))
-    assert method.regions == 0
+    assert method.regions == 1 and method._region.key == 0              # cleared; the start region again
     t, w, q, low, high = problem(allocator.vehicle)
     tau = requests(vehicle, 1, 1.0, seed=9)[0]
     expected = bvls(t, w, q, low, high, tau)
@@ -266,11 +268,11 @@ def test_the_status_and_diagnostics_report_regions_and_hit_rate():
     allocator = Allocator(load_vehicle(BLUEROV), method="explicit")
     for _ in range(3):
         result = allocator.allocate([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
-    assert status_message(result, result.status, Header()).solver_status == "hit; regions 1, hits 2/3"
+    assert status_message(result, result.status, Header()).solver_status == "hit; regions 1, hits 3/3"
     counters = Counters()
     counters.count(result)
     values = {kv.key: kv.value for kv in allocation_status("/n", allocator, counters, False, result).values}
-    assert values["solver status"] == "hit; regions 1, hits 2/3" and values["fallbacks in period"] == "0"
+    assert values["solver status"] == "hit; regions 1, hits 3/3" and values["fallbacks in period"] == "0"
 
 
 def test_a_smooth_sequence_stays_in_few_regions():
@@ -284,3 +286,37 @@ def test_a_smooth_sequence_stays_in_few_regions():
                             5.0 * np.sin(2 * angle)])
     method = allocator._method
     assert method.hits >= 0.95 * method.calls and method.solved <= 2
+
+
+def test_precompute_finds_the_otters_nine_regions_and_the_allocator_loads_them(tmp_path, capsys):
+    """Two thrusters, surge and yaw: T is square and invertible, so any forces are the optimum
+    of some request, each thruster free or at either bound: 3 x 3 regions. Loaded, the moves
+    between them need no law computed while allocating."""
+    out = tmp_path / "otter.regions.npz"
+    assert explicit_tool.main(["precompute", str(OTTER), "--out", str(out)]) == 0
+    assert "9 regions of 9 active sets" in capsys.readouterr().out
+    vehicle = vehicle_from(OTTER, method="explicit", explicit__regions=str(out))
+    allocator = Allocator(vehicle)
+    method = allocator._method
+    assert len(method.table) == 9 and method.regions == 9
+    for request in requests(vehicle, 100, 2.0, seed=10):
+        tau = np.zeros(6)
+        tau[[0, 5]] = request
+        allocator.allocate(tau)
+    assert method.built == 0 and method.solved == 0 and len(method.laws) == 0
+
+
+def test_a_regions_file_for_other_data_and_vehicles_it_cannot_enumerate_are_refused(tmp_path, capsys):
+    out = tmp_path / "otter.regions.npz"
+    explicit_tool.main(["precompute", str(OTTER), "--out", str(out)])
+    with pytest.raises(ConfigError, match="was computed for another configuration"):
+        vehicle_from(OTTER, method="explicit", explicit__regions=str(out), actuators__propeller_port__weight=2.0)
+    with pytest.raises(ConfigError, match=r"explicit\.regions: .*No such file"):
+        vehicle_from(OTTER, method="explicit", explicit__regions=str(tmp_path / "missing.npz"))
+    capsys.readouterr()
+    assert explicit_tool.main(["precompute", str(ROOT / "config" / "dp_vessel.yaml"), "--out", str(out)]) == 1
+    assert "azimuth_stbd, azimuth_port rotate" in capsys.readouterr().err
+    minimax = tmp_path / "minimax.yaml"
+    minimax.write_text(OTTER.read_text().replace("ros__parameters:", "ros__parameters:\n    weights: {minimax: 1.0}"))
+    assert explicit_tool.main(["precompute", str(minimax), "--out", str(out)]) == 1
+    assert "the enumeration covers beta = 0" in capsys.readouterr().err

@@ -26,7 +26,10 @@ active set is read from its answer (by OSQP's own polishing rule), and the moves
 polish it to the exact region. Only if that also fails is OSQP's own answer used, within its
 tolerance, and said so in the status.
 
-The cache of laws is bounded (least recently used first out). Rotatable thrusters change
+The cache of laws is bounded (least recently used first out). A table of every region,
+enumerated offline for a small vehicle (``allocator-explicit precompute``, survey 4.1), can be
+loaded besides it (``explicit.regions``): its laws are built when the method is set up and
+never evicted, so that moves between them need no KKT solve. Rotatable thrusters change
 their columns of T every sample, so a law would hold for one sample only: the method refuses
 them when the configuration is parsed (:meth:`ExplicitAllocation.problems`), as it refuses
 ``saturation: preserve_direction``, whose scale multiplies tau (T f = lambda tau is no affine
@@ -35,6 +38,7 @@ function of tau).
 
 from __future__ import annotations
 
+import hashlib
 import math
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -124,6 +128,7 @@ class Law:
         self.minimax = beta > 0.0
         self.size = n + 2 * r + 1
         self.data = (t.tobytes(), weight.tobytes(), slack.tobytes(), beta)
+        self.fingerprint = hashlib.sha256(b"".join((*self.data[:3], repr(beta).encode()))).hexdigest()
         d = r + 1 if self.minimax else r
         scale = np.concatenate((model.force_scale, [np.max(model.force_scale)]))[:d]
         # 1/2 x'Hx + x'(L p_1): f'Wf + (Tf - tau)'Q(Tf - tau) + beta fbar, less its constant.
@@ -218,10 +223,21 @@ class Law:
         return 1 << 2 * self.r + 2 * i + int(force[i] < 0.0)
 
 
+def read_regions(path: str, law: Law) -> list[int]:
+    """The active sets of a file written by ``allocator-explicit precompute``; ValueError when
+    it was computed for other data (T, W, Q or beta) than ``law``'s."""
+    with np.load(path, allow_pickle=False) as data:
+        if str(data["fingerprint"]) != law.fingerprint:
+            raise ValueError(f"{path} was computed for another configuration (T, W, Q or beta differ): "
+                             "run allocator-explicit precompute again")
+        return [int(key) for key in data["keys"]]
+
+
 class ExplicitAllocation(AllocationMethod):
-    """Allocation method ``explicit``; ``capacity`` bounds the cache of laws. Counters:
-    ``calls``, ``hits`` (the previous region held), ``moved`` (a neighbour did), ``solved``
-    (OSQP was needed), ``inexact`` (OSQP's answer used as it came), ``built`` (laws computed)."""
+    """Allocation method ``explicit``; ``capacity`` bounds the cache of laws, ``table`` holds
+    those of a precomputed file. Counters: ``calls``, ``hits`` (the previous region held),
+    ``moved`` (a neighbour did), ``solved`` (OSQP was needed), ``inexact`` (OSQP's answer used
+    as it came), ``built`` (laws computed while allocating)."""
 
     name = "explicit"
 
@@ -229,8 +245,11 @@ class ExplicitAllocation(AllocationMethod):
         super().__init__(model, backend)
         self.capacity = capacity
         self.laws: OrderedDict[int, Region] = OrderedDict()
+        self.table: dict[int, Region] = {}
         self.calls = self.hits = self.moved = self.solved = self.inexact = self.built = 0
         self._use(model)
+        self._load(model.vehicle.explicit_regions)
+        self._start()
         self._setup(model)
 
     @classmethod
@@ -245,6 +264,11 @@ class ExplicitAllocation(AllocationMethod):
         if vehicle.saturation == "preserve_direction":
             problems.append("saturation: preserve_direction scales the request by a variable (T f = lambda tau), "
                             "which no affine law in tau solves; use saturation: weighted, or qp")
+        if vehicle.explicit_regions and not problems:
+            try:
+                read_regions(vehicle.explicit_regions, Law(Model.build(vehicle, 1.0 / vehicle.rate_hz)))
+            except (OSError, ValueError, KeyError) as error:
+                problems.append(f"explicit.regions: {error}")
         return problems
 
     @classmethod
@@ -254,12 +278,12 @@ class ExplicitAllocation(AllocationMethod):
 
     @property
     def regions(self) -> int:
-        """Laws in the cache."""
-        return len(self.laws)
+        """Laws known: the precomputed table's and the cache's."""
+        return len(self.table) + len(self.laws)
 
     def statistics(self) -> dict[str, int]:
         """The counters and the number of laws cached (benchmarks, diagnostics)."""
-        return {"regions": len(self.laws), "calls": self.calls, "hits": self.hits, "moved": self.moved,
+        return {"regions": self.regions, "calls": self.calls, "hits": self.hits, "moved": self.moved,
                 "solved": self.solved, "inexact": self.inexact, "built": self.built}
 
     def _use(self, model: Model) -> None:
@@ -271,15 +295,33 @@ class ExplicitAllocation(AllocationMethod):
         self._region: Region | None = None
         self._n, self._r = model.n, model.r
 
+    def _load(self, path: str) -> None:
+        """The laws of a precomputed file, or none."""
+        self.table = {}
+        if path:
+            regions = (self.law.region(key) for key in read_regions(path, self.law))
+            self.table = {region.key: region for region in regions if region is not None}
+
+    def _start(self) -> None:
+        """Start in the region where no constraint is active (none with beta > 0, where fbar
+        needs a minimax row: OSQP finds the first region then)."""
+        region = self._law(0)
+        if region is not None:
+            self._keep(region)
+
     def update_model(self, model: Model) -> None:
         """Values only: the laws stay when T, W, Q and beta do (new limits are parameters),
         else they are all cleared."""
-        old, region = self.law.data, self._region
+        old, region, path = self.law.data, self._region, self.model.vehicle.explicit_regions
         self._use(model)
         if self.law.data == old:
             self._region = region
         else:
             self.laws.clear()
+        if self.law.data != old or model.vehicle.explicit_regions != path:
+            self._load(model.vehicle.explicit_regions)
+        if self._region is None:
+            self._start()
         a, _ = self._rows(model)
         p, q = self._objective(model)
         self._qp.update_matrix(a.data)
@@ -304,11 +346,11 @@ class ExplicitAllocation(AllocationMethod):
             checks = out[r:].tolist()
             if max(checks) <= 0.0:
                 self.hits += 1
-                return MethodOutput(out[:r], f"hit; regions {len(self.laws)}, hits {self.hits}/{self.calls}")
+                return MethodOutput(out[:r], f"hit; regions {self.regions}, hits {self.hits}/{self.calls}")
             found = self._moves(region, checks, p)
             if found is not None:
                 self.moved += 1
-                return MethodOutput(found, f"neighbour; regions {len(self.laws)}, hits {self.hits}/{self.calls}")
+                return MethodOutput(found, f"neighbour; regions {self.regions}, hits {self.hits}/{self.calls}")
         return self._solve(p, limits)
 
     def _moves(self, region: Region, checks: list[float], p: np.ndarray, moves: int = MOVES) -> np.ndarray | None:
@@ -333,6 +375,9 @@ class ExplicitAllocation(AllocationMethod):
     def _law(self, key: int, first: int = 0) -> Region | None:
         """The cached law of ``key``, else a new one (cached only once a request is found in it);
         ``first``: see :meth:`Law.region`."""
+        region = self.table.get(key)
+        if region is not None:
+            return region
         region = self.laws.get(key)
         if region is not None:
             self.laws.move_to_end(key)
@@ -343,7 +388,7 @@ class ExplicitAllocation(AllocationMethod):
     def _keep(self, region: Region) -> None:
         """``region`` holds this sample: the current one, cached (the least recently used out)."""
         self._region = region
-        if region.key not in self.laws:
+        if region.key not in self.laws and region.key not in self.table:
             self.laws[region.key] = region
             if len(self.laws) > self.capacity:
                 self.laws.popitem(last=False)
@@ -358,7 +403,7 @@ class ExplicitAllocation(AllocationMethod):
         if self.law.minimax:
             qp.up[index["last"]] = max(float(np.max(np.abs(limits.low))), float(np.max(np.abs(limits.high))))
         solution = qp.solve(qp.low, qp.up)
-        counts = f"regions {len(self.laws)}, hits {self.hits}/{self.calls}"
+        counts = f"regions {self.regions}, hits {self.hits}/{self.calls}"
         if not solution.usable:
             return MethodOutput(np.zeros(r), f"OSQP: {solution.status}; {counts}", solution.iterations, 0.0, False)
         x = solution.x
@@ -368,11 +413,11 @@ class ExplicitAllocation(AllocationMethod):
             checks = out[r:].tolist()
             if max(checks) <= 0.0:
                 self._keep(start)
-                return MethodOutput(out[:r], f"new region by OSQP; regions {len(self.laws)}, "
+                return MethodOutput(out[:r], f"new region by OSQP; regions {self.regions}, "
                                     f"hits {self.hits}/{self.calls}", solution.iterations)
             found = self._moves(start, checks, p, POLISH_MOVES)
             if found is not None:
-                return MethodOutput(found, f"new region by OSQP and moves; regions {len(self.laws)}, "
+                return MethodOutput(found, f"new region by OSQP and moves; regions {self.regions}, "
                                     f"hits {self.hits}/{self.calls}", solution.iterations)
         self.inexact += 1
         return MethodOutput(x[:r].copy(), f"OSQP, no exact region ({solution.status}); {counts}",
