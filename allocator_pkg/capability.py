@@ -66,6 +66,9 @@ class Capability:
         self.method = method or vehicle.method
         if self.method not in METHODS:
             raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
+        unfit = METHODS[self.method].problems(vehicle)
+        if unfit:
+            raise ValueError(f"method '{self.method}' cannot serve this vehicle: {'; '.join(unfit)}")
         self.sides = METHODS[self.method].thrust_region_sides(vehicle)
         self.speed = speed
         self.model = Model.build(vehicle, 1.0 / vehicle.rate_hz)

@@ -9,6 +9,7 @@ from reference import constrained_allocation
 from scipy.optimize import lsq_linear
 
 from allocator_pkg import Allocator, ConfigError, FaultMode, explicit_tool, load_vehicle
+from allocator_pkg.capability import Capability
 from allocator_pkg.configuration_matrix import configuration_matrix
 from allocator_pkg.methods.explicit import ExplicitAllocation
 from allocator_pkg.model import SampleLimits
@@ -257,6 +258,8 @@ def test_rotatable_thrusters_and_preserve_direction_are_refused_by_name():
         Allocator(load_vehicle(ROOT / "config" / "example1_rov.yaml"), method="explicit")
     with pytest.raises(ConfigError, match="saturation: preserve_direction scales the request by a variable"):
         vehicle_from(BLUEROV, method="explicit", saturation="preserve_direction")
+    with pytest.raises(ValueError, match=r"method 'explicit' cannot serve this vehicle: .* rotate"):
+        Capability(load_vehicle(ROOT / "config" / "example1_rov.yaml"), method="explicit")
 
 
 def test_the_status_and_diagnostics_report_regions_and_hit_rate():
