@@ -278,8 +278,8 @@ class ExplicitAllocation(AllocationMethod):
 
     @property
     def regions(self) -> int:
-        """Laws known: the precomputed table's and the cache's."""
-        return len(self.table) + len(self.laws)
+        """Laws known: the precomputed table's and the cache's (kept as a count for the status)."""
+        return self._known
 
     def statistics(self) -> dict[str, int]:
         """The counters and the number of laws cached (benchmarks, diagnostics)."""
@@ -301,6 +301,7 @@ class ExplicitAllocation(AllocationMethod):
         if path:
             regions = (self.law.region(key) for key in read_regions(path, self.law))
             self.table = {region.key: region for region in regions if region is not None}
+        self._known = len(self.table) + len(self.laws)
 
     def _start(self) -> None:
         """Start in the region where no constraint is active (none with beta > 0, where fbar
@@ -318,6 +319,7 @@ class ExplicitAllocation(AllocationMethod):
             self._region = region
         else:
             self.laws.clear()
+            self._known = len(self.table)
         if self.law.data != old or model.vehicle.explicit_regions != path:
             self._load(model.vehicle.explicit_regions)
         if self._region is None:
@@ -346,7 +348,7 @@ class ExplicitAllocation(AllocationMethod):
             checks = out[r:].tolist()
             if max(checks) <= 0.0:
                 self.hits += 1
-                return MethodOutput(out[:r], f"hit; regions {self.regions}, hits {self.hits}/{self.calls}")
+                return MethodOutput(out[:r], f"hit; regions {self._known}, hits {self.hits}/{self.calls}")
             found = self._moves(region, checks, p)
             if found is not None:
                 self.moved += 1
@@ -392,6 +394,7 @@ class ExplicitAllocation(AllocationMethod):
             self.laws[region.key] = region
             if len(self.laws) > self.capacity:
                 self.laws.popitem(last=False)
+            self._known = len(self.table) + len(self.laws)
 
     def _solve(self, p: np.ndarray, limits: SampleLimits) -> MethodOutput:
         """OSQP on (1.35), warm-started; its active set polished to the exact region."""
