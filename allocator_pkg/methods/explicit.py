@@ -41,7 +41,7 @@ from __future__ import annotations
 import hashlib
 import math
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -65,8 +65,22 @@ PRIMAL_TOLERANCE = 1e-9
 """A constraint counts as met within this fraction of its actuator's force range."""
 
 DUAL_TOLERANCE = 1e-9
-"""A multiplier counts as non-negative above -this, in units of the effort gradient of an
-actuator at full force (the cost divided by the largest 2 W_ii f_range,i^2)."""
+"""A multiplier counts as non-negative above -this, in units of its actuator's gradient at
+full force (the diagonal of H for that force, times its range squared): relative to each
+actuator, so that a large one does not blunt the checks of a small one."""
+
+NEAR = 1e-3
+"""With beta > 0, OSQP's forces within this fraction of their range of the largest count as
+equal to it (OSQP stops at 1e-5 of the ranges by default)."""
+
+TIGHT = 1e-10
+"""OSQP's tolerances for a second solve when the active set of the first does not lead to a
+region (fractions of the variables' ranges)."""
+
+TIGHT_ITERATIONS = 20000
+"""OSQP's iteration limit for that second solve; only a converged one (status SOLVED) is used."""
+
+SOLVED = "solved"
 
 INDEPENDENT = 1e-9
 """A normalised row whose part outside the span of the rows kept is smaller depends on them."""
@@ -113,9 +127,16 @@ class Region:
 
 
 class Law:
-    """(1.35) with the slack eliminated, normalised, and the KKT solution of any active set
-    (:meth:`region`). Constraint rows: 2i upper bound of actuator i, 2i + 1 its lower bound,
-    2r + 2i and 2r + 2i + 1 its minimax rows (with beta > 0). Parameters p_1 =
+    """(1.35), normalised, and the KKT solution of any active set (:meth:`region`).
+
+    Variables y = [f, s, fbar] (1.38) (fbar only with beta > 0), each divided by its range
+    (a force by its actuator's, a slack by its DOF's authority, fbar by the largest force); the
+    cost divided by the largest effort curvature. The equality rows T f - s = tau are always
+    active; the inequality rows, each divided by its largest coefficient, are: 2i the upper
+    bound of actuator i, 2i + 1 its lower bound, 2r + 2i and 2r + 2i + 1 its minimax rows
+    f_i - fbar <= 0 and -f_i - fbar <= 0 (with beta > 0). The slack stays a variable (the
+    augmented form): with Q >> W, eliminating it would leave H = 2 (W + T'QT), whose effort part
+    the multipliers of a small actuator are made of is below its rounding. Parameters p_1 =
     [tau (n), f_min (r), f_max (r), 1]."""
 
     def __init__(self, model: Model):
@@ -129,13 +150,17 @@ class Law:
         self.size = n + 2 * r + 1
         self.data = (t.tobytes(), weight.tobytes(), slack.tobytes(), beta)
         self.fingerprint = hashlib.sha256(b"".join((*self.data[:3], repr(beta).encode()))).hexdigest()
-        d = r + 1 if self.minimax else r
-        scale = np.concatenate((model.force_scale, [np.max(model.force_scale)]))[:d]
-        # 1/2 x'Hx + x'(L p_1): f'Wf + (Tf - tau)'Q(Tf - tau) + beta fbar, less its constant.
-        hessian = np.zeros((d, d))
-        hessian[:r, :r] = 2.0 * (np.diag(weight) + t.T @ (slack[:, None] * t))
-        linear = np.zeros((d, self.size))
-        linear[:r, :n] = -2.0 * t.T * slack
+        d = r + n + 1 if self.minimax else r + n
+        scale = np.concatenate((model.force_scale, model.dof_scale, [np.max(model.force_scale)]))[:d]
+        # 1/2 y'Hy + y'(L p_1) = f'Wf + s'Qs + beta fbar; E y = tau; G y <= h p_1.
+        self.cost = float(np.max(2.0 * weight * model.force_scale ** 2))
+        self.curvature = np.concatenate((2.0 * weight, 2.0 * slack, [0.0]))[:d] * scale ** 2 / self.cost
+        self.linear = np.zeros((d, self.size))
+        equality = np.hstack((t, -np.eye(n), np.zeros((n, d - r - n)))) * scale
+        equality_scale = 1.0 / np.max(np.abs(equality), axis=1)
+        self.equality = equality * equality_scale[:, None]
+        self.equality_h = np.zeros((n, self.size))
+        self.equality_h[:, :n] = np.diag(equality_scale)
         rows = 4 * r if self.minimax else 2 * r
         g = np.zeros((rows, d))
         h = np.zeros((rows, self.size))
@@ -143,14 +168,9 @@ class Law:
         g[2 * index, index], h[2 * index, n + r + index] = 1.0, 1.0
         g[2 * index + 1, index], h[2 * index + 1, n + index] = -1.0, -1.0
         if self.minimax:
-            linear[r, -1] = beta
+            self.linear[-1, -1] = beta * scale[-1] / self.cost
             g[2 * r + 2 * index, index], g[2 * r + 2 * index + 1, index] = 1.0, -1.0
-            g[2 * r:, r] = -1.0
-        # Normalised: forces by their range, the cost by the largest effort curvature, each row
-        # by its largest coefficient; tolerances then read as fractions of ranges.
-        self.cost = float(np.max(2.0 * weight * model.force_scale ** 2))
-        self.hessian = scale[:, None] * hessian * scale / self.cost
-        self.linear = scale[:, None] * linear / self.cost
+            g[2 * r:, -1] = -1.0
         g = g * scale
         row_scale = 1.0 / np.max(np.abs(g), axis=1)
         self.g, self.h = g * row_scale[:, None], h * row_scale[:, None]
@@ -161,6 +181,10 @@ class Law:
         opposite = np.arange(rows) ^ 1
         opposite[2 * r:] = -1
         self.opposite = opposite
+        # A row's multiplier in units of its actuator's effort gradient at full force.
+        owner = np.concatenate((index.repeat(2), index.repeat(2) if self.minimax else []))
+        owner = owner.astype(int)
+        self.dual_scale = self.curvature[owner] / (row_scale * scale[owner])
 
     def region(self, key: int, first: int = 0) -> Region | None:
         """The law and checks of the active set ``key`` (bit j: row j active), or None when its
@@ -175,26 +199,29 @@ class Law:
             active = self._independent(active, first)
             key = sum(1 << j for j in active)
         active = np.array(active, dtype=int)
-        g_active = self.g[active]
-        d, k = self.d, active.size
-        kkt = np.zeros((d + k, d + k))
-        kkt[:d, :d] = self.hessian
-        kkt[:d, d:] = g_active.T
-        kkt[d:, :d] = g_active
+        rows = np.vstack((self.equality, self.g[active]))
+        d, n, k = self.d, self.n, active.size
+        kkt = np.zeros((d + n + k, d + n + k))
+        kkt[np.arange(d), np.arange(d)] = self.curvature
+        kkt[:d, d:] = rows.T
+        kkt[d:, :d] = rows
         try:
-            solution = np.linalg.solve(kkt, np.vstack((-self.linear, self.h[active])))
+            solution = np.linalg.solve(kkt, np.vstack((-self.linear, self.equality_h, self.h[active])))
         except np.linalg.LinAlgError:
             return None
-        x, multipliers = solution[:d], solution[d:]
+        x, multipliers = solution[:d], solution[d + n:]
         inactive = np.ones(self.rows, dtype=bool)
         inactive[active] = False
         inactive[self.opposite[active][self.opposite[active] >= 0]] = False   # f_max >= f_min always
         inactive = np.flatnonzero(inactive)
         primal = self.g[inactive] @ x - self.h[inactive]
         primal[:, -1] -= PRIMAL_TOLERANCE
-        dual = -multipliers
+        dual = -multipliers / self.dual_scale[active][:, None]
         dual[:, -1] -= DUAL_TOLERANCE
         law = self.scale[:self.r, None] * x[:self.r]
+        for j in active[active < 2 * self.r].tolist():         # a force at its bound is that bound, exactly
+            law[j // 2] = 0.0
+            law[j // 2, self.n + (self.r if j % 2 == 0 else 0) + j // 2] = 1.0
         matrix = np.ascontiguousarray(np.vstack((law, primal, dual)))
         return Region(key, matrix, np.concatenate((inactive, active)),
                       np.concatenate((np.ones(inactive.size, bool), np.zeros(k, bool))), 2 * self.r)
@@ -221,6 +248,18 @@ class Law:
             return 0
         i = int(np.argmax(np.abs(force)))
         return 1 << 2 * self.r + 2 * i + int(force[i] < 0.0)
+
+    def near_largest(self, force: np.ndarray, tolerance: np.ndarray) -> int:
+        """The minimax rows of the forces within ``tolerance`` of the largest |f_i| (at the
+        optimum fbar is the largest, and every force that large has its row active)."""
+        if not self.minimax:
+            return 0
+        top = float(np.max(np.abs(force)))
+        key = 0
+        for i, (f, near) in enumerate(zip(force.tolist(), tolerance.tolist())):
+            if abs(f) >= top - near:
+                key |= 1 << 2 * self.r + 2 * i + int(f < 0.0)
+        return key
 
 
 def read_regions(path: str, law: Law) -> list[int]:
@@ -406,25 +445,42 @@ class ExplicitAllocation(AllocationMethod):
         if self.law.minimax:
             qp.up[index["last"]] = max(float(np.max(np.abs(limits.low))), float(np.max(np.abs(limits.high))))
         solution = qp.solve(qp.low, qp.up)
-        counts = f"regions {self.regions}, hits {self.hits}/{self.calls}"
         if not solution.usable:
-            return MethodOutput(np.zeros(r), f"OSQP: {solution.status}; {counts}", solution.iterations, 0.0, False)
-        x = solution.x
-        start = self._law(self._active(solution), self.law.largest(x[:r]))
-        if start is not None:
-            out = start.matrix.dot(p)
-            checks = out[r:].tolist()
-            if max(checks) <= 0.0:
-                self._keep(start)
-                return MethodOutput(out[:r], f"new region by OSQP; regions {self.regions}, "
-                                    f"hits {self.hits}/{self.calls}", solution.iterations)
-            found = self._moves(start, checks, p, POLISH_MOVES)
-            if found is not None:
-                return MethodOutput(found, f"new region by OSQP and moves; regions {self.regions}, "
-                                    f"hits {self.hits}/{self.calls}", solution.iterations)
+            return MethodOutput(np.zeros(r), f"OSQP: {solution.status}; regions {self.regions}, "
+                                f"hits {self.hits}/{self.calls}", solution.iterations, 0.0, False)
+        iterations = solution.iterations
+        found = self._polish(solution, p)
+        if found is None:
+            # A guess from an answer to OSQP's tolerance that the moves do not mend (ill-scaled or
+            # degenerate problems): OSQP again, warm-started, to a much tighter tolerance.
+            settings = self.model.vehicle.solver
+            qp.update_settings(replace(settings, eps_abs=TIGHT, eps_rel=TIGHT, max_iter=TIGHT_ITERATIONS))
+            tight = qp.solve(qp.low, qp.up)
+            qp.update_settings(settings)
+            iterations += tight.iterations
+            if tight.usable and tight.status == SOLVED:
+                solution = tight
+                found = self._polish(solution, p)
+        if found is not None:
+            return MethodOutput(found, f"new region by OSQP; regions {self.regions}, hits {self.hits}/{self.calls}",
+                                iterations)
         self.inexact += 1
-        return MethodOutput(x[:r].copy(), f"OSQP, no exact region ({solution.status}); {counts}",
-                            solution.iterations)
+        return MethodOutput(solution.x[:r].copy(), f"OSQP, no exact region ({solution.status}); "
+                            f"regions {self.regions}, hits {self.hits}/{self.calls}", iterations)
+
+    def _polish(self, solution: Solution, p: np.ndarray) -> np.ndarray | None:
+        """The region of the active set OSQP's answer shows, or one a few moves from it: its
+        forces (it becomes the current region), or None."""
+        r = self._r
+        start = self._law(self._active(solution), self.law.largest(solution.x[:r]))
+        if start is None:
+            return None
+        out = start.matrix.dot(p)
+        checks = out[r:].tolist()
+        if max(checks) <= 0.0:
+            self._keep(start)
+            return out[:r]
+        return self._moves(start, checks, p, POLISH_MOVES)
 
     def _active(self, solution: Solution) -> int:
         """The active set OSQP's answer shows: the bounds by OSQP's own polishing rule (in its
@@ -444,7 +500,7 @@ class ExplicitAllocation(AllocationMethod):
                 key |= 1 << 2 * i
             elif lower[i]:
                 key |= 1 << 2 * i + 1
-        return key | self.law.largest(solution.x[:r])
+        return key | self.law.near_largest(value, NEAR * self.model.force_scale)
 
     # -- the OSQP problem of the misses -------------------------------------------------
 
