@@ -9,22 +9,23 @@ right-hand side is affine in p, so that z* = K p + k, and the set of p where tha
 is optimal is a polyhedron {p : C p <= d} (primal feasibility of the inactive constraints,
 dual feasibility of the multipliers of the active ones) (1.39)-(1.41).
 
-Here the slack is eliminated (s = T f - tau), leaving x = [f, fbar] (fbar only with
-beta > 0) and the rows f_i <= f_max,i, -f_i <= -f_min,i, f_i - fbar <= 0, -f_i - fbar <= 0.
-A :class:`Region` holds, for one active set, the law and its checks as one matrix over
-p_1 = [tau, f_min, f_max, 1]: a sample in the region it was in before costs one
-matrix-vector product and one comparison. The bounds of this sample (faults, rate limits,
-control surfaces' lift at this speed) are parameters, not data: none of them invalidates a
-law. Only T, W, Q and beta are data; a configuration that changes one of them clears the
-laws (:meth:`ExplicitAllocation.update_model`).
+Here the KKT system is solved in the augmented form (z and the multipliers of the equality
+T f - s = tau and of the active rows among f_i <= f_max,i, -f_i <= -f_min,i, f_i - fbar <= 0,
+-f_i - fbar <= 0; fbar only with beta > 0), normalised (:class:`Law`). A :class:`Region`
+holds, for one active set, the law and its checks as one matrix over p_1 = [tau, f_min,
+f_max, 1]: a sample in the region it was in before costs one matrix-vector product and one
+comparison. The bounds of this sample (faults, rate limits, control surfaces' lift at this
+speed) are parameters, not data: none of them invalidates a law. Only T, W, Q and beta are
+data; a configuration that changes one of them clears the laws
+(:meth:`ExplicitAllocation.update_model`).
 
 When the previous region's checks fail, the violated checks name a neighbour: add the
 constraints the law violates, drop those whose multipliers have the wrong sign (a
 primal-dual active-set step). A few such moves, each a cached law or one new KKT solve, reach
 the region of most requests; otherwise OSQP, warm-started, solves the QP of (1.35), its
-active set is read from its answer (by OSQP's own polishing rule), and the moves
-polish it to the exact region. Only if that also fails is OSQP's own answer used, within its
-tolerance, and said so in the status.
+active set is read from its answer (by OSQP's own polishing rule), and the moves polish it
+to the exact region (if they do not, OSQP once more to a tight tolerance). Only if that also
+fails is OSQP's own answer used, within its tolerance, and said so in the status.
 
 The cache of laws is bounded (least recently used first out). A table of every region,
 enumerated offline for a small vehicle (``allocator-explicit precompute``, survey 4.1), can be
