@@ -66,9 +66,9 @@ PRIMAL_TOLERANCE = 1e-9
 """A constraint counts as met within this fraction of its actuator's force range."""
 
 DUAL_TOLERANCE = 1e-9
-"""A multiplier counts as non-negative above -this, in units of its actuator's gradient at
-full force (the diagonal of H for that force, times its range squared): relative to each
-actuator, so that a large one does not blunt the checks of a small one."""
+"""A multiplier counts as non-negative above -this, in units of its actuator's effort
+gradient at full force (2 W_ii times its range): relative to each actuator, so that a large
+one does not blunt the checks of a small one."""
 
 NEAR = 1e-3
 """With beta > 0, OSQP's forces within this fraction of their range of the largest count as
@@ -136,9 +136,9 @@ class Law:
     active; the inequality rows, each divided by its largest coefficient, are: 2i the upper
     bound of actuator i, 2i + 1 its lower bound, 2r + 2i and 2r + 2i + 1 its minimax rows
     f_i - fbar <= 0 and -f_i - fbar <= 0 (with beta > 0). The slack stays a variable (the
-    augmented form): with Q >> W, eliminating it would leave H = 2 (W + T'QT), whose effort part
-    the multipliers of a small actuator are made of is below its rounding. Parameters p_1 =
-    [tau (n), f_min (r), f_max (r), 1]."""
+    augmented form): with Q >> W, eliminating it would leave H = 2 (W + T'QT), in which W,
+    what a small actuator's multipliers are made of, is lost in the rounding of T'QT.
+    Parameters p_1 = [tau (n), f_min (r), f_max (r), 1]."""
 
     def __init__(self, model: Model):
         t = model.t_ec
@@ -150,7 +150,7 @@ class Law:
         self.minimax = beta > 0.0
         self.size = n + 2 * r + 1
         self.data = (t.tobytes(), weight.tobytes(), slack.tobytes(), beta)
-        self.fingerprint = hashlib.sha256(b"".join((*self.data[:3], repr(beta).encode()))).hexdigest()
+        self.fingerprint = hashlib.sha256(b"".join((*self.data[:3], repr((t.shape, beta)).encode()))).hexdigest()
         d = r + n + 1 if self.minimax else r + n
         scale = np.concatenate((model.force_scale, model.dof_scale, [np.max(model.force_scale)]))[:d]
         # 1/2 y'Hy + y'(L p_1) = f'Wf + s'Qs + beta fbar; E y = tau; G y <= h p_1.
@@ -183,8 +183,7 @@ class Law:
         opposite[2 * r:] = -1
         self.opposite = opposite
         # A row's multiplier in units of its actuator's effort gradient at full force.
-        owner = np.concatenate((index.repeat(2), index.repeat(2) if self.minimax else []))
-        owner = owner.astype(int)
+        owner = np.tile(index.repeat(2), 2 if self.minimax else 1)
         self.dual_scale = self.curvature[owner] / (row_scale * scale[owner])
 
     def region(self, key: int, first: int = 0) -> Region | None:
