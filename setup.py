@@ -30,6 +30,7 @@ setup(
             "allocator_lifecycle_node = allocator_pkg.lifecycle_node:main",
             "allocator-ctl = allocator_pkg.ctl:main",
             "allocator-capability = allocator_pkg.capability:main",
+            "allocator-explicit = allocator_pkg.explicit_tool:main",
         ],
     },
 )

@@ -30,7 +30,7 @@ import itertools
 import math
 import sys
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -70,6 +70,11 @@ class Capability:
         self.method = method or vehicle.method
         if self.method not in METHODS:
             raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
+        # the attainable set does not depend on how an unattainable request is answered: a
+        # method is refused only for what it cannot model (its actuators, a file it needs)
+        unfit = METHODS[self.method].problems(replace(vehicle, saturation="weighted", priorities=()))
+        if unfit:
+            raise ValueError(f"method '{self.method}' cannot serve this vehicle: {'; '.join(unfit)}")
         self.sides = METHODS[self.method].thrust_region_sides(vehicle)
         self.apothem = METHODS[self.method].thrust_region_apothem(vehicle)
         self.speed = speed

@@ -253,6 +253,7 @@ class _Parser:
             svd_filter_damping_threshold=values["svd_filter.damping_threshold"],
             priorities=priorities,
             nominal_voltage=nominal_voltage,
+            explicit_regions=values["explicit.regions"],
         )
         unfit = METHODS[vehicle.method].problems(vehicle)
         if unfit:

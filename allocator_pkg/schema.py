@@ -80,7 +80,7 @@ class Key:
         if isinstance(self.default, bool):
             return str(self.default).lower()
         if isinstance(self.default, str):
-            return f"`{self.default}`"
+            return f"`{self.default}`" if self.default else "empty"
         if isinstance(self.default, list):
             return "[" + ", ".join(map(str, self.default)) + "]"
         return f"{self.default:g}" if isinstance(self.default, float) else str(self.default)
@@ -151,6 +151,9 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         "normalised configuration matrix T(alpha) below it are damped (damped least squares), so that no force "
         "exceeds 1/epsilon of the request in units of authority and range.", default=0.05, minimum=0.0,
         exclusive_minimum=True, maximum=1.0),
+    Key("explicit.regions", STR, "Method explicit: a file of its regions from `allocator-explicit precompute`, "
+        "loaded when the method is set up (empty: the regions are found as requests reach them).", default="",
+        constraint="a file path, or empty"),
     Key("solver.eps_abs", FLOAT, "OSQP absolute tolerance, as a fraction of each variable's range.",
         default=1e-5, minimum=0.0, exclusive_minimum=True),
     Key("solver.eps_rel", FLOAT, "OSQP relative tolerance.", default=1e-5, minimum=0.0),

@@ -162,6 +162,7 @@ class Vehicle:
     svd_filter_damping_threshold: float = 0.05
     priorities: tuple[int, ...] = ()
     nominal_voltage: float | None = None
+    explicit_regions: str = ""
 
     @property
     def priority_levels(self) -> tuple[tuple[int, ...], ...]:

@@ -16,7 +16,9 @@ Methods, each timed as a whole sample (``Allocator.allocate``, Python included):
 1. every registered method (``allocator_pkg.METHODS``) that can serve the vehicle: ``qp`` on
    one OSQP problem per configuration, updated and warm-started, ``pseudoinverse`` with
    clipping, ``nonlinear``, ``lp`` on HiGHS, ``dynamic``, ``svd_filter`` (vehicles with
-   rotatable thrusters);
+   rotatable thrusters), ``explicit`` (vehicles without them; with its cache of laws: the
+   regions cached at the end, and over the timed samples the share of solves the previous
+   region answered, those a neighbouring region answered and those OSQP was needed for);
 2. ``pseudoinverse (scale)``: the weighted pseudo-inverse with uniform scale-down (the common
    ROS thruster-manager pattern); ``qp (direct)`` and ``pseudoinverse (direct)``: Durham's
    direct method for unattainable requests (``saturation: direct``);
@@ -240,6 +242,17 @@ def convergence(vehicle, directions: int = HELD_DIRECTIONS, samples: int = HELD)
             for name, values in reached.items()}
 
 
+def region_figures(before: dict[str, int], after: dict[str, int]) -> dict[str, float]:
+    """The explicit method's cache over the timed samples: laws cached at the end, and the
+    shares of its solves (several a sample with the drag feed-forward) that the previous region,
+    a neighbouring one, or OSQP answered."""
+    calls = max(after["calls"] - before["calls"], 1)
+    return {"regions": after["regions"], "hit_rate": (after["hits"] - before["hits"]) / calls,
+            "neighbour_rate": (after["moved"] - before["moved"]) / calls,
+            "osqp_rate": (after["solved"] - before["solved"]) / calls,
+            "inexact": after["inexact"] - before["inexact"]}
+
+
 def run_sequence(vehicle, requests: np.ndarray) -> dict:
     capability = Capability(vehicle, method="nonlinear", speed=SPEED)
     rows = list(vehicle.dof_indices)
@@ -262,6 +275,8 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
             allocator.allocate(tau)
         solver_times = timed_backend.times
         solver_times.clear()
+        statistics = getattr(allocator._method, "statistics", None)
+        before = statistics() if statistics else None
         times, errors, iterations, power_ratio, saturated = [], [], [], [], 0
         previous = allocator.azimuth
         travel = 0.0
@@ -293,6 +308,8 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
             "distance_to_qp": percentiles(np.max(np.abs(np.array(forces[name]) - np.array(forces["qp"])) / scale,
                                                  axis=1)),
         }
+        if before is not None:
+            results[name]["regions"] = region_figures(before, statistics())
     return {"samples": len(requests) - WARM_UP, "attainable": int(attainable.sum()),
             "reference_samples": len(reference), "methods": results}
 

@@ -69,3 +69,18 @@ def test_the_report_renders_the_convergence_rows_when_a_run_has_them(tmp_path):
     text = out.read_text()
     assert "| qp | 6 | 9 | 0 | 0.00 | 0.00 |" in text
     assert "| lp | - | - | 2 | - | - |" in text
+
+
+def test_the_report_gives_the_explicit_rows_and_its_regions_when_measured():
+    result = json.loads((ROOT / "bench" / "results" / "latest.json").read_text())
+    run = result["solver"]["vehicles"]["bluerov2_heavy"]["sequences"]["smooth"]
+    run["methods"]["explicit"] = {**run["methods"]["qp"], "time_us": {"median": 9.0, "p90": 9.5, "p99": 31.0,
+                                                                      "max": 60.0},
+                                  "regions": {"regions": 1, "hit_rate": 0.999, "neighbour_rate": 0.0,
+                                              "osqp_rate": 0.001, "inexact": 0}}
+    lines = report._targets(result) + report._solver_tables(result)
+    assert "| explicit median <= 10 us, bluerov2_heavy, smooth, Python included | 9.0 us | yes |" in lines
+    assert "| explicit p99 <= 30 us, bluerov2_heavy, smooth, Python included | 31.0 us | no |" in lines
+    assert ("explicit: 1 region cached; of its solves in the timed samples 99.9 % answered by the previous "
+            "region, 0.0 % by a neighbouring one, 0.1 % after OSQP (0 left inexact).") in lines
+    assert any(line.startswith("| explicit | 9.0 | 9.5 | 31.0 | 60.0 |") for line in lines)

@@ -27,7 +27,7 @@ EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 
 def test_the_schema_offers_exactly_the_registered_methods():
     assert schema.VEHICLE_KEY_BY_NAME["method"].choices == tuple(METHODS)
-    assert set(METHODS) == {"qp", "pseudoinverse", "nonlinear", "lp", "dynamic", "svd_filter"}
+    assert set(METHODS) == {"qp", "pseudoinverse", "nonlinear", "lp", "dynamic", "svd_filter", "explicit"}
 
 
 @pytest.mark.parametrize("name", list(METHODS))
@@ -35,6 +35,8 @@ def test_every_registered_method_implements_the_interface(name):
     method = METHODS[name]
     assert issubclass(method, AllocationMethod) and method.name == name
     vehicle = load_vehicle(EXAMPLE)
+    if method.problems(vehicle):                      # explicit: actuators of fixed direction only
+        vehicle = load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml")
     allocator = Allocator(vehicle, method=name)
     assert allocator.method == name
     assert METHODS[name].problems(vehicle) == []
@@ -121,7 +123,7 @@ def test_saturation_direct_is_taken_by_the_methods_that_implement_it(name):
     vehicle = vehicle_from(EXAMPLE, method=name, saturation="direct")
     assert Allocator(vehicle).method == name
     assert set(METHODS) - {n for n in METHODS if "direct" in METHODS[n].saturation_modes} == \
-        {"nonlinear", "dynamic", "svd_filter"}
+        {"nonlinear", "dynamic", "svd_filter", "explicit"}
 
 
 @pytest.mark.parametrize("name", list(METHODS))

@@ -11,13 +11,16 @@ section in docs/theory.md.
 - ``nonlinear``: the nonlinear problem (1.44) by sequential linearised QPs (1.45);
 - ``lp``: the survey's linear programme (section 5.3) on HiGHS, warm-started from the last basis;
 - ``dynamic``: a control-Lyapunov update law whose equilibrium is the optimum (section 5.1);
-- ``svd_filter``: azimuths steered by a filter, thrusts by a damped least-squares inverse (5.4).
+- ``svd_filter``: azimuths steered by a filter, thrusts by a damped least-squares inverse (5.4);
+- ``explicit``: the piecewise-affine law of (1.35) (section 4.1), region by region, for
+  actuators of fixed direction.
 """
 
 from __future__ import annotations
 
 from .base import AllocationMethod
 from .dynamic import DynamicAllocation
+from .explicit import ExplicitAllocation
 from .lp import LPAllocation
 from .nonlinear import NonlinearAllocation
 from .pseudoinverse import PseudoInverseAllocation
@@ -31,6 +34,7 @@ METHODS: dict[str, type[AllocationMethod]] = {
     LPAllocation.name: LPAllocation,
     DynamicAllocation.name: DynamicAllocation,
     SVDFilterAllocation.name: SVDFilterAllocation,
+    ExplicitAllocation.name: ExplicitAllocation,
 }
 
 __all__ = ["METHODS", "AllocationMethod"]
