@@ -117,10 +117,7 @@ class Allocator:
                  backend: str | BackendFactory = DEFAULT_BACKEND):
         if method is not None and method not in METHODS:
             raise ValueError(f"unknown method '{method}'; choose from {', '.join(METHODS)}")
-        unfit = METHODS[method or vehicle.method].problems(vehicle)
-        if unfit:
-            raise ValueError(f"method '{method or vehicle.method}' cannot serve this vehicle: {'; '.join(unfit)}")
-        _check_priorities(method or vehicle.method, vehicle)
+        _check_method(method or vehicle.method, vehicle)
         if dt is not None and not (math.isfinite(dt) and dt > 0.0):
             raise ValueError(f"dt must be a positive number of seconds, got {dt}")
         if isinstance(backend, str):
@@ -197,7 +194,7 @@ class Allocator:
         old = self._vehicle
         if [(a.name, a.type) for a in vehicle.actuators] != [(a.name, a.type) for a in old.actuators]:
             raise ValueError("reconfigure keeps the actuators (names and types); build a new Allocator instead")
-        _check_priorities(self._method_override or vehicle.method, vehicle)
+        _check_method(self._method_override or vehicle.method, vehicle)
 
     def reconfigure(self, vehicle: Vehicle) -> None:
         """Use a new configuration of the same actuators; state and faults carry over.
@@ -218,7 +215,10 @@ class Allocator:
     def _configure(self, vehicle: Vehicle) -> None:
         model = Model.build(vehicle, self._dt if self._dt is not None else 1.0 / vehicle.rate_hz)
         name = self._method_override or vehicle.method
-        stale = [key for key, method in self._methods.items() if method.structure != model.structure]
+        # a cached method goes with a new structure, or when it cannot serve the new vehicle
+        # (it is set up again, with its reason checked, if chosen later)
+        stale = [key for key, method in self._methods.items()
+                 if method.structure != model.structure or METHODS[key].problems(vehicle)]
         for key in stale:
             self._retired_setups += self._methods.pop(key).setups
         self._inverse = PseudoInverseGains(model)
@@ -642,8 +642,12 @@ class Allocator:
             azimuth_state.thrust = float(thrust[i])
 
 
-def _check_priorities(method: str, vehicle: Vehicle) -> None:
-    """Raise ValueError when the vehicle orders its DOFs and the method does not implement it."""
+def _check_method(method: str, vehicle: Vehicle) -> None:
+    """Raise ValueError when ``method`` cannot serve ``vehicle`` (its reasons) or the vehicle
+    orders its DOFs and the method does not implement it."""
+    unfit = METHODS[method].problems(vehicle)
+    if unfit:
+        raise ValueError(f"method '{method}' cannot serve this vehicle: {'; '.join(unfit)}")
     if vehicle.priority_levels and not METHODS[method].implements_priorities:
         able = ", ".join(name for name, kind in METHODS.items() if kind.implements_priorities)
         raise ValueError(f"priorities: method '{method}' does not implement DOF priorities; methods that do: {able}")

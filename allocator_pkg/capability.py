@@ -11,6 +11,7 @@ survey's polygon of ``azimuth_polygon_sides`` sides for ``lp``, cut by the circl
 reaches beyond it, since every thrust is clipped to its limit), or that it cannot redistribute
 force (``pseudoinverse``, ``svd_filter``), in which case only forces the weighted
 pseudo-inverse gives within every limit count, found by bisection on the pseudo-inverse.
+``explicit`` serves only actuators of fixed direction, whose box it shares with ``qp``.
 
 Rotatable thrusters may turn to any allowed angle (steady state: rate limits do not apply).
 A forbidden sector makes the set of forces a thruster can give non-convex; it is split into
@@ -70,9 +71,7 @@ class Capability:
         self.method = method or vehicle.method
         if self.method not in METHODS:
             raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
-        # the attainable set does not depend on how an unattainable request is answered: a
-        # method is refused only for what it cannot model (its actuators, a file it needs)
-        unfit = METHODS[self.method].problems(replace(vehicle, saturation="weighted", priorities=()))
+        unfit = unmodelled(self.method, vehicle)
         if unfit:
             raise ValueError(f"method '{self.method}' cannot serve this vehicle: {'; '.join(unfit)}")
         self.sides = METHODS[self.method].thrust_region_sides(vehicle)
@@ -363,12 +362,21 @@ def region(vehicle: Vehicle, method: str) -> tuple:
     return (sides, round(METHODS[method].thrust_region_apothem(vehicle), 12))
 
 
+def unmodelled(method: str, vehicle: Vehicle) -> list[str]:
+    """Why ``method``'s constraints cannot describe ``vehicle`` (its actuators, a file it
+    needs); empty when they can. The saturation mode and DOF priorities decide how an
+    unattainable request is answered, not what can be attained, so they are not held against
+    a method here (a pseudo-inverse's reach with ``saturation: direct`` is
+    :func:`region`'s)."""
+    return METHODS[method].problems(replace(vehicle, saturation="weighted", priorities=()))
+
+
 def differing_methods(vehicle: Vehicle, method: str) -> list[list[str]]:
     """Groups of the registered methods that can serve ``vehicle`` with the same capability,
     other than ``method``'s, each in registry order."""
     groups: dict[tuple, list[str]] = {}
     for name in METHODS:
-        if not METHODS[name].problems(vehicle):
+        if not unmodelled(name, vehicle):
             groups.setdefault(region(vehicle, name), []).append(name)
     mine = region(vehicle, method)
     return [names for key, names in groups.items() if key != mine]

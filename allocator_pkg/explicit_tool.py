@@ -10,7 +10,8 @@ vehicle can meet:
 - tau within TAU_RANGE times each controlled DOF's authority;
 - f_min <= f_max, both within the actuator's static range (faults scale it, rate limits cut a
   window out of it), a control surface's at ``--speed`` (its lift range grows as the square of
-  the speed: regions that need a larger range are not listed).
+  the speed: regions that need a larger range are not listed), a thruster's at the nominal
+  voltage (a region only a higher voltage reaches is found online).
 
 The file holds the active sets and the fingerprint of the data they were computed for (T, W,
 Q, beta); the node builds their laws when it sets the method up (``explicit.regions``) and
@@ -31,7 +32,7 @@ import numpy as np
 from .faults import FaultSet, static_ranges
 from .methods.explicit import ExplicitAllocation, Law
 from .model import Model
-from .parameters import load_vehicle
+from .parameters import read_parameters, vehicle_from_parameters
 from .vehicle import ConfigError, Vehicle
 
 TAU_RANGE = 10.0
@@ -113,7 +114,9 @@ def main(argv: list[str] | None = None) -> int:
     command.add_argument("--speed", type=float, default=2.0, help="flow speed for control surfaces' ranges [m/s]")
     arguments = parser.parse_args(argv)
     try:
-        vehicle = load_vehicle(arguments.config)
+        parameters = read_parameters(arguments.config)
+        parameters["explicit.regions"] = ""         # the file this writes may be missing or stale
+        vehicle = vehicle_from_parameters(parameters)
         keys, tried, seconds, law = precompute(vehicle, arguments.speed)
     except (ConfigError, ValueError, OSError) as error:
         print(f"allocator-explicit: {error}", file=sys.stderr)

@@ -2,6 +2,8 @@
 quadprog with the minimax term), and its cache of laws (hits, neighbours, faults, speed, rate
 limits, reconfiguration, a bounded size). No timing here: `make bench` times it."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from conftest import DATA, ROOT, vehicle_from
@@ -352,3 +354,55 @@ def test_a_regions_file_for_other_data_and_vehicles_it_cannot_enumerate_are_refu
     minimax.write_text(OTTER.read_text().replace("ros__parameters:", "ros__parameters:\n    weights: {minimax: 1.0}"))
     assert explicit_tool.main(["precompute", str(minimax), "--out", str(out)]) == 1
     assert "the enumeration covers beta = 0" in capsys.readouterr().err
+
+
+def test_files_that_are_no_regions_file_are_refused_with_a_clear_error(tmp_path):
+    array = tmp_path / "array.npy"
+    np.save(array, np.arange(3))
+    corrupt = tmp_path / "corrupt.npz"
+    corrupt.write_bytes(b"PK\x03\x04 not a zip archive")
+    other = tmp_path / "other.npz"
+    np.savez(other, values=np.arange(3))
+    for path, reason in ((array, "not an .npz archive"), (corrupt, "cannot read"), (other, "no fingerprint")):
+        with pytest.raises(ConfigError, match=f"explicit.regions: .*{reason}"):
+            vehicle_from(OTTER, method="explicit", explicit__regions=str(path))
+
+
+def test_precompute_writes_the_file_the_configuration_names_even_when_missing_or_stale(tmp_path):
+    out = tmp_path / "otter.regions.npz"
+    config = tmp_path / "otter.yaml"
+    config.write_text(OTTER.read_text().replace("method: qp", f"method: explicit\n    explicit: {{regions: {out}}}", 1))
+    assert explicit_tool.main(["precompute", str(config), "--out", str(out)]) == 0          # missing
+    assert len(Allocator(load_vehicle(config))._method.table) == 9
+    heavier = "ros__parameters:\n    weights: {slack: [1e3, 1e3]}"
+    config.write_text(config.read_text().replace("ros__parameters:", heavier, 1))
+    with pytest.raises(ConfigError, match="computed for another configuration"):
+        load_vehicle(config)
+    assert explicit_tool.main(["precompute", str(config), "--out", str(out)]) == 0          # stale
+    assert len(Allocator(load_vehicle(config))._method.table) == 9
+
+
+def test_reconfiguration_refuses_what_the_method_cannot_serve_and_drops_a_cached_method_that_cannot(tmp_path):
+    """With a regions file: after a switch to qp, a change of Q makes the cached explicit's
+    file stale; the allocator drops it and keeps working, and switching back to explicit with
+    the stale file is refused whole, the running configuration unchanged."""
+    out = tmp_path / "otter.regions.npz"
+    explicit_tool.main(["precompute", str(OTTER), "--out", str(out)])
+    tau = np.array([300.0, 0.0, 0.0, 0.0, 0.0, 100.0])
+    vehicle = vehicle_from(OTTER, method="explicit", explicit__regions=str(out))
+    allocator = Allocator(vehicle)
+    with pytest.raises(ValueError, match="it does not implement saturation 'direct'"):
+        allocator.reconfigure(replace(vehicle, saturation="direct"))
+    assert allocator.vehicle is vehicle
+    allocator.reconfigure(replace(vehicle, method="qp"))
+    assert set(allocator._methods) == {"explicit", "qp"}
+    heavier = replace(vehicle, method="qp", weights=replace(vehicle.weights, slack=(1e3, 1e3)))
+    allocator.reconfigure(heavier)
+    assert set(allocator._methods) == {"qp"}
+    with pytest.raises(ValueError, match="computed for another configuration"):
+        allocator.reconfigure(replace(heavier, method="explicit"))
+    assert allocator.vehicle is heavier and allocator.method == "qp"
+    reference = Allocator(heavier)
+    for _ in range(200):                                            # through the rate limits
+        result, expected = allocator.allocate(tau), reference.allocate(tau)
+    assert result.thrust == pytest.approx(expected.thrust, abs=1e-3)

@@ -42,10 +42,12 @@ from __future__ import annotations
 
 import hashlib
 import math
+import zipfile
 from collections import OrderedDict
 from dataclasses import dataclass, replace
 
 import numpy as np
+from numpy.lib.npyio import NpzFile
 
 from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BackendFactory
@@ -265,8 +267,16 @@ class Law:
 
 def read_regions(path: str, law: Law) -> list[int]:
     """The active sets of a file written by ``allocator-explicit precompute``; ValueError when
-    it was computed for other data (T, W, Q or beta) than ``law``'s."""
-    with np.load(path, allow_pickle=False) as data:
+    it cannot be read as one, or was computed for other data (T, W, Q or beta) than ``law``'s."""
+    try:
+        data = np.load(path, allow_pickle=False)
+    except (OSError, ValueError, zipfile.BadZipFile) as error:
+        raise ValueError(f"cannot read {path} as a regions file: {error}") from error
+    if not isinstance(data, NpzFile):
+        raise ValueError(f"{path} is not a regions file of allocator-explicit precompute (not an .npz archive)")
+    with data:
+        if "fingerprint" not in data or "keys" not in data:
+            raise ValueError(f"{path} is not a regions file of allocator-explicit precompute (no fingerprint or keys)")
         if str(data["fingerprint"]) != law.fingerprint:
             raise ValueError(f"{path} was computed for another configuration (T, W, Q or beta differ): "
                              "run allocator-explicit precompute again")
@@ -307,7 +317,7 @@ class ExplicitAllocation(AllocationMethod):
         if vehicle.explicit_regions and not problems:
             try:
                 read_regions(vehicle.explicit_regions, Law(Model.build(vehicle, 1.0 / vehicle.rate_hz)))
-            except (OSError, ValueError, KeyError) as error:
+            except ValueError as error:
                 problems.append(f"explicit.regions: {error}")
         return problems
 
