@@ -7,10 +7,12 @@ from pathlib import Path
 os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
 os.environ.setdefault("ROS_DOMAIN_ID", "42")
 
+import numpy as np
 import pytest
 from hypothesis import settings
 
 from allocator_pkg import Vehicle, read_parameters, vehicle_from_parameters
+from allocator_pkg.configuration_matrix import configuration_matrix
 
 # Property tests: `make test` runs the same examples every time (a red CI means a change broke
 # something); HYPOTHESIS_PROFILE=explore draws many fresh ones to look for new failures.
@@ -20,6 +22,16 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / "data"
+
+
+def matrices(vehicle: Vehicle) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """T (controlled rows, every angle zero), the actuator weights and the configured thrust
+    ranges of a vehicle of fixed directions, from the configuration alone."""
+    t = configuration_matrix(vehicle.actuators, [0.0] * len(vehicle.actuators))[list(vehicle.dof_indices)]
+    w = np.array([a.weight for a in vehicle.actuators])
+    low = np.array([a.thrust_min for a in vehicle.actuators])
+    high = np.array([a.thrust_max for a in vehicle.actuators])
+    return t, w, low, high
 
 
 def vehicle_from(path, **overrides) -> Vehicle:

@@ -6,12 +6,11 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import DATA, ROOT, vehicle_from
+from conftest import DATA, ROOT, matrices, vehicle_from
 from reference import largest_attainable_scale, weighted_l1_allocation
 
 from allocator_pkg import Allocator, FaultMode
 from allocator_pkg.azimuth import AzimuthLimits
-from allocator_pkg.configuration_matrix import configuration_matrix
 from allocator_pkg.methods.lp import LPAllocation
 from allocator_pkg.methods.sample_lp import polygon_error, survey_apothem
 from allocator_pkg.model import Model, SampleLimits
@@ -26,14 +25,6 @@ Q = [1e5] * 6
 DIRECTIONS = [np.array(d, dtype=float) for d in (
     (1, 0, 0, 0, 0, 0), (0, 1, 0, 0, 0, 0), (0, 0, 1, 0, 0, 0), (0, 0, 0, 1, 0, 0), (0, 0, 0, 0, 1, 0),
     (0, 0, 0, 0, 0, 1), (1, 1, 0, 0, 0, 0.2), (1, -0.5, 0.8, 0.1, -0.1, 0.3), (-0.3, 0.7, -1, 0.2, 0.2, -0.4))]
-
-
-def matrices(vehicle):
-    t = configuration_matrix(vehicle.actuators, [0.0] * len(vehicle.actuators))[list(vehicle.dof_indices)]
-    w = np.array([a.weight for a in vehicle.actuators])
-    low = np.array([a.thrust_min for a in vehicle.actuators])
-    high = np.array([a.thrust_max for a in vehicle.actuators])
-    return t, w, low, high
 
 
 @pytest.mark.parametrize("magnitude", [5.0, 30.0, 80.0, 300.0])

@@ -2,24 +2,15 @@
 
 import numpy as np
 import pytest
-from conftest import DATA, ROOT, vehicle_from
+from conftest import DATA, ROOT, matrices, vehicle_from
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from reference import constrained_allocation, largest_attainable_scale, weighted_pseudo_inverse
 
 from allocator_pkg import Allocator, FaultMode
-from allocator_pkg.configuration_matrix import configuration_matrix
 
 Q = [1e7] * 6
 EIGHT = DATA / "eight_thrusters.yaml"
-
-
-def matrices(vehicle):
-    t = configuration_matrix(vehicle.actuators, [0.0] * len(vehicle.actuators))[list(vehicle.dof_indices)]
-    w = np.array([a.weight for a in vehicle.actuators])
-    low = np.array([a.thrust_min for a in vehicle.actuators])
-    high = np.array([a.thrust_max for a in vehicle.actuators])
-    return t, w, low, high
 
 
 def test_attainable_request_is_met_and_equals_the_weighted_pseudo_inverse():

@@ -58,3 +58,20 @@ class Backend(Protocol):
 
 
 BackendFactory = Callable[[], Backend]
+
+
+class DenseObjective:
+    """The objective as the dense active-set solvers (quadprog, DAQP) take it: P a matrix,
+    its diagonal raised by ``REGULARISATION`` (they need P positive definite, and the problems
+    carry uncosted variables: the minimax bound fbar when beta = 0)."""
+
+    REGULARISATION: ClassVar[float] = 1e-9
+
+    p: np.ndarray
+    q: np.ndarray
+
+    def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
+        if p_diagonal is not None:
+            self.p = np.diag(p_diagonal + self.REGULARISATION)
+        if q is not None:
+            self.q = q.copy()

@@ -11,10 +11,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..vehicle import SolverSettings
-from .backend import BackendResult
-
-REGULARISATION = 1e-9
-"""Added to the (normalised) diagonal of P, as for quadprog: DAQP wants it positive definite."""
+from .backend import BackendResult, DenseObjective
 
 BOUND = 1e30
 """DAQP's infinity."""
@@ -26,27 +23,19 @@ SOLVED = (1, 2)
 """DAQP exit flags of an optimal (2: soft-optimal) solution."""
 
 
-class DAQPBackend:
+class DAQPBackend(DenseObjective):
     name: ClassVar[str] = "daqp"
 
     def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
-        self.p = np.diag(p_diagonal + REGULARISATION)
-        self.q = q.copy()
+        self.update_objective(p_diagonal, q)
         self.dense = np.ascontiguousarray(a.toarray())
         self._entry_row = a.indices.copy()
         self._entry_col = np.repeat(np.arange(a.shape[1]), np.diff(a.indptr))
         self.active = np.zeros(a.shape[0], dtype=bool)
         self.update_settings(settings)
 
-    def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
-        if p_diagonal is not None:
-            self.p = np.diag(p_diagonal + REGULARISATION)
-        if q is not None:
-            self.q = q.copy()
-
     def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
-        if p_diagonal is not None:
-            self.p = np.diag(p_diagonal + REGULARISATION)
+        self.update_objective(p_diagonal, None)
         if index is None:
             self.dense[self._entry_row, self._entry_col] = values
         else:

@@ -11,31 +11,19 @@ import quadprog
 import scipy.sparse as sp
 
 from ..vehicle import SolverSettings
-from .backend import BackendResult
-
-REGULARISATION = 1e-9
-"""Added to the (normalised) diagonal of P: quadprog needs a positive definite P, and the
-problems carry uncosted variables (the minimax bound fbar when beta = 0)."""
+from .backend import BackendResult, DenseObjective
 
 
-class QuadprogBackend:
+class QuadprogBackend(DenseObjective):
     name: ClassVar[str] = "quadprog"
 
     def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
-        self.p = np.diag(p_diagonal + REGULARISATION)
-        self.q = q.copy()
+        self.update_objective(p_diagonal, q)
         self.a = a.copy()
         self.dense = self.a.toarray()
 
-    def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
-        if p_diagonal is not None:
-            self.p = np.diag(p_diagonal + REGULARISATION)
-        if q is not None:
-            self.q = q.copy()
-
     def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
-        if p_diagonal is not None:
-            self.p = np.diag(p_diagonal + REGULARISATION)
+        self.update_objective(p_diagonal, None)
         if index is None:
             self.a.data[:] = values
         else:
