@@ -49,3 +49,24 @@ def test_the_extension_calls_are_there_and_used():
     assert backend._raw is not None
     result = backend.solve(np.array([-0.5, -0.5]), np.array([0.5, 0.5]))
     assert result.usable and np.allclose(result.x, [-0.5, 0.5], atol=1e-6)
+
+
+def test_after_a_stopped_solve_the_next_starts_cold():
+    """A solve stopped at max_iter leaves iterates that are no guide to the next problem; the
+    next solve starts from zero, exactly as a new solver would (same iterations, same x)."""
+    rng = np.random.default_rng(3)
+    size = 12
+    a = sp.csc_matrix(rng.normal(size=(size, size)))
+    a.sort_indices()
+    q = rng.normal(size=size)
+    far, near = 1e9 * np.ones(size), 0.5 * np.ones(size)
+    stopped = OSQPBackend()
+    stopped.setup(np.ones(size), q, a, SolverSettings(1e-6, 1e-6, 3, 0.0))
+    first = stopped.solve(far.copy(), far + 1.0)
+    assert first.status.startswith("maximum iterations")
+    stopped.update_settings(SolverSettings(1e-6, 1e-6, 4000, 0.0))
+    fresh = OSQPBackend()
+    fresh.setup(np.ones(size), q, a, SolverSettings(1e-6, 1e-6, 4000, 0.0))
+    after, cold = stopped.solve(-near, near.copy()), fresh.solve(-near, near.copy())
+    assert after.usable and after.iterations == cold.iterations
+    assert np.array_equal(after.x, cold.x)

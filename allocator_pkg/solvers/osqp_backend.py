@@ -15,7 +15,9 @@ from ..vehicle import SolverSettings
 from .backend import BackendResult
 
 ACCEPTED = frozenset((int(osqp.SolverStatus.OSQP_SOLVED), int(osqp.SolverStatus.OSQP_SOLVED_INACCURATE)))
-"""OSQP statuses whose solution is used; any other falls back to the pseudo-inverse."""
+"""OSQP statuses whose solution is used and whose iterates warm-start the next solve; after any
+other the pseudo-inverse answers (unless a stopped iterate is feasible enough) and the next
+solve starts cold."""
 
 INTERRUPTED = int(osqp.SolverStatus.OSQP_SIGINT)
 """OSQP catches SIGINT while it solves and only stops; the signal is raised again for the process."""
@@ -87,6 +89,7 @@ class OSQPBackend:
         # attributes used, so an OSQP release that drops them fails there, not silently here.
         raw = getattr(self.solver, "_solver", None)
         self._raw = raw if all(hasattr(raw, name) for name in RAW_CALLS) else None
+        self._cold = (np.zeros(a.shape[1]), np.zeros(rows))
 
     def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
         if p_diagonal is not None:
@@ -113,18 +116,27 @@ class OSQPBackend:
         self.settings = settings
 
     def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+        """Solve from the previous solve's iterates, or from zero after a solve that did not
+        converge. A stopped or failed solve's iterates are no guide to the next problem: after
+        a request far past the vehicle's capability (the multipliers grow with the miss), a
+        warm start from them took ``max_iter`` every sample, for as long as anyone watched."""
         np.maximum(low, -INFINITY, out=low)
         np.minimum(up, INFINITY, out=up)
         if self._raw is None:
             self.solver.update(l=low, u=up) if q is None else self.solver.update(q=q, l=low, u=up)
             result = self.solver.solve(raise_error=False)
-            return _result(result.info, result, self.settings)
-        self._raw.update_data_vec(q=q, l=low, u=up)
-        self._raw.solve()
-        return _result(self._raw.info, self._raw.solution, self.settings)
+            info, solution, restart = result.info, result, self.solver.warm_start
+        else:
+            self._raw.update_data_vec(q=q, l=low, u=up)
+            self._raw.solve()
+            info, solution, restart = self._raw.info, self._raw.solution, self._raw.warm_start
+        answer = _result(info, solution, self.settings)
+        if info.status_val not in ACCEPTED:
+            restart(*self._cold)
+        return answer
 
 
-RAW_CALLS = ("update_data_vec", "update_data_mat", "solve", "solution", "info")
+RAW_CALLS = ("update_data_vec", "update_data_mat", "solve", "solution", "info", "warm_start")
 """What :class:`OSQPBackend` calls on OSQP's extension object."""
 
 
