@@ -1,4 +1,5 @@
-"""The OSQP backend: SIGINT handling, and the extension-object calls it makes per sample."""
+"""The OSQP backend: SIGINT handling, the extension-object calls it makes per sample, and no
+warm start from a solve that did not converge."""
 
 import os
 import signal
@@ -7,8 +8,12 @@ import time
 
 import numpy as np
 import osqp
+import pytest
 import scipy.sparse as sp
+from conftest import ROOT, vehicle_from
 
+from allocator_pkg import Allocator
+from allocator_pkg.model import Model
 from allocator_pkg.solvers.osqp_backend import RAW_CALLS, OSQPBackend
 from allocator_pkg.solvers.problem import ScaledProblem
 from allocator_pkg.vehicle import SolverSettings
@@ -70,3 +75,31 @@ def test_after_a_stopped_solve_the_next_starts_cold():
     after, cold = stopped.solve(-near, near.copy()), fresh.solve(-near, near.copy())
     assert after.usable and after.iterations == cold.iterations
     assert np.array_equal(after.x, cold.x)
+
+
+@pytest.mark.parametrize("config", ["dp_vessel.yaml", "bluerov2_heavy.yaml", "example1_rov.yaml"])
+@pytest.mark.parametrize("excess", [10.0, 1e6, 1e12])
+@pytest.mark.parametrize("method", ["qp", "nonlinear"])
+def test_a_request_far_past_capability_does_not_poison_the_next_samples(method, config, excess):
+    """Both methods on OSQP, with and without rotatable thrusters. Three samples of a request
+    ``excess`` times each DOF's authority (a controller winding up, a 1e12 wrench), then
+    ordinary requests again: the multipliers of the far request are no warm start for the
+    ordinary ones. From the second ordinary sample on every solve converges, in every
+    direction tried; before, the solver stopped at max_iter in every sample for as long as the
+    stream went on."""
+    vehicle = vehicle_from(ROOT / "config" / config)
+    rng = np.random.default_rng(7)
+    alloc = Allocator(vehicle, method=method)
+    model = Model.build(vehicle, alloc.dt)
+    authority = np.zeros(6)
+    authority[model.dof_index] = model.dof_scale
+    for _ in range(4):
+        direction = rng.normal(size=6)
+        ordinary = 0.3 * authority * direction / np.max(np.abs(direction))
+        for _ in range(20):
+            alloc.allocate(ordinary)
+        for _ in range(3):
+            far = alloc.allocate(excess * authority * np.sign(direction))
+            assert np.all(np.isfinite(far.thrust)) and np.all(np.isfinite(far.command))
+        after = [alloc.allocate(ordinary).status for _ in range(12)]
+        assert all(status == "solved" for status in after[1:]), after

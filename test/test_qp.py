@@ -8,7 +8,6 @@ from hypothesis import strategies as st
 from reference import constrained_allocation, largest_attainable_scale, weighted_pseudo_inverse
 
 from allocator_pkg import Allocator, FaultMode
-from allocator_pkg.model import Model
 
 Q = [1e7] * 6
 EIGHT = DATA / "eight_thrusters.yaml"
@@ -124,32 +123,6 @@ def test_solver_failure_falls_back_to_the_clipped_pseudo_inverse_and_recovers():
     result = alloc.allocate([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     assert result.status == "solved"
     assert alloc.stats.solver_setups == 1
-
-
-@pytest.mark.parametrize("config", ["dp_vessel.yaml", "bluerov2_heavy.yaml", "example1_rov.yaml"])
-@pytest.mark.parametrize("excess", [10.0, 1e6, 1e12])
-def test_a_request_far_past_capability_does_not_poison_the_next_samples(config, excess):
-    """Three samples of a request ``excess`` times each DOF's authority (a controller winding up, a
-    1e12 wrench), then ordinary requests again: the multipliers of the far request are no warm
-    start for the ordinary ones. From the second ordinary sample on every solve converges, in
-    every direction tried; before, the solver stopped at max_iter in every sample for as long
-    as the stream went on."""
-    vehicle = vehicle_from(ROOT / "config" / config)
-    rng = np.random.default_rng(7)
-    alloc = Allocator(vehicle, method="qp")
-    model = Model.build(vehicle, alloc.dt)
-    authority = np.zeros(6)
-    authority[model.dof_index] = model.dof_scale
-    for _ in range(4):
-        direction = rng.normal(size=6)
-        ordinary = 0.3 * authority * direction / np.max(np.abs(direction))
-        for _ in range(20):
-            alloc.allocate(ordinary)
-        for _ in range(3):
-            far = alloc.allocate(excess * authority * np.sign(direction))
-            assert np.all(np.isfinite(far.thrust)) and np.all(np.isfinite(far.command))
-        after = [alloc.allocate(ordinary).status for _ in range(12)]
-        assert all(status == "solved" for status in after[1:]), after
 
 
 def test_example_vehicle_allocates_surge_sway_yaw():
