@@ -190,16 +190,28 @@ def _best_path(
     best = None
     best_cost = math.inf
     for sigma in sides:
-        target = direction if sigma > 0 else direction + math.pi
-        for offset in target_offsets(rotation, alpha0, target):
-            crossing = crosses((0.0, offset), forbidden)
-            cost = abs(offset)
-            if crossing:
-                cost += CROSSING_PENALTY
-            if sigma != current_sigma and moving:
-                cost += CROSSING_PENALTY
-            if cost < best_cost - ANGLE_TOLERANCE:
-                best, best_cost = (sigma, offset, crossing), cost
+        path = _cheapest_way(rotation, alpha0, direction if sigma > 0 else direction + math.pi, forbidden)
+        if path is None:
+            continue
+        offset, crossing, cost = path
+        if sigma != current_sigma and moving:
+            cost += CROSSING_PENALTY
+        if cost < best_cost - ANGLE_TOLERANCE:
+            best, best_cost = (sigma, offset, crossing), cost
+    return best
+
+
+def _cheapest_way(rotation: RotationConfig, alpha0: float, target: float,
+                  forbidden: list[tuple[float, float]]) -> tuple[float, bool, float] | None:
+    """(offset, crosses a forbidden sector, cost) of the cheapest way from alpha0 to ``target``
+    (None if the feasible sector does not contain it): the angle turned, plus
+    CROSSING_PENALTY when the way needs zero thrust through a forbidden sector."""
+    best = None
+    for offset in target_offsets(rotation, alpha0, target):
+        crossing = crosses((0.0, offset), forbidden)
+        cost = abs(offset) + (CROSSING_PENALTY if crossing else 0.0)
+        if best is None or cost < best[2] - ANGLE_TOLERANCE:
+            best = (offset, crossing, cost)
     return best
 
 
@@ -273,10 +285,13 @@ def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float
                       hold: float, around: Surroundings | None = None) -> bool:
     """Whether a thruster's side of its forbidden sectors is in question this sample: an edge
     of the allowed piece it is in (a forbidden sector, or the feasible sector's end) lies within
-    a rate step, or the direction the unconstrained solution wants lies beyond one. Only then
+    a rate step, or the direction the unconstrained solution wants lies beyond one: the
+    cheapest way :func:`plan` would turn toward it (on either side, for a reversible thruster)
+    crosses a forbidden sector, even where the long way round stays in the piece. Only then
     can the optimum the method converges to locally fail to be the global one
-    (:mod:`allocator_pkg.pieces`)."""
-    _, _, piece = around or surroundings(rotation, alpha0)
+    (:mod:`allocator_pkg.pieces`); and a crossing the unconstrained wish (which ignores every
+    limit) would start is weighed by the piece planner first, never started past it."""
+    _, forbidden, piece = around or surroundings(rotation, alpha0)
     if piece is None:
         return False                                        # inside a sector: a crossing is under way
     reach = min(angle_step, math.pi) + CROSSING_MARGIN
@@ -286,5 +301,5 @@ def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float
         return False
     direction = math.atan2(desired[1], desired[0])
     sides = (direction, direction + math.pi) if rotation.reversible else (direction,)
-    return not any(piece[0] <= offset <= piece[1]
-                   for side in sides for offset in target_offsets(rotation, alpha0, side))
+    ways = [way for way in (_cheapest_way(rotation, alpha0, side, forbidden) for side in sides) if way is not None]
+    return not ways or any(crossing for _, crossing, _ in ways)

@@ -1,6 +1,7 @@
 """Rotatable thrusters through every method: rate limits, sectors, the polygon, crossing
 forbidden sectors at zero thrust, stuck thrusters, reversible and vertical ones."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -9,7 +10,7 @@ from conftest import ROOT, vehicle_from
 
 from allocator_pkg import METHODS, Allocator, FaultMode, vehicle_from_parameters
 from allocator_pkg.angles import wrap
-from allocator_pkg.azimuth import AzimuthLimits, AzimuthState, plan, resolve
+from allocator_pkg.azimuth import AzimuthLimits, AzimuthState, piece_in_question, plan, resolve
 from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector
 
 DP = ROOT / "config" / "dp_vessel.yaml"
@@ -205,3 +206,32 @@ def test_plan_and_resolve_units():
     assert thrust == 15.0          # the projection, 50 sin(0.1), is below what the rate limit allows
     held = resolve(AzimuthLimits(-0.1, 0.1, 1, 0.0, 25.0), 0.05, (1e-3, 0.0), 0.01, continuous=True)
     assert held[1] == 0.05
+
+
+@pytest.mark.parametrize("reversible", [False, True])
+def test_a_wish_that_would_start_a_crossing_puts_the_side_in_question(reversible):
+    """`plan` turns the cheapest way toward the wanted direction, across a forbidden sector if
+    that is shorter (plus a penalty) than the long way round. Whenever it would start such a
+    crossing, `piece_in_question` must say so, so that the piece planner weighs it: otherwise the
+    pseudo-inverse's wish, which ignores every limit, overrules the planner. (The DP vessel at
+    75 deg and 1.1 times its capability: planned to 117.6 deg, the starboard unit passed 109.5 deg,
+    the wish at 60.6 deg read as reachable the long way round, and `plan` ramped it down to cross
+    back: a cycle of 45 samples.) The starboard unit's sector, from every allowed angle toward every
+    direction, at rest (a crossing starts at once)."""
+    rotation = vehicle_from(DP).actuators[0].rotation
+    if reversible:
+        rotation = dataclasses.replace(rotation, reversible=True)
+    thrust_range = (-300e3 if reversible else 0.0, 420e3)
+    step, hold = 0.021, 42.0
+    assert piece_in_question(rotation, math.radians(109.5), step, (369e3 * math.cos(math.radians(60.6)),
+                                                                   369e3 * math.sin(math.radians(60.6))), hold)
+    for angle in np.radians(np.arange(-180.0, 180.0, 2.5)):
+        if in_forbidden_sector(rotation, angle):
+            continue
+        for direction in np.radians(np.arange(0.0, 360.0, 5.0)):
+            desired = (369e3 * math.cos(direction), 369e3 * math.sin(direction))
+            state = AzimuthState(angle=float(angle))
+            plan(rotation, state, step, thrust_range, 10e3, desired, hold)
+            if state.turning:
+                assert piece_in_question(rotation, float(angle), step, desired, hold), \
+                    (math.degrees(angle), math.degrees(direction))

@@ -37,3 +37,18 @@ def test_held_requests_settle_near_the_optimum_within_every_limit(swept, method)
     far = [(c.direction_deg, c.magnitude, c.deviation) for c in cases if c.deviation > 2e-3]
     assert not far, f"{vessel} {method}: settled away from the optimum: {far}"
     assert not [c.violations for c in cases if c.violations]
+
+
+@pytest.mark.parametrize("method", settling.METHODS)
+def test_the_dp_vessel_settles_at_75_degrees_past_capability(method):
+    """75 deg at 1.1 times the capability, which the small sweep does not draw: the optimum has
+    the starboard azimuth past its forbidden sector at full thrust (117 deg). It used to cycle
+    every 45 samples: the unconstrained wish, across the sector the short way, started a
+    crossing back whenever the unit was more than a rate step and the crossing margin from the
+    sector's edge, and the piece planner called it back at the next edge."""
+    vehicle = settling.VESSELS["dp_vessel"]()
+    [(_, _, tau, reference)] = settling.requests(vehicle, [75.0], [1.1])
+    case = settling.hold(vehicle, method, tau, reference)
+    assert case.settled, (case.angle_spread_deg, case.late_fallbacks)
+    assert case.deviation <= 2e-3
+    assert not case.violations
