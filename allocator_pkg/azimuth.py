@@ -163,7 +163,11 @@ def plan(
     low, high = piece
     step = min(angle_step, math.pi)
     low, high = max(low, -step), min(high, step)
-    if best is not None:
+    if best is not None and not rotation.continuous:
+        # The feasible sector's end blocks the short way round: the window opens only toward
+        # the long way. A free thruster takes the long way only to spare a crossing; cut toward
+        # it, the window would open again a rate step past the goal's antipode, and the QP
+        # could turn it back there for good.
         offset = best[1]
         natural = wrap(offset)
         if natural * offset < 0.0 or abs(offset) > math.pi + ANGLE_TOLERANCE:
