@@ -30,7 +30,6 @@ from dataclasses import dataclass
 from .angles import ANGLE_TOLERANCE, wrap
 from .sectors import (
     Surroundings,
-    crosses,
     forbidden_offsets,
     in_forbidden_sector,
     surroundings,
@@ -127,7 +126,7 @@ def plan(
     current_sigma = (1 if thrust0 > 0.0 else -1) if moving else state.sigma
     domain, forbidden, piece = around or surroundings(rotation, alpha0)
     wanted = math.hypot(desired[0], desired[1]) > hold
-    best = _best_path(rotation, alpha0, desired, forbidden, current_sigma, moving, thrust_range) if wanted else None
+    best = _best_path(rotation, alpha0, desired, piece, current_sigma, moving, thrust_range) if wanted else None
 
     if state.turning and piece is not None and (best is None or not best[2]):
         state.turning = 0
@@ -183,7 +182,7 @@ def _best_path(
     rotation: RotationConfig,
     alpha0: float,
     desired: tuple[float, float],
-    forbidden: list[tuple[float, float]],
+    piece: tuple[float, float] | None,
     current_sigma: int,
     moving: bool,
     thrust_range: tuple[float, float],
@@ -194,7 +193,7 @@ def _best_path(
     best = None
     best_cost = math.inf
     for sigma in sides:
-        path = _cheapest_way(rotation, alpha0, direction if sigma > 0 else direction + math.pi, forbidden)
+        path = _cheapest_way(rotation, alpha0, direction if sigma > 0 else direction + math.pi, piece)
         if path is None:
             continue
         offset, crossing, cost = path
@@ -206,13 +205,15 @@ def _best_path(
 
 
 def _cheapest_way(rotation: RotationConfig, alpha0: float, target: float,
-                  forbidden: list[tuple[float, float]]) -> tuple[float, bool, float] | None:
+                  piece: tuple[float, float] | None) -> tuple[float, bool, float] | None:
     """(offset, crosses a forbidden sector, cost) of the cheapest way from alpha0 to ``target``
     (None if the feasible sector does not contain it): the angle turned, plus
-    CROSSING_PENALTY when the way needs zero thrust through a forbidden sector."""
+    CROSSING_PENALTY when the way needs zero thrust through a forbidden sector. A way crosses
+    one when it leaves ``piece``, the allowed offsets around alpha0 (every way does from inside
+    a sector, where ``piece`` is None); a way never leaves the feasible sector."""
     best = None
     for offset in target_offsets(rotation, alpha0, target):
-        crossing = crosses((0.0, offset), forbidden)
+        crossing = piece is None or not piece[0] - ANGLE_TOLERANCE <= offset <= piece[1] + ANGLE_TOLERANCE
         cost = abs(offset) + (CROSSING_PENALTY if crossing else 0.0)
         if best is None or cost < best[2] - ANGLE_TOLERANCE:
             best = (offset, crossing, cost)
@@ -295,7 +296,7 @@ def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float
     can the optimum the method converges to locally fail to be the global one
     (:mod:`allocator_pkg.pieces`); and a crossing the unconstrained wish (which ignores every
     limit) would start is weighed by the piece planner first, never started past it."""
-    _, forbidden, piece = around or surroundings(rotation, alpha0)
+    _, _, piece = around or surroundings(rotation, alpha0)
     if piece is None:
         return False                                        # inside a sector: a crossing is under way
     reach = min(angle_step, math.pi) + CROSSING_MARGIN
@@ -305,5 +306,5 @@ def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float
         return False
     direction = math.atan2(desired[1], desired[0])
     sides = (direction, direction + math.pi) if rotation.reversible else (direction,)
-    ways = [way for way in (_cheapest_way(rotation, alpha0, side, forbidden) for side in sides) if way is not None]
+    ways = [way for way in (_cheapest_way(rotation, alpha0, side, piece) for side in sides) if way is not None]
     return not ways or any(crossing for _, crossing, _ in ways)
