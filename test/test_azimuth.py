@@ -147,13 +147,13 @@ def test_limited_sector_keeps_the_angle_inside_and_turns_the_long_way():
     assert result.azimuth[0] == pytest.approx(-1.9, abs=1e-3)
 
 
-
 def test_a_long_way_round_chosen_over_a_sector_leaves_the_window_open_both_ways():
     """Only a feasible sector's end closes the short way round. A free thruster whose goal lies
     nearly opposite, the long way chosen only because the short one crosses a forbidden sector,
     keeps its window on both sides: cut toward the long way, it lost the cut a rate step past
     the goal's antipode, where the long way became the short one, and the QP turned it back
-    (the DP vessel at 105 deg, 1.1 times its capability: 1.2 deg back and forth for good)."""
+    (with the planner's goal weighed, the DP vessel at 105 deg and 1.1 times its capability:
+    its idle starboard unit 1.2 deg back and forth for good)."""
     rotation = vehicle_from(DP).actuators[0].rotation
     goal = math.radians(174.4)
     wanted = (424e3 * math.cos(goal), 424e3 * math.sin(goal))
@@ -163,6 +163,7 @@ def test_a_long_way_round_chosen_over_a_sector_leaves_the_window_open_both_ways(
         assert not state.turning
         assert (limits.low, limits.high) == pytest.approx((angle - 0.021, angle + 0.021))
         assert wrap(limits.goal - goal) == pytest.approx(0.0, abs=1e-9) and limits.goal < angle   # clockwise
+
 
 def test_reversible_thruster_pushes_backwards_without_turning():
     vehicle = single_azimuth(reversible=True, thrust_min=-80.0, azimuth_rate_max=0.2)
