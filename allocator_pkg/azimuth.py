@@ -30,7 +30,6 @@ from dataclasses import dataclass
 from .angles import ANGLE_TOLERANCE, wrap
 from .sectors import (
     Surroundings,
-    crosses,
     forbidden_offsets,
     in_forbidden_sector,
     surroundings,
@@ -127,7 +126,7 @@ def plan(
     current_sigma = (1 if thrust0 > 0.0 else -1) if moving else state.sigma
     domain, forbidden, piece = around or surroundings(rotation, alpha0)
     wanted = math.hypot(desired[0], desired[1]) > hold
-    best = _best_path(rotation, alpha0, desired, forbidden, current_sigma, moving, thrust_range) if wanted else None
+    best = _best_path(rotation, alpha0, desired, piece, current_sigma, moving, thrust_range) if wanted else None
 
     if state.turning and piece is not None and (best is None or not best[2]):
         state.turning = 0
@@ -163,7 +162,11 @@ def plan(
     low, high = piece
     step = min(angle_step, math.pi)
     low, high = max(low, -step), min(high, step)
-    if best is not None:
+    if best is not None and not rotation.continuous:
+        # The feasible sector's end blocks the short way round: the window opens only toward
+        # the long way. A free thruster takes the long way only to spare a crossing; cut toward
+        # it, the window would open again a rate step past the goal's antipode, and the QP
+        # could turn it back there for good.
         offset = best[1]
         natural = wrap(offset)
         if natural * offset < 0.0 or abs(offset) > math.pi + ANGLE_TOLERANCE:
@@ -179,7 +182,7 @@ def _best_path(
     rotation: RotationConfig,
     alpha0: float,
     desired: tuple[float, float],
-    forbidden: list[tuple[float, float]],
+    piece: tuple[float, float] | None,
     current_sigma: int,
     moving: bool,
     thrust_range: tuple[float, float],
@@ -190,16 +193,30 @@ def _best_path(
     best = None
     best_cost = math.inf
     for sigma in sides:
-        target = direction if sigma > 0 else direction + math.pi
-        for offset in target_offsets(rotation, alpha0, target):
-            crossing = crosses((0.0, offset), forbidden)
-            cost = abs(offset)
-            if crossing:
-                cost += CROSSING_PENALTY
-            if sigma != current_sigma and moving:
-                cost += CROSSING_PENALTY
-            if cost < best_cost - ANGLE_TOLERANCE:
-                best, best_cost = (sigma, offset, crossing), cost
+        path = _cheapest_way(rotation, alpha0, direction if sigma > 0 else direction + math.pi, piece)
+        if path is None:
+            continue
+        offset, crossing, cost = path
+        if sigma != current_sigma and moving:
+            cost += CROSSING_PENALTY
+        if cost < best_cost - ANGLE_TOLERANCE:
+            best, best_cost = (sigma, offset, crossing), cost
+    return best
+
+
+def _cheapest_way(rotation: RotationConfig, alpha0: float, target: float,
+                  piece: tuple[float, float] | None) -> tuple[float, bool, float] | None:
+    """(offset, crosses a forbidden sector, cost) of the cheapest way from alpha0 to ``target``
+    (None if the feasible sector does not contain it): the angle turned, plus
+    CROSSING_PENALTY when the way needs zero thrust through a forbidden sector. A way crosses
+    one when it leaves ``piece``, the allowed offsets around alpha0 (every way does from inside
+    a sector, where ``piece`` is None); a way never leaves the feasible sector."""
+    best = None
+    for offset in target_offsets(rotation, alpha0, target):
+        crossing = piece is None or not piece[0] - ANGLE_TOLERANCE <= offset <= piece[1] + ANGLE_TOLERANCE
+        cost = abs(offset) + (CROSSING_PENALTY if crossing else 0.0)
+        if best is None or cost < best[2] - ANGLE_TOLERANCE:
+            best = (offset, crossing, cost)
     return best
 
 
@@ -273,9 +290,12 @@ def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float
                       hold: float, around: Surroundings | None = None) -> bool:
     """Whether a thruster's side of its forbidden sectors is in question this sample: an edge
     of the allowed piece it is in (a forbidden sector, or the feasible sector's end) lies within
-    a rate step, or the direction the unconstrained solution wants lies beyond one. Only then
+    a rate step, or the direction the unconstrained solution wants lies beyond one: the
+    cheapest way :func:`plan` would turn toward it (on either side, for a reversible thruster)
+    crosses a forbidden sector, even where the long way round stays in the piece. Only then
     can the optimum the method converges to locally fail to be the global one
-    (:mod:`allocator_pkg.pieces`)."""
+    (:mod:`allocator_pkg.pieces`); and a crossing the unconstrained wish (which ignores every
+    limit) would start is weighed by the piece planner first, never started past it."""
     _, _, piece = around or surroundings(rotation, alpha0)
     if piece is None:
         return False                                        # inside a sector: a crossing is under way
@@ -286,5 +306,5 @@ def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float
         return False
     direction = math.atan2(desired[1], desired[0])
     sides = (direction, direction + math.pi) if rotation.reversible else (direction,)
-    return not any(piece[0] <= offset <= piece[1]
-                   for side in sides for offset in target_offsets(rotation, alpha0, side))
+    ways = [way for way in (_cheapest_way(rotation, alpha0, side, piece) for side in sides) if way is not None]
+    return not ways or any(crossing for _, crossing, _ in ways)

@@ -87,12 +87,6 @@ def allowed_piece(domain: Interval, forbidden: list[Interval], point: float = 0.
     return (low, high)
 
 
-def crosses(path: Interval, forbidden: list[Interval]) -> bool:
-    """Whether turning over the offset interval ``path`` passes through a forbidden interior."""
-    lo, hi = min(path), max(path)
-    return any(f_lo < hi - ANGLE_TOLERANCE and f_hi > lo + ANGLE_TOLERANCE for f_lo, f_hi in forbidden)
-
-
 def target_offsets(rotation: RotationConfig, alpha0: float, target: float) -> list[float]:
     """Offsets that bring the thruster from alpha0 to ``target``: both ways round for free
     rotation, the representation inside the feasible sector otherwise (none if the

@@ -1,6 +1,7 @@
 """Rotatable thrusters through every method: rate limits, sectors, the polygon, crossing
 forbidden sectors at zero thrust, stuck thrusters, reversible and vertical ones."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -9,7 +10,7 @@ from conftest import ROOT, vehicle_from
 
 from allocator_pkg import METHODS, Allocator, FaultMode, vehicle_from_parameters
 from allocator_pkg.angles import wrap
-from allocator_pkg.azimuth import AzimuthLimits, AzimuthState, plan, resolve
+from allocator_pkg.azimuth import AzimuthLimits, AzimuthState, piece_in_question, plan, resolve
 from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector
 
 DP = ROOT / "config" / "dp_vessel.yaml"
@@ -146,6 +147,24 @@ def test_limited_sector_keeps_the_angle_inside_and_turns_the_long_way():
     assert result.azimuth[0] == pytest.approx(-1.9, abs=1e-3)
 
 
+def test_a_long_way_round_chosen_over_a_sector_leaves_the_window_open_both_ways():
+    """Only a feasible sector's end closes the short way round. A free thruster whose goal lies
+    nearly opposite, the long way chosen only because the short one crosses a forbidden sector,
+    keeps its window on both sides: cut toward the long way, it lost the cut a rate step past
+    the goal's antipode, where the long way became the short one, and the QP turned it back
+    (with the planner's goal weighed, the DP vessel at 105 deg and 1.1 times its capability:
+    its idle starboard unit 1.2 deg back and forth for good)."""
+    rotation = vehicle_from(DP).actuators[0].rotation
+    goal = math.radians(174.4)
+    wanted = (424e3 * math.cos(goal), 424e3 * math.sin(goal))
+    for angle in (0.0, math.radians(-4.8)):
+        state = AzimuthState(angle=angle)
+        limits = plan(rotation, state, 0.021, (0.0, 420e3), 10e3, wanted, 42.0)
+        assert not state.turning
+        assert (limits.low, limits.high) == pytest.approx((angle - 0.021, angle + 0.021))
+        assert wrap(limits.goal - goal) == pytest.approx(0.0, abs=1e-9) and limits.goal < angle   # clockwise
+
+
 def test_reversible_thruster_pushes_backwards_without_turning():
     vehicle = single_azimuth(reversible=True, thrust_min=-80.0, azimuth_rate_max=0.2)
     alloc = Allocator(vehicle, dt=0.1)
@@ -205,3 +224,32 @@ def test_plan_and_resolve_units():
     assert thrust == 15.0          # the projection, 50 sin(0.1), is below what the rate limit allows
     held = resolve(AzimuthLimits(-0.1, 0.1, 1, 0.0, 25.0), 0.05, (1e-3, 0.0), 0.01, continuous=True)
     assert held[1] == 0.05
+
+
+@pytest.mark.parametrize("reversible", [False, True])
+def test_a_wish_that_would_start_a_crossing_puts_the_side_in_question(reversible):
+    """`plan` turns the cheapest way toward the wanted direction, across a forbidden sector if
+    that is shorter (plus a penalty) than the long way round. Whenever it would start such a
+    crossing, `piece_in_question` must say so, so that the piece planner weighs it: otherwise the
+    pseudo-inverse's wish, which ignores every limit, overrules the planner. (The DP vessel at
+    75 deg and 1.1 times its capability: planned to 117.6 deg, the starboard unit passed 109.5 deg,
+    the wish at 60.6 deg read as reachable the long way round, and `plan` ramped it down to cross
+    back: a cycle of 45 samples.) The starboard unit's sector, from every allowed angle toward every
+    direction, at rest (a crossing starts at once)."""
+    rotation = vehicle_from(DP).actuators[0].rotation
+    if reversible:
+        rotation = dataclasses.replace(rotation, reversible=True)
+    thrust_range = (-300e3 if reversible else 0.0, 420e3)
+    step, hold = 0.021, 42.0
+    assert piece_in_question(rotation, math.radians(109.5), step, (369e3 * math.cos(math.radians(60.6)),
+                                                                   369e3 * math.sin(math.radians(60.6))), hold)
+    for angle in np.radians(np.arange(-180.0, 180.0, 2.5)):
+        if in_forbidden_sector(rotation, angle):
+            continue
+        for direction in np.radians(np.arange(0.0, 360.0, 5.0)):
+            desired = (369e3 * math.cos(direction), 369e3 * math.sin(direction))
+            state = AzimuthState(angle=float(angle))
+            plan(rotation, state, step, thrust_range, 10e3, desired, hold)
+            if state.turning:
+                assert piece_in_question(rotation, float(angle), step, desired, hold), \
+                    (math.degrees(angle), math.degrees(direction))

@@ -6,7 +6,6 @@ import pytest
 
 from allocator_pkg.sectors import (
     allowed_piece,
-    crosses,
     forbidden_offsets,
     in_feasible_sector,
     in_forbidden_sector,
@@ -48,7 +47,6 @@ def test_offsets_and_pieces():
     low, high = allowed_piece((-2 * math.pi, 2 * math.pi), forbidden)
     assert high == pytest.approx(0.8) and low == pytest.approx(1.3 - 2 * math.pi)
     assert allowed_piece((-1.0, 1.0), [(-0.1, 0.1)]) is None
-    assert crosses((0.0, 1.0), forbidden) and not crosses((0.0, -1.0), forbidden)
 
 
 def test_target_offsets():

@@ -37,3 +37,22 @@ def test_held_requests_settle_near_the_optimum_within_every_limit(swept, method)
     far = [(c.direction_deg, c.magnitude, c.deviation) for c in cases if c.deviation > 2e-3]
     assert not far, f"{vessel} {method}: settled away from the optimum: {far}"
     assert not [c.violations for c in cases if c.violations]
+
+
+@pytest.mark.parametrize("method", settling.METHODS)
+@pytest.mark.parametrize("direction", [75.0, 105.0])
+def test_the_dp_vessel_settles_with_its_starboard_azimuth_past_the_sector(direction, method):
+    """Two requests past the capability that the small sweep does not draw, where the optimum has
+    the starboard azimuth past its forbidden sector at full thrust. At 75 deg it used to cycle
+    every 45 samples: the unconstrained wish, across the sector the short way, started a
+    crossing back whenever the unit was more than a rate step and the crossing margin clear of
+    the sector's edge, and the piece planner called it back at the next edge. At 105 deg the
+    planner's goal lies nearly opposite the unit at rest, the long way round: a window cut
+    toward the long way (as at a feasible sector's end) is lost a rate step past the goal's
+    antipode, and the unit turned a rate step back and forth there."""
+    vehicle = settling.VESSELS["dp_vessel"]()
+    [(_, _, tau, reference)] = settling.requests(vehicle, [direction], [1.1])
+    case = settling.hold(vehicle, method, tau, reference)
+    assert case.settled, (case.angle_spread_deg, case.late_fallbacks)
+    assert case.deviation <= 2e-3
+    assert not case.violations
