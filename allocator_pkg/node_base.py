@@ -10,6 +10,7 @@ node not yet configured) a change is taken as it is and checked at the next conf
 
 from __future__ import annotations
 
+import gc
 import signal
 import sys
 import threading
@@ -265,7 +266,12 @@ class AllocatorBase(WholeSetParameters):
 
 def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None = None) -> int:
     """A node's process: spin it until SIGINT/SIGTERM (or its end), then stop it. Exit code 1
-    with the report of an invalid configuration found at start."""
+    with the report of an invalid configuration found at start.
+
+    What exists once the node is made (modules, the node, its solvers) lives as long as the
+    process, so it is frozen out of the garbage collector's reach (``gc.freeze``): a full
+    collection then scans only what came since. Over the whole heap one took 50 ms, 25 periods
+    at 500 Hz, every minute or so of ``make soak``."""
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     stop = threading.Event()
     for signal_number in (signal.SIGINT, signal.SIGTERM):
@@ -276,6 +282,8 @@ def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None =
         print(error.report(), file=sys.stderr)
         rclpy.try_shutdown()
         return 1
+    gc.collect()
+    gc.freeze()
     executor = SingleThreadedExecutor()
     executor.add_node(node)
     try:
