@@ -139,7 +139,9 @@ def plan(
         sigma, offset, crossing = best
         needs_zero = crossing and _beyond_forbidden(offset, forbidden) > CROSSING_MARGIN
         if (needs_zero or sigma != current_sigma) and moving:
-            ramp = current_sigma * max(0.0, abs(thrust0) - thrust_step)
+            # Toward zero by a rate step, on the side it pushes: the window's end nearer zero,
+            # which a fault that has just narrowed the range moves to the range's edge.
+            ramp = max(window_low, 0.0) if current_sigma > 0 else min(window_high, 0.0)
             return AzimuthLimits(alpha0, alpha0, current_sigma, ramp, ramp)
         if needs_zero:
             state.turning = 1 if offset > 0.0 else -1

@@ -253,3 +253,20 @@ def test_a_wish_that_would_start_a_crossing_puts_the_side_in_question(reversible
             if state.turning:
                 assert piece_in_question(rotation, float(angle), step, desired, hold), \
                     (math.degrees(angle), math.degrees(direction))
+
+
+@pytest.mark.parametrize("sigma", [1, -1])
+def test_a_fault_during_a_ramp_to_zero_overrides_the_rate_limit(sigma):
+    """A thruster ramping its thrust down at the rate limit to cross a sector (or to reverse)
+    when a fault narrows its range below that ramp: the thrust goes to the range's edge at once,
+    as everywhere else a fault meets a rate limit. It used to keep ramping from above the new
+    limit (make soak: azimuth_stbd at 168 kN against a DEGRADED limit of 54 kN)."""
+    vehicle = single_azimuth(azimuth_rate_max=0.5, forbidden_sectors=[1.0, 2.0], reversible=True,
+                             thrust_min=-100.0)
+    rotation = vehicle.actuators[0].rotation
+    state = AzimuthState(angle=0.8, thrust=sigma * 90.0, sigma=sigma)
+    wish = (sigma * 50.0 * math.cos(2.3), sigma * 50.0 * math.sin(2.3))   # across the sector on its side
+    nominal = plan(rotation, dataclasses.replace(state), 0.05, (-100.0, 100.0), 5.0, wish, 0.01)
+    assert nominal.thrust_low == nominal.thrust_high == sigma * 85.0
+    degraded = plan(rotation, dataclasses.replace(state), 0.05, (-30.0, 30.0), 5.0, wish, 0.01)
+    assert degraded.thrust_low == degraded.thrust_high == sigma * 30.0
