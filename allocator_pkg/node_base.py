@@ -270,8 +270,8 @@ def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None =
 
     What exists once the node is made (modules, the node, its solvers) lives as long as the
     process, so it is frozen out of the garbage collector's reach (``gc.freeze``): a full
-    collection then scans only what came since. Over the whole heap one took 50 ms, 25 periods
-    at 500 Hz, every minute or so of ``make soak``."""
+    collection then scans only what came since. Over the whole heap one took 50 ms (25 periods
+    at 500 Hz), once in the first minute of ``make soak``."""
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     stop = threading.Event()
     for signal_number in (signal.SIGINT, signal.SIGTERM):

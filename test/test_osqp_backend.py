@@ -57,8 +57,9 @@ def test_the_extension_calls_are_there_and_used():
 
 
 def test_after_a_stopped_solve_the_next_starts_cold():
-    """A solve stopped at max_iter leaves iterates that are no guide to the next problem; the
-    next solve starts from zero, exactly as a new solver would (same iterations, same x)."""
+    """A solve stopped at max_iter far from feasible (its answer not used) leaves iterates that
+    are no guide to the next problem; the next solve starts from zero, exactly as a new solver
+    would (same iterations, same x)."""
     rng = np.random.default_rng(3)
     size = 12
     a = sp.csc_matrix(rng.normal(size=(size, size)))
@@ -68,7 +69,7 @@ def test_after_a_stopped_solve_the_next_starts_cold():
     stopped = OSQPBackend()
     stopped.setup(np.ones(size), q, a, SolverSettings(1e-6, 1e-6, 3, 0.0))
     first = stopped.solve(far.copy(), far + 1.0)
-    assert first.status.startswith("maximum iterations")
+    assert first.status.startswith("maximum iterations") and not first.usable
     stopped.update_settings(SolverSettings(1e-6, 1e-6, 4000, 0.0))
     fresh = OSQPBackend()
     fresh.setup(np.ones(size), q, a, SolverSettings(1e-6, 1e-6, 4000, 0.0))

@@ -15,9 +15,9 @@ from ..vehicle import SolverSettings
 from .backend import BackendResult
 
 ACCEPTED = frozenset((int(osqp.SolverStatus.OSQP_SOLVED), int(osqp.SolverStatus.OSQP_SOLVED_INACCURATE)))
-"""OSQP statuses whose solution is used and whose iterates warm-start the next solve; after any
-other the pseudo-inverse answers (unless a stopped iterate is feasible enough) and the next
-solve starts cold."""
+"""OSQP statuses whose solution is used; after any other the pseudo-inverse answers, unless a
+stopped iterate is feasible enough (ITERATE_TOLERANCE), and an answer not used makes the next
+solve start cold."""
 
 INTERRUPTED = int(osqp.SolverStatus.OSQP_SIGINT)
 """OSQP catches SIGINT while it solves and only stops; the signal is raised again for the process."""
@@ -37,6 +37,13 @@ long before the split of effort among actuators (directions only W decides, 1e6 
 such an iterate gives the wrench and keeps every limit; warm starting carries the remaining
 work over to the next sample."""
 """OSQP's stand-in for an infinite bound; larger values are clipped to it."""
+
+DUAL_RANGE = 10.0
+"""A stopped solve whose row multipliers exceed this many times the cost's largest curvature is
+no warm start, even when its iterate is used: with the problem's scaling those are the
+multipliers of a request missed by more than ten times a DOF's authority (a 1e12 N wrench),
+and warm-started from them the ordinary requests after it stopped at ``max_iter`` every
+sample."""
 
 
 def osqp_settings(settings: SolverSettings) -> dict:
@@ -90,10 +97,12 @@ class OSQPBackend:
         raw = getattr(self.solver, "_solver", None)
         self._raw = raw if all(hasattr(raw, name) for name in RAW_CALLS) else None
         self._cold = (np.zeros(a.shape[1]), np.zeros(rows))
+        self._curvature = float(np.max(p_diagonal, initial=0.0))
 
     def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
         if p_diagonal is not None:
             self.solver.update(Px=p_diagonal)
+            self._curvature = float(np.max(p_diagonal, initial=0.0))
         if q is not None:
             if self._raw is not None:
                 self._raw.update_data_vec(q=q, l=None, u=None)
@@ -101,6 +110,8 @@ class OSQPBackend:
                 self.solver.update(q=q)
 
     def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
+        if p_diagonal is not None:
+            self._curvature = float(np.max(p_diagonal, initial=0.0))
         if index is None:
             self.solver.update(Ax=values, Px=p_diagonal)
         elif self._raw is not None:
@@ -116,10 +127,14 @@ class OSQPBackend:
         self.settings = settings
 
     def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
-        """Solve from the previous solve's iterates, or from zero after a solve that did not
-        converge. A stopped or failed solve's iterates are no guide to the next problem: after
-        a request far past the vehicle's capability (the multipliers grow with the miss), a
-        warm start from them took ``max_iter`` every sample, for as long as anyone watched."""
+        """Solve from the previous solve's iterates, or from zero after a solve whose answer
+        could not be used or that stopped with multipliers out of range (DUAL_RANGE). Such
+        iterates are no guide to the next problem: after a request far past the vehicle's
+        capability (the multipliers grow with the miss), a warm start from them took
+        ``max_iter`` every sample, for as long as anyone watched. Any other stopped solve whose
+        iterate is used warm-starts the next: its work carries over (at a thruster's limit on
+        the DP vessel without rate limits, restarting cold after each such stop left every
+        sample at ``max_iter``)."""
         np.maximum(low, -INFINITY, out=low)
         np.minimum(up, INFINITY, out=up)
         if self._raw is None:
@@ -131,7 +146,8 @@ class OSQPBackend:
             self._raw.solve()
             info, solution, restart = self._raw.info, self._raw.solution, self._raw.warm_start
         answer = _result(info, solution, self.settings)
-        if info.status_val not in ACCEPTED:
+        if not answer.usable or (info.status_val in STOPPED
+                                 and np.max(np.abs(solution.y)) > DUAL_RANGE * self._curvature):
             restart(*self._cold)
         return answer
 
