@@ -97,12 +97,12 @@ class OSQPBackend:
         raw = getattr(self.solver, "_solver", None)
         self._raw = raw if all(hasattr(raw, name) for name in RAW_CALLS) else None
         self._cold = (np.zeros(a.shape[1]), np.zeros(rows))
-        self._curvature = float(np.max(p_diagonal, initial=0.0))
+        self._p_diagonal = p_diagonal
 
     def update_objective(self, p_diagonal: np.ndarray | None, q: np.ndarray | None) -> None:
         if p_diagonal is not None:
             self.solver.update(Px=p_diagonal)
-            self._curvature = float(np.max(p_diagonal, initial=0.0))
+            self._p_diagonal = p_diagonal
         if q is not None:
             if self._raw is not None:
                 self._raw.update_data_vec(q=q, l=None, u=None)
@@ -111,7 +111,7 @@ class OSQPBackend:
 
     def update_matrix(self, values: np.ndarray, index: np.ndarray | None, p_diagonal: np.ndarray | None = None) -> None:
         if p_diagonal is not None:
-            self._curvature = float(np.max(p_diagonal, initial=0.0))
+            self._p_diagonal = p_diagonal
         if index is None:
             self.solver.update(Ax=values, Px=p_diagonal)
         elif self._raw is not None:
@@ -146,8 +146,8 @@ class OSQPBackend:
             self._raw.solve()
             info, solution, restart = self._raw.info, self._raw.solution, self._raw.warm_start
         answer = _result(info, solution, self.settings)
-        if not answer.usable or (info.status_val in STOPPED
-                                 and np.max(np.abs(solution.y)) > DUAL_RANGE * self._curvature):
+        if not answer.usable or (info.status_val in STOPPED and np.max(np.abs(solution.y))
+                                 > DUAL_RANGE * np.max(self._p_diagonal, initial=0.0)):
             restart(*self._cold)
         return answer
 
