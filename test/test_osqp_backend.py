@@ -104,3 +104,25 @@ def test_a_request_far_past_capability_does_not_poison_the_next_samples(method, 
             assert np.all(np.isfinite(far.thrust)) and np.all(np.isfinite(far.command))
         after = [alloc.allocate(ordinary).status for _ in range(12)]
         assert all(status == "solved" for status in after[1:]), after
+
+
+def test_a_stopped_solve_with_the_multipliers_of_a_far_request_is_no_warm_start():
+    """The soak's stream on the DP vessel at 500 Hz (a random walk over +-60 % of each DOF's
+    authority) with three samples of a 1e12 wrench every 1000 samples. A stopped solve right
+    after such a burst may still have its iterate used, yet carry the burst's multipliers; warm-
+    started from them, one burst left 500 ordinary samples at max_iter. Out of range (DUAL_RANGE)
+    they are dropped: only the bursts' own samples and the first after each may stop."""
+    vehicle = vehicle_from(ROOT / "config" / "dp_vessel.yaml")
+    alloc = Allocator(vehicle, method="qp", dt=0.002)
+    model = Model.build(vehicle, alloc.dt)
+    authority = np.zeros(6)
+    authority[model.dof_index] = model.dof_scale
+    rng = np.random.default_rng(1)
+    walk = np.zeros(6)
+    stopped = 0
+    for k in range(6000):
+        walk += -walk * 0.001 + rng.normal(size=6) * np.sqrt(0.002)
+        far = k % 1000 in (500, 501, 502)
+        result = alloc.allocate(authority * (1e12 if far else 0.6 * walk))
+        stopped += not far and result.iterations >= vehicle.solver.max_iter
+    assert stopped <= 12
