@@ -193,7 +193,8 @@ def test_parameter_changes_from_other_threads_race_the_timer_and_the_services(ro
         assert -200.0 <= message.thrust[2] <= 300.0
         assert len(message.thrust) == len(message.azimuth) == len(message.command) == len(message.mode) == 4
     for message in statuses:
-        assert message.solver_status in ("solved", "solved inaccurate") or message.solver_status.startswith("fallback")
+        status = message.solver_status
+        assert status in ("solved", "solved inaccurate") or status.startswith("fallback") or "iterate used (" in status
     assert node.allocator.vehicle == vehicle_from_parameters(allocator_parameters(node))
     assert node.allocator.vehicle.dofs in (("surge", "sway", "yaw"), ("surge", "yaw"))
     client.destroy_node()
