@@ -227,9 +227,11 @@ class Allocator:
             self._planner = PiecePlanner(model)
         else:
             self._planner.update_model(model)
-        for method in self._methods.values():
-            method.update_model(model)
-        if name not in self._methods:
+        # Only the method in use takes the new values now; a cached one takes them when it is
+        # chosen again (its solver pattern, all that decides whether it can, is its structure).
+        if name in self._methods:
+            self._methods[name].update_model(model)
+        else:
             self._methods[name] = METHODS[name](model, self._backend)
         self._method = self._methods[name]
         self._model = model

@@ -123,6 +123,40 @@ def test_reconfigure_keeps_faults_and_refuses_other_actuators(alloc):
         alloc.reconfigure(load_vehicle(DATA / "eight_thrusters.yaml"))
 
 
+def test_a_cached_method_takes_the_changes_made_while_another_ran_when_chosen_again(monkeypatch):
+    """A configuration change updates the method in use only, not every cached one (a change
+    costs one method's update); a cached method chosen again takes the latest values then,
+    with no new solver, and answers as a fresh allocator of that configuration does."""
+    from allocator_pkg.methods import METHODS
+    updated = []
+    for name in ("qp", "lp"):
+        original = METHODS[name].update_model
+        monkeypatch.setattr(METHODS[name], "update_model",
+                            lambda self, model, name=name, original=original: (updated.append(name),
+                                                                               original(self, model)))
+    tau = np.array([120.0, 40.0, 0.0, 0.0, 0.0, 30.0])
+    alloc = Allocator(load_vehicle(EXAMPLE))
+    alloc.allocate(tau)
+    alloc.reconfigure(vehicle_from(EXAMPLE, method="lp"))
+    alloc.allocate(tau)
+    setups = alloc.stats.solver_setups
+    for thrust_max in (250.0, 200.0, 100.0):
+        alloc.reconfigure(vehicle_from(EXAMPLE, method="lp", actuators__main_port__thrust_max=thrust_max))
+        alloc.allocate(tau)
+    assert updated == ["lp"] * 3
+    final = vehicle_from(EXAMPLE, actuators__main_port__thrust_max=100.0)
+    alloc.reconfigure(final)
+    assert updated == ["lp"] * 3 + ["qp"]
+    assert alloc.stats.solver_setups == setups
+    alloc.reset()
+    fresh = Allocator(final)
+    for _ in range(100):
+        mine, theirs = alloc.allocate(tau), fresh.allocate(tau)
+    assert alloc.ranges[1][2] == 100.0 and mine.thrust[2] <= 100.0
+    assert mine.thrust == pytest.approx(theirs.thrust, abs=1e-3 * 300.0)
+    assert mine.azimuth == pytest.approx(theirs.azimuth, abs=1e-4)
+
+
 NARROW_TWIN = {"dofs": ["surge", "yaw"], "actuators.names": ["port", "stbd"],
                "actuators.port.type": "fixed", "actuators.port.position": [0.0, -0.1, 0.0],
                "actuators.port.direction": [1.0, 0.0, 0.0], "actuators.stbd.direction": [1.0, 0.0, 0.0],
