@@ -27,7 +27,7 @@ import numpy as np
 from .model import Model
 from .sectors import allowed_arcs, in_forbidden_sector
 from .solvers import BACKENDS, BackendFactory
-from .solvers.problem import Rows, ScaledProblem, entry_index
+from .solvers.problem import Rows, ScaledProblem, block_index, entry_index
 from .vehicle import RotationConfig
 
 
@@ -131,7 +131,9 @@ class PiecePlanner:
         elif self._problem is None or old.structure != model.structure:
             self._setup(model)
         else:
-            self._problem.update_matrix(self._constraints(model).data)
+            values = self._problem.a.data.copy()         # T_e's values follow; the rest is structure
+            values[self._t_ec_index] = model.t_ec.ravel()
+            self._problem.update_matrix(values)
             self._problem.update_objective(self._p(model))
 
     @staticmethod
@@ -167,6 +169,7 @@ class PiecePlanner:
         self._piece_index = np.array([[entry_index(a, int(row), int(col)) for row in rows for col in pair]
                                       for rows, pair in zip(self._piece_rows, model.rot_columns)], np.int64)
         column_scale = np.concatenate((model.force_scale[model.extended_owner], np.maximum(model.authority, 1e-9)))
+        self._t_ec_index = block_index(a, np.arange(n), model.m)
         self._problem = ScaledProblem(self._p(model), np.zeros(model.m + n), a, column_scale, model.vehicle.solver,
                                       effort=np.arange(model.m), backend=self._backend())
         self.setups += 1

@@ -1,5 +1,7 @@
 """The qp method (1.35) on OSQP, against independent solutions."""
 
+import math
+
 import numpy as np
 import pytest
 from conftest import DATA, ROOT, matrices, vehicle_from
@@ -99,6 +101,37 @@ def test_value_changes_update_the_solver_and_structure_changes_rebuild_it():
     alloc.reconfigure(vehicle_from(EIGHT, dofs=["surge", "sway", "yaw"]))
     alloc.allocate([1.0, 0, 0, 0, 0, 0])
     assert alloc.stats.solver_setups == 2
+
+
+@pytest.mark.parametrize(("config", "base", "moved"), [
+    ("dp_vessel.yaml", {}, {"actuators__azimuth_stbd__position": [-38.0, 6.0, 4.5],
+                            "actuators__tunnel_fwd__position": [33.0, 0.5, 3.5]}),
+    ("example1_rov.yaml", {"weights__minimax": 2.0},
+     {"actuators__azimuth_fwd__position": [1.0, 0.1, 0.3], "actuators__main_port__position": [-1.1, -0.6, 0.0]}),
+])
+def test_a_moved_thruster_is_taken_by_values_and_answers_as_a_fresh_allocator(config, base, moved):
+    """New positions change T_e's values, the only values of the solvers' constraint matrices
+    a configuration of the same structure changes: the updated solvers (the method's and the
+    forbidden-sector planner's) answer as ones set up for the moved geometry."""
+    alloc = Allocator(vehicle_from(ROOT / "config" / config, **base))
+    authority = alloc._model.authority
+    requests = [np.array([c * math.cos(a), c * math.sin(a), 0.0, 0.0, 0.0, 0.2 * c * math.sin(3 * a)])
+                for a in np.linspace(0.0, 2.0 * math.pi, 7, endpoint=False) for c in (0.4, 1.2)]
+    for tau in requests:
+        alloc.allocate(tau * np.array([authority[0], authority[1], 0, 0, 0, authority[2]]))
+    setups = alloc.stats.solver_setups
+    moved_vehicle = vehicle_from(ROOT / "config" / config, **base, **moved)
+    alloc.reconfigure(moved_vehicle)
+    fresh = Allocator(moved_vehicle)
+    scale = np.array([authority[0], authority[1], 0, 0, 0, authority[2]])
+    for tau in requests:
+        alloc.reset()
+        fresh.reset()
+        for _ in range(150):
+            mine, theirs = alloc.allocate(tau * scale), fresh.allocate(tau * scale)
+        assert mine.achieved == pytest.approx(theirs.achieved, abs=2e-3 * float(np.max(authority)))
+        assert mine.thrust == pytest.approx(theirs.thrust, abs=2e-3 * float(np.max(np.abs(alloc.ranges))))
+    assert alloc.stats.solver_setups == setups
 
 
 def test_preserve_direction_scales_the_request_to_the_attainable_boundary():

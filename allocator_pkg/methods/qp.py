@@ -74,7 +74,7 @@ import scipy.sparse as sp
 
 from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BACKENDS, BackendFactory
-from ..solvers.problem import Entries, Rows, ScaledProblem, entry_index
+from ..solvers.problem import Entries, Rows, ScaledProblem, block_index, entry_index
 from ..vehicle import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
 from .direct import DirectSolution
@@ -120,6 +120,8 @@ class _Problem:
     p_diagonal: np.ndarray
     rows: list[tuple]
     moving: Entries
+    index: dict
+    t_ec_index: np.ndarray
     slack: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
     rotated: np.ndarray = field(default_factory=lambda: np.zeros(0))
     directions: list[float] = field(default_factory=list)
@@ -172,14 +174,16 @@ class QPAllocation(AllocationMethod):
     def update_model(self, model: Model) -> None:
         """Take a configuration with the same structure: values only, no new set-up."""
         self.model = model
-        for problem, scale, stages in ((self._main, False, False), (self._scale, True, False),
-                                       (self._stages, False, True)):
+        for problem, scale in ((self._main, False), (self._scale, True), (self._stages, False)):
             if problem is None:
                 continue
-            a, index = self._constraints(model, scale, stages)
+            # Of A's values only T_e's follow the configuration (the rest is fixed by the
+            # structure); the moving entries are written again by the next sample.
+            values = problem.qp.a.data.copy()
+            values[problem.t_ec_index] = model.t_ec.ravel()
             p, q = self._objective(model, scale)
-            self._constant_bounds(problem.qp, model, index, scale)
-            problem.qp.update_matrix(a.data)
+            self._constant_bounds(problem.qp, model, problem.index, scale)
+            problem.qp.update_matrix(values)
             problem.qp.update_objective(p, q)
             problem.qp.update_settings(model.vehicle.solver)
             problem.p_diagonal = p
@@ -345,6 +349,7 @@ class QPAllocation(AllocationMethod):
                         rotated_index=rotated_index.reshape(-1), edge_index=edge_index.reshape(-1),
                         scale_index=scale_index, p_diagonal=p, rows=per_thruster,
                         moving=qp.entries(np.concatenate((rotated_index.reshape(-1), edge_index.reshape(-1)))),
+                        index=index, t_ec_index=block_index(a, rows, model.m),
                         multiplier=[0.0] * rotatable, curvature=[0.0] * rotatable, slack=index["slack"])
 
     # -- per sample ---------------------------------------------------------------------

@@ -55,6 +55,12 @@ def entry_index(matrix: sp.csc_matrix, row: int, col: int) -> int:
     return int(start + np.flatnonzero(matrix.indices[start:end] == row)[0])
 
 
+def block_index(matrix: sp.csc_matrix, rows: np.ndarray, columns: int) -> np.ndarray:
+    """Positions in the CSC data array of the stored entries (row, c) for each of ``rows``
+    and c < ``columns``, row by row: where a dense block such as T_e goes."""
+    return np.array([entry_index(matrix, int(row), c) for row in rows for c in range(columns)], dtype=np.int64)
+
+
 class Solution:
     """The primal solution in physical units and how the solve went; ``y``, the row
     multipliers in physical units (OSQP's sign convention, see
