@@ -213,6 +213,7 @@ class Allocator:
         self._state.angle = angle
 
     def _configure(self, vehicle: Vehicle) -> None:
+        previous = getattr(self, "_model", None)
         model = Model.build(vehicle, self._dt if self._dt is not None else 1.0 / vehicle.rate_hz)
         name = self._method_override or vehicle.method
         # a cached method goes with a new structure, or when it cannot serve the new vehicle
@@ -250,8 +251,9 @@ class Allocator:
         self._any_rated = bool(self._thrust_rated.size or self._surface_rated.size or self._angle_rated.size)
         self._never = np.zeros(model.r, dtype=bool)
         self._never.flags.writeable = False
-        self._warnings = _reachability_warnings(model)
-        self._notes = _actuation_notes(model)
+        if previous is None or previous.vehicle.dofs != vehicle.dofs or not np.array_equal(previous.t_e, model.t_e):
+            self._warnings = _reachability_warnings(model)      # rank tests: only the geometry decides
+            self._notes = _actuation_notes(model)
         rows = np.flatnonzero(model.dof_index == _SURGE)
         self._drag_row = int(rows[0]) if rows.size and model.surfaces.size else None
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())

@@ -31,10 +31,9 @@ denormal lever would otherwise overflow the solver's row scaling and the pseudo-
 
 def force_column(position: Sequence[float], direction: Sequence[float]) -> np.ndarray:
     """(1.5): the generalised force [d ; r x d] of a unit force along d applied at r."""
-    d = np.asarray(direction, dtype=float)
-    column = np.concatenate((d, np.cross(np.asarray(position, dtype=float), d)))
-    column[np.abs(column) < NEGLIGIBLE] = 0.0
-    return column
+    (rx, ry, rz), (dx, dy, dz) = map(float, position), map(float, direction)
+    column = (dx, dy, dz, ry * dz - rz * dy, rz * dx - rx * dz, rx * dy - ry * dx)
+    return np.array([value if abs(value) >= NEGLIGIBLE else 0.0 for value in column])
 
 
 def rotation_basis(actuator_type: str) -> tuple[np.ndarray, np.ndarray]:

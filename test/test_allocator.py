@@ -165,6 +165,20 @@ NARROW_TWIN = {"dofs": ["surge", "yaw"], "actuators.names": ["port", "stbd"],
                "actuators.stbd.thrust_min": -1e5, "actuators.stbd.thrust_max": 1e5}
 
 
+def test_warnings_follow_a_reconfigured_geometry():
+    """The reach warnings are kept across changes that leave the geometry alone and made again
+    when positions or directions change."""
+    alloc = Allocator(vehicle_from_parameters(NARROW_TWIN))
+    assert alloc.warnings == []
+    in_line = {**NARROW_TWIN, "actuators.port.position": [0.0, 0.0, 0.0], "actuators.stbd.position": [0.0, 0.0, 0.0]}
+    alloc.reconfigure(vehicle_from_parameters({**in_line, "actuators.port.thrust_max": 5e4}))
+    assert alloc.warnings == ["no actuator can produce yaw; requests in it will always be saturated"]
+    alloc.reconfigure(vehicle_from_parameters({**in_line, "actuators.port.thrust_max": 4e4}))
+    assert len(alloc.warnings) == 1
+    alloc.reconfigure(vehicle_from_parameters(NARROW_TWIN))
+    assert alloc.warnings == []
+
+
 @pytest.mark.parametrize(("yaw_factor", "saturated"), [(0.999, False), (1.003, True)])
 def test_saturation_is_judged_in_each_dof_against_its_own_authority(yaw_factor, saturated):
     """Two 1e5 N thrusters 0.2 m apart: surge authority 2e5 N, yaw authority 0.1 (2e5) = 2e4 N m.
