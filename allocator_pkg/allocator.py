@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -203,6 +203,10 @@ class Allocator:
         structure (DOFs, polygon sides, saturation mode) sets one up again.
         """
         self.check_reconfigure(vehicle)
+        if replace(self._vehicle, method=vehicle.method) == vehicle:
+            self._vehicle = vehicle                 # another method, nothing else: switch to it
+            self._choose_method(self._method_override or vehicle.method)
+            return
         self._fault_set = self._fault_set.rebound(vehicle)
         self._configure(vehicle)
         angle = self._state.angle.copy()
@@ -228,15 +232,9 @@ class Allocator:
             self._planner = PiecePlanner(model)
         else:
             self._planner.update_model(model)
-        # Only the method in use takes the new values now; a cached one takes them when it is
-        # chosen again (its solver pattern, all that decides whether it can, is its structure).
-        if name in self._methods:
-            self._methods[name].update_model(model)
-        else:
-            self._methods[name] = METHODS[name](model, self._backend)
-        self._method = self._methods[name]
         self._model = model
         self._vehicle = vehicle
+        self._choose_method(name)
         voltages = vehicle.voltage_range
         if self._voltage is None or (voltages is not None and not voltages[0] <= self._voltage <= voltages[1]):
             self._voltage = vehicle.nominal_voltage
@@ -271,6 +269,18 @@ class Allocator:
         self._thrust_step_list = model.thrust_step.tolist()
         self._hold = model.hold.tolist()
         self._apply_speed()
+
+    def _choose_method(self, name: str) -> None:
+        """Use the method ``name``. Only the method in use follows each change; a cached one
+        (whose solver pattern is all that decides whether it can serve) takes the current
+        values when it is chosen again (its update_model, which also drops what it kept from
+        the samples of its last use)."""
+        method = self._methods.get(name)
+        if method is None:
+            method = self._methods[name] = METHODS[name](self._model, self._backend)
+        elif method.model is not self._model or method is not getattr(self, "_method", None):
+            method.update_model(self._model)
+        self._method = method
 
     @property
     def stats(self) -> AllocatorStats:

@@ -165,6 +165,29 @@ NARROW_TWIN = {"dofs": ["surge", "yaw"], "actuators.names": ["port", "stbd"],
                "actuators.stbd.thrust_min": -1e5, "actuators.stbd.thrust_max": 1e5}
 
 
+def test_a_change_of_method_only_switches_methods(monkeypatch):
+    """A configuration that differs only in ``method`` builds no new model: the method chosen
+    takes the current values (a clean start), the state carries over."""
+    import allocator_pkg.allocator as allocator_module
+    alloc = Allocator(load_vehicle(EXAMPLE))
+    tau = np.array([120.0, 40.0, 0.0, 0.0, 0.0, 30.0])
+    alloc.allocate(tau)
+    built = []
+    original = allocator_module.Model.build
+    monkeypatch.setattr(allocator_module.Model, "build", lambda *args: built.append(args) or original(*args))
+    for method in ("lp", "pseudoinverse", "qp"):
+        thrust = alloc.thrust
+        alloc.reconfigure(vehicle_from(EXAMPLE, method=method))
+        assert alloc.method == method and alloc.vehicle == vehicle_from(EXAMPLE, method=method)
+        assert np.array_equal(alloc.thrust, thrust)
+        for _ in range(100):
+            result = alloc.allocate(tau)
+        assert result.method == method and result.achieved[[0, 1, 5]] == pytest.approx(tau[[0, 1, 5]], abs=0.3)
+    assert built == []
+    alloc.reconfigure(vehicle_from(EXAMPLE, rate_hz=20.0))
+    assert len(built) == 1 and alloc.dt == pytest.approx(0.05)
+
+
 def test_warnings_follow_a_reconfigured_geometry():
     """The reach warnings are kept across changes that leave the geometry alone and made again
     when positions or directions change."""
