@@ -29,6 +29,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .actuators import CommandMaps, command_map, deadband_forces, drag_gain
+from .angles import TWO_PI
 from .azimuth import AzimuthLimits, AzimuthState, piece_in_question, plan, resolve
 from .configuration_matrix import configuration_matrix
 from .faults import Fault, FaultMode, FaultSet, lift_gains, static_ranges
@@ -243,10 +244,15 @@ class Allocator:
         self._deadband_index = np.array([i for i, (low, high) in enumerate(edges) if high > 0.0], dtype=int)
         self._deadband_edges = np.array([edges[i] for i in self._deadband_index]).reshape(-1, 2)
         thrusters = ~np.isin(np.arange(model.r), model.surfaces)
-        self._thrust_rated = np.flatnonzero(thrusters & np.isfinite(model.thrust_step))
-        self._surface_rated = model.surfaces[np.isfinite(model.thrust_step[model.surfaces])]
-        self._angle_rated = model.rot[np.isfinite(model.angle_step[model.rot]) & (model.angle_step[model.rot] > 0.0)]
-        self._any_rated = bool(self._thrust_rated.size or self._surface_rated.size or self._angle_rated.size)
+        # (actuator, the change that counts as a full rate step) of each rate-limited one
+        near = 1.0 - LIMIT_FRACTION
+        self._thrust_rated = [(int(i), float(model.thrust_step[i]) * near)
+                              for i in np.flatnonzero(thrusters & np.isfinite(model.thrust_step))]
+        self._surface_rated = [(int(i), float(model.thrust_step[i]) * near)
+                               for i in model.surfaces[np.isfinite(model.thrust_step[model.surfaces])]]
+        self._angle_rated = [(int(i), float(model.angle_step[i]) * near) for i in model.rot
+                             if math.isfinite(model.angle_step[i]) and model.angle_step[i] > 0.0]
+        self._any_rated = bool(self._thrust_rated or self._surface_rated or self._angle_rated)
         self._never = np.zeros(model.r, dtype=bool)
         self._never.flags.writeable = False
         if previous is None or previous.vehicle.dofs != vehicle.dofs or not np.array_equal(previous.t_e, model.t_e):
@@ -613,23 +619,20 @@ class Allocator:
         at_thrust = (thrust >= self._at_high) | (thrust <= self._at_low)
         if not self._any_rated:
             return at_thrust, self._never
-        at_rate = np.zeros(thrust.shape, dtype=bool)
-        state, model = self._state, self._model
-        if self._thrust_rated.size:
-            index = self._thrust_rated
-            at_rate[index] = np.abs(thrust[index] - state.thrust[index]) >= model.thrust_step[index] * (
-                1.0 - LIMIT_FRACTION)
-        if self._surface_rated.size:
-            index = self._surface_rated
-            lift = self._lift[index]
-            deflection = np.divide(thrust[index], lift, out=np.zeros(index.size), where=lift > 0.0)
-            at_rate[index] = np.abs(deflection - state.deflection[index]) >= model.thrust_step[index] * (
-                1.0 - LIMIT_FRACTION)
-        if self._angle_rated.size:
-            index = self._angle_rated
-            turned = np.abs(np.angle(np.exp(1j * (angle[index] - state.angle[index]))))
-            at_rate[index] |= turned >= model.angle_step[index] * (1.0 - LIMIT_FRACTION)
-        return at_thrust, at_rate
+        state = self._state
+        now, before = thrust.tolist(), state.thrust.tolist()
+        at_rate = [False] * len(now)
+        for i, step in self._thrust_rated:
+            at_rate[i] = abs(now[i] - before[i]) >= step
+        if self._surface_rated:
+            lift, deflection = self._lift.tolist(), state.deflection.tolist()
+            for i, step in self._surface_rated:
+                at_rate[i] = abs((now[i] / lift[i] if lift[i] > 0.0 else 0.0) - deflection[i]) >= step
+        if self._angle_rated:
+            turned_to, turned_from = angle.tolist(), state.angle.tolist()
+            for i, step in self._angle_rated:
+                at_rate[i] = at_rate[i] or abs(math.remainder(turned_to[i] - turned_from[i], TWO_PI)) >= step
+        return at_thrust, np.array(at_rate)
 
     def _surface_drag(self, thrust: np.ndarray) -> float:
         """X_cs of (1.57): the added resistance of all deflected control surfaces."""

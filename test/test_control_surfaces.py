@@ -101,3 +101,17 @@ def test_deflection_limit_bounds_the_lift():
     result = alloc.allocate([0.0, 0.0, 5000.0, 0.0, 0.0, 0.0])
     assert np.all(np.abs(result.command[2:6]) <= 0.4 + 1e-9)
     assert result.saturated
+
+
+def test_a_surface_turning_by_a_full_deflection_step_is_flagged_at_its_rate_limit():
+    """at_rate_limit of a control surface compares its deflection (lift / k_L, (1.48)) with the
+    last sample's: the shipped INFANTE's fins turn at most 1 rad/s, 0.1 rad a sample at 10 Hz."""
+    alloc = Allocator(vehicle_from(ROOT / "config" / "infante_auv.yaml", rate_hz=10.0))
+    alloc.set_speed(SPEED)
+    fins = [alloc.names.index(name) for name in SURFACES[:4]]
+    first = alloc.allocate([0.0, 0.0, 3000.0, 0.0, 0.0, 0.0])
+    assert np.abs(first.command[fins]) == pytest.approx([0.1] * 4)
+    assert first.at_rate_limit[fins].all()
+    for _ in range(20):
+        settled = alloc.allocate([0.0, 0.0, 300.0, 0.0, 0.0, 0.0])
+    assert not settled.at_rate_limit[fins].any()
