@@ -117,13 +117,13 @@ def test_a_moved_thruster_is_taken_by_values_and_answers_as_a_fresh_allocator(co
     authority = alloc._model.authority
     requests = [np.array([c * math.cos(a), c * math.sin(a), 0.0, 0.0, 0.0, 0.2 * c * math.sin(3 * a)])
                 for a in np.linspace(0.0, 2.0 * math.pi, 7, endpoint=False) for c in (0.4, 1.2)]
+    scale = np.array([authority[0], authority[1], 0, 0, 0, authority[2]])
     for tau in requests:
-        alloc.allocate(tau * np.array([authority[0], authority[1], 0, 0, 0, authority[2]]))
+        alloc.allocate(tau * scale)
     setups = alloc.stats.solver_setups
     moved_vehicle = vehicle_from(ROOT / "config" / config, **base, **moved)
     alloc.reconfigure(moved_vehicle)
     fresh = Allocator(moved_vehicle)
-    scale = np.array([authority[0], authority[1], 0, 0, 0, authority[2]])
     for tau in requests:
         alloc.reset()
         fresh.reset()
