@@ -70,8 +70,20 @@ class Manager:
         return self.call(self.change, ChangeState.Request(transition=Transition(id=transition_id))).success
 
     def state(self):
+        """The node's state. A query may be asked again: right after the node starts, the
+        service can be visible before the way back to us is matched, and its first reply can
+        be lost (seen once in `make test`; the test then waited 20 s for it)."""
         from lifecycle_msgs.srv import GetState
-        return self.call(self.get, GetState.Request()).current_state.label
+        self.spin_until(self.get.service_is_ready)
+        for _ in range(4):
+            future = self.get.call_async(GetState.Request())
+            deadline = time.monotonic() + 5.0
+            while not future.done() and time.monotonic() < deadline:
+                self.executor.spin_once(timeout_sec=0.05)
+            if future.done():
+                return future.result().current_state.label
+            self.get.remove_pending_request(future)
+        raise AssertionError("get_state never answered")
 
 
 def finish(process):
