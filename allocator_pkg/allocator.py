@@ -368,6 +368,7 @@ class Allocator:
     def _apply_speed(self) -> None:
         v = self._vehicle
         self._lift = lift_gains(v, self._speed)
+        self._lift_list = self._lift.tolist()
         self._drag = np.array([drag_gain(a.surface, v.water_density, self._speed) if a.is_surface else 0.0
                                for a in v.actuators])
         self._refresh_ranges()
@@ -625,7 +626,7 @@ class Allocator:
         for i, step in self._thrust_rated:
             at_rate[i] = abs(now[i] - before[i]) >= step
         if self._surface_rated:
-            lift, deflection = self._lift.tolist(), state.deflection.tolist()
+            lift, deflection = self._lift_list, state.deflection.tolist()
             for i, step in self._surface_rated:
                 at_rate[i] = abs((now[i] / lift[i] if lift[i] > 0.0 else 0.0) - deflection[i]) >= step
         if self._angle_rated:
