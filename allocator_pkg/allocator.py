@@ -35,15 +35,11 @@ from .configuration_matrix import configuration_matrix
 from .faults import Fault, FaultMode, FaultSet, lift_gains, static_ranges
 from .methods import METHODS, AllocationMethod
 from .methods.pseudoinverse import PseudoInverseAllocation, PseudoInverseGains
-from .model import MethodOutput, Model, SampleLimits
+from .model import SATURATION_TOLERANCE, MethodOutput, Model, SampleLimits
 from .pieces import PiecePlanner
 from .sectors import in_feasible_sector, surroundings
 from .solvers import BACKENDS, DEFAULT_BACKEND, BackendFactory
 from .vehicle import DOF_NAMES, Vehicle
-
-SATURATION_TOLERANCE = 1e-3
-"""A request counts as met when every controlled DOF is within this fraction of the DOF's
-authority of it (Model.dof_scale)."""
 
 LIMIT_FRACTION = 1e-3
 """An actuator within this fraction of a limit sits at it (thrust range, rate step)."""
@@ -561,11 +557,11 @@ class Allocator:
         thrust = np.minimum(np.maximum(force[model.starts], limits.low), limits.high)
         angle = limits.angle.copy()
         extended = thrust[model.extended_owner]
-        proposals = output.angle
+        proposals, turns = output.angle, output.turn or {}
         for k, (i, (c1, c2)) in enumerate(self._rot_pairs):
             thrust_i, angle_i = resolve(limits.azimuth[k], float(angle[i]), (float(force[c1]), float(force[c2])),
                                         self._hold[i], self._continuous[k],
-                                        None if proposals is None else float(proposals[i]))
+                                        None if proposals is None else float(proposals[i]), turns.get(i))
             thrust[i], angle[i] = thrust_i, angle_i
             extended[c1], extended[c2] = thrust_i * math.cos(angle_i), thrust_i * math.sin(angle_i)
         return thrust, angle, extended

@@ -263,16 +263,19 @@ def _exit_offset(rotation: RotationConfig, alpha0: float) -> float:
 
 
 def resolve(limits: AzimuthLimits, alpha0: float, force: tuple[float, float], hold: float,
-            continuous: bool, proposal: float | None = None) -> tuple[float, float]:
+            continuous: bool, proposal: float | None = None, turn: float | None = None) -> tuple[float, float]:
     """(thrust, angle) that produce as much of ``force`` as this sample's limits allow.
 
     The angle is atan2 of the force (1.23), or ``proposal`` if a method chose one; for a force
     below ``hold`` or a thruster that may not push this sample (an idle or failed one) it turns
+    toward ``turn`` if a method chose where an idle thruster should go (and it may push), else
     toward the limits' goal, or holds. Either way it is clamped to the allowed angles.
     """
     f1, f2 = force
     if limits.line:
         angle = alpha0
+    elif turn is not None and limits.magnitude_max > 0.0 and math.hypot(f1, f2) < hold:
+        angle = alpha0 + wrap(turn - alpha0)
     elif math.hypot(f1, f2) < hold or limits.magnitude_max == 0.0:
         angle = alpha0 if limits.goal is None else limits.goal
     elif proposal is not None:

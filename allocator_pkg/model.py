@@ -22,6 +22,10 @@ DEFAULT_SLACK_RATIO = 1e6
 """Default Q_k: a wrench error of 1/1000 of DOF k's authority costs as much as every
 actuator at full force, sum_i c_i F_i^2 with c_i the effort curvature (W_ii in the qp method)."""
 
+SATURATION_TOLERANCE = 1e-3
+"""A request counts as met when every controlled DOF is within this fraction of the DOF's
+authority of it (Model.dof_scale)."""
+
 REFERENCE_FLOW_SPEED = 2.0
 """[m/s] Flow speed at which a control surface's force range sets its numerical scale."""
 
@@ -210,7 +214,9 @@ class SampleLimits:
 @dataclass(slots=True)
 class MethodOutput:
     """A method's answer: the extended force vector (1.16), and how the solve went.
-    ``angle`` optionally proposes the angle of each actuator (nonlinear method)."""
+    ``angle`` optionally proposes the angle of each actuator (nonlinear method); ``turn``
+    the angle toward which an idle rotatable thruster (by actuator index) turns instead of its
+    limits' goal (the nonlinear method's descent direction)."""
 
     force: np.ndarray
     status: str
@@ -218,3 +224,4 @@ class MethodOutput:
     solve_time: float = 0.0
     solved: bool = True
     angle: np.ndarray | None = None
+    turn: dict[int, float] | None = None

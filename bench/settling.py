@@ -16,7 +16,9 @@ hold the request for 400 samples from rest and judge the last 100:
   checked here with arithmetic of its own;
 - time per sample (median, p99).
 
-``make bench`` runs the full sweep (``--full``); ``test/test_settling.py`` a small one. The
+``make bench`` runs the full sweep (``--full``); ``test/test_settling.py`` a small one;
+``--off-grid`` the directions between the full sweep's near the capability (every 5 deg from
+2.5, at 0.9 to 1.3 times; about 20 minutes, ``--vessels`` splits it). The
 output names the commit of the ``allocator_pkg`` it ran, so the sweep can measure older code:
 ``PYTHONPATH=<checkout> python bench/settling.py --full --note "..."`` (how
 ``bench/results/settling_before.json`` was made).
@@ -174,6 +176,7 @@ def summary(cases: list[Case]) -> dict:
         "moving_or_falling_back": sum(not case.settled for case in cases),
         "fallback_share": sum(case.fallbacks for case in cases) / samples,
         "worst_deviation": max(case.deviation for case in cases),
+        "largest_spread_deg": max(case.angle_spread_deg for case in cases),
         "violations": sum(len(case.violations) for case in cases),
         "time_us": {"median": float(np.median(times)), "p99": float(np.percentile(times, 99)),
                     "max": float(np.max(times))},
@@ -184,17 +187,25 @@ def summary(cases: list[Case]) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--full", action="store_true", help="every 15 deg, magnitudes 0.5 to 1.5 by 0.1")
+    grid = parser.add_mutually_exclusive_group()
+    grid.add_argument("--full", action="store_true", help="every 15 deg, magnitudes 0.5 to 1.5 by 0.1")
+    grid.add_argument("--off-grid", action="store_true",
+                      help="every 5 deg from 2.5 (between the full sweep's directions), magnitudes 0.9 to 1.3 by 0.1")
+    parser.add_argument("--vessels", nargs="+", choices=list(VESSELS), default=list(VESSELS), metavar="VESSEL",
+                        help=f"which of {', '.join(VESSELS)} (default: all)")
     parser.add_argument("--out", type=Path, default=None)
     parser.add_argument("--note", default="", help="what the measured code is (kept in the output)")
     arguments = parser.parse_args(argv)
-    directions = np.arange(0.0, 360.0, 15.0 if arguments.full else 45.0)
-    magnitudes = np.round(np.arange(0.5, 1.51, 0.1 if arguments.full else 0.5), 2)
+    if arguments.off_grid:
+        directions, magnitudes = np.arange(2.5, 360.0, 5.0), np.round(np.arange(0.9, 1.31, 0.1), 2)
+    else:
+        directions = np.arange(0.0, 360.0, 15.0 if arguments.full else 45.0)
+        magnitudes = np.round(np.arange(0.5, 1.51, 0.1 if arguments.full else 0.5), 2)
     report = {"samples": SAMPLES, "judged": JUDGED, "directions_deg": directions.tolist(),
               "magnitudes": magnitudes.tolist(), "commit": _commit(), "date": datetime.date.today().isoformat(),
               "note": arguments.note, "vessels": {}}
-    for name, build in VESSELS.items():
-        swept = sweep(build(), METHODS, directions, magnitudes)
+    for name in arguments.vessels:
+        swept = sweep(VESSELS[name](), METHODS, directions, magnitudes)
         report["vessels"][name] = {method: summary(cases) for method, cases in swept.items()}
         print(f"settling: {name} done", file=sys.stderr, flush=True)
     text = json.dumps(report, indent=1)

@@ -226,6 +226,19 @@ def test_plan_and_resolve_units():
     assert held[1] == 0.05
 
 
+def test_an_idle_thruster_turns_toward_a_methods_turn_instead_of_its_goal():
+    """`turn` (a method's direction for an idle thruster) wins over the limits' goal, the short
+    way round and within the sample's window; a thruster that pushes, or may not push, ignores it."""
+    window = AzimuthLimits(3.0 - 0.2, 3.0 + 0.2, 1, 0.0, 25.0, goal=2.9)
+    assert resolve(window, 3.0, (0.0, 0.0), 0.01, continuous=True, turn=-2.9) == (0.0, pytest.approx(wrap(3.2)))
+    assert resolve(window, 3.0, (0.0, 0.0), 0.01, continuous=True, turn=3.05) == (0.0, pytest.approx(3.05))
+    assert resolve(window, 3.0, (0.0, 0.0), 0.01, continuous=True)[1] == pytest.approx(2.9)
+    pushing = resolve(window, 3.0, (-10.0, 0.0), 0.01, continuous=True, turn=2.0)
+    assert pushing[1] == pytest.approx(math.pi)
+    failed = dataclasses.replace(window, thrust_high=0.0)
+    assert resolve(failed, 3.0, (0.0, 0.0), 0.01, continuous=True, turn=3.1)[1] == pytest.approx(2.9)
+
+
 @pytest.mark.parametrize("reversible", [False, True])
 def test_a_wish_that_would_start_a_crossing_puts_the_side_in_question(reversible):
     """`plan` turns the cheapest way toward the wanted direction, across a forbidden sector if
