@@ -8,6 +8,7 @@ from pathlib import Path
 TARGET_VEHICLE = "bluerov2_heavy"
 INPUT_RATES = (100.0, 1000.0)
 SETTLING_BEFORE = Path(__file__).resolve().parent / "results" / "settling_before.json"
+SETTLING_OFF_GRID = Path(__file__).resolve().parent / "results" / "settling_offgrid.json"
 """The settling sweep on the code before issue 12, measured once (see bench/settling.py)."""
 NOT_IN_THIS_RUN = "not in this run (the next `make bench` measures it)"
 
@@ -303,7 +304,7 @@ def _load_section(result: dict) -> list[str]:
     return lines
 
 
-def _settling_section(result: dict, before: dict | None) -> list[str]:
+def _settling_section(result: dict, before: dict | None, off_grid: dict | None = None) -> list[str]:
     lines = ["## Rotatable thrusters near their capability", "",
              "`bench/settling.py --full`: a constant request held from rest for {samples} samples and judged over "
              "the last {judged}, in every direction of the surge/sway plane (every {step:g} deg) at {magnitudes} "
@@ -325,14 +326,24 @@ def _settling_section(result: dict, before: dict | None) -> list[str]:
         runs.insert(0, (f"before (#12; commit {before['commit']}, {before['date']})", before))
         lines += ["", f"\"Before\" is the same sweep run on commit {before['commit']} ({before['note']}); it is "
                   "kept in `bench/results/settling_before.json`, not re-measured by `make bench`."]
-    lines += ["", "| code | vessel | method | not at rest | fallbacks, all samples | worst deviation | violations | "
-              "median us | p99 us | max us |", "|---|---|---|---|---|---|---|---|---|---|"]
+    if off_grid is not None:
+        grid = off_grid["directions_deg"]
+        runs.append((f"off the grid (commit {off_grid['commit']}, {off_grid['date']})", off_grid))
+        lines += ["", f"\"Off the grid\" is `bench/settling.py --off-grid` run on commit {off_grid['commit']}: the "
+                  f"directions between the full sweep's (every {grid[1] - grid[0]:g} deg from {grid[0]:g}) at "
+                  f"{off_grid['magnitudes'][0]:g} to {off_grid['magnitudes'][-1]:g} times the capability; it is "
+                  "kept in `bench/results/settling_offgrid.json`, not re-measured by `make bench` (about 20 "
+                  "minutes)."]
+    lines += ["", "| code | vessel | method | not at rest | largest spread deg | fallbacks, all samples | "
+              "worst deviation | violations | median us | p99 us | max us |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for label, run in runs:
         for vessel, methods in run["vessels"].items():
             for method, summary in methods.items():
                 times = summary["time_us"]
                 lines.append(f"| {label} | {vessel} | {method} | {summary['moving_or_falling_back']} of "
-                             f"{summary['cases']} | {100 * summary['fallback_share']:.2f} % | "
+                             f"{summary['cases']} | {_fmt(summary.get('largest_spread_deg'), 3)} | "
+                             f"{100 * summary['fallback_share']:.2f} % | "
                              f"{_fmt(summary['worst_deviation'], 4)} | {summary['violations']} | "
                              f"{_fmt(times['median'], 0)} | {_fmt(times['p99'], 0)} | {_fmt(times['max'], 0)} |")
     return lines
@@ -349,7 +360,8 @@ def write(result: dict, path: Path) -> None:
     lines += ["", "## Solver level", "", *_solver_tables(result)]
     lines += _convergence_tables(result)
     before = json.loads(SETTLING_BEFORE.read_text()) if SETTLING_BEFORE.exists() else None
-    lines += [*_settling_section(result, before), ""]
+    off_grid = json.loads(SETTLING_OFF_GRID.read_text()) if SETTLING_OFF_GRID.exists() else None
+    lines += [*_settling_section(result, before, off_grid), ""]
     lines += ["## Node level", "", *_node_table(result)]
     lines += ["", *_load_section(result)]
     path.write_text("\n".join(lines) + "\n")
