@@ -18,7 +18,7 @@ hold the request for 400 samples from rest and judge the last 100:
 
 ``make bench`` runs the full sweep (``--full``); ``test/test_settling.py`` a small one;
 ``--off-grid`` the directions between the full sweep's near the capability (every 5 deg from
-2.5, at 0.9 to 1.3 times; about 20 minutes, ``--vessels`` splits it). The
+2.5, at 0.9 to 1.3 times; about 15 minutes, ``--vessels`` splits it). The
 output names the commit of the ``allocator_pkg`` it ran, so the sweep can measure older code:
 ``PYTHONPATH=<checkout> python bench/settling.py --full --note "..."`` (how
 ``bench/results/settling_before.json`` was made).
