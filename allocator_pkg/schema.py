@@ -154,7 +154,8 @@ VEHICLE_KEYS: tuple[Key, ...] = (
     Key("explicit.regions", STR, "Method explicit: a file of its regions from `allocator-explicit precompute`, "
         "loaded when the method is set up (empty: the regions are found as requests reach them).", default="",
         constraint="a file path, or empty"),
-    Key("solver.eps_abs", FLOAT, "OSQP absolute tolerance, as a fraction of each variable's range.",
+    Key("solver.eps_abs", FLOAT, "OSQP absolute tolerance, as a fraction of each variable's range (the nonlinear "
+        "method solves its linearised QPs to a tenth of it and of eps_rel).",
         default=1e-5, minimum=0.0, exclusive_minimum=True),
     Key("solver.eps_rel", FLOAT, "OSQP relative tolerance.", default=1e-5, minimum=0.0),
     Key("solver.max_iter", INT, "OSQP iteration limit per solve.", default=4000, minimum=1),
