@@ -332,7 +332,7 @@ def _settling_section(result: dict, before: dict | None, off_grid: dict | None =
         lines += ["", f"\"Off the grid\" is `bench/settling.py --off-grid` run on commit {off_grid['commit']}: the "
                   f"directions between the full sweep's (every {grid[1] - grid[0]:g} deg from {grid[0]:g}) at "
                   f"{off_grid['magnitudes'][0]:g} to {off_grid['magnitudes'][-1]:g} times the capability; it is "
-                  "kept in `bench/results/settling_offgrid.json`, not re-measured by `make bench` (about 35 "
+                  "kept in `bench/results/settling_offgrid.json`, not re-measured by `make bench` (about 20 "
                   "minutes on one core)."]
     lines += ["", "| code | vessel | method | not at rest | largest spread deg | fallbacks, all samples | "
               "worst deviation | violations | median us | p99 us | max us |",

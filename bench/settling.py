@@ -18,7 +18,7 @@ hold the request for 400 samples from rest and judge the last 100:
 
 ``make bench`` runs the full sweep (``--full``); ``test/test_settling.py`` a small one;
 ``--off-grid`` the directions between the full sweep's (every 5 deg from 2.5, at the same
-magnitudes; about 35 minutes on one core, ``--vessels`` splits it). The
+magnitudes; about 20 minutes on one core, ``--vessels`` splits it). The
 output names the commit of the ``allocator_pkg`` it ran, so the sweep can measure older code:
 ``PYTHONPATH=<checkout> python bench/settling.py --full --note "..."`` (how
 ``bench/results/settling_before.json`` was made).
