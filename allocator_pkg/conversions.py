@@ -24,15 +24,23 @@ def wrench_to_array(wrench: Wrench) -> np.ndarray:
 
 def array_to_wrench(values) -> Wrench:
     """A Wrench of [X, Y, Z, K, M, N]."""
-    wrench = Wrench()
-    (wrench.force.x, wrench.force.y, wrench.force.z,
-     wrench.torque.x, wrench.torque.y, wrench.torque.z) = (float(v) for v in values)
+    return fill_wrench(Wrench(), values)
+
+
+def fill_wrench(wrench: Wrench, values) -> Wrench:
+    """``wrench`` with its components set to [X, Y, Z, K, M, N] (a message's own Wrench is
+    filled in place: making one costs several times more)."""
+    force, torque = wrench.force, wrench.torque
+    force.x, force.y, force.z, torque.x, torque.y, torque.z = np.asarray(values, dtype=float).tolist()
     return wrench
 
 
-def commands_message(result: AllocationResult, names: tuple[str, ...], header: Header) -> ThrusterCommands:
-    """Every actuator's thrust, set-point, angle and fault mode of one sample."""
-    message = ThrusterCommands()
+def commands_message(result: AllocationResult, names: tuple[str, ...], header: Header,
+                     message: ThrusterCommands | None = None) -> ThrusterCommands:
+    """Every actuator's thrust, set-point, angle and fault mode of one sample, in ``message``
+    (every field set; a publisher serialises at publish, so one message can serve each sample)
+    or a new one."""
+    message = ThrusterCommands() if message is None else message
     message.header = header
     message.name = list(names)
     message.thrust = result.thrust.tolist()
@@ -43,21 +51,21 @@ def commands_message(result: AllocationResult, names: tuple[str, ...], header: H
 
 
 def status_message(result: AllocationResult, solver_status: str, header: Header, frame: str = FRD,
-                   voltage: float | None = None) -> AllocationStatus:
+                   voltage: float | None = None, message: AllocationStatus | None = None) -> AllocationStatus:
     """Requested, achieved and unallocated wrench (in the body frame convention ``frame``),
     saturation, per-actuator limit flags, the supply voltage in use (None: NaN) and solver
-    figures of one sample."""
-    message = AllocationStatus()
+    figures of one sample, in ``message`` (every field set) or a new one."""
+    message = AllocationStatus() if message is None else message
     message.header = header
-    message.requested = array_to_wrench(wrench_between(result.requested, frame))
-    message.achieved = array_to_wrench(wrench_between(result.achieved, frame))
+    fill_wrench(message.requested, wrench_between(result.requested, frame))
+    fill_wrench(message.achieved, wrench_between(result.achieved, frame))
     message.saturated = result.saturated
     message.method = result.method
     message.solver_status = solver_status
     message.iterations = result.iterations
     message.solve_time = result.solve_time
     message.power = result.power
-    message.unallocated = array_to_wrench(wrench_between(result.unallocated, frame))
+    fill_wrench(message.unallocated, wrench_between(result.unallocated, frame))
     message.at_thrust_limit = result.at_thrust_limit.tolist()
     message.at_rate_limit = result.at_rate_limit.tolist()
     message.voltage = math.nan if voltage is None else float(voltage)

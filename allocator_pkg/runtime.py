@@ -82,6 +82,8 @@ class AllocationRuntime:
                                                qos_overriding_options=qos.overridable())
         self._status = node.create_publisher(AllocationStatus, "allocation_status", qos.output(),
                                              qos_overriding_options=qos.overridable())
+        # Filled and published again every sample (making them cost more than filling them).
+        self._commands_message, self._status_message = ThrusterCommands(), AllocationStatus()
         self._diagnostics = node.create_publisher(DiagnosticArray, "/diagnostics", qos.diagnostics(),
                                                   qos_overriding_options=qos.overridable())
         self._markers = node.create_publisher(MarkerArray, "~/thrust_markers", qos.output(),
@@ -274,8 +276,9 @@ class AllocationRuntime:
 
     def _publish(self, result: AllocationResult, now: Time, status: str) -> None:
         header = Header(stamp=now.to_msg(), frame_id=self.settings.base_frame)
-        self._commands.publish(commands_message(result, self.allocator.names, header))
-        self._status.publish(status_message(result, status, header, self.settings.frame, self.allocator.voltage))
+        self._commands.publish(commands_message(result, self.allocator.names, header, self._commands_message))
+        self._status.publish(status_message(result, status, header, self.settings.frame, self.allocator.voltage,
+                                            self._status_message))
         if self._per_actuator is not None:
             self._per_actuator.publish(result)
         rate = self.settings.markers_rate_hz

@@ -55,3 +55,23 @@ def test_status_carries_the_unallocated_wrench_in_the_nodes_frame_the_limit_flag
     assert list(frd.at_rate_limit) == [False] * 8
     assert frd.voltage == 16.0
     assert math.isnan(status_message(result, "solved", Header()).voltage)
+
+
+def test_a_message_filled_again_carries_only_the_new_sample():
+    """The node fills one ThrusterCommands and one AllocationStatus every sample: every field
+    must be the new sample's, none left from the one before."""
+    import math
+    allocator = Allocator(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"))
+    first = allocator.allocate([0.0, 30.0, 400.0, 0.0, 0.0, 0.0])
+    allocator.set_voltage(14.0)
+    second = allocator.allocate([5.0, 0.0, 0.0, 0.0, 0.0, 1.0])
+    assert first.saturated and not second.saturated
+    commands = commands_message(first, allocator.names, Header(frame_id="a"))
+    status = status_message(first, "first", Header(frame_id="a"), frame="flu")
+    assert math.isnan(status.voltage)
+    again = commands_message(second, allocator.names, Header(frame_id="b"), commands)
+    filled = status_message(second, "second", Header(frame_id="b"), voltage=14.0, message=status)
+    assert again is commands and filled is status
+    assert again == commands_message(second, allocator.names, Header(frame_id="b"))
+    assert filled == status_message(second, "second", Header(frame_id="b"), voltage=14.0)
+    assert not filled.saturated and filled.voltage == 14.0 and filled.solver_status == "second"
