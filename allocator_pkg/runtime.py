@@ -82,7 +82,8 @@ class AllocationRuntime:
                                                qos_overriding_options=qos.overridable())
         self._status = node.create_publisher(AllocationStatus, "allocation_status", qos.output(),
                                              qos_overriding_options=qos.overridable())
-        # Filled and published again every sample (making them cost more than filling them).
+        # Filled and published again every sample, always under the lock (making them anew cost
+        # more than filling them).
         self._commands_message, self._status_message = ThrusterCommands(), AllocationStatus()
         self._diagnostics = node.create_publisher(DiagnosticArray, "/diagnostics", qos.diagnostics(),
                                                   qos_overriding_options=qos.overridable())
