@@ -35,7 +35,7 @@ from .configuration_matrix import configuration_matrix
 from .faults import Fault, FaultMode, FaultSet, lift_gains, static_ranges
 from .methods import METHODS, AllocationMethod
 from .methods.pseudoinverse import PseudoInverseAllocation, PseudoInverseGains
-from .model import SATURATION_TOLERANCE, MethodOutput, Model, SampleLimits
+from .model import MethodOutput, Model, SampleLimits
 from .pieces import PiecePlanner
 from .sectors import in_feasible_sector, surroundings
 from .solvers import BACKENDS, DEFAULT_BACKEND, BackendFactory
@@ -184,7 +184,7 @@ class Allocator:
     def dof_tolerance(self) -> np.ndarray:
         """How far the achieved wrench may miss the request in each controlled DOF (``dofs``
         order) before a sample counts as saturated."""
-        return SATURATION_TOLERANCE * self._model.dof_scale
+        return self._model.dof_tolerance
 
     def check_reconfigure(self, vehicle: Vehicle) -> None:
         """Raise ValueError if :meth:`reconfigure` cannot take ``vehicle``."""

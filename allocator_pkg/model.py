@@ -109,6 +109,12 @@ class Model:
         return np.where(self.authority > 1e-9 * reach, self.authority, reach)
 
     @property
+    def dof_tolerance(self) -> np.ndarray:
+        """How far a wrench may miss the request in each controlled DOF and still count as met
+        (SATURATION_TOLERANCE of the DOF's authority)."""
+        return SATURATION_TOLERANCE * self.dof_scale
+
+    @property
     def r(self) -> int:
         return len(self.vehicle.actuators)
 

@@ -16,7 +16,6 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from allocator_pkg import METHODS, Allocator, FaultMode, Vehicle, vehicle_from_parameters
-from allocator_pkg.allocator import SATURATION_TOLERANCE
 from allocator_pkg.angles import wrap
 from allocator_pkg.configuration_matrix import configuration_matrix
 from allocator_pkg.model import Model
@@ -147,7 +146,7 @@ def check(vehicle, alloc, fault_set, previous, result, tau):
     assert result.achieved == pytest.approx(achieved, rel=1e-9, abs=1e-9 * max(1.0, np.max(np.abs(achieved))))
     if not result.saturated:
         rows = list(vehicle.dof_indices)
-        tolerance = SATURATION_TOLERANCE * Model.build(vehicle, dt).dof_scale
+        tolerance = Model.build(vehicle, dt).dof_tolerance
         assert np.all(np.abs(result.achieved[rows] - tau[rows]) <= tolerance * (1 + 1e-9))
 
 

@@ -52,7 +52,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..model import SATURATION_TOLERANCE, MethodOutput, Model, SampleLimits
+from ..model import MethodOutput, Model, SampleLimits
 from ..solvers import BackendFactory
 from ..solvers.problem import Rows, ScaledProblem, entry_index
 from ..vehicle import SolverSettings, Vehicle
@@ -136,14 +136,16 @@ class NonlinearAllocation(AllocationMethod):
         self._no_turning = np.zeros((model.n, 0))
         self._powered = model.power > 0.0
         self._all_powered = bool(self._powered.all())
-        self._c_gain = 0.75 * model.power
-        # The QP's coefficient of Delta f^2 against c_i: POWER_CURVATURE / 2 where the cost is
-        # the power, 1 where it is the quadratic W_ii f_i^2 itself.
-        self._curvature_share = np.where(self._powered, 0.5 * POWER_CURVATURE, 1.0)
+        # The QP's coefficient of Delta f^2 is POWER_CURVATURE / 2 times c_i = 3/4 P_i / sqrt|f0_i|
+        # where the cost is the power (W_ii where it is the quadratic W_ii f_i^2 itself), and q
+        # keeps the true gradient 2 c_i f0_i: 2 sqrt(coefficient) f0 * q_gain in the QP's units.
+        share = np.where(self._powered, 0.5 * POWER_CURVATURE, 1.0)
+        self._c_gain = 0.75 * model.power * share
+        self._q_gain = 2.0 / share
         rotations = [model.vehicle.actuators[i].rotation for i in rot]
         self._idle_turning = bool(rotations) and all(r.continuous and not r.forbidden_sectors for r in rotations)
         self._hold = model.hold[rot].tolist()
-        self._missing = SATURATION_TOLERANCE * model.dof_scale
+        self._missing = model.dof_tolerance
         self._turning_gain = 1.5 * model.power[rot]
         self._multipliers = np.zeros(model.n)
         self._trust = np.minimum(model.angle_step[model.rot], TRUST_STEP)
@@ -203,8 +205,8 @@ class NonlinearAllocation(AllocationMethod):
         t, dt = self._matrices(angle[rot])
         for _ in range(passes):
             size = np.maximum(np.abs(force), floor)
-            c = (self._c_gain / np.sqrt(size) if self._all_powered else
-                 np.where(self._powered, self._c_gain / np.sqrt(size), model.weight)) * self._curvature_share
+            c = self._c_gain / np.sqrt(size) if self._all_powered else \
+                np.where(self._powered, self._c_gain / np.sqrt(size), model.weight)
             root = np.sqrt(c)
             spun, lever = force[rot], size[rot]
             curvature = np.maximum(self._turning_gain * lever ** 1.5, -spun * (self._multipliers @ t[:, rot]))
@@ -217,7 +219,7 @@ class NonlinearAllocation(AllocationMethod):
             here = angle[rot]
             qp.low[n + r:] = np.maximum(angle_low - here, -trust) * lever
             qp.up[n + r:] = np.minimum(angle_high - here, trust) * lever
-            self._q[:r] = 2.0 * root * force / self._curvature_share
+            self._q[:r] = self._q_gain * root * force
             if p and model.vehicle.singularity_rho > 0.0:
                 self._q[r:r + p] = self._singularity_gradient(t, dt, limits) / lever
             solution = qp.solve(qp.low, qp.up, q=self._q)
