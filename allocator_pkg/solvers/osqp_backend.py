@@ -26,6 +26,7 @@ CHECK_TERMINATION = 5
 """Iterations between OSQP's convergence checks: warm-started samples often converge in a few."""
 
 INFINITY = float(osqp.constant("OSQP_INFTY"))
+"""OSQP's stand-in for an infinite bound; larger values are clipped to it."""
 
 STOPPED = frozenset((int(osqp.SolverStatus.OSQP_MAX_ITER_REACHED), int(osqp.SolverStatus.OSQP_TIME_LIMIT_REACHED)))
 """Statuses of a solve stopped by its budget: the iterate is used when it is feasible enough."""
@@ -36,7 +37,6 @@ ITERATE_TOLERANCE = 100.0
 long before the split of effort among actuators (directions only W decides, 1e6 flatter), so
 such an iterate gives the wrench and keeps every limit; warm starting carries the remaining
 work over to the next sample."""
-"""OSQP's stand-in for an infinite bound; larger values are clipped to it."""
 
 DUAL_RANGE = 10.0
 """A stopped solve whose row multipliers exceed this many times the cost's largest curvature is
