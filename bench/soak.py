@@ -17,6 +17,14 @@ Fails (exit 1) on a crash, a non-zero exit, a silence of the node, a violation, 
 refused or an invalid one accepted, or RSS growth of 5 MB or more after the warm-up (not
 measured in runs shorter than two minutes). Writes bench/results/soak.json.
 
+Missed periods are counted as bench/node.py counts them, and each late tick is put down to
+what came right before it: a disturbance sent within ``DISTURBED`` (a fault, a parameter
+change, a NaN or 1e12 wrench), else a sample on either side of it that took longer than
+``SLOW_SAMPLE`` to allocate (a solve that long is the host taking the CPU away as often as
+the solver working: the pseudo-inverse's p50 is 0.13 ms), else nothing the soak did. Beside
+the node, bench/ticker.py sleeps to the same 500 Hz deadlines in a process of its own for the
+whole run: the share of periods the machine itself costs a deadline loop.
+
     .venv/bin/python bench/soak.py [--minutes 10] [--config config/dp_vessel.yaml] [--seed 1]
 """
 
@@ -26,9 +34,11 @@ os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
 os.environ.setdefault("ROS_DOMAIN_ID", "42")
 
 import argparse
+import itertools
 import json
 import math
 import random
+import subprocess
 import sys
 import time
 from dataclasses import dataclass, field
@@ -36,7 +46,17 @@ from pathlib import Path
 
 import numpy as np
 from geometry_msgs.msg import Wrench
-from node import ROOT, Probe, node_process, percentiles, process_cpu_seconds, ros_context, stamp_seconds, summarise
+from node import (
+    MISSED_FACTOR,
+    ROOT,
+    Probe,
+    node_process,
+    percentiles,
+    process_cpu_seconds,
+    ros_context,
+    stamp_seconds,
+    summarise,
+)
 from rcl_interfaces.srv import SetParametersAtomically
 from rclpy.context import Context
 from rclpy.parameter import Parameter
@@ -58,6 +78,9 @@ EXTREMES_PERIOD = 10.0       # s between a NaN wrench and a 1e12 wrench
 EXTREME_SAMPLES = 6          # wrench periods a 1e12 wrench is held (three node periods)
 SILENCE = 0.5                # s without commands that counts as the node hanging
 MAX_VIOLATIONS_KEPT = 50
+DISTURBED = 0.05             # s after a disturbance in which a late tick is put down to it
+SLOW_SAMPLE = 1e-3           # s of allocation next to a late tick that it is put down to
+TICKER = Path(__file__).with_name("ticker.py")
 FIRST_ACTIONS = (*(f"method {name}" for name in reversed(METHODS)), "fault DEGRADED", "fault FAILED",
                  "fault STUCK", "fault NOMINAL", "clear", "thrust_max", "weights", "max_iter", "invalid")
 """Warm-up: every kind of change once, so that later allocations are not taken for a leak."""
@@ -96,9 +119,11 @@ class Tally:
     extreme_allocated: int = 0
     violations: int = 0
     examples: list[str] = field(default_factory=list)
+    times: list[float] = field(default_factory=list)         # when each action was sent [s]
 
     def count(self, action: str) -> None:
         self.actions[action] = self.actions.get(action, 0) + 1
+        self.times.append(time.time())
 
     def violation(self, text: str) -> None:
         self.violations += 1
@@ -155,6 +180,7 @@ class SoakProbe(Probe):
         self.last_extreme = time.monotonic()
         self.extreme_left = 0
         self.solve_by_method: dict[str, list[float]] = {}
+        self.solve_at: dict[float, float] = {}      # header stamp -> solve time [s]
 
     def _publish(self) -> None:
         """One step of the walk (mean reversion over about 2 s), or an extreme wrench."""
@@ -182,6 +208,7 @@ class SoakProbe(Probe):
     def _on_status(self, message: AllocationStatus) -> None:
         super()._on_status(message)
         self.solve_by_method.setdefault(message.method, []).append(message.solve_time)
+        self.solve_at[stamp_seconds(message)] = message.solve_time
         requested = message.requested
         if max(abs(v) for v in (requested.force.x, requested.force.y, requested.force.z,
                                 requested.torque.x, requested.torque.y, requested.torque.z)) > 1e11:
@@ -367,6 +394,27 @@ def memory_summary(samples: list[tuple[float, dict[str, float]]]) -> dict:
             "slope_mb_per_min": round(float(np.polyfit(minutes, rss, 1)[0]), 3)}
 
 
+def late_ticks(stamps: list[float], solve_at: dict[float, float], disturbances: list[float]) -> dict[str, int]:
+    """Missed periods (as bench/node.py counts them) by what came right before each late
+    tick: a disturbance, a slow sample, or neither (see the module docstring)."""
+    period = 1.0 / RATE_HZ
+    sent = np.sort(np.array(disturbances))
+    causes = {"after a disturbance": 0, "next to a slow sample": 0, "elsewhere": 0}
+    for before, after in itertools.pairwise(stamps):
+        interval = after - before
+        if interval <= MISSED_FACTOR * period:
+            continue
+        k = int(np.searchsorted(sent, after, side="right")) - 1
+        if k >= 0 and after - sent[k] <= DISTURBED:
+            cause = "after a disturbance"
+        elif max(solve_at.get(before, 0.0), solve_at.get(after, 0.0)) > SLOW_SAMPLE:
+            cause = "next to a slow sample"
+        else:
+            cause = "elsewhere"
+        causes[cause] += round(interval / period) - 1
+    return causes
+
+
 def soak(config: Path, minutes: float, seed: int, log: Path) -> dict:
     """Run the soak and return its figures."""
     parameters = read_parameters(config)
@@ -384,6 +432,8 @@ def soak(config: Path, minutes: float, seed: int, log: Path) -> dict:
                 probe.wait_for_node()
                 disturber.wait_for_services()
                 probe.start_publishing()
+                ticker = subprocess.Popen([sys.executable, str(TICKER), str(seconds), str(RATE_HZ)],
+                                          stdout=subprocess.PIPE, text=True, env=os.environ)
                 begin = time.monotonic()
                 start, cpu_start = time.time(), process_cpu_seconds(process.pid)
                 next_action, next_memory = begin + 1.0, begin
@@ -409,8 +459,12 @@ def soak(config: Path, minutes: float, seed: int, log: Path) -> dict:
                 figures = summarise(probe, RATE_HZ, (start, end), 100.0 * (cpu_end - cpu_start) / (end - start))
                 receipts = np.array([receipt for receipt, _ in probe.commands if start <= receipt < end])
                 longest_silence = float(np.max(np.diff(np.concatenate(([start], receipts, [end])))))
-                by_method = {method: {"samples": len(times), **percentiles([t * 1e3 for t in times], 50, 99)}
+                by_method = {method: {"samples": len(times),
+                                      **percentiles([t * 1e3 for t in times], 50, 99, maximum=True)}
                              for method, times in probe.solve_by_method.items()}
+                stamps = [stamp for receipt, stamp in probe.commands if start <= receipt < end]
+                causes = late_ticks(stamps, probe.solve_at, tally.times)
+                reference = json.loads(ticker.communicate(timeout=60.0)[0])
             finally:
                 probe.close()
         exit_code = process.returncode
@@ -423,6 +477,7 @@ def soak(config: Path, minutes: float, seed: int, log: Path) -> dict:
         "unanswered": unanswered, "violations": tally.violations, "violation_examples": tally.examples,
         "crash": crash, "exit_code": exit_code, "longest_silence_s": round(longest_silence, 3),
         "rss_mb": memory_summary(memory), "solve_ms_by_method": by_method, **figures,
+        "missed_by_cause": causes, "bare_ticker": reference,
     }
 
 
@@ -464,7 +519,8 @@ def main(argv: list[str] | None = None) -> int:
           f"{result['achieved_hz']} Hz; missed {result['missed']} ({result['missed_percent']} %), "
           f"lost {result['lost']} ({result['lost_percent']} %); longest silence {result['longest_silence_s']} s; "
           f"{memory}; {result['extreme_allocated']} samples of a 1e12 wrench; actions {result['actions']}; "
-          f"results in {arguments.out}")
+          f"missed by cause {result['missed_by_cause']}; a bare {RATE_HZ:g} Hz loop beside it missed "
+          f"{result['bare_ticker']['missed_percent']} %; results in {arguments.out}")
     reasons = failures(result)
     for reason in reasons:
         print(f"soak: FAIL: {reason}", file=sys.stderr)

@@ -1,5 +1,6 @@
 """The benchmark and soak scripts' own logic (their runs are benchmarks, not tests)."""
 
+import itertools
 import json
 import sys
 
@@ -11,6 +12,7 @@ sys.path.insert(0, str(ROOT / "bench"))
 import report
 import soak
 import solver
+import ticker
 
 from allocator_pkg import load_vehicle
 from allocator_pkg.solvers import BACKENDS
@@ -40,6 +42,29 @@ def test_the_soak_judges_each_command_by_the_state_at_its_stamp():
     assert (low, high) == (0.0, 0.5 * vehicle.actuator("azimuth_port").thrust_max)
     history.forget(change)
     assert history.at(10.1, period) == (start, start, False) and len(history.changes) == 1
+
+
+def test_the_soak_puts_each_late_tick_down_to_what_came_right_before_it():
+    period = 1.0 / soak.RATE_HZ
+    # ticks every period from t = 100 s, with three late ones: 3, 2 and 4 periods after the
+    # tick before (2, 1 and 3 missed periods)
+    offsets = [*range(10), 12, *range(13, 30), 31, *range(32, 50), 53, 54]
+    stamps = [100.0 + k * period for k in offsets]
+    late_after = [100.0 + 12 * period, 100.0 + 31 * period, 100.0 + 53 * period]
+    disturbances = [late_after[0] - 0.03, late_after[2] - 0.2]         # within 50 ms of the first only
+    solve_at = dict.fromkeys(stamps, 2e-4)
+    solve_at[100.0 + 29 * period] = 1.5e-3                              # the sample before the second
+    assert soak.late_ticks(stamps, solve_at, disturbances) == {
+        "after a disturbance": 2, "next to a slow sample": 1, "elsewhere": 3}
+
+
+def test_the_bare_ticker_counts_missed_periods_as_the_node_benchmark_does():
+    period = 1.0 / 500.0
+    woke = [k * period for k in (0, 1, 2, 4, 5, 9, 10)]    # 2 then 4 periods apart: 1 + 3 missed
+    result = ticker.missed(woke, 500.0)
+    assert (result["missed"], result["missed_percent"], result["longest_interval_ms"]) == (4, 40.0, 8.0)
+    woke = ticker.tick(0.02, 500.0)            # ten deadlines: at most ten wake-ups, in order
+    assert 1 <= len(woke) <= 10 and all(b > a for a, b in itertools.pairwise(woke))
 
 
 def test_every_solver_pattern_of_the_bench_allocates_and_records_its_solver_calls():

@@ -1,0 +1,50 @@
+"""A bare periodic loop: the host's own share of late ticks, for ``make soak`` to compare with.
+
+It sleeps to deadlines every 1/rate seconds, skips the deadlines it has passed (as an ROS
+timer does), records when it woke, and counts missed periods exactly as the benchmarks count
+the node's (``node.MISSED_FACTOR``): no ROS node, no allocation, nothing in its way, so what
+it misses is what the machine's scheduling costs any process with a deadline. Prints one JSON
+object.
+
+    .venv/bin/python bench/ticker.py SECONDS [RATE_HZ]
+"""
+
+import json
+import sys
+import time
+
+import numpy as np
+from node import MISSED_FACTOR
+
+
+def tick(seconds: float, rate_hz: float) -> list[float]:
+    """Wake times [s] of a loop with deadlines every 1/rate_hz s for ``seconds``."""
+    period = 1.0 / rate_hz
+    woke: list[float] = []
+    deadline = time.monotonic() + period
+    end = deadline + seconds
+    while deadline < end:
+        time.sleep(max(0.0, deadline - time.monotonic()))
+        now = time.monotonic()
+        woke.append(now)
+        deadline += period
+        if deadline <= now:
+            deadline += period * (1 + int((now - deadline) / period))
+    return woke
+
+
+def missed(woke: list[float], rate_hz: float) -> dict:
+    """Missed periods and the latest wake-up, counted like the node's."""
+    period = 1.0 / rate_hz
+    intervals = np.diff(woke)
+    late = intervals[intervals > MISSED_FACTOR * period]
+    count = int(np.sum(np.round(late / period) - 1))
+    expected = max(1, round(float(np.sum(intervals)) / period))
+    return {"rate_hz": rate_hz, "ticks": len(woke), "missed": count,
+            "missed_percent": round(100.0 * count / expected, 2),
+            "longest_interval_ms": round(float(np.max(intervals, initial=0.0)) * 1e3, 2)}
+
+
+if __name__ == "__main__":
+    rate = float(sys.argv[2]) if len(sys.argv) > 2 else 500.0
+    print(json.dumps(missed(tick(float(sys.argv[1]), rate), rate)))
