@@ -428,6 +428,7 @@ def soak(config: Path, minutes: float, seed: int, log: Path) -> dict:
         with node_process(config, RATE_HZ, output=output) as process, ros_context() as context:
             probe = SoakProbe(context, history, seed, tally)
             disturber = Disturber(probe, parameters, seed + 1, tally)
+            ticker = None
             try:
                 probe.wait_for_node()
                 disturber.wait_for_services()
@@ -464,8 +465,11 @@ def soak(config: Path, minutes: float, seed: int, log: Path) -> dict:
                              for method, times in probe.solve_by_method.items()}
                 stamps = [stamp for receipt, stamp in probe.commands if start <= receipt < end]
                 causes = late_ticks(stamps, probe.solve_at, tally.times)
-                reference = json.loads(ticker.communicate(timeout=60.0)[0])
+                reference = json.loads(ticker.communicate(timeout=60.0)[0]) if crash is None else None
             finally:
+                if ticker is not None and ticker.poll() is None:
+                    ticker.kill()
+                    ticker.wait()
                 probe.close()
         exit_code = process.returncode
     figures.pop("publish_to_commands_ms", None)
@@ -515,12 +519,13 @@ def main(argv: list[str] | None = None) -> int:
     memory = (f"RSS {rss['baseline']:.1f} MB after warm-up, growth {rss['growth']} MB (max {rss['max_growth']}, "
               f"slope {rss['slope_mb_per_min']} MB/min)" if rss["growth"] is not None
               else "RSS growth not measured (run shorter than two minutes)")
+    bare = (f"a bare {RATE_HZ:g} Hz loop beside it missed {result['bare_ticker']['missed_percent']} %"
+            if result["bare_ticker"] else "no bare loop figure (the run ended early)")
     print(f"soak: {result['commands_checked']} commands checked over {arguments.minutes:g} min at "
           f"{result['achieved_hz']} Hz; missed {result['missed']} ({result['missed_percent']} %), "
           f"lost {result['lost']} ({result['lost_percent']} %); longest silence {result['longest_silence_s']} s; "
           f"{memory}; {result['extreme_allocated']} samples of a 1e12 wrench; actions {result['actions']}; "
-          f"missed by cause {result['missed_by_cause']}; a bare {RATE_HZ:g} Hz loop beside it missed "
-          f"{result['bare_ticker']['missed_percent']} %; results in {arguments.out}")
+          f"missed by cause {result['missed_by_cause']}; {bare}; results in {arguments.out}")
     reasons = failures(result)
     for reason in reasons:
         print(f"soak: FAIL: {reason}", file=sys.stderr)
