@@ -34,7 +34,7 @@ def tick(seconds: float, rate_hz: float) -> list[float]:
 
 
 def missed(woke: list[float], rate_hz: float) -> dict:
-    """Missed periods and the latest wake-up, counted like the node's."""
+    """Missed periods, counted like the node's, and the longest interval between wake-ups."""
     period = 1.0 / rate_hz
     intervals = np.diff(woke)
     late = intervals[intervals > MISSED_FACTOR * period]
