@@ -20,8 +20,9 @@ measured in runs shorter than two minutes). Writes bench/results/soak.json.
 Missed periods are counted as bench/node.py counts them, and each late tick is put down to
 what came right before it: a disturbance sent within ``DISTURBED`` (a fault, a parameter
 change, a NaN or 1e12 wrench), else a sample on either side of it that took longer than
-``SLOW_SAMPLE`` to allocate (a solve that long is the host taking the CPU away as often as
-the solver working: the pseudo-inverse's p50 is 0.13 ms), else nothing the soak did. Beside
+``SLOW_SAMPLE`` to allocate (a sample that long is as often the process held up, by the
+machine or the garbage collector, as the solver at work: the pseudo-inverse's p50 is 0.13 ms
+and its slowest samples take milliseconds), else nothing the soak did. Beside
 the node, bench/ticker.py sleeps to the same 500 Hz deadlines in a process of its own for the
 whole run: the share of periods the machine itself costs a deadline loop.
 
