@@ -8,8 +8,9 @@ from pathlib import Path
 TARGET_VEHICLE = "bluerov2_heavy"
 INPUT_RATES = (100.0, 1000.0)
 SETTLING_BEFORE = Path(__file__).resolve().parent / "results" / "settling_before.json"
-SETTLING_OFF_GRID = Path(__file__).resolve().parent / "results" / "settling_offgrid.json"
 """The settling sweep on the code before issue 12, measured once (see bench/settling.py)."""
+SETTLING_OFF_GRID = Path(__file__).resolve().parent / "results" / "settling_offgrid.json"
+"""The settling sweep between the full sweep's directions (``--off-grid``), its last run."""
 NOT_IN_THIS_RUN = "not in this run (the next `make bench` measures it)"
 
 INTRO = """# Performance
