@@ -1,5 +1,7 @@
 """Messages to and from the library's arrays and results."""
 
+import math
+
 import numpy as np
 from builtin_interfaces.msg import Time
 from conftest import ROOT
@@ -42,7 +44,6 @@ def test_status_in_flu_flips_y_and_z_of_forces_and_moments():
 
 
 def test_status_carries_the_unallocated_wrench_in_the_nodes_frame_the_limit_flags_and_the_voltage():
-    import math
     allocator = Allocator(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"))
     result = allocator.allocate([0.0, 30.0, 400.0, 0.0, 0.0, 0.0])
     assert result.saturated
@@ -60,7 +61,6 @@ def test_status_carries_the_unallocated_wrench_in_the_nodes_frame_the_limit_flag
 def test_a_message_filled_again_carries_only_the_new_sample():
     """The node fills one ThrusterCommands and one AllocationStatus every sample: every field
     must be the new sample's, none left from the one before."""
-    import math
     allocator = Allocator(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"))
     first = allocator.allocate([0.0, 30.0, 400.0, 0.0, 0.0, 0.0])
     allocator.set_voltage(14.0)

@@ -115,4 +115,3 @@ def test_the_linearised_qps_are_solved_to_a_tenth_of_the_configured_tolerance():
     settings = alloc._method._qp.backend.settings
     assert (settings.eps_abs, settings.eps_rel) == pytest.approx((1e-5, 2e-5))
     assert alloc.stats.solver_setups == 1
-
