@@ -160,12 +160,14 @@ def main(argv: list[str] | None = None) -> int:
         start = time.monotonic()
         fault = [math.inf, math.inf]
         period = 1.0 / vehicle.rate_hz
+        published = 0
         next_publish = start
         while (now := time.monotonic()) - start < arguments.duration:
             elapsed = now - start
             if now >= next_publish:
                 controller.wrench.publish(array_to_wrench(station_keeping(vehicle, elapsed, arguments.duration)))
-                next_publish += period
+                published += 1
+                next_publish = start + published * period
             if elapsed >= 0.4 * arguments.duration and fault[0] == math.inf:
                 fault[0] = now
                 print(f"demo: {controller.set_fault(failed, 'failed').message}", flush=True)

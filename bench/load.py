@@ -53,15 +53,15 @@ def flood(rate_hz: float, seconds: float) -> int:
     wrench.torque.z = 1.0
     period = 1.0 / rate_hz
     start = time.monotonic()
-    next_time, sent = start, 0
+    sent = 0
     while (now := time.monotonic()) < start + seconds:
+        next_time = start + sent * period           # by index: no drift from adding the period
         if now < next_time:
             time.sleep(min(next_time - now, 0.001))
             continue
         wrench.force.x = time.time() % WRAP
         publisher.publish(wrench)
         sent += 1
-        next_time += period
     print(json.dumps({"sent": sent, "achieved_hz": sent / seconds}))
     node.destroy_node()
     rclpy.try_shutdown()

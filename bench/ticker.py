@@ -10,6 +10,7 @@ object.
 """
 
 import json
+import math
 import sys
 import time
 
@@ -18,18 +19,19 @@ from node import MISSED_FACTOR
 
 
 def tick(seconds: float, rate_hz: float) -> list[float]:
-    """Wake times [s] of a loop with deadlines every 1/rate_hz s for ``seconds``."""
+    """Wake times [s] of a loop with deadlines every 1/rate_hz s for ``seconds``: deadline k
+    is start + k / rate_hz, counted by its integer index (a float deadline grown by adding the
+    period drifts, and ten periods could give eleven deadlines before the end)."""
     period = 1.0 / rate_hz
+    count = round(seconds * rate_hz)
+    start = time.monotonic()
     woke: list[float] = []
-    deadline = time.monotonic() + period
-    end = deadline + seconds
-    while deadline < end:
-        time.sleep(max(0.0, deadline - time.monotonic()))
+    k = 1
+    while k <= count:
+        time.sleep(max(0.0, start + k * period - time.monotonic()))
         now = time.monotonic()
         woke.append(now)
-        deadline += period
-        if deadline <= now:
-            deadline += period * (1 + int((now - deadline) / period))
+        k = max(k + 1, math.floor((now - start) / period) + 1)
     return woke
 
 
