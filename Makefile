@@ -74,7 +74,7 @@ run: setup
 DEMO_CONFIG ?= config/dp_vessel.yaml
 DEMO_DURATION ?= 40
 demo: setup
-	$(PY) -m allocator_pkg.demo --config $(DEMO_CONFIG) --duration $(DEMO_DURATION) --out build/demo_timeline.png
+	$(PY) -m allocator_pkg.cli.demo --config $(DEMO_CONFIG) --duration $(DEMO_DURATION) --out build/demo_timeline.png
 
 lint: setup
 	@$(VENV)/bin/ruff check .

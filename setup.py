@@ -26,11 +26,11 @@ setup(
     python_requires=">=3.10",
     entry_points={
         "console_scripts": [
-            "allocator_node = allocator_pkg.node:main",
-            "allocator_lifecycle_node = allocator_pkg.lifecycle_node:main",
-            "allocator-ctl = allocator_pkg.ctl:main",
-            "allocator-capability = allocator_pkg.capability:main",
-            "allocator-explicit = allocator_pkg.explicit_tool:main",
+            "allocator_node = allocator_pkg.ros.node:main",
+            "allocator_lifecycle_node = allocator_pkg.ros.lifecycle_node:main",
+            "allocator-ctl = allocator_pkg.cli.ctl:main",
+            "allocator-capability = allocator_pkg.analysis.capability:main",
+            "allocator-explicit = allocator_pkg.cli.explicit:main",
         ],
     },
 )

@@ -1,6 +1,6 @@
 """Thrust allocation for marine and underwater vehicles.
 
-The core is plain Python (numpy, OSQP, HiGHS, PyYAML); ROS lives only in ``allocator_pkg.node``
+The core is plain Python (numpy, OSQP, HiGHS, PyYAML); ROS lives only in ``allocator_pkg.ros.node``
 and the command-line tools::
 
     from allocator_pkg import load_vehicle, Allocator, FaultMode
@@ -8,11 +8,11 @@ and the command-line tools::
     result = alloc.allocate([X, Y, Z, K, M, N])
 """
 
-from .allocator import AllocationResult, Allocator, AllocatorStats
-from .faults import Fault, FaultMode, FaultSet
+from .allocation.allocator import AllocationResult, Allocator, AllocatorStats
+from .configuration.parameters import load_vehicle, parse_parameters, read_parameters, vehicle_from_parameters
+from .effectiveness.faults import Fault, FaultMode, FaultSet
 from .methods import METHODS
-from .parameters import load_vehicle, parse_parameters, read_parameters, vehicle_from_parameters
-from .vehicle import ConfigError, Vehicle
+from .vehicle.config import ConfigError, Vehicle
 
 __all__ = [
     "METHODS",

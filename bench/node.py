@@ -61,7 +61,7 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.timer import Timer
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
-from allocator_pkg.node import AllocatorNode
+from allocator_pkg.ros.node import AllocatorNode
 
 ROOT = Path(__file__).resolve().parents[1]
 NODE_BINARY = Path(sys.executable).parent / "allocator_node"

@@ -45,9 +45,9 @@ from reference import best_attainable_wrench  # noqa: E402
 
 import allocator_pkg  # noqa: E402
 from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters  # noqa: E402
-from allocator_pkg.capability import Capability  # noqa: E402
-from allocator_pkg.faults import FaultSet, static_ranges  # noqa: E402
-from allocator_pkg.model import Model  # noqa: E402
+from allocator_pkg.analysis.capability import Capability  # noqa: E402
+from allocator_pkg.effectiveness.faults import FaultSet, static_ranges  # noqa: E402
+from allocator_pkg.effectiveness.model import Model  # noqa: E402
 
 SAMPLES = 400
 JUDGED = 100

@@ -66,9 +66,9 @@ from std_srvs.srv import Trigger
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 from allocator_msgs.srv import SetActuatorFault
 from allocator_pkg import METHODS, ConfigError, FaultMode, Vehicle, read_parameters, vehicle_from_parameters
-from allocator_pkg.angles import wrap
-from allocator_pkg.model import Model
-from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector
+from allocator_pkg.effectiveness.model import Model
+from allocator_pkg.effectiveness.sectors import in_feasible_sector, in_forbidden_sector
+from allocator_pkg.vehicle.angles import wrap
 
 RATE_HZ = 500.0
 WRENCH_HZ = 1000.0

@@ -57,10 +57,10 @@ import numpy as np
 from scipy.optimize import minimize
 
 from allocator_pkg import METHODS, Allocator, load_vehicle
-from allocator_pkg.actuators import drag_gain, lift_gain
-from allocator_pkg.capability import Capability
-from allocator_pkg.configuration_matrix import configuration_matrix
-from allocator_pkg.model import Model
+from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.effectiveness.actuators import drag_gain, lift_gain
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
+from allocator_pkg.effectiveness.model import Model
 from allocator_pkg.solvers import BACKENDS, DEFAULT_BACKEND
 
 WARM_UP = 200

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 
 from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters
-from allocator_pkg.capability import Capability
-from allocator_pkg.model import Model
+from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.effectiveness.model import Model
 
 ROOT = Path(__file__).resolve().parents[1]
 HOLD = 20

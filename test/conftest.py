@@ -12,7 +12,7 @@ import pytest
 from hypothesis import settings
 
 from allocator_pkg import Vehicle, read_parameters, vehicle_from_parameters
-from allocator_pkg.configuration_matrix import configuration_matrix
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 
 # Property tests: `make test` runs the same examples every time (a red CI means a change broke
 # something); HYPOTHESIS_PROFILE=explore draws many fresh ones to look for new failures.
@@ -62,8 +62,8 @@ class Harness:
 
         from allocator_msgs.msg import AllocationStatus, ThrusterCommands
         from allocator_msgs.srv import SetActuatorFault
-        from allocator_pkg.node import AllocatorNode
-        from allocator_pkg.wrench_input import message_type
+        from allocator_pkg.ros.node import AllocatorNode
+        from allocator_pkg.ros.wrench_input import message_type
 
         self.time_ns = 1_000_000_000
         overrides = [Parameter("use_sim_time", value=True), *parameters]
@@ -145,7 +145,7 @@ class Harness:
 
     def send_wrench(self, values, frame_id=None):
         """A Wrench, or a WrenchStamped in ``frame_id`` (default: the node's base_frame)."""
-        from allocator_pkg.conversions import array_to_wrench
+        from allocator_pkg.ros.conversions import array_to_wrench
         message = self._wrench_type()
         if hasattr(message, "header"):
             message.header.frame_id = self.node.runtime.settings.base_frame if frame_id is None else frame_id

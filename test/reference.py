@@ -59,7 +59,7 @@ def largest_attainable_scale(t, low, high, tau):
 
 def _allowed_arcs(azimuth_min, azimuth_max, sectors):
     """Arcs of angles where a thruster may push: [min, max] less each sector [start, end]
-    (counter-clockwise from start); written here again, apart from allocator_pkg.sectors."""
+    (counter-clockwise from start); written here again, apart from allocator_pkg.effectiveness.sectors."""
     two_pi = 2.0 * np.pi
     full = azimuth_max - azimuth_min >= two_pi - 1e-9
     low, high = (-np.pi, np.pi) if full else (azimuth_min, azimuth_max)

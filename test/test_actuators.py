@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from allocator_pkg.actuators import CommandMaps, LinearMap, QuadraticMap, TableMap, drag_gain, lift_gain
-from allocator_pkg.vehicle import SurfaceConfig
+from allocator_pkg.effectiveness.actuators import CommandMaps, LinearMap, QuadraticMap, TableMap, drag_gain, lift_gain
+from allocator_pkg.vehicle.config import SurfaceConfig
 
 TABLE = TableMap(command=[1100, 1300, 1475, 1525, 1700, 1900], thrust=[-30.0, -12.0, 0.0, 0.0, 15.0, 40.0],
                  command_min=-math.inf, command_max=math.inf)
@@ -85,14 +85,14 @@ def test_propeller_wake_flow():
 
 
 def _table(voltages, rows, command=(1100.0, 1500.0, 1900.0)):
-    from allocator_pkg.vehicle import CommandMapConfig
+    from allocator_pkg.vehicle.config import CommandMapConfig
     return CommandMapConfig(kind="table", gain=1.0, gain_reverse=1.0, command_min=-math.inf, command_max=math.inf,
                             table_command=tuple(command), table_thrust=tuple(v for row in rows for v in row),
                             table_voltage=tuple(voltages))
 
 
 def test_a_voltage_table_interpolates_between_its_rows():
-    from allocator_pkg.actuators import command_map, thrust_row
+    from allocator_pkg.effectiveness.actuators import command_map, thrust_row
     config = _table((12.0, 16.0, 20.0), ((-30.0, 0.0, 40.0), (-40.0, 0.0, 50.0), (-50.0, 0.0, 70.0)))
     assert thrust_row(config, 12.0) == pytest.approx([-30.0, 0.0, 40.0])
     assert thrust_row(config, 14.0) == pytest.approx([-35.0, 0.0, 45.0])          # halfway
@@ -106,8 +106,8 @@ def test_a_voltage_table_interpolates_between_its_rows():
 def test_thrust_limits_follow_a_voltage_table_and_only_narrow_thrust_min_max():
     from dataclasses import replace
 
-    from allocator_pkg.faults import thrust_limits
-    from allocator_pkg.vehicle import ActuatorConfig
+    from allocator_pkg.effectiveness.faults import thrust_limits
+    from allocator_pkg.vehicle.config import ActuatorConfig
     config = _table((12.0, 16.0), ((-30.0, 0.0, 40.0), (-40.0, 0.0, 50.0)))
     actuator = ActuatorConfig(name="t", type="fixed", position=(0.0, 0.0, 0.0), direction=(1.0, 0.0, 0.0),
                               weight=1.0, power_coefficient=1.0, thrust_min=-45.0, thrust_max=48.0, command=config)
@@ -125,8 +125,8 @@ def test_thrust_limits_follow_a_voltage_table_and_only_narrow_thrust_min_max():
 
 @pytest.mark.parametrize("kind, edge", [("linear", 2.0 * 0.3), ("quadratic", 2.0 * 0.3 * 0.3)])
 def test_a_dead_band_gives_no_force_inside_and_its_edges_forces(kind, edge):
-    from allocator_pkg.actuators import command_map, deadband_forces
-    from allocator_pkg.vehicle import CommandMapConfig
+    from allocator_pkg.effectiveness.actuators import command_map, deadband_forces
+    from allocator_pkg.vehicle.config import CommandMapConfig
     config = CommandMapConfig(kind=kind, gain=2.0, gain_reverse=1.0, command_min=-5.0, command_max=5.0, deadband=0.3)
     low, high = deadband_forces(config)
     assert high == pytest.approx(edge) and low == pytest.approx(-edge / 2.0)      # reverse gain is half

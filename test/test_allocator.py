@@ -7,7 +7,7 @@ import pytest
 from conftest import DATA, ROOT, vehicle_from
 
 from allocator_pkg import Allocator, FaultMode, load_vehicle, vehicle_from_parameters
-from allocator_pkg.actuators import command_map
+from allocator_pkg.effectiveness.actuators import command_map
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 
@@ -168,7 +168,7 @@ NARROW_TWIN = {"dofs": ["surge", "yaw"], "actuators.names": ["port", "stbd"],
 def test_a_change_of_method_only_switches_methods(monkeypatch):
     """A configuration that differs only in ``method`` builds no new model: the method chosen
     takes the current values (a clean start), the state carries over."""
-    import allocator_pkg.allocator as allocator_module
+    import allocator_pkg.allocation.allocator as allocator_module
     alloc = Allocator(load_vehicle(EXAMPLE))
     tau = np.array([120.0, 40.0, 0.0, 0.0, 0.0, 30.0])
     alloc.allocate(tau)

@@ -9,9 +9,10 @@ import pytest
 from conftest import ROOT, vehicle_from
 
 from allocator_pkg import METHODS, Allocator, FaultMode, vehicle_from_parameters
-from allocator_pkg.angles import wrap
-from allocator_pkg.azimuth import AzimuthLimits, AzimuthState, piece_in_question, plan, resolve
-from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector
+from allocator_pkg.allocation.azimuth import AzimuthState, piece_in_question, plan, resolve
+from allocator_pkg.effectiveness.model import AzimuthLimits
+from allocator_pkg.effectiveness.sectors import in_feasible_sector, in_forbidden_sector
+from allocator_pkg.vehicle.angles import wrap
 
 DP = ROOT / "config" / "dp_vessel.yaml"
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"

@@ -125,9 +125,9 @@ def test_parameter_changes_from_other_threads_race_the_timer_and_the_services(ro
 
     from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
     from allocator_msgs.srv import SetActuatorFault
-    from allocator_pkg.conversions import array_to_wrench
-    from allocator_pkg.node import AllocatorNode
-    from allocator_pkg.ros_parameters import allocator_parameters
+    from allocator_pkg.ros.conversions import array_to_wrench
+    from allocator_pkg.ros.node import AllocatorNode
+    from allocator_pkg.ros.ros_parameters import allocator_parameters
 
     node = AllocatorNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(EXAMPLE)],
                          parameter_overrides=[parameter("rate_hz", 200.0), parameter("wrench_timeout", 0.0)])

@@ -12,7 +12,7 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg import METHODS, Allocator, FaultMode, load_vehicle, vehicle_from_parameters
-from allocator_pkg.capability import Capability
+from allocator_pkg.analysis.capability import Capability
 
 # A symmetric vessel: surge thrusters at y = -+1 m, sway thrusters at x = -+1 m, +-100 N each.
 SYMMETRIC = {
@@ -131,8 +131,8 @@ def test_with_saturation_direct_the_pseudo_inverse_reaches_the_attainable_set():
 
 
 def test_all_methods_writes_a_plot_per_group_of_methods_with_another_capability(tmp_path):
-    from allocator_pkg.capability import differing_methods, main
-    from allocator_pkg.parameters import load_vehicle
+    from allocator_pkg.analysis.capability import differing_methods, main
+    from allocator_pkg.configuration.parameters import load_vehicle
 
     vehicle = load_vehicle(ROOT / "config" / "example1_rov.yaml")
     assert differing_methods(vehicle, "qp") == [["pseudoinverse", "svd_filter"], ["lp"]]

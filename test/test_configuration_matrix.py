@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 from allocator_pkg import load_vehicle
-from allocator_pkg.configuration_matrix import (
+from allocator_pkg.effectiveness.configuration_matrix import (
     configuration_matrix,
     extended_configuration_matrix,
     force_column,
 )
-from allocator_pkg.vehicle import ActuatorConfig
+from allocator_pkg.vehicle.config import ActuatorConfig
 
 
 def fixed(position, direction, name="t"):

@@ -8,7 +8,7 @@ from conftest import ROOT
 from std_msgs.msg import Header
 
 from allocator_pkg import Allocator, load_vehicle
-from allocator_pkg.conversions import array_to_wrench, commands_message, status_message, wrench_to_array
+from allocator_pkg.ros.conversions import array_to_wrench, commands_message, status_message, wrench_to_array
 
 
 def test_wrench_round_trip_in_dof_order():

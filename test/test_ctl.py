@@ -3,7 +3,7 @@
 import math
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
-from allocator_pkg.ctl import format_sample
+from allocator_pkg.cli.ctl import format_sample
 
 
 def test_a_sample_line_shows_thrust_command_azimuth_and_the_solver():
@@ -18,7 +18,7 @@ def test_a_sample_line_shows_thrust_command_azimuth_and_the_solver():
 
 
 def test_a_sample_line_shows_the_unallocated_wrench_the_actuators_at_a_limit_and_the_voltage():
-    from allocator_pkg.conversions import array_to_wrench
+    from allocator_pkg.ros.conversions import array_to_wrench
     commands = ThrusterCommands(name=["a", "b", "c"], thrust=[10.0, 20.0, 30.0], command=[1.0, 2.0, 3.0],
                                 azimuth=[0.0, 0.0, 0.0], mode=[0, 0, 0])
     status = AllocationStatus(saturated=True, solver_status="solved",
@@ -32,8 +32,8 @@ def test_a_sample_line_shows_the_unallocated_wrench_the_actuators_at_a_limit_and
 
 def test_a_capability_answer_in_words():
     from allocator_msgs.srv import GetCapability
-    from allocator_pkg.conversions import array_to_wrench
-    from allocator_pkg.ctl import format_capability
+    from allocator_pkg.cli.ctl import format_capability
+    from allocator_pkg.ros.conversions import array_to_wrench
     response = GetCapability.Response(success=True, message="steady state", scale=2.5,
                                       achieved=array_to_wrench([250.0, 0, 0, 0, 0, 0]))
     assert format_capability([100.0, 0, 0, 0, 0, 0], response) == (

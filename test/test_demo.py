@@ -11,7 +11,7 @@ pytestmark = pytest.mark.slow
 
 def test_demo_short_run_writes_its_timeline(tmp_path):
     out = tmp_path / "timeline.png"
-    command = [sys.executable, "-m", "allocator_pkg.demo", "--config", str(ROOT / "config" / "dp_vessel.yaml"),
+    command = [sys.executable, "-m", "allocator_pkg.cli.demo", "--config", str(ROOT / "config" / "dp_vessel.yaml"),
                "--duration", "6", "--out", str(out)]
     result = subprocess.run(command, capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stdout + result.stderr

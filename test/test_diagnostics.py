@@ -6,7 +6,7 @@ from conftest import ROOT
 from diagnostic_msgs.msg import DiagnosticStatus
 
 from allocator_pkg import Allocator, FaultMode, load_vehicle
-from allocator_pkg.diagnostics import Counters, diagnostic_statuses, short_dofs
+from allocator_pkg.ros.diagnostics import Counters, diagnostic_statuses, short_dofs
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 NODE = "/rov1/thrust_allocator"

@@ -11,8 +11,8 @@ from reference import largest_attainable_scale, weighted_pseudo_inverse
 from scipy.optimize import linprog
 
 from allocator_pkg import METHODS, Allocator
-from allocator_pkg.capability import Capability
-from allocator_pkg.configuration_matrix import configuration_matrix
+from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 
 EIGHT = DATA / "eight_thrusters.yaml"
 DIRECT = [name for name in METHODS if "direct" in METHODS[name].saturation_modes]

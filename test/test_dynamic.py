@@ -11,8 +11,8 @@ from conftest import DATA, ROOT, vehicle_from
 from reference import bounded_least_squares, circle_allocation
 
 from allocator_pkg import Allocator, FaultMode
-from allocator_pkg.configuration_matrix import configuration_matrix
-from allocator_pkg.model import Model
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
+from allocator_pkg.effectiveness.model import Model
 
 EIGHT = DATA / "eight_thrusters.yaml"
 DIRECTIONS = [np.array(d, dtype=float) for d in (

@@ -10,11 +10,12 @@ from conftest import DATA, ROOT, vehicle_from
 from reference import constrained_allocation
 from scipy.optimize import lsq_linear
 
-from allocator_pkg import Allocator, ConfigError, FaultMode, explicit_tool, load_vehicle
-from allocator_pkg.capability import Capability
-from allocator_pkg.configuration_matrix import configuration_matrix
+from allocator_pkg import Allocator, ConfigError, FaultMode, load_vehicle
+from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.cli import explicit as explicit_tool
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
+from allocator_pkg.effectiveness.model import SampleLimits
 from allocator_pkg.methods.explicit import ExplicitAllocation
-from allocator_pkg.model import SampleLimits
 from allocator_pkg.solvers import BACKENDS
 
 BLUEROV = ROOT / "config" / "bluerov2_heavy.yaml"
@@ -296,8 +297,8 @@ def test_rotatable_thrusters_and_saturations_other_than_weighted_are_refused_by_
 def test_the_status_and_diagnostics_report_regions_and_hit_rate():
     from std_msgs.msg import Header
 
-    from allocator_pkg.conversions import status_message
-    from allocator_pkg.diagnostics import Counters, allocation_status
+    from allocator_pkg.ros.conversions import status_message
+    from allocator_pkg.ros.diagnostics import Counters, allocation_status
 
     allocator = Allocator(load_vehicle(BLUEROV), method="explicit")
     for _ in range(3):

@@ -6,9 +6,9 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg import Allocator, FaultMode, load_vehicle
-from allocator_pkg.capability import Capability
-from allocator_pkg.fault_matrix import failure_sets, markdown
-from allocator_pkg.vehicle import DOF_NAMES
+from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.analysis.fault_matrix import failure_sets, markdown
+from allocator_pkg.vehicle.config import DOF_NAMES
 
 CONFIGS = sorted(p for p in (ROOT / "config").glob("*.yaml") if p.stem != "default")
 SPEED = 2.0
@@ -67,7 +67,7 @@ def test_lost_directions_of_a_known_case():
     # BlueROV2 Heavy without both front horizontal thrusters: the rear pair can still push
     # ahead and astern, but a sideways push or a yaw moment always brings the other along.
     vehicle = load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml")
-    from allocator_pkg.fault_matrix import lost_directions
+    from allocator_pkg.analysis.fault_matrix import lost_directions
     lost = lost_directions(Capability(vehicle), ("thruster_1", "thruster_2"))
     assert set(lost) == {"+sway", "-sway", "+yaw", "-yaw"}
     assert DOF_NAMES.index("sway") == 1

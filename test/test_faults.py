@@ -8,7 +8,7 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg import Fault, FaultMode, FaultSet, load_vehicle
-from allocator_pkg.faults import static_ranges
+from allocator_pkg.effectiveness.faults import static_ranges
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 INFANTE = ROOT / "config" / "infante_auv.yaml"

@@ -1,5 +1,5 @@
-"""The package's modules import each other without a cycle: every import counts, at module
-level, inside functions and under TYPE_CHECKING alike."""
+"""The package's modules import each other without a cycle and only downward, folder by folder:
+every import counts, at module level, inside functions and under TYPE_CHECKING alike."""
 
 import ast
 from pathlib import Path
@@ -83,4 +83,48 @@ def test_the_cycle_finder_finds_cycles():
 
 
 def test_the_configuration_types_import_nothing_of_the_package_but_angles():
-    assert graph()["allocator_pkg.vehicle"] == {"allocator_pkg.angles"}
+    assert graph()["allocator_pkg.vehicle.config"] == {"allocator_pkg.vehicle.angles"}
+
+
+LAYERS = ("vehicle", "effectiveness", "solvers", "methods", "configuration", "allocation", "analysis", "ros", "cli")
+"""The package's folders, lowest first: a module imports only from its own folder or one below."""
+
+
+def layer(module: str) -> int | None:
+    """The rank of a module's folder in LAYERS (None: the package itself, above every layer)."""
+    parts = module.split(".")
+    return LAYERS.index(parts[1]) if len(parts) > 1 else None
+
+
+def upward(edges: dict[str, set[str]]) -> list[tuple[str, str]]:
+    """Every import from a module to one in a higher layer."""
+    return sorted((module, target) for module, targets in edges.items() for target in targets
+                  if layer(module) is not None and (layer(target) is None or layer(target) > layer(module)))
+
+
+def test_every_module_sits_in_a_layer_folder():
+    assert {module.split(".")[1] for module in graph() if module.count(".")} == set(LAYERS)
+    assert [path.name for path in PACKAGE.glob("*.py")] == ["__init__.py"]
+
+
+def test_no_module_imports_from_a_higher_layer():
+    found = upward(graph())
+    assert not found, "upward imports: " + ", ".join(f"{a} -> {b}" for a, b in found)
+
+
+def test_the_layer_check_finds_an_upward_import():
+    edges = {"allocator_pkg.methods.qp": {"allocator_pkg.vehicle.config"},
+             "allocator_pkg.vehicle.config": {"allocator_pkg.ros.node"},
+             "allocator_pkg.ros.node": {"allocator_pkg"}}
+    assert upward(edges) == [("allocator_pkg.ros.node", "allocator_pkg"),
+                             ("allocator_pkg.vehicle.config", "allocator_pkg.ros.node")]
+
+
+def test_the_maths_never_imports_rclpy_and_the_nodes_never_a_command_line_or_a_plot():
+    for path in sorted(PACKAGE.rglob("*.py")):
+        module = module_name(path)
+        text = path.read_text()
+        if layer(module) is not None and layer(module) < LAYERS.index("ros"):
+            assert "rclpy" not in text and "_msgs" not in text, module
+        if layer(module) is not None and layer(module) < LAYERS.index("cli"):
+            assert "argparse" not in text and "matplotlib" not in text, module

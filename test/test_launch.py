@@ -23,8 +23,8 @@ def test_launch_file_names_existing_files_and_the_real_executables():
     strings = {node.value for node in ast.walk(tree) if isinstance(node, ast.Constant)}
     assert {"allocator_pkg", "allocator_node", "allocator_lifecycle_node", "thrust_allocator"} <= strings
     setup = (ROOT / "setup.py").read_text()
-    assert "allocator_node = allocator_pkg.node:main" in setup
-    assert "allocator_lifecycle_node = allocator_pkg.lifecycle_node:main" in setup
+    assert "allocator_node = allocator_pkg.ros.node:main" in setup
+    assert "allocator_lifecycle_node = allocator_pkg.ros.lifecycle_node:main" in setup
 
 
 def test_launch_arguments_namespace_frame_remaps_and_log_level():

@@ -34,7 +34,7 @@ class Manager:
 
         from allocator_msgs.msg import ThrusterCommands
         from allocator_msgs.srv import SetActuatorFault
-        from allocator_pkg.ctl import Controller
+        from allocator_pkg.cli.ctl import Controller
         self.node = rclpy.create_node("manager", context=context)
         self.executor = SingleThreadedExecutor(context=context)
         self.executor.add_node(self.node)
@@ -100,7 +100,7 @@ def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_cont
 
     from allocator_msgs.msg import ActuatorFault
     from allocator_msgs.srv import SetActuatorFault
-    from allocator_pkg.conversions import array_to_wrench
+    from allocator_pkg.ros.conversions import array_to_wrench
     process = start("-r", "__ns:=/managed")
     try:
         manager = Manager(ros_context, "/managed")

@@ -8,8 +8,8 @@ from std_msgs.msg import Header
 from visualization_msgs.msg import Marker
 
 from allocator_pkg import Allocator, FaultMode, load_vehicle
-from allocator_pkg.faults import static_ranges
-from allocator_pkg.markers import AT_LIMIT_COLOUR, COLOURS, scale, thrust_markers
+from allocator_pkg.effectiveness.faults import static_ranges
+from allocator_pkg.ros.markers import AT_LIMIT_COLOUR, COLOURS, scale, thrust_markers
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 

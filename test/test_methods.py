@@ -14,13 +14,13 @@ from allocator_pkg import (
     ConfigError,
     load_vehicle,
     read_parameters,
-    schema,
     vehicle_from_parameters,
 )
-from allocator_pkg.capability import Capability
+from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.configuration import schema
 from allocator_pkg.methods.base import AllocationMethod
 from allocator_pkg.methods.pseudoinverse import PseudoInverseAllocation
-from allocator_pkg.model import MethodOutput
+from allocator_pkg.solvers.outcome import MethodOutput
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 

@@ -326,7 +326,7 @@ def test_the_battery_voltage_sets_the_thrust_limits_and_bad_ones_are_counted(har
 @pytest.mark.params(BLUEROV, wrench_timeout=0.0, frame="flu")
 def test_get_capability_answers_along_a_direction_in_the_nodes_frame(harness):
     from allocator_msgs.srv import GetCapability
-    from allocator_pkg.conversions import array_to_wrench, wrench_to_array
+    from allocator_pkg.ros.conversions import array_to_wrench, wrench_to_array
     client = harness.probe.create_client(GetCapability, "thrust_allocator/get_capability")
     up = harness.call(client, GetCapability.Request(direction=array_to_wrench([0.0, 0.0, 1.0, 0.0, 0.0, 0.0])))
     assert up.success and up.scale == pytest.approx(4 * 39.9, rel=1e-6)          # FLU up: the verticals reversed

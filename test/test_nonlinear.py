@@ -6,7 +6,7 @@ from conftest import DATA, vehicle_from
 from scipy.optimize import minimize
 
 from allocator_pkg import Allocator
-from allocator_pkg.configuration_matrix import configuration_matrix
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 
 FOUR = DATA / "four_azimuths.yaml"
 

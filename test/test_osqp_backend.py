@@ -13,10 +13,10 @@ import scipy.sparse as sp
 from conftest import ROOT, vehicle_from
 
 from allocator_pkg import Allocator
-from allocator_pkg.model import Model
+from allocator_pkg.effectiveness.model import Model
 from allocator_pkg.solvers.osqp_backend import RAW_CALLS, OSQPBackend
 from allocator_pkg.solvers.problem import ScaledProblem
-from allocator_pkg.vehicle import SolverSettings
+from allocator_pkg.vehicle.config import SolverSettings
 
 
 def test_sigint_during_a_solve_is_raised_again_for_the_process():

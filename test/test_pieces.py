@@ -8,8 +8,8 @@ import pytest
 from conftest import ROOT, vehicle_from
 
 from allocator_pkg import Allocator, FaultMode, vehicle_from_parameters
-from allocator_pkg.pieces import Piece, PiecePlanner, convex_pieces
-from allocator_pkg.vehicle import RotationConfig
+from allocator_pkg.allocation.pieces import Piece, PiecePlanner, convex_pieces
+from allocator_pkg.vehicle.config import RotationConfig
 
 DP = ROOT / "config" / "dp_vessel.yaml"
 

@@ -7,7 +7,7 @@ from scipy.optimize import lsq_linear
 
 from allocator_pkg.solvers import BACKENDS
 from allocator_pkg.solvers.problem import Rows, ScaledProblem, entry_index
-from allocator_pkg.vehicle import SolverSettings
+from allocator_pkg.vehicle.config import SolverSettings
 
 SETTINGS = SolverSettings(eps_abs=1e-9, eps_rel=1e-9, max_iter=200000, time_limit=0.0)
 

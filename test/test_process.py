@@ -41,7 +41,7 @@ class Listener:
         from rclpy.qos import QoSProfile, ReliabilityPolicy
 
         from allocator_msgs.msg import ThrusterCommands
-        from allocator_pkg.ctl import Controller
+        from allocator_pkg.cli.ctl import Controller
         self.node = rclpy.create_node("listener", context=context)
         self.controller = Controller(self.node)
         self.commands = []
@@ -62,7 +62,7 @@ def test_node_process_runs_takes_faults_and_stops_cleanly_on_sigterm(ros_context
     listener = Listener(ros_context)
     listener.spin_until(lambda: len(listener.commands) > 3)
     assert list(listener.commands[-1].name) == ["azimuth_fwd", "azimuth_aft", "main_port", "main_stbd"]
-    from allocator_pkg.conversions import array_to_wrench
+    from allocator_pkg.ros.conversions import array_to_wrench
     wrench = array_to_wrench([120.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     listener.spin_until(lambda: listener.controller.wrench.get_subscription_count() > 0)
 
@@ -217,7 +217,7 @@ def test_the_input_trigger_answers_a_wrench_without_waiting_for_the_timer(ros_co
     """At 0.2 Hz a timer would wait up to 5 s; the input trigger allocates the wrench on arrival.
     The bound is loose on purpose (a shared machine): bench/node.py measures the latency."""
     from allocator_msgs.msg import AllocationStatus
-    from allocator_pkg.conversions import array_to_wrench
+    from allocator_pkg.ros.conversions import array_to_wrench
     process = start_node(EXAMPLE, "-r", "__ns:=/fast", "-p", "trigger:=input", "-p", "rate_hz:=0.2",
                          "-p", "wrench_timeout:=0.0")
     try:

@@ -16,11 +16,11 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from allocator_pkg import METHODS, Allocator, FaultMode, Vehicle, vehicle_from_parameters
-from allocator_pkg.angles import wrap
-from allocator_pkg.configuration_matrix import configuration_matrix
-from allocator_pkg.model import Model
-from allocator_pkg.sectors import in_feasible_sector, in_forbidden_sector
-from allocator_pkg.vehicle import DOF_NAMES, SATURATION_MODES
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
+from allocator_pkg.effectiveness.model import Model
+from allocator_pkg.effectiveness.sectors import in_feasible_sector, in_forbidden_sector
+from allocator_pkg.vehicle.angles import wrap
+from allocator_pkg.vehicle.config import DOF_NAMES, SATURATION_MODES
 
 TYPES = ("fixed", "azimuth", "azimuth_vertical", "rudder", "fin")
 FIXED_DIRECTIONS = ("fixed", "rudder", "fin")

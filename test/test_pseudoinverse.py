@@ -8,9 +8,9 @@ from conftest import DATA, ROOT, vehicle_from
 from reference import weighted_pseudo_inverse
 
 from allocator_pkg import Allocator, FaultMode
-from allocator_pkg.configuration_matrix import configuration_matrix, extended_configuration_matrix
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix, extended_configuration_matrix
+from allocator_pkg.effectiveness.model import Model
 from allocator_pkg.methods.pseudoinverse import PseudoInverseGains
-from allocator_pkg.model import Model
 
 EIGHT = DATA / "eight_thrusters.yaml"
 

@@ -186,7 +186,7 @@ def test_priorities_match_an_independent_lexicographic_solution(path, priorities
     them): each level's achieved wrench equals scipy's level-by-level optimum."""
     from reference import lexicographic_allocation
 
-    from allocator_pkg.capability import Capability
+    from allocator_pkg.analysis.capability import Capability
     vehicle = vehicle_from(path, priorities=priorities, **static)
     alloc = Allocator(vehicle)
     t, _, low, high = matrices(vehicle)

@@ -12,7 +12,7 @@ FLU = np.array([1.0, -1.0, -1.0, 1.0, -1.0, -1.0])
 
 
 def requested(status):
-    from allocator_pkg.conversions import wrench_to_array
+    from allocator_pkg.ros.conversions import wrench_to_array
     return list(wrench_to_array(status.requested))
 
 
@@ -72,7 +72,7 @@ def test_a_flu_wrench_is_converted_at_the_boundary(harness):
     assert np.array(harness.commands[-1].azimuth) == pytest.approx(expected.azimuth)
     status = harness.status[-1]
     assert requested(status) == list(frd * FLU)
-    from allocator_pkg.conversions import wrench_to_array
+    from allocator_pkg.ros.conversions import wrench_to_array
     assert wrench_to_array(status.achieved) == pytest.approx(expected.achieved * FLU)
     assert status.header.frame_id == harness.commands[-1].header.frame_id == "base_link"
 
@@ -107,7 +107,7 @@ def test_thrust_markers_at_most_ten_per_second_along_each_force(harness):
     start, end = port.points
     assert (start.x, start.y, start.z) == pytest.approx((-1.3, 0.45, 0.0))        # FLU: y to port is +
     sample = next(c for c in reversed(harness.commands) if c.header.stamp == port.header.stamp)
-    from allocator_pkg.markers import scale
+    from allocator_pkg.ros.markers import scale
     length, force = scale(harness.node.allocator.vehicle)
     assert end.x - start.x == pytest.approx(sample.thrust[2] / force * length)
     assert (end.y, end.z) == pytest.approx((start.y, start.z))
@@ -141,7 +141,7 @@ def test_a_qos_override_on_one_node_leaves_the_next_one_at_the_default(ros_conte
     from rclpy.parameter import Parameter
     from rclpy.qos import ReliabilityPolicy
 
-    from allocator_pkg.node import AllocatorNode
+    from allocator_pkg.ros.node import AllocatorNode
     arguments = ["--ros-args", "--params-file", str(EXAMPLE)]
     overridden = AllocatorNode(context=ros_context, cli_args=[*arguments, "-r", "__ns:=/qa"], parameter_overrides=[
         Parameter("qos_overrides./qa/wrench_command.subscription.reliability", value="reliable")])

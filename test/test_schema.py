@@ -2,7 +2,7 @@
 
 from conftest import ROOT
 
-from allocator_pkg import schema
+from allocator_pkg.configuration import schema
 
 
 def test_configuration_doc_is_generated_from_the_schema():

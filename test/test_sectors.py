@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from allocator_pkg.sectors import (
+from allocator_pkg.effectiveness.sectors import (
     allowed_piece,
     forbidden_offsets,
     in_feasible_sector,
@@ -12,7 +12,7 @@ from allocator_pkg.sectors import (
     target_offsets,
     wrap,
 )
-from allocator_pkg.vehicle import RotationConfig
+from allocator_pkg.vehicle.config import RotationConfig
 
 
 def rotation(low=-math.pi, high=math.pi, forbidden=(), initial=0.0):

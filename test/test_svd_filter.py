@@ -11,8 +11,8 @@ from conftest import ROOT, vehicle_from
 from reference import weighted_pseudo_inverse
 
 from allocator_pkg import Allocator, vehicle_from_parameters
-from allocator_pkg.configuration_matrix import configuration_matrix, extended_configuration_matrix
-from allocator_pkg.model import Model
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix, extended_configuration_matrix
+from allocator_pkg.effectiveness.model import Model
 
 EPSILON = 0.05
 

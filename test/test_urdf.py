@@ -11,8 +11,8 @@ from conftest import ROOT
 from scipy.spatial.transform import Rotation
 
 from allocator_pkg import ConfigError, read_parameters, vehicle_from_parameters
-from allocator_pkg.configuration_matrix import configuration_matrix
-from allocator_pkg.urdf import geometry_parameters
+from allocator_pkg.configuration.urdf import geometry_parameters
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 
 BLUEROV = ROOT / "config" / "bluerov2_heavy.yaml"
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
@@ -126,7 +126,7 @@ def test_the_node_reads_a_urdf_file_and_keeps_its_geometry(tmp_path, ros_context
     the URDF's, and a runtime change of a position is refused."""
     from rclpy.parameter import Parameter
 
-    from allocator_pkg.node import AllocatorNode
+    from allocator_pkg.ros.node import AllocatorNode
     full = read_parameters(BLUEROV)
     description = tmp_path / "bluerov2.urdf"
     description.write_text(urdf_of(full, "flu"))

@@ -6,9 +6,9 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg import Allocator, load_vehicle
-from allocator_pkg.model import Model
-from allocator_pkg.sectors import in_forbidden_sector
-from allocator_pkg.vehicle import DOF_NAMES
+from allocator_pkg.effectiveness.model import Model
+from allocator_pkg.effectiveness.sectors import in_forbidden_sector
+from allocator_pkg.vehicle.config import DOF_NAMES
 
 CONFIGS = sorted((ROOT / "config").glob("*.yaml"))
 

@@ -1,6 +1,6 @@
 """The stale-input watchdog on nanosecond stamps."""
 
-from allocator_pkg.watchdog import Watchdog
+from allocator_pkg.ros.watchdog import Watchdog
 
 S = 10**9
 

@@ -1,5 +1,5 @@
 """docs/thrust_markers.png: what ~/thrust_markers shows, drawn with matplotlib from the same
-MarkerArray the node publishes (allocator_pkg.markers), for the BlueROV2 Heavy in base_link
+MarkerArray the node publishes (allocator_pkg.ros.markers), for the BlueROV2 Heavy in base_link
 (FLU) with one thruster failed and one degraded, asked for more surge than it has."""
 
 import sys
@@ -12,9 +12,9 @@ import matplotlib.pyplot as plt
 from std_msgs.msg import Header
 
 from allocator_pkg import Allocator, FaultMode, load_vehicle
-from allocator_pkg.faults import static_ranges
-from allocator_pkg.frames import wrench_between
-from allocator_pkg.markers import thrust_markers
+from allocator_pkg.effectiveness.faults import static_ranges
+from allocator_pkg.ros.markers import thrust_markers
+from allocator_pkg.vehicle.frames import wrench_between
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "docs" / "thrust_markers.png"

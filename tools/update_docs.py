@@ -1,8 +1,8 @@
 """make docs: regenerate the generated parts of the documentation.
 
-- docs/configuration.md: the key tables, from allocator_pkg.schema, between the BEGIN/END
+- docs/configuration.md: the key tables, from allocator_pkg.configuration.schema, between the BEGIN/END
   markers (the prose around them is kept);
-- docs/faults.md: the fault matrix of every shipped vehicle (allocator_pkg.fault_matrix).
+- docs/faults.md: the fault matrix of every shipped vehicle (allocator_pkg.analysis.fault_matrix).
 
 Tests fail when these files and the code disagree.
 """
@@ -10,8 +10,8 @@ Tests fail when these files and the code disagree.
 import sys
 from pathlib import Path
 
-from allocator_pkg.fault_matrix import markdown
-from allocator_pkg.schema import markdown_reference
+from allocator_pkg.analysis.fault_matrix import markdown
+from allocator_pkg.configuration.schema import markdown_reference
 
 BEGIN = "<!-- BEGIN GENERATED: make docs -->\n"
 END = "<!-- END GENERATED -->\n"

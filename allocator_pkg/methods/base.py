@@ -2,7 +2,7 @@
 ``allocate`` per method, the effectiveness matrices and the glue elsewhere).
 
 A method is constructed once per configuration structure with the configuration-time
-arrays (:class:`~allocator_pkg.model.Model`) and a solver backend factory, takes new values
+arrays (:class:`~allocator_pkg.effectiveness.model.Model`) and a solver backend factory, takes new values
 of the same structure through :meth:`update_model`, and each sample turns the controlled
 part of tau and this sample's limits into the extended force vector (1.16). Thrust and angle
 per actuator, command maps, the fallback and the achieved wrench are the allocator's.
@@ -16,9 +16,10 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..model import MethodOutput, Model, SampleLimits
+from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..vehicle import Vehicle
+from ..solvers.outcome import MethodOutput
+from ..vehicle.config import Vehicle
 
 CIRCLE_SIDES = 256
 """The thrust circle |f| <= f_max as a polygon for the capability analysis of a method that

@@ -43,12 +43,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..angles import wrap
-from ..azimuth import AzimuthLimits
-from ..model import MethodOutput, Model, SampleLimits
-from ..sectors import surroundings
+from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
+from ..effectiveness.sectors import surroundings
 from ..solvers import BackendFactory
-from ..vehicle import RotationConfig, Vehicle
+from ..solvers.outcome import MethodOutput
+from ..vehicle.angles import wrap
+from ..vehicle.config import RotationConfig, Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
 
 HALVINGS = 4

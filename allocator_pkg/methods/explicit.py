@@ -49,10 +49,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.lib.npyio import NpzFile
 
-from ..model import MethodOutput, Model, SampleLimits
+from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
+from ..solvers.outcome import MethodOutput
 from ..solvers.problem import Rows, ScaledProblem, Solution
-from ..vehicle import Vehicle
+from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
 
 CAPACITY = 512

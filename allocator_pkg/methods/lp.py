@@ -26,12 +26,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import MethodOutput, Model, SampleLimits
+from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..vehicle import Vehicle
+from ..solvers.direct import DirectSolution
+from ..solvers.outcome import MethodOutput
+from ..solvers.sample_lp import SampleLP, survey_apothem
+from ..vehicle.config import Vehicle
 from .base import AllocationMethod
-from .direct import DirectSolution
-from .sample_lp import SampleLP, survey_apothem
 
 SATURATION_SLACK = 1e-6
 """Slack, as a fraction of its DOF's authority, above which a request counts as unattainable."""

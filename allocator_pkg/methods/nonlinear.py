@@ -31,10 +31,10 @@ every rotatable thruster, and the slack s:
   tuned to each vessel's force scale, and the unsaturated value alone is far too small near
   capability: the step overshoots by a full rate step every sample and the angles alternate.
 - Slack: the default Q is derived with c_i at half range in place of W (see
-  :meth:`allocator_pkg.model.Model.slack_weights`).
+  :meth:`allocator_pkg.effectiveness.model.Model.slack_weights`).
 - Singularity avoidance: the gradient of rho / (eps + det(T W^-1 T')) at alpha0, a linear cost.
 - Limits: this sample's thrust window and allowed angles (feasible sector, the piece free of
-  forbidden sectors, rate limit) from :mod:`allocator_pkg.azimuth`.
+  forbidden sectors, rate limit) from :mod:`allocator_pkg.allocation.azimuth`.
 
 The QP is written in g_i = sqrt(c_i) Delta f_i and h_j = F_j Delta alpha_j, the force across
 the thruster that turning makes (F_j its thrust, at least a floor): in those units an angle
@@ -52,10 +52,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..model import MethodOutput, Model, SampleLimits
+from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
+from ..solvers.outcome import MethodOutput
 from ..solvers.problem import Rows, ScaledProblem, entry_index
-from ..vehicle import SolverSettings, Vehicle
+from ..vehicle.config import SolverSettings, Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
 
 POWER_CURVATURE = 1.25

@@ -72,12 +72,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ..model import MethodOutput, Model, SampleLimits
+from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BACKENDS, BackendFactory
+from ..solvers.direct import DirectSolution
+from ..solvers.outcome import MethodOutput
 from ..solvers.problem import Entries, Rows, ScaledProblem, block_index, entry_index
-from ..vehicle import Vehicle
+from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
-from .direct import DirectSolution
 
 INFINITY = math.inf
 PINNED = 1e-12

@@ -33,10 +33,11 @@ import math
 
 import numpy as np
 
-from ..angles import wrap
-from ..model import MethodOutput, Model, SampleLimits
+from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..vehicle import Vehicle
+from ..solvers.outcome import MethodOutput
+from ..vehicle.angles import wrap
+from ..vehicle.config import Vehicle
 from .base import AllocationMethod
 from .pseudoinverse import PseudoInverseGains, fixed_forces, scale_to_limits
 

@@ -14,7 +14,7 @@ from typing import ClassVar, Protocol
 import numpy as np
 import scipy.sparse as sp
 
-from ..vehicle import SolverSettings
+from ..vehicle.config import SolverSettings
 
 
 class BackendResult:

@@ -10,7 +10,7 @@ import daqp
 import numpy as np
 import scipy.sparse as sp
 
-from ..vehicle import SolverSettings
+from ..vehicle.config import SolverSettings
 from .backend import BackendResult, DenseObjective
 
 BOUND = 1e30

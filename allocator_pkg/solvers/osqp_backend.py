@@ -11,7 +11,7 @@ import numpy as np
 import osqp
 import scipy.sparse as sp
 
-from ..vehicle import SolverSettings
+from ..vehicle.config import SolverSettings
 from .backend import BackendResult
 
 ACCEPTED = frozenset((int(osqp.SolverStatus.OSQP_SOLVED), int(osqp.SolverStatus.OSQP_SOLVED_INACCURATE)))

@@ -21,7 +21,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from ..vehicle import SolverSettings
+from ..vehicle.config import SolverSettings
 from .backend import Backend, BackendResult
 
 

@@ -10,7 +10,7 @@ import numpy as np
 import quadprog
 import scipy.sparse as sp
 
-from ..vehicle import SolverSettings
+from ..vehicle.config import SolverSettings
 from .backend import BackendResult, DenseObjective
 
 

@@ -1,0 +1,9 @@
+"""One sample, end to end: the :class:`~.allocator.Allocator` runs the pipeline
+
+    request check -> limits (``limits``: static ranges, rate windows, azimuth plan
+    (``azimuth``) and convex pieces (``pieces``)) -> the method's solve, with the
+    pseudo-inverse as fallback (``solve``) -> actuation (``actuation``: resolve, drag
+    feed-forward, dead band, command maps, achieved wrench, flags) -> commit
+
+and reports it as an :class:`~.result.AllocationResult` with its typed
+:class:`~allocator_pkg.solvers.outcome.Outcome`."""

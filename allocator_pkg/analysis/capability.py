@@ -1,0 +1,403 @@
+"""Capability analysis: the largest generalised force a vehicle can hold in each direction.
+
+For each direction in a plane of two DOFs (surge and sway by default, the dynamic-positioning
+capability plot), with the other controlled DOFs held at given values (yaw moment 0 by
+default), a small linear programme finds the largest magnitude the actuators can produce with
+the configured limits, faults and the configured method's constraints: each method says
+which polygon its constraints put on a rotatable thruster's force
+(:meth:`~allocator_pkg.methods.base.AllocationMethod.thrust_region_sides` and
+``thrust_region_apothem``: the circle itself for ``qp``, ``nonlinear`` and ``dynamic``, the
+survey's polygon of ``azimuth_polygon_sides`` sides for ``lp``, cut by the circle where it
+reaches beyond it, since every thrust is clipped to its limit), or that it cannot redistribute
+force (``pseudoinverse``, ``svd_filter``), in which case only forces the weighted
+pseudo-inverse gives within every limit count, found by bisection on the pseudo-inverse.
+``explicit`` serves only actuators of fixed direction, whose box it shares with ``qp``.
+
+Rotatable thrusters may turn to any allowed angle (steady state: rate limits do not apply).
+A forbidden sector makes the set of forces a thruster can give non-convex; it is split into
+convex pieces (cones at most pi wide) and every combination of pieces is solved, keeping the
+best. Control surfaces give the lift of the given speed, thrusters with voltage-indexed
+tables the thrust of the given supply voltage.
+
+``allocator-capability`` writes the polar plot (nominal and every single-actuator failure)
+as PNG and the numbers as CSV.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import itertools
+import math
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import linprog
+
+from ..configuration.parameters import load_vehicle
+from ..effectiveness.faults import Fault, FaultMode, FaultSet, static_ranges
+from ..effectiveness.model import Model
+from ..effectiveness.sectors import allowed_arcs, can_push_along, in_forbidden_sector
+from ..methods import METHODS
+from ..methods.base import CIRCLE_SIDES
+from ..methods.pseudoinverse import PseudoInverseGains
+from ..vehicle.angles import TWO_PI
+from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
+
+FORCE_DOFS = ("surge", "sway", "heave")
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """Largest request per direction: ``points`` (k x 2) in the plane's physical units."""
+
+    directions: np.ndarray
+    points: np.ndarray
+
+    @property
+    def magnitude(self) -> np.ndarray:
+        return np.hypot(self.points[:, 0], self.points[:, 1])
+
+
+class Capability:
+    """Capability of one vehicle in a plane of two controlled DOFs."""
+
+    def __init__(self, vehicle: Vehicle, method: str | None = None, speed: float = 2.0,
+                 plane: tuple[str, str] | None = None):
+        self.vehicle = vehicle
+        self.method = method or vehicle.method
+        if self.method not in METHODS:
+            raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
+        unfit = unmodelled(self.method, vehicle)
+        if unfit:
+            raise ValueError(f"method '{self.method}' cannot serve this vehicle: {'; '.join(unfit)}")
+        self.sides = METHODS[self.method].thrust_region_sides(vehicle)
+        self.apothem = METHODS[self.method].thrust_region_apothem(vehicle)
+        self.speed = speed
+        self.model = Model.build(vehicle, 1.0 / vehicle.rate_hz)
+        self.plane = plane or default_plane(vehicle)
+        missing = [d for d in self.plane if d not in vehicle.dofs]
+        if missing:
+            raise ValueError(f"the plane {self.plane} needs controlled DOFs; {', '.join(missing)} is not controlled")
+        rows = list(vehicle.dofs)
+        self._plane_rows = [rows.index(d) for d in self.plane]
+        same_units = all(d in FORCE_DOFS for d in self.plane) or not any(d in FORCE_DOFS for d in self.plane)
+        authority = self.model.authority[self._plane_rows]
+        self.axis_scale = np.ones(2) if same_units else authority / max(float(np.max(authority)), 1e-12)
+
+    def max_force(self, direction: float, yaw_moment: float = 0.0,
+                  faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
+        """Largest magnitude along ``direction`` [rad, in the plane, from its first DOF toward
+        its second] with the yaw moment held (when yaw is controlled and not in the plane)."""
+        return float(np.hypot(*self._max_point(direction, yaw_moment, FaultSet.of(self.vehicle, faults))))
+
+    def scale(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
+        """The largest lambda with lambda * tau attainable ([X, Y, Z, K, M, N]; uncontrolled DOFs
+        ignored): a request is attainable when this is at least 1."""
+        return self.reach(tau, faults)[0]
+
+    def reach(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None, speed: float | None = None,
+              voltage: float | None = None) -> tuple[float, np.ndarray]:
+        """(lambda, wrench): the largest lambda with lambda * tau attainable (uncontrolled DOFs
+        of tau ignored; inf for a zero request) at a surge speed and supply voltage (None: the
+        analysis' speed, the nominal voltage), and the whole wrench [X, Y, Z, K, M, N] the
+        actuators give there (in the uncontrolled DOFs what they give on the way)."""
+        request = np.asarray(tau, dtype=float)[self.model.dof_index]
+        if not np.any(request):
+            return math.inf, np.zeros(6)
+        faults = FaultSet.of(self.vehicle, faults)
+        low, high = static_ranges(self.vehicle, faults, self.speed if speed is None else speed, voltage)
+        zero = np.zeros(self.model.n)
+        if self.sides is None:
+            magnitude, force = self._pseudo_inverse_limit(request, zero, faults, low, high)
+        else:
+            magnitude, force = self._linear_programme(request, zero, faults, low, high)
+        return magnitude, self.model.t_e @ force
+
+    def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
+                 faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:
+        directions = np.radians(np.arange(0.0, 360.0, step_deg))
+        faults = FaultSet.of(self.vehicle, faults)
+        points = np.array([self._max_point(angle, yaw_moment, faults) for angle in directions])
+        return Envelope(directions=directions, points=points)
+
+    # -- one direction --------------------------------------------------------------------
+
+    def _request(self, direction: float, yaw_moment: float) -> tuple[np.ndarray, np.ndarray]:
+        """(unit request per unit of magnitude, fixed part) on the controlled DOFs."""
+        unit = np.zeros(self.model.n)
+        unit[self._plane_rows] = self.axis_scale * np.array([math.cos(direction), math.sin(direction)])
+        fixed = np.zeros(self.model.n)
+        if "yaw" in self.vehicle.dofs and "yaw" not in self.plane:
+            fixed[list(self.vehicle.dofs).index("yaw")] = yaw_moment
+        return unit, fixed
+
+    def _max_point(self, direction: float, yaw_moment: float, faults: FaultSet) -> np.ndarray:
+        unit, fixed = self._request(direction, yaw_moment)
+        low, high = static_ranges(self.vehicle, faults, self.speed)
+        if self.sides is None:
+            magnitude = self._pseudo_inverse_limit(unit, fixed, faults, low, high)[0]
+        else:
+            magnitude = self._linear_programme(unit, fixed, faults, low, high)[0]
+        return magnitude * self.axis_scale * np.array([math.cos(direction), math.sin(direction)])
+
+    def _linear_programme(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet, low: np.ndarray,
+                          high: np.ndarray) -> tuple[float, np.ndarray]:
+        """The largest magnitude over every combination of convex pieces, and its extended forces."""
+        model = self.model
+        choices = [_pieces(self.vehicle.actuators[i], faults.faults.get(self.vehicle.actuators[i].name), low[i],
+                           high[i]) for i in model.rot]
+        best, force = 0.0, np.zeros(model.m)
+        for combination in itertools.product(*choices):
+            magnitude, solution = self._solve(unit, fixed, low, high, combination, self.sides)
+            if magnitude > best:
+                best, force = magnitude, solution
+        return best, force
+
+    def _solve(self, unit, fixed, low, high, pieces, sides) -> tuple[float, np.ndarray]:
+        """max F s.t. T_e f = F unit + fixed, boxes, and each rotatable force in its piece."""
+        model = self.model
+        columns = model.m + 1
+        bounds = [(None, None)] * model.m + [(0.0, None)]
+        for i, column in zip(model.scalar, model.scalar_columns):
+            bounds[column] = (low[i], high[i])
+        a_ub, b_ub = [], []
+        polygons = [(sides, self.apothem)]
+        if self.apothem > math.cos(math.pi / sides) + 1e-12:       # reaches beyond the circle: cut by it
+            polygons.append((CIRCLE_SIDES, math.cos(math.pi / CIRCLE_SIDES)))
+        faces = [(math.cos(TWO_PI * k / count), math.sin(TWO_PI * k / count), apothem)
+                 for count, apothem in polygons for k in range(count)]
+        for (c1, c2), piece in zip(model.rot_columns, pieces):
+            start, end, radius, line = piece
+            if radius <= 0.0:
+                bounds[c1] = bounds[c2] = (0.0, 0.0)
+                continue
+            for nx, ny, apothem in faces:                           # the method's polygon of the radius
+                row = np.zeros(columns)
+                row[c1], row[c2] = nx, ny
+                a_ub.append(row)
+                b_ub.append(radius * apothem)
+            for angle, sign in ((start, -1.0), (end, 1.0)):         # the cone [start, end]
+                row = np.zeros(columns)
+                row[c1], row[c2] = sign * -math.sin(angle), sign * math.cos(angle)
+                a_ub.append(row)
+                b_ub.append(0.0)
+                if line:
+                    a_ub.append(-row)
+                    b_ub.append(0.0)
+            middle = 0.5 * (start + end)
+            row = np.zeros(columns)
+            row[c1], row[c2] = -math.cos(middle), -math.sin(middle)
+            a_ub.append(row)                                        # pointed: along the middle, not against
+            b_ub.append(0.0)
+        a_eq = np.hstack([model.t_ec, -unit.reshape(-1, 1)])
+        cost = np.zeros(columns)
+        cost[-1] = -1.0
+        result = linprog(cost, A_ub=np.array(a_ub) if a_ub else None, b_ub=np.array(b_ub) if b_ub else None,
+                         A_eq=a_eq, b_eq=fixed, bounds=bounds, method="highs")
+        if result.status != 0:
+            return 0.0, np.zeros(model.m)
+        return float(result.x[-1]), result.x[:model.m]
+
+    def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet, low: np.ndarray,
+                              high: np.ndarray) -> tuple[float, np.ndarray]:
+        """Largest F whose pseudo-inverse forces stay within every limit (bisection), and those forces."""
+        model = self.model
+        excluded = (low == 0.0) & (high == 0.0)
+        lines = {int(i): faults.stuck[int(i)] for i in model.rot if int(i) in faults.stuck}
+        gain = PseudoInverseGains(model).gain(excluded, lines)
+
+        def feasible(magnitude: float) -> bool:
+            force = gain @ (magnitude * unit + fixed)
+            if np.max(np.abs(model.t_ec @ force - magnitude * unit - fixed)) > 1e-6 * max(1.0, magnitude):
+                return False
+            for i, column in zip(model.scalar, model.scalar_columns):
+                if not low[i] - 1e-9 <= force[column] <= high[i] + 1e-9:
+                    return False
+            for i, (c1, c2) in zip(model.rot, model.rot_columns):
+                actuator = self.vehicle.actuators[i]
+                magnitude_i = math.hypot(force[c1], force[c2])
+                if magnitude_i > max(high[i], -low[i]) + 1e-9:
+                    return False
+                if magnitude_i > 1e-9 and not can_push_along(actuator.rotation, math.atan2(force[c2], force[c1])):
+                    return False
+            return True
+
+        if not feasible(0.0):
+            return 0.0, gain @ fixed
+        upper = 2.0 * float(np.sum(np.maximum(high, -low) * np.abs(model.t_ec[:, model.starts]).max(axis=0)))
+        lower = 0.0
+        for _ in range(60):
+            middle = 0.5 * (lower + upper)
+            lower, upper = (middle, upper) if feasible(middle) else (lower, middle)
+        return lower, gain @ (lower * unit + fixed)
+
+
+def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float) -> list[tuple]:
+    """Convex pieces (start, end, radius, line) of the forces a rotatable thruster can give."""
+    rotation = actuator.rotation
+    if fault is not None and fault.mode == FaultMode.STUCK:
+        angle = fault.angle
+        pieces = [] if in_forbidden_sector(rotation, angle) else [(angle, angle, high, True)]
+        if low < 0.0 and not in_forbidden_sector(rotation, angle):
+            pieces.append((angle + math.pi, angle + math.pi, -low, True))
+        return pieces or [(angle, angle, 0.0, True)]
+    arcs = allowed_arcs(rotation)
+    pieces = [(start, end, high, False) for start, end in arcs]
+    if low < 0.0:
+        pieces += [(start + math.pi, end + math.pi, -low, False) for start, end in arcs]
+    split = []
+    for start, end, radius, line in pieces:
+        while end - start > math.pi:
+            split.append((start, start + math.pi, radius, line))
+            start += math.pi
+        split.append((start, end, radius, line))
+    return split
+
+
+def default_plane(vehicle: Vehicle) -> tuple[str, str]:
+    """Surge and sway when both are controlled (the DP plot); else the first two controlled DOFs."""
+    if "surge" in vehicle.dofs and "sway" in vehicle.dofs:
+        return ("surge", "sway")
+    if len(vehicle.dofs) < 2:
+        raise ValueError("capability needs two controlled DOFs")
+    return (vehicle.dofs[0], vehicle.dofs[1])
+
+
+# -- command line -------------------------------------------------------------------------
+
+def write_csv(path: Path, plane: tuple[str, str], cases: dict[str, Envelope]) -> None:
+    with path.open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        header = ["direction_deg"]
+        for case in cases:
+            header += [f"{case}.{plane[0]}", f"{case}.{plane[1]}", f"{case}.magnitude"]
+        writer.writerow(header)
+        first = next(iter(cases.values()))
+        for k, direction in enumerate(first.directions):
+            row = [f"{math.degrees(direction):.1f}"]
+            for envelope in cases.values():
+                x, y = envelope.points[k]
+                row += [f"{x:.6g}", f"{y:.6g}", f"{envelope.magnitude[k]:.6g}"]
+            writer.writerow(row)
+
+
+def plot(path: Path, title: str, plane: tuple[str, str], cases: dict[str, Envelope], polar: bool) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure = plt.figure(figsize=(8.5, 7.5))
+    axes = figure.add_subplot(projection="polar" if polar else None)
+    for name, envelope in cases.items():
+        style = dict(linewidth=2.4, color="black") if name == "nominal" else dict(linewidth=1.2)
+        if polar:
+            closed = np.append(envelope.directions, envelope.directions[0])
+            axes.plot(closed, np.append(envelope.magnitude, envelope.magnitude[0]) / 1e3, label=name, **style)
+        else:
+            points = np.vstack([envelope.points, envelope.points[:1]])
+            axes.plot(points[:, 0], points[:, 1], label=name, **style)
+    if polar:
+        axes.set_theta_zero_location("N")           # surge ahead, sway to starboard (clockwise)
+        axes.set_theta_direction(-1)
+        axes.set_title(f"{title}\nlargest {plane[0]}/{plane[1]} force [kN] held per direction", pad=18)
+    else:
+        axes.set_xlabel(f"{plane[0]} [{_unit(plane[0])}]")
+        axes.set_ylabel(f"{plane[1]} [{_unit(plane[1])}]")
+        axes.grid(True)
+        axes.set_title(f"{title}\nlargest request held per direction ({plane[0]}, {plane[1]})")
+    axes.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+
+
+def _unit(dof: str) -> str:
+    return "N" if dof in FORCE_DOFS else "N m"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="allocator-capability", description=__doc__.split("\n\n")[0])
+    parser.add_argument("config", help="vehicle params file")
+    parser.add_argument("--out", default=".", help="folder for <vehicle>_capability.png and .csv")
+    parser.add_argument("--step", type=float, default=5.0, help="degrees between directions (default %(default)s)")
+    parser.add_argument("--yaw-moment", type=float, default=0.0, help="yaw moment held [N m] (default 0)")
+    parser.add_argument("--speed", type=float, default=2.0, help="surge speed for control surfaces [m/s]")
+    parser.add_argument("--method", choices=list(METHODS), help="default: the file's")
+    parser.add_argument("--plane", nargs=2, metavar=("X", "Y"), choices=DOF_NAMES,
+                        help="the two DOFs of the plot (default: surge sway, else the first two controlled)")
+    parser.add_argument("--all-methods", action="store_true",
+                        help="also <vehicle>_<method>_capability.png and .csv for each group of registered methods "
+                             "whose constraints give another capability than the file's method")
+    arguments = parser.parse_args(argv)
+    vehicle = load_vehicle(arguments.config)
+    plane = tuple(arguments.plane) if arguments.plane else None
+    try:
+        capability = Capability(vehicle, arguments.method, arguments.speed, plane)
+    except ValueError as error:
+        print(f"allocator-capability: {error}", file=sys.stderr)
+        return 2
+    stem = Path(arguments.config).stem
+    _write(capability, Path(arguments.out), stem, "", capability.method, arguments.step, arguments.yaw_moment)
+    if arguments.all_methods:
+        for names in differing_methods(vehicle, capability.method):
+            other = Capability(vehicle, names[0], arguments.speed, plane)
+            _write(other, Path(arguments.out), stem, f"_{names[0]}", ", ".join(names), arguments.step,
+                   arguments.yaw_moment)
+    return 0
+
+
+def region(vehicle: Vehicle, method: str) -> tuple:
+    """What decides a method's capability: the polygon it puts on a rotatable thruster (sides and
+    apothem; none on a vehicle without one), or None when it cannot redistribute force."""
+    sides = METHODS[method].thrust_region_sides(vehicle)
+    if sides is None:
+        return (None,)
+    if not vehicle.has_rotatable:
+        return ("box",)
+    return (sides, round(METHODS[method].thrust_region_apothem(vehicle), 12))
+
+
+def unmodelled(method: str, vehicle: Vehicle) -> list[str]:
+    """Why ``method``'s constraints cannot describe ``vehicle`` (its actuators, a file it
+    needs); empty when they can. The saturation mode and DOF priorities decide how an
+    unattainable request is answered, not what can be attained, so they are not held against
+    a method here (a pseudo-inverse's reach with ``saturation: direct`` is
+    :func:`region`'s)."""
+    return METHODS[method].problems(replace(vehicle, saturation="weighted", priorities=()))
+
+
+def differing_methods(vehicle: Vehicle, method: str) -> list[list[str]]:
+    """Groups of the registered methods that can serve ``vehicle`` with the same capability,
+    other than ``method``'s, each in registry order."""
+    groups: dict[tuple, list[str]] = {}
+    for name in METHODS:
+        if not unmodelled(name, vehicle):
+            groups.setdefault(region(vehicle, name), []).append(name)
+    mine = region(vehicle, method)
+    return [names for key, names in groups.items() if key != mine]
+
+
+def _write(capability: Capability, out: Path, stem: str, suffix: str, title: str, step: float,
+           yaw_moment: float) -> None:
+    """The nominal envelope and every single-actuator failure as <stem><suffix>_capability.png
+    and .csv, titled with the vehicle and ``title`` (the methods)."""
+    vehicle = capability.vehicle
+    cases = {"nominal": capability.envelope(step, yaw_moment)}
+    for actuator in vehicle.actuators:
+        cases[f"{actuator.name} failed"] = capability.envelope(step, yaw_moment, {actuator.name: FaultMode.FAILED})
+    out.mkdir(parents=True, exist_ok=True)
+    write_csv(out / f"{stem}{suffix}_capability.csv", capability.plane, cases)
+    polar = all(d in ("surge", "sway") for d in capability.plane)
+    held = "" if "yaw" in capability.plane or "yaw" not in vehicle.dofs else f", yaw moment {yaw_moment:g} N m held"
+    plot(out / f"{stem}{suffix}_capability.png", f"{stem} ({title}{held})", capability.plane, cases, polar)
+    print(out / f"{stem}{suffix}_capability.png")
+    print(out / f"{stem}{suffix}_capability.csv")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

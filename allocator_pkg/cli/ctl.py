@@ -1,0 +1,292 @@
+"""allocator-ctl: drive and watch a running thrust_allocator without the ros2 CLI.
+
+    allocator-ctl wrench 100 0 0 0 0 20 --rate 20 --duration 5
+    allocator-ctl fault main_port failed | degraded 0.5 | stuck 0.3 | nominal
+    allocator-ctl clear
+    allocator-ctl echo [--csv FILE]
+    allocator-ctl capability 1 0 0 0 0 0                      (~/get_capability along a wrench)
+    allocator-ctl params get [NAME ...]
+    allocator-ctl params set NAME=VALUE [NAME=VALUE ...]      (applied atomically)
+
+``--node`` names the allocator node (default ``thrust_allocator``) and ``--namespace`` its
+namespace; the same options work with ``ros2 run allocator_pkg allocator-ctl``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import sys
+import time
+from typing import TextIO
+
+import rclpy
+import yaml
+from geometry_msgs.msg import Wrench
+from rcl_interfaces.srv import GetParameters, ListParameters, SetParametersAtomically
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter, parameter_value_to_python
+from std_srvs.srv import Trigger
+
+from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
+from allocator_msgs.srv import GetCapability, SetActuatorFault
+
+from ..ros.conversions import array_to_wrench, wrench_to_array
+from ..vehicle.node_settings import NODE_NAME
+
+FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
+               "failed": ActuatorFault.FAILED, "stuck": ActuatorFault.STUCK}
+
+
+class ServiceTimeout(RuntimeError):
+    pass
+
+
+class Controller:
+    """A client node for one allocator: publishes wrenches, calls its services, listens."""
+
+    def __init__(self, node: Node, target: str = NODE_NAME, namespace: str = ""):
+        self.node = node
+        self.namespace = f"/{namespace.strip('/')}" if namespace.strip("/") else ""
+        self.service_prefix = f"{self.namespace}/{target}"
+        self.wrench = node.create_publisher(Wrench, self.topic("wrench_command"), 10)
+
+    def topic(self, name: str) -> str:
+        """The allocator's topic ``name`` in its namespace."""
+        return f"{self.namespace}/{name}" if self.namespace else name
+
+    def call(self, kind, name: str, request, timeout: float = 5.0):
+        client = self.node.create_client(kind, f"{self.service_prefix}/{name}")
+        try:
+            if not client.wait_for_service(timeout_sec=timeout):
+                raise ServiceTimeout(f"service {self.service_prefix}/{name} not available (is the node running, "
+                                     "with the same ROS_DOMAIN_ID and ROS_AUTOMATIC_DISCOVERY_RANGE?)")
+            future = client.call_async(request)
+            executor = self.node.executor
+            if executor is None:
+                executor = SingleThreadedExecutor(context=self.node.context)
+                executor.add_node(self.node)
+            executor.spin_until_future_complete(future, timeout_sec=timeout)
+            if not future.done():
+                raise ServiceTimeout(f"service {self.service_prefix}/{name} did not answer within {timeout:g} s")
+            return future.result()
+        finally:
+            self.node.destroy_client(client)
+
+    def set_fault(self, actuator: str, mode: str, value: float = 0.0) -> SetActuatorFault.Response:
+        fault = ActuatorFault(actuator=actuator, mode=FAULT_MODES[mode])
+        if mode == "degraded":
+            fault.efficiency = value
+        elif mode == "stuck":
+            fault.azimuth = value
+        return self.call(SetActuatorFault, "set_actuator_fault", SetActuatorFault.Request(fault=fault))
+
+    def clear_faults(self) -> Trigger.Response:
+        return self.call(Trigger, "clear_faults", Trigger.Request())
+
+    def capability(self, direction: list[float]) -> GetCapability.Response:
+        return self.call(GetCapability, "get_capability", GetCapability.Request(direction=array_to_wrench(direction)))
+
+    def get_parameters(self, names: list[str]) -> dict[str, object]:
+        if not names:
+            listed = self.call(ListParameters, "list_parameters", ListParameters.Request())
+            names = sorted(listed.result.names)
+        response = self.call(GetParameters, "get_parameters", GetParameters.Request(names=names))
+        return {name: parameter_value_to_python(value) for name, value in zip(names, response.values)}
+
+    def set_parameters(self, values: dict[str, object]):
+        request = SetParametersAtomically.Request(
+            parameters=[Parameter(name, value=value).to_parameter_msg() for name, value in values.items()])
+        return self.call(SetParametersAtomically, "set_parameters_atomically", request).result
+
+
+def parse_value(text: str) -> object:
+    """A parameter value from the command line, typed as YAML types it (1.5, true, [a, b])."""
+    value = yaml.safe_load(text)
+    if isinstance(value, list) and value and all(isinstance(v, (int, float)) for v in value) \
+            and any(isinstance(v, float) for v in value):
+        value = [float(v) for v in value]
+    return value
+
+
+def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -> str:
+    """One compact line: every actuator's thrust [N], command (set-point) and azimuth [deg] if it
+    has one, then the solver figures; when saturated the unallocated wrench, the actuators at a
+    thrust (!) or rate (~) limit, and the supply voltage in use."""
+    parts = []
+    for name, thrust, command, azimuth in zip(commands.name, commands.thrust, commands.command, commands.azimuth):
+        angle = f" @{math.degrees(azimuth):6.1f}" if azimuth != 0.0 else " " * 8
+        parts.append(f"{name} {thrust:9.1f} N cmd {command:8.2f}{angle}")
+    line = " | ".join(parts)
+    if status is not None:
+        line += (f" || sat {'YES' if status.saturated else 'no '} {status.solve_time * 1e6:7.0f} us "
+                 f"{status.iterations:5d} it {status.solver_status}")
+        if status.saturated:
+            line += " | unallocated " + " ".join(f"{v:.1f}" for v in wrench_to_array(status.unallocated))
+        flagged = [f"{name}{'!' if thrust else ''}{'~' if rate else ''}" for name, thrust, rate
+                   in zip(commands.name, status.at_thrust_limit, status.at_rate_limit) if thrust or rate]
+        if flagged:
+            line += f" | at limit (! thrust, ~ rate): {' '.join(flagged)}"
+        if status.voltage > 0.0:                     # NaN: no voltage tables
+            line += f" | {status.voltage:.2f} V"
+    return line
+
+
+def format_capability(direction: list[float], response: GetCapability.Response) -> str:
+    """The answer of ~/get_capability in words."""
+    if not response.success:
+        return f"no capability: {response.message}"
+    achieved = " ".join(f"{v:.2f}" for v in wrench_to_array(response.achieved))
+    return (f"scale {response.scale:.4g} along [{' '.join(f'{v:g}' for v in direction)}]; achieved there "
+            f"[{achieved}] ({response.message})")
+
+
+class Echo:
+    """Prints a compact live table of commands and status; optionally writes every sample to CSV."""
+
+    def __init__(self, controller: Controller, out: TextIO, csv_file: TextIO | None = None, rate: float = 2.0):
+        self.out = out
+        self.period = 1.0 / rate if rate > 0 else 0.0
+        self.last_print = 0.0
+        self.status: AllocationStatus | None = None
+        self.writer = csv.writer(csv_file) if csv_file else None
+        self.header_done = False
+        node = controller.node
+        node.create_subscription(AllocationStatus, controller.topic("allocation_status"), self._on_status, 10)
+        node.create_subscription(ThrusterCommands, controller.topic("thruster_commands"), self._on_commands, 10)
+
+    def _on_status(self, message: AllocationStatus) -> None:
+        self.status = message
+
+    def _on_commands(self, message: ThrusterCommands) -> None:
+        if self.writer is not None:
+            self._write_csv(message)
+        now = time.monotonic()
+        if now - self.last_print >= self.period:
+            self.last_print = now
+            print(format_sample(message, self.status), file=self.out, flush=True)
+
+    def _write_csv(self, message: ThrusterCommands) -> None:
+        if not self.header_done:
+            header = ["stamp"]
+            for name in message.name:
+                header += [f"{name}.thrust", f"{name}.command", f"{name}.azimuth", f"{name}.mode"]
+            header += [f"{name}.at_{kind}_limit" for kind in ("thrust", "rate") for name in message.name]
+            header += ["saturated", "solve_time", "iterations", "solver_status", "voltage"]
+            header += [f"unallocated.{axis}" for axis in ("x", "y", "z", "k", "m", "n")]
+            self.writer.writerow(header)
+            self.header_done = True
+        row = [message.header.stamp.sec + message.header.stamp.nanosec * 1e-9]
+        for values in zip(message.thrust, message.command, message.azimuth, message.mode):
+            row += list(values)
+        status = self.status
+        if status is None:
+            row += [""] * (2 * len(message.name) + 11)
+        else:
+            row += list(status.at_thrust_limit) + list(status.at_rate_limit)
+            row += [status.saturated, status.solve_time, status.iterations, status.solver_status, status.voltage]
+            row += wrench_to_array(status.unallocated).tolist()
+        self.writer.writerow(row)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="allocator-ctl", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--node", default=NODE_NAME, help="allocator node name (default %(default)s)")
+    parser.add_argument("--namespace", default="", help="namespace of the allocator node")
+    parser.add_argument("--timeout", type=float, default=5.0, help="seconds to wait for a service")
+    commands = parser.add_subparsers(dest="command", required=True)
+    wrench = commands.add_parser("wrench", help="publish a constant wrench_command")
+    for name in ("FX", "FY", "FZ", "MX", "MY", "MZ"):
+        wrench.add_argument(name, type=float)
+    wrench.add_argument("--rate", type=float, default=10.0, help="Hz (default %(default)s)")
+    wrench.add_argument("--duration", type=float, default=None, help="seconds (default: until Ctrl-C)")
+    fault = commands.add_parser("fault", help="set an actuator fault")
+    fault.add_argument("actuator")
+    fault.add_argument("mode", choices=sorted(FAULT_MODES))
+    fault.add_argument("value", nargs="?", type=float, default=None,
+                       help="efficiency in (0, 1] for degraded, angle [rad] for stuck")
+    commands.add_parser("clear", help="all actuators back to NOMINAL")
+    capability = commands.add_parser("capability", help="largest scale along a wrench the actuators can give now")
+    for name in ("FX", "FY", "FZ", "MX", "MY", "MZ"):
+        capability.add_argument(name, type=float)
+    echo = commands.add_parser("echo", help="print a live table of thrust, command, azimuth and status")
+    echo.add_argument("--csv", type=argparse.FileType("w"), help="also write every sample to this CSV file")
+    echo.add_argument("--rate", type=float, default=2.0, help="printed lines per second (default %(default)s)")
+    echo.add_argument("--duration", type=float, default=None, help="seconds (default: until Ctrl-C)")
+    params = commands.add_parser("params", help="get or set the allocator's parameters")
+    params.add_argument("action", choices=["get", "set"])
+    params.add_argument("items", nargs="*", help="names to get, or NAME=VALUE to set")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    arguments = _parser().parse_args(rclpy.utilities.remove_ros_args(sys.argv if argv is None else ["", *argv])[1:])
+    if arguments.command == "fault" and arguments.mode in ("degraded", "stuck") and arguments.value is None:
+        print(f"allocator-ctl: fault {arguments.mode} needs a value "
+              f"({'efficiency in (0, 1]' if arguments.mode == 'degraded' else 'angle in rad'})", file=sys.stderr)
+        return 2
+    rclpy.init(args=sys.argv if argv is None else None)
+    node = rclpy.create_node("allocator_ctl")
+    controller = Controller(node, arguments.node, arguments.namespace)
+    try:
+        return _run(arguments, controller)
+    except ServiceTimeout as error:
+        print(f"allocator-ctl: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        return 0
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+
+
+def _spin_for(node: Node, duration: float | None) -> None:
+    end = None if duration is None else time.monotonic() + duration
+    while rclpy.ok() and (end is None or time.monotonic() < end):
+        rclpy.spin_once(node, timeout_sec=0.05)
+
+
+def _run(arguments: argparse.Namespace, controller: Controller) -> int:
+    node = controller.node
+    if arguments.command == "wrench":
+        message = array_to_wrench([arguments.FX, arguments.FY, arguments.FZ, arguments.MX, arguments.MY, arguments.MZ])
+        node.create_timer(1.0 / arguments.rate, lambda: controller.wrench.publish(message))
+        controller.wrench.publish(message)
+        _spin_for(node, arguments.duration)
+        return 0
+    if arguments.command == "fault":
+        response = controller.set_fault(arguments.actuator, arguments.mode, arguments.value or 0.0)
+        print(response.message)
+        return 0 if response.success else 1
+    if arguments.command == "clear":
+        print(controller.clear_faults().message)
+        return 0
+    if arguments.command == "capability":
+        direction = [arguments.FX, arguments.FY, arguments.FZ, arguments.MX, arguments.MY, arguments.MZ]
+        response = controller.capability(direction)
+        print(format_capability(direction, response))
+        return 0 if response.success else 1
+    if arguments.command == "echo":
+        Echo(controller, sys.stdout, arguments.csv, arguments.rate)
+        _spin_for(node, arguments.duration)
+        return 0
+    if arguments.action == "get":
+        for name, value in controller.get_parameters(arguments.items).items():
+            print(f"{name}: {value}")
+        return 0
+    values = {}
+    for item in arguments.items:
+        name, separator, text = item.partition("=")
+        if not separator:
+            print(f"allocator-ctl: '{item}' is not NAME=VALUE", file=sys.stderr)
+            return 2
+        values[name] = parse_value(text)
+    result = controller.set_parameters(values)
+    print("applied" if result.successful else f"rejected: {result.reason}")
+    return 0 if result.successful else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

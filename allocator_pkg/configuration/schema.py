@@ -1,0 +1,344 @@
+"""The configuration schema: every parameter the allocator reads, in one table.
+
+The same table drives the params-file loader (:func:`allocator_pkg.vehicle.config.load_vehicle`),
+the node's parameter declarations (descriptions, ranges, read-only flags) and the
+reference page ``docs/configuration.md``. Parameter names are the ROS ones: dotted,
+vehicle-wide keys such as ``weights.slack``, and per-actuator keys under
+``actuators.<name>.``.
+
+Values are typed the way a ROS 2 params file types them: an integer is accepted where a
+float is expected, a list holds one element type, and an empty list means "not set".
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+from ..methods import METHODS
+from ..vehicle.config import (
+    ACTUATOR_TYPES,
+    COMMAND_MAPS,
+    DOF_NAMES,
+    FIN,
+    FIXED,
+    FLOW_MODELS,
+    ROTATABLE_TYPES,
+    RUDDER,
+    SATURATION_MODES,
+    SURFACE_TYPES,
+    THRUSTER_TYPES,
+)
+from ..vehicle.node_settings import FRAMES, GEOMETRY_SOURCES, TRIGGERS, WRENCH_TYPES
+
+ACTUATOR_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+
+FLOAT = "float"
+INT = "int"
+BOOL = "bool"
+STR = "str"
+FLOAT_LIST = "float[]"
+INT_LIST = "integer[]"
+STR_LIST = "string[]"
+
+
+@dataclass(frozen=True)
+class Key:
+    """One parameter: its type, default, limits and documentation.
+
+    ``default`` is the value used when the parameter is absent; ``None`` means the key is
+    optional with a default that depends on other keys (``default_doc`` says which), and
+    ``required`` means it must be given. ``constraint`` says in words what the checks of
+    :mod:`allocator_pkg.configuration.parameters` want beyond type, choices, range and length.
+    """
+
+    name: str
+    kind: str
+    description: str
+    default: Any = None
+    default_doc: str = ""
+    required: bool = False
+    minimum: float | None = None
+    maximum: float | None = None
+    exclusive_minimum: bool = False
+    choices: tuple[str, ...] = ()
+    length: int | None = None
+    applies_to: tuple[str, ...] = ()
+    read_only: bool = False
+    unit: str = ""
+    constraint: str = ""
+
+    def documented_default(self) -> str:
+        if self.required:
+            return "required"
+        if self.default_doc:
+            return self.default_doc
+        if self.default is None:
+            return "not set"
+        if isinstance(self.default, bool):
+            return str(self.default).lower()
+        if isinstance(self.default, str):
+            return f"`{self.default}`" if self.default else "empty"
+        if isinstance(self.default, list):
+            return "[" + ", ".join(map(str, self.default)) + "]"
+        return f"{self.default:g}" if isinstance(self.default, float) else str(self.default)
+
+    def documented_range(self) -> str:
+        parts = []
+        if self.choices:
+            parts.append("one of " + ", ".join(f"`{c}`" for c in self.choices))
+        if self.minimum is not None:
+            parts.append(f"{'>' if self.exclusive_minimum else '>='} {self.minimum:g}")
+        if self.maximum is not None:
+            parts.append(f"<= {self.maximum:g}")
+        if self.length is not None:
+            parts.append(f"{self.length} elements")
+        if self.constraint:
+            parts.append(self.constraint)
+        if self.kind == BOOL:
+            parts.append("true or false")
+        return ", ".join(parts)
+
+
+VEHICLE_KEYS: tuple[Key, ...] = (
+    Key("rate_hz", FLOAT, "Allocation rate: one sample per period, also the dt of rate limits.",
+        default=50.0, minimum=0.0, exclusive_minimum=True, maximum=10000.0, unit="Hz"),
+    Key("method", STR, "Allocation method (see docs/theory.md).", default="qp", choices=tuple(METHODS)),
+    Key("dofs", STR_LIST, "Controlled degrees of freedom; the others of the requested wrench are ignored.",
+        default=list(DOF_NAMES), default_doc="all six",
+        constraint=f"at least one of {', '.join(DOF_NAMES)}, each at most once"),
+    Key("saturation", STR, "Unattainable requests: `weighted` trades DOFs by weights.slack; "
+        "`preserve_direction` scales the request down along its own direction first; `direct` answers with "
+        "Durham's solution on the boundary of the attainable set along the request (qp, lp, pseudoinverse).",
+        default="weighted", choices=SATURATION_MODES),
+    Key("weights.slack", FLOAT_LIST, "Q: weight of the wrench error of each controlled DOF, in `dofs` order (1.35).",
+        default_doc="derived per DOF (see above)", minimum=0.0, exclusive_minimum=True),
+    Key("priorities", INT_LIST, "DOF priorities, one integer per controlled DOF in `dofs` order, 0 the highest "
+        "(e.g. [2, 2, 0, 0, 0, 1] for depth and attitude first, then yaw, then surge and sway): an unattainable "
+        "request meets a higher level as far as it can before a lower one gets anything (lexicographic; see "
+        "docs/theory.md). DOFs of one level are traded by weights.slack.",
+        default_doc="none (all DOFs traded by weights.slack)", minimum=0.0,
+        constraint="one per DOF of `dofs`; only with a method that implements priorities (qp, pseudoinverse) "
+                   "and saturation weighted"),
+    Key("nominal_voltage", FLOAT, "Supply voltage the thrust limits and tables with table_voltage follow at start "
+        "and whenever no battery voltage is known (the node: none within battery_timeout).",
+        default_doc="required with table_voltage", minimum=0.0, exclusive_minimum=True, unit="V",
+        constraint="within every table_voltage range"),
+    Key("weights.minimax", FLOAT, "beta: weight of the largest actuator force (1.35).", default=0.0, minimum=0.0),
+    Key("weights.azimuth_change", FLOAT,
+        "Omega: weight of the squared azimuth change per sample (1.44), nonlinear method.",
+        default=10.0, minimum=0.0, unit="1/rad^2"),
+    Key("singularity.rho", FLOAT, "rho: weight of the singularity-avoidance term (1.44), nonlinear method.",
+        default=0.0, minimum=0.0),
+    Key("singularity.epsilon", FLOAT, "epsilon: keeps the singularity term finite (1.44).",
+        default=1e-3, minimum=0.0, exclusive_minimum=True),
+    Key("azimuth_polygon_sides", INT, "Sides N of the polygon that stands for |f| <= f_max of a rotatable thruster in "
+        "the QP (section 5.3); it is turned every sample to the thruster's direction, where its bound is exact, so "
+        "N only shapes how forces off that direction are modelled while the thruster turns.", default=8, minimum=4,
+        maximum=128),
+    Key("nonlinear.max_iterations", INT, "Linearised QPs solved per sample by the nonlinear method (1.45), "
+        "at most; a pass that misses the request by more than the one before ends them.",
+        default=1, minimum=1, maximum=50),
+    Key("dynamic.gain", FLOAT, "h of the dynamic method's update law (section 5.1): the share of the remaining "
+        "error of the optimality conditions removed per sample (1: a full Newton step; changes of the request are "
+        "fed forward whole).", default=0.5, minimum=0.0, exclusive_minimum=True, maximum=1.0),
+    Key("svd_filter.time_constant", FLOAT, "Time constant of the filter that steers each rotatable thruster of the "
+        "svd_filter method toward the direction the extended solution wants most force in (section 5.4; 0: no "
+        "filter).", default=0.2, minimum=0.0, unit="s"),
+    Key("svd_filter.damping_threshold", FLOAT, "epsilon of the svd_filter method: singular values of the "
+        "normalised configuration matrix T(alpha) below it are damped (damped least squares), so that no force "
+        "exceeds 1/epsilon of the request in units of authority and range.", default=0.05, minimum=0.0,
+        exclusive_minimum=True, maximum=1.0),
+    Key("explicit.regions", STR, "Method explicit: a file of its regions from `allocator-explicit precompute`, "
+        "loaded when the method is set up (empty: the regions are found as requests reach them).", default="",
+        constraint="a file path, or empty"),
+    Key("solver.eps_abs", FLOAT, "OSQP absolute tolerance, as a fraction of each variable's range (the nonlinear "
+        "method solves its linearised QPs to a tenth of it and of eps_rel).",
+        default=1e-5, minimum=0.0, exclusive_minimum=True),
+    Key("solver.eps_rel", FLOAT, "OSQP relative tolerance.", default=1e-5, minimum=0.0),
+    Key("solver.max_iter", INT, "OSQP iteration limit per solve.", default=4000, minimum=1),
+    Key("solver.time_limit", FLOAT, "OSQP time limit per solve (0: none).", default=0.0, minimum=0.0, unit="s"),
+    Key("water_density", FLOAT, "rho_w in the lift and drag of control surfaces (1.48), (1.49).",
+        default=1025.0, minimum=0.0, exclusive_minimum=True, unit="kg/m^3"),
+    Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
+        required=True, read_only=True,
+        constraint="at least one; unique; letters, digits and '_', starting with a letter"),
+)
+
+NODE_KEYS: tuple[Key, ...] = (
+    Key("wrench_timeout", FLOAT, "Watchdog: with no valid wrench for this long, command zero thrust (0 disables).",
+        default=0.5, minimum=0.0, unit="s"),
+    Key("per_actuator_topics", BOOL, "Also publish thrusters/<name>/thrust and thrusters/<name>/azimuth "
+        "(std_msgs/Float64) each sample.", default=False),
+    Key("frame", STR, "Body frame convention of wrench_command, of the wrenches in allocation_status, of "
+        "thrust_markers and of a URDF's geometry: `frd` x forward, y starboard, z down (marine); `flu` x forward, "
+        "y left, z up (REP-103 base_link). Converted at the node's boundary: the params file's positions and "
+        "directions and every azimuth angle stay FRD.", default="frd", choices=FRAMES, read_only=True),
+    Key("base_frame", STR, "Name of the body frame: the frame_id stamped on every output, the frame_id a "
+        "WrenchStamped must carry, and the URDF link the geometry is measured from.", default="base_link",
+        read_only=True, constraint="a non-empty frame name"),
+    Key("wrench_type", STR, "Message type of wrench_command: geometry_msgs/Wrench or geometry_msgs/WrenchStamped "
+        "(whose frame_id must be base_frame).", default="wrench", choices=WRENCH_TYPES, read_only=True),
+    Key("trigger", STR, "What starts a sample: `timer` every period of rate_hz on the latest wrench; `input` "
+        "each valid wrench at once, at most rate_hz times per second (earlier ones coalesced to the latest), "
+        "the timer kept as the watchdog.", default="timer", choices=TRIGGERS),
+    Key("markers_rate_hz", FLOAT, "Rate of ~/thrust_markers (visualization_msgs/MarkerArray), built only while "
+        "someone subscribes (0: never).", default=10.0, minimum=0.0, maximum=10.0, unit="Hz"),
+    Key("geometry_source", STR, "Where actuator positions and fixed thrusters' directions come from: this params "
+        "file, or the URDF robot description (see actuators.<name>.link).", default="params",
+        choices=GEOMETRY_SOURCES, read_only=True),
+    Key("battery_timeout", FLOAT, "With tables measured at several voltages: with no valid sensor_msgs/BatteryState "
+        "on battery_state for this long, the thrust limits follow nominal_voltage again (diagnostics say so).",
+        default=5.0, minimum=0.0, exclusive_minimum=True, unit="s"),
+    Key("robot_description_file", STR, "URDF file read with geometry_source robot_description; empty: the "
+        "robot_description topic (transient local, as robot_state_publisher offers it).", default="",
+        read_only=True, constraint="a file path, or empty"),
+)
+"""Settings of the ROS node only (:class:`allocator_pkg.vehicle.node_settings.NodeSettings`)."""
+
+REMOVED_KEYS = {
+    "wrench_qos": "removed (issue 14): wrench_command is best-effort by default, which takes reliable and "
+                  "best-effort publishers alike; to change it set "
+                  "qos_overrides./<namespace>/wrench_command.subscription.reliability",
+}
+"""Keys of earlier versions, with what replaced them."""
+
+_ALL = ACTUATOR_TYPES
+_THR = THRUSTER_TYPES
+_ROT = ROTATABLE_TYPES
+_SURF = SURFACE_TYPES
+_DIRECTED = (FIXED, RUDDER, FIN)
+
+ACTUATOR_KEYS: tuple[Key, ...] = (
+    Key("type", STR, "Actuator type.", required=True, choices=ACTUATOR_TYPES, applies_to=_ALL, read_only=True),
+    Key("position", FLOAT_LIST, "Point where the force acts, body frame x forward, y starboard, z down (FRD, "
+        "whatever `frame` is). With geometry_source robot_description it comes from the URDF and must not be "
+        "set.", required=True, length=3, applies_to=_ALL, unit="m"),
+    Key("direction", FLOAT_LIST, "Force direction of a fixed thruster, lift direction per positive deflection "
+        "of a control surface (FRD); normalised. A fixed thruster's comes from the URDF with geometry_source "
+        "robot_description and must not be set then.", length=3, applies_to=_DIRECTED,
+        default_doc="required for fixed; [0, 1, 0] rudder, [0, 0, 1] fin", constraint="not the zero vector"),
+    Key("link", STR, "URDF link of this actuator (geometry_source robot_description): the child link of a "
+        "revolute or continuous joint at the point where the force acts. A fixed thruster's force is along "
+        "that joint's axis (Gazebo's Thruster system); a rotatable thruster's joint turns it, about z "
+        "(azimuth) or y (azimuth_vertical).", applies_to=_ALL, default_doc="the actuator's name",
+        read_only=True, constraint="a link below base_frame through fixed joints"),
+    Key("weight", FLOAT, "W_ii: weight of this actuator's squared force (1.24), (1.35).",
+        minimum=0.0, exclusive_minimum=True, applies_to=_ALL, default_doc="1.0 thrusters, 0.1 control surfaces"),
+    Key("power_coefficient", FLOAT, "P_i in the power estimate sum P_i |f_i|^(3/2) (1.44).",
+        minimum=0.0, applies_to=_ALL, default_doc="1.0 thrusters, 0.0 control surfaces"),
+    Key("thrust_max", FLOAT, "Largest force along the actuator axis.", required=True, minimum=0.0,
+        exclusive_minimum=True, applies_to=_THR, unit="N"),
+    Key("thrust_min", FLOAT, "Most negative force along the axis (<= 0).", maximum=0.0, applies_to=_THR,
+        default_doc="-thrust_max (fixed, or reversible rotatable); 0 otherwise", unit="N"),
+    Key("thrust_rate_max", FLOAT, "Largest force change per second (0: unlimited).", default=0.0, minimum=0.0,
+        applies_to=_THR, unit="N/s"),
+    Key("command_map", STR, "Force-to-command map: `linear` F = k u (1.3), `quadratic` F = k|u|u (1.4), "
+        "`table` from measured pairs.", default="linear", choices=COMMAND_MAPS, applies_to=_THR),
+    Key("gain", FLOAT, "k of the linear or quadratic map for positive force.", default=1.0, minimum=0.0,
+        exclusive_minimum=True, applies_to=_THR),
+    Key("gain_reverse", FLOAT, "k for negative force (asymmetric propellers).", minimum=0.0,
+        exclusive_minimum=True, applies_to=_THR, default_doc="gain"),
+    Key("command_min", FLOAT, "Smallest actuator set-point; limits the force too.", applies_to=_THR,
+        default_doc="no limit", constraint="below command_max, at or below the set-point of zero force"),
+    Key("command_max", FLOAT, "Largest actuator set-point; limits the force too.", applies_to=_THR,
+        default_doc="no limit", constraint="above command_min, at or above the set-point of zero force"),
+    Key("table_command", FLOAT_LIST, "Measured set-points, strictly increasing (`table` map).", applies_to=_THR,
+        default_doc="required for table", constraint="at least 2, strictly increasing"),
+    Key("table_thrust", FLOAT_LIST, "Measured force at each set-point (`table` map); with table_voltage one such "
+        "row per voltage, row after row (ROS parameters cannot nest lists).",
+        applies_to=_THR, default_doc="required for table", unit="N",
+        constraint="one per table_command (per voltage), each row non-decreasing and spanning 0"),
+    Key("table_voltage", FLOAT_LIST, "Supply voltages at which the rows of table_thrust were measured: the curve in "
+        "use is interpolated between the two around the battery voltage, and the thrust limits follow it.",
+        applies_to=_THR, default_doc="none (one curve)", unit="V",
+        constraint="strictly increasing, positive; only with command_map table"),
+    Key("command_deadband", FLOAT, "Smallest command magnitude that turns the propeller (`linear` and `quadratic` "
+        "maps; a table's flat stretch is its own dead band): a force that would need less is commanded as zero "
+        "or as the band's edge, whichever is nearer (docs/theory.md).", default=0.0, minimum=0.0,
+        applies_to=_THR, constraint="below command_max and above command_min in magnitude"),
+    Key("reversed", BOOL, "The thruster is wired or propped backwards: its command is mirrored about the "
+        "set-point of zero force (0, or a table's neutral), its force model unchanged (ArduSub's MOT_n_DIRECTION).",
+        default=False, applies_to=_THR),
+    Key("azimuth_min", FLOAT, "Feasible sector, lower end (the thruster cannot turn outside it).",
+        default=-math.pi, applies_to=_ROT, unit="rad", constraint="below azimuth_max"),
+    Key("azimuth_max", FLOAT, "Feasible sector, upper end; azimuth_max - azimuth_min = 2 pi means free rotation.",
+        default=math.pi, applies_to=_ROT, unit="rad", constraint="above azimuth_min, at most 2 pi above it"),
+    Key("azimuth_rate_max", FLOAT, "Largest turning rate (0: unlimited).", default=0.0, minimum=0.0,
+        applies_to=_ROT, unit="rad/s"),
+    Key("forbidden_sectors", FLOAT_LIST, "Flat list of [start, end] pairs: angles, counter-clockwise from start "
+        "to end, at which the thruster must not produce thrust (it may turn through them at zero thrust).",
+        applies_to=_ROT, default_doc="none", unit="rad", constraint="an even number of angles: [start, end] pairs"),
+    Key("reversible", BOOL, "Whether negative thrust along the current angle is allowed.", default=False,
+        applies_to=_ROT),
+    Key("azimuth_initial", FLOAT, "Angle at start-up; inside the feasible sector, outside forbidden ones.",
+        default=0.0, applies_to=_ROT, unit="rad", constraint="in the feasible sector, outside forbidden ones"),
+    Key("area", FLOAT, "Foil area A (1.48).", required=True, minimum=0.0, exclusive_minimum=True,
+        applies_to=_SURF, unit="m^2"),
+    Key("lift_coefficient", FLOAT, "C_L, lift per radian of deflection (1.48).", required=True, minimum=0.0,
+        exclusive_minimum=True, applies_to=_SURF, unit="1/rad"),
+    Key("drag_coefficient", FLOAT, "C_D, drag per squared radian of deflection (1.49).", default=0.0,
+        minimum=0.0, applies_to=_SURF, unit="1/rad^2"),
+    Key("deflection_max", FLOAT, "Largest deflection either way.", required=True, minimum=0.0,
+        exclusive_minimum=True, maximum=math.pi / 2, applies_to=_SURF, unit="rad"),
+    Key("deflection_rate_max", FLOAT, "Largest deflection rate (0: unlimited).", default=0.0, minimum=0.0,
+        applies_to=_SURF, unit="rad/s"),
+    Key("flow", STR, "Flow speed model: `free` uses the vehicle surge speed, `propeller_wake` multiplies it by "
+        "wake_speed_factor.", default="free", choices=FLOW_MODELS, applies_to=_SURF),
+    Key("wake_speed_factor", FLOAT, "u_f / u for `propeller_wake` surfaces.", default=1.0, minimum=0.0,
+        exclusive_minimum=True, applies_to=_SURF),
+    Key("min_control_speed", FLOAT, "Below this flow speed the surface produces nothing and is unavailable.",
+        default=0.5, minimum=0.0, applies_to=_SURF, unit="m/s"),
+)
+
+VEHICLE_KEY_BY_NAME = {key.name: key for key in VEHICLE_KEYS}
+NODE_KEY_BY_NAME = {key.name: key for key in NODE_KEYS}
+ACTUATOR_KEY_BY_NAME = {key.name: key for key in ACTUATOR_KEYS}
+ACTUATOR_PREFIX = "actuators."
+
+
+def actuator_parameter(actuator: str, key: str) -> str:
+    """Full parameter name of a per-actuator key."""
+    return f"{ACTUATOR_PREFIX}{actuator}.{key}"
+
+
+def key_for(name: str) -> Key | None:
+    """The key of a parameter name (``actuators.<name>.<key>`` included), or None."""
+    if name.startswith(ACTUATOR_PREFIX) and name not in VEHICLE_KEY_BY_NAME:
+        return ACTUATOR_KEY_BY_NAME.get(name[len(ACTUATOR_PREFIX):].partition(".")[2])
+    return VEHICLE_KEY_BY_NAME.get(name) or NODE_KEY_BY_NAME.get(name)
+
+
+def keys_for_type(actuator_type: str) -> tuple[Key, ...]:
+    """The per-actuator keys that apply to one actuator type."""
+    return tuple(key for key in ACTUATOR_KEYS if actuator_type in key.applies_to)
+
+
+def markdown_reference() -> str:
+    """The key tables of docs/configuration.md, generated from this schema."""
+
+    def table(keys: tuple[Key, ...], show_types: bool) -> list[str]:
+        header = "| key | type | default | range | unit | meaning |"
+        rule = "|---|---|---|---|---|---|"
+        if show_types:
+            header = "| key | type | applies to | default | range | unit | meaning |"
+            rule = "|---|---|---|---|---|---|---|"
+        rows = [header, rule]
+        for key in keys:
+            cells = [f"`{key.name}`", key.kind]
+            if show_types:
+                cells.append(", ".join(key.applies_to) if key.applies_to != _ALL else "all")
+            cells += [key.documented_default(), key.documented_range(), key.unit,
+                      key.description + (" Read-only at runtime." if key.read_only else "")]
+            rows.append("| " + " | ".join(cell.replace("|", "\\|") for cell in cells) + " |")
+        return rows
+
+    lines = ["### Vehicle-wide keys", ""]
+    lines += table(VEHICLE_KEYS, show_types=False)
+    lines += ["", "### Node keys (only the nodes read them, not the library)", ""]
+    lines += table(NODE_KEYS, show_types=False)
+    lines += ["", "### Per-actuator keys (`actuators.<name>.<key>`)", ""]
+    lines += table(ACTUATOR_KEYS, show_types=True)
+    return "\n".join(lines) + "\n"

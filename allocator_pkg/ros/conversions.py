@@ -1,0 +1,72 @@
+"""ROS messages to and from the library's arrays and results. No node here: ``ctl``, the
+demo and the benches build and read the same messages without importing the node."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from geometry_msgs.msg import Wrench
+from std_msgs.msg import Header
+
+from allocator_msgs.msg import AllocationStatus, ThrusterCommands
+
+from ..allocation.allocator import AllocationResult
+from ..vehicle.frames import wrench_between
+from ..vehicle.node_settings import FRD
+
+
+def wrench_to_array(wrench: Wrench) -> np.ndarray:
+    """[X, Y, Z, K, M, N] of a Wrench."""
+    return np.array([wrench.force.x, wrench.force.y, wrench.force.z,
+                     wrench.torque.x, wrench.torque.y, wrench.torque.z])
+
+
+def array_to_wrench(values) -> Wrench:
+    """A Wrench of [X, Y, Z, K, M, N]."""
+    return fill_wrench(Wrench(), values)
+
+
+def fill_wrench(wrench: Wrench, values) -> Wrench:
+    """``wrench`` with its components set to [X, Y, Z, K, M, N] (a message's own Wrench is
+    filled in place: making one costs several times more)."""
+    force, torque = wrench.force, wrench.torque
+    force.x, force.y, force.z, torque.x, torque.y, torque.z = np.asarray(values, dtype=float).tolist()
+    return wrench
+
+
+def commands_message(result: AllocationResult, names: tuple[str, ...], header: Header,
+                     message: ThrusterCommands | None = None) -> ThrusterCommands:
+    """Every actuator's thrust, set-point, angle and fault mode of one sample, in ``message``
+    (every field set; a publisher serialises at publish, so one message can serve each sample)
+    or a new one."""
+    message = ThrusterCommands() if message is None else message
+    message.header = header
+    message.name = list(names)
+    message.thrust = result.thrust.tolist()
+    message.command = result.command.tolist()
+    message.azimuth = result.azimuth.tolist()
+    message.mode = result.mode.tolist()
+    return message
+
+
+def status_message(result: AllocationResult, solver_status: str, header: Header, frame: str = FRD,
+                   voltage: float | None = None, message: AllocationStatus | None = None) -> AllocationStatus:
+    """Requested, achieved and unallocated wrench (in the body frame convention ``frame``),
+    saturation, per-actuator limit flags, the supply voltage in use (None: NaN) and solver
+    figures of one sample, in ``message`` (every field set) or a new one."""
+    message = AllocationStatus() if message is None else message
+    message.header = header
+    fill_wrench(message.requested, wrench_between(result.requested, frame))
+    fill_wrench(message.achieved, wrench_between(result.achieved, frame))
+    message.saturated = result.saturated
+    message.method = result.method
+    message.solver_status = solver_status
+    message.iterations = result.iterations
+    message.solve_time = result.solve_time
+    message.power = result.power
+    fill_wrench(message.unallocated, wrench_between(result.unallocated, frame))
+    message.at_thrust_limit = result.at_thrust_limit.tolist()
+    message.at_rate_limit = result.at_rate_limit.tolist()
+    message.voltage = math.nan if voltage is None else float(voltage)
+    return message

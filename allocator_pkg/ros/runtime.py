@@ -1,0 +1,377 @@
+"""What runs while the allocator is configured, the same in ``allocator_node`` and
+``allocator_lifecycle_node``: the allocator, its topics and timers, the watchdog and the
+samples. A node builds one from checked parameters (:mod:`allocator_pkg.ros.node_base`),
+activates it, deactivates it and closes it; nothing here parses parameters.
+
+A sample runs on the timer at ``rate_hz`` (``trigger: timer``), or at once on each valid
+wrench (``trigger: input``) unless the last sample is less than a period old: the wrench then
+waits, replaced by any newer one, for the timer, set to fire one period after that sample. In
+both modes the timer runs the watchdog, and while the input is stale it commands zero thrust
+every period. With the input trigger the timer fires only when something is due (a waiting
+wrench, the moment the input would turn stale, every period while it is), so that a fast
+rate_hz costs no idle wake-ups.
+
+With thrust tables measured at several supply voltages, the runtime follows the voltage of
+``battery_state`` (sensor_msgs/BatteryState): a NaN or out-of-table voltage is rejected,
+counted and logged, the last valid one kept; with none for ``battery_timeout`` seconds the
+thrust limits go back to ``nominal_voltage`` (checked with the diagnostics, once a second),
+and the diagnostics say so.
+"""
+
+from __future__ import annotations
+
+import threading
+
+import numpy as np
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import Wrench, WrenchStamped
+from nav_msgs.msg import Odometry
+from rclpy.duration import Duration
+from rclpy.node import Node
+from rclpy.time import Time
+from sensor_msgs.msg import BatteryState
+from std_msgs.msg import Header
+from visualization_msgs.msg import MarkerArray
+
+from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
+
+from ..allocation.allocator import AllocationResult, Allocator
+from ..analysis.capability import Capability
+from ..effectiveness.faults import FaultMode
+from ..vehicle.config import Vehicle
+from ..vehicle.frames import wrench_between
+from ..vehicle.node_settings import INPUT, TIMER, NodeSettings
+from . import qos, wrench_input
+from .actuator_topics import ActuatorTopics
+from .conversions import commands_message, status_message
+from .diagnostics import Counters, diagnostic_statuses, short_dofs
+from .markers import thrust_markers
+from .watchdog import Watchdog
+
+DIAGNOSTICS_PERIOD = 1.0
+LOG_THROTTLE = 5.0
+
+
+class AllocationRuntime:
+    """The allocation on ``node`` for one checked configuration; ``geometry`` holds the flat
+    parameters a robot description supplied (merged into every later parameter check).
+
+    State shared between callbacks sits behind one lock, so that services, parameter changes
+    and samples may come from any thread."""
+
+    def __init__(self, node: Node, vehicle: Vehicle, settings: NodeSettings, geometry: dict[str, list[float]]):
+        self._node = node
+        self._lock = threading.Lock()
+        self.allocator = Allocator(vehicle)
+        self.settings = settings
+        self.geometry = geometry
+        self.counters = Counters()
+        self.watchdog = Watchdog(settings.wrench_timeout)
+        self.samples = 0
+        self.wrenches_received = 0
+        self.active = False
+        self._wrench = np.zeros(6)
+        self._wrench_time: int | None = None
+        self._pending = False
+        self._last_sample: int | None = None
+        self._last: AllocationResult | None = None
+        self._markers_due = 0
+        self._reported: set[str] = set()
+        self._wrench_type = wrench_input.message_type(settings)
+        self._commands = node.create_publisher(ThrusterCommands, "thruster_commands", qos.output(),
+                                               qos_overriding_options=qos.overridable())
+        self._status = node.create_publisher(AllocationStatus, "allocation_status", qos.output(),
+                                             qos_overriding_options=qos.overridable())
+        # Filled and published again every sample, always under the lock (making them anew cost
+        # more than filling them).
+        self._commands_message, self._status_message = ThrusterCommands(), AllocationStatus()
+        self._diagnostics = node.create_publisher(DiagnosticArray, "/diagnostics", qos.diagnostics(),
+                                                  qos_overriding_options=qos.overridable())
+        self._markers = node.create_publisher(MarkerArray, "~/thrust_markers", qos.output(),
+                                              qos_overriding_options=qos.overridable())
+        self._wrench_subscription = node.create_subscription(self._wrench_type, "wrench_command", self._on_wrench,
+                                                             qos.wrench(), qos_overriding_options=qos.overridable())
+        self._odometry = node.create_subscription(Odometry, "odometry", self._on_odometry, qos.odometry(),
+                                                  qos_overriding_options=qos.overridable()) \
+            if vehicle.has_surfaces else None
+        self._battery = node.create_subscription(BatteryState, "battery_state", self._on_battery, qos.battery(),
+                                                 qos_overriding_options=qos.overridable()) \
+            if vehicle.voltage_range is not None else None
+        self._battery_time: int | None = None
+        self.battery_fallback = vehicle.voltage_range is not None
+        self._capability: Capability | None = None
+        self._per_actuator: ActuatorTopics | None = None
+        self._apply_per_actuator(settings)
+        self._period_ns = round(1e9 / vehicle.rate_hz)
+        self._timer = node.create_timer(1.0 / vehicle.rate_hz, self._on_timer, autostart=False)
+        self._diagnostics_timer = node.create_timer(DIAGNOSTICS_PERIOD, self._on_diagnostics, autostart=False)
+
+    @property
+    def period(self) -> float:
+        """The allocation period 1 / rate_hz [s]."""
+        return self._period_ns * 1e-9
+
+    def topics(self) -> str:
+        """The resolved names of the node's topics, for the start-up log."""
+        wrench = self._wrench_subscription.topic_name
+        outputs = [self._commands.topic_name, self._status.topic_name, self._markers.topic_name,
+                   self._diagnostics.topic_name]
+        text = (f"wrench from {wrench} ({wrench_input.TYPE_NAMES[self._wrench_type]}, frame "
+                f"{self.settings.frame.upper()} '{self.settings.base_frame}', trigger {self.settings.trigger})")
+        if self._odometry is not None:
+            text += f", speed from {self._odometry.topic_name}"
+        if self._battery is not None:
+            text += f", supply voltage from {self._battery.topic_name}"
+        return text + f"; publishing {', '.join(outputs)}"
+
+    # -- life cycle ---------------------------------------------------------------------
+
+    def activate(self) -> None:
+        """Start sampling (the watchdog waits for the first wrench) and reporting."""
+        with self._lock:
+            self.active = True
+            self._last_sample = None
+            self._timer.reset()
+            self._diagnostics_timer.reset()
+
+    def deactivate(self) -> None:
+        """Command zero thrust once, angles held, then stop sampling and reporting."""
+        with self._lock:
+            if self.active:
+                self._publish(self.allocator.stop(), self._node.get_clock().now(), "stopped: deactivated")
+            self.active = False
+            self._timer.cancel()
+            self._diagnostics_timer.cancel()
+
+    def publish_stop(self, timeout: float) -> bool:
+        """One zero-thrust command (shutdown), angles held; waits up to ``timeout`` seconds
+        for every subscriber to acknowledge it (the node is about to go, and with it the
+        reliable writer that would resend it). Whether all did."""
+        with self._lock:
+            self._publish(self.allocator.stop(), self._node.get_clock().now(), "stopped: shutting down")
+        return self._commands.wait_for_all_acked(Duration(seconds=timeout))
+
+    def close(self) -> None:
+        """Destroy every publisher, subscription and timer; the allocator (and its solver) goes with this object."""
+        node = self._node
+        with self._lock:
+            self.active = False
+            for timer in (self._timer, self._diagnostics_timer):
+                node.destroy_timer(timer)
+            for subscription in (self._wrench_subscription, self._odometry, self._battery):
+                if subscription is not None:
+                    node.destroy_subscription(subscription)
+            if self._per_actuator is not None:
+                self._per_actuator.close()
+            for publisher in (self._commands, self._status, self._diagnostics, self._markers):
+                node.destroy_publisher(publisher)
+
+    # -- inputs -------------------------------------------------------------------------
+
+    def _on_wrench(self, message: Wrench | WrenchStamped) -> None:
+        verdict = wrench_input.accept(message, self.settings)
+        with self._lock:
+            self.wrenches_received += 1
+            if verdict.wrench is None:
+                self.counters.rejected_wrenches += 1
+                self.counters.rejected_frames += verdict.kind == "frame"
+                self.counters.rejected_in_period += 1
+            else:
+                now = self._node.get_clock().now()
+                self._wrench = verdict.wrench
+                self._wrench_time = now.nanoseconds
+                if self.active and self.settings.trigger == INPUT:
+                    waiting = self._pending
+                    self._pending = True
+                    if self._last_sample is None or now.nanoseconds - self._last_sample >= self._period_ns:
+                        self._sample(now)
+                        self._schedule(now.nanoseconds)
+                    elif not waiting:
+                        self._arm(self._last_sample + self._period_ns - now.nanoseconds)
+        if verdict.wrench is None:
+            self._node.get_logger().warn(verdict.reason, throttle_duration_sec=LOG_THROTTLE)
+
+    def _on_odometry(self, message: Odometry) -> None:
+        speed = message.twist.twist.linear.x
+        with self._lock:
+            if np.isfinite(speed):
+                self.allocator.set_speed(speed)
+                return
+            self.counters.rejected_odometry += 1
+            self.counters.rejected_in_period += 1
+        self._node.get_logger().warn("rejected odometry with a non-finite surge speed",
+                                     throttle_duration_sec=LOG_THROTTLE)
+
+    def _on_battery(self, message: BatteryState) -> None:
+        voltage = message.voltage
+        with self._lock:
+            try:
+                self.allocator.set_voltage(voltage)
+            except ValueError as error:
+                self.counters.rejected_battery += 1
+                self.counters.rejected_in_period += 1
+                reason = str(error)
+            else:
+                self._battery_time = self._node.get_clock().now().nanoseconds
+                if self.battery_fallback:
+                    self.battery_fallback = False
+                    self._node.get_logger().info(f"supply voltage from {self._battery.topic_name}: {voltage:.2f} V")
+                return
+        self._node.get_logger().warn(f"rejected battery state: {reason}; keeping "
+                                     f"{self.allocator.voltage:g} V", throttle_duration_sec=LOG_THROTTLE)
+
+    def _check_battery(self, now: int) -> None:
+        """Back to the nominal voltage when no valid battery voltage came for battery_timeout. Lock held."""
+        if self._battery is None or self.battery_fallback:
+            return
+        if self._battery_time is None or now - self._battery_time > self.settings.battery_timeout * 1e9:
+            self.battery_fallback = True
+            nominal = self.allocator.vehicle.nominal_voltage
+            self.allocator.set_voltage(nominal)
+            self._node.get_logger().warn(f"no valid battery voltage on {self._battery.topic_name} for "
+                                         f"{self.settings.battery_timeout:g} s: thrust limits at nominal_voltage "
+                                         f"{nominal:g} V")
+
+    # -- the sample ---------------------------------------------------------------------
+
+    def _on_timer(self) -> None:
+        with self._lock:
+            if self.active:
+                now = self._node.get_clock().now()
+                self._sample(now)
+                if self.settings.trigger == INPUT:
+                    self._schedule(now.nanoseconds)
+
+    def _schedule(self, now: int) -> None:
+        """Input trigger, after the timer or a sample: the next time the timer has work. Lock held."""
+        if self.watchdog.stale or self._pending:
+            self._arm(self._period_ns)
+        elif self.watchdog.timeout > 0.0 and self._wrench_time is not None:
+            self._arm(self._wrench_time + round(self.watchdog.timeout * 1e9) - now + self._period_ns)
+        else:
+            self._arm(round(1e9 * DIAGNOSTICS_PERIOD))          # nothing can fall due: a slow heartbeat
+
+    def _arm(self, delay: int) -> None:
+        """Fire the timer ``delay`` ns from now."""
+        self._timer.timer_period_ns = max(delay, 1)
+        self._timer.reset()
+
+    def _sample(self, now: Time) -> None:
+        """Check the watchdog; allocate the latest wrench (zero thrust while it is stale) unless
+        the trigger is the input and no wrench waits. Called with the lock held."""
+        stale, transition = self.watchdog.check(now.nanoseconds, self._wrench_time)
+        if transition is not None and transition[0] == "warn":
+            self._node.get_logger().warn(transition[1])
+        elif transition is not None:
+            self._node.get_logger().info(transition[1])
+        if not (stale or self._pending or self.settings.trigger == TIMER):
+            return
+        result = self.allocator.stop() if stale else self.allocator.allocate(self._wrench)
+        self._pending = False
+        self._last_sample = now.nanoseconds
+        self.samples += 1
+        self.counters.count(result, short_dofs(self.allocator, result) if result.saturated else ())
+        self._last = result
+        self._publish(result, now, f"stale: no valid wrench for {self.watchdog.timeout:g} s" if stale
+                      else result.status)
+
+    def _publish(self, result: AllocationResult, now: Time, status: str) -> None:
+        header = Header(stamp=now.to_msg(), frame_id=self.settings.base_frame)
+        self._commands.publish(commands_message(result, self.allocator.names, header, self._commands_message))
+        self._status.publish(status_message(result, status, header, self.settings.frame, self.allocator.voltage,
+                                            self._status_message))
+        if self._per_actuator is not None:
+            self._per_actuator.publish(result)
+        rate = self.settings.markers_rate_hz
+        if rate > 0.0 and now.nanoseconds >= self._markers_due:
+            self._markers_due = now.nanoseconds + round(1e9 / rate)
+            if self._markers.get_subscription_count():
+                limits = self.allocator.ranges
+                self._markers.publish(thrust_markers(self.allocator.vehicle, result, limits, header,
+                                                     self.settings.frame))
+
+    # -- faults and parameters ------------------------------------------------------------
+
+    def set_fault(self, fault: ActuatorFault) -> tuple[bool, str]:
+        """Set one actuator's fault from the next sample; (success, message naming the valid choices)."""
+        try:
+            mode = FaultMode(fault.mode)
+        except ValueError:
+            return False, (f"unknown mode {fault.mode}; modes: NOMINAL={ActuatorFault.NOMINAL}, "
+                           f"DEGRADED={ActuatorFault.DEGRADED}, FAILED={ActuatorFault.FAILED}, "
+                           f"STUCK={ActuatorFault.STUCK}")
+        with self._lock:
+            try:
+                self.allocator.set_fault(fault.actuator, mode, efficiency=fault.efficiency, angle=fault.azimuth)
+            except ValueError as error:
+                return False, str(error)
+        return True, f"{fault.actuator}: {mode.name} from the next sample"
+
+    def clear_faults(self) -> str:
+        """Every actuator back to NOMINAL; what was cleared."""
+        with self._lock:
+            had = sorted(self.allocator.faults)
+            self.allocator.clear_faults()
+        return f"cleared faults of {', '.join(had)}" if had else "no faults were set"
+
+    def capability(self, direction: np.ndarray) -> tuple[bool, str, float, np.ndarray]:
+        """The largest scale along ``direction`` (a wrench in the node's frame) under the faults,
+        voltage and speed in force, and the wrench there in the node's frame: (success,
+        message, scale, wrench). The analysis is built once per configuration."""
+        if not np.all(np.isfinite(direction)):
+            return False, f"the direction must be finite, got {direction.tolist()}", 0.0, np.zeros(6)
+        body = wrench_between(direction, self.settings.frame)
+        with self._lock:
+            allocator = self.allocator
+            if self._capability is None or self._capability.vehicle is not allocator.vehicle:
+                try:
+                    self._capability = Capability(allocator.vehicle, allocator.method, allocator.speed)
+                except ValueError as error:
+                    return False, str(error), 0.0, np.zeros(6)
+            faults, speed, voltage = allocator.faults, allocator.speed, allocator.voltage
+            capability = self._capability
+        if not np.any(body[list(capability.vehicle.dof_indices)]):
+            return False, (f"the direction has no component in the controlled DOFs "
+                           f"({', '.join(capability.vehicle.dofs)})"), 0.0, np.zeros(6)
+        scale, wrench = capability.reach(body, faults, speed, voltage)
+        where = f", {voltage:g} V" if voltage is not None else ""
+        return True, (f"steady state with {len(faults)} faults, speed {speed:g} m/s{where}, method "
+                      f"{capability.method}"), scale, wrench_between(wrench, self.settings.frame)
+
+    def apply(self, vehicle: Vehicle, settings: NodeSettings) -> None:
+        """A checked configuration of the same actuators, between two samples."""
+        with self._lock:
+            self.allocator.reconfigure(vehicle)
+            self._period_ns = round(1e9 / vehicle.rate_hz)
+            if settings.trigger == TIMER and self._timer.timer_period_ns != self._period_ns:
+                self._timer.timer_period_ns = self._period_ns
+            self._apply_per_actuator(settings)
+            self.settings = settings
+            self.watchdog.timeout = settings.wrench_timeout
+
+    def _apply_per_actuator(self, settings: NodeSettings) -> None:
+        if settings.per_actuator_topics and self._per_actuator is None:
+            self._per_actuator = ActuatorTopics(self._node, self.allocator.vehicle)
+        elif not settings.per_actuator_topics and self._per_actuator is not None:
+            self._per_actuator.close()
+            self._per_actuator = None
+
+    # -- diagnostics --------------------------------------------------------------------
+
+    def _on_diagnostics(self) -> None:
+        node = self._node
+        topic = self._wrench_subscription.topic_name
+        foreign = wrench_input.foreign_publishers(node, topic, wrench_input.TYPE_NAMES[self._wrench_type])
+        for publisher in sorted(set(foreign) - self._reported):
+            node.get_logger().warn(f"a publisher of another type on {topic} never connects: {publisher}; this "
+                                   f"node takes {wrench_input.TYPE_NAMES[self._wrench_type]} "
+                                   f"(wrench_type: {self.settings.wrench_type})")
+        self._reported.update(foreign)
+        with self._lock:
+            self._check_battery(node.get_clock().now().nanoseconds)
+            battery = None if self._battery is None else (self._battery.topic_name, self.battery_fallback)
+            statuses = diagnostic_statuses(node.get_fully_qualified_name(), self.allocator, self.counters,
+                                           self.watchdog.stale, self._last, foreign, battery)
+            self.counters.reset_period()
+        self._diagnostics.publish(DiagnosticArray(header=Header(stamp=node.get_clock().now().to_msg()),
+                                                  status=statuses))

@@ -1,0 +1,300 @@
+"""One sample's allocation limits as a linear programme on HiGHS (section 5.3), kept between
+samples so that each solve starts from the last basis (the survey's iterative LP).
+
+Variables, in units of each actuator's force range F (and of each DOF's authority D for the
+slack): one signed force per non-rotating actuator, split f = p - m with p, m >= 0, so that
+its magnitude p + m is linear; the two extended components (f_x, f_y) of every rotatable
+thruster (1.16), free, with a_x >= |f_x| and a_y >= |f_y| their magnitudes in the x/y plane;
+and either the slack s = s+ - s- of each controlled DOF (``objective="effort"``) or one scale
+lambda of the request (``objective="scale"``).
+
+    effort:  minimise  sum_i w_i F_i (p_i + m_i) + sum_j w_j F_j (a_xj + a_yj) + sum_k q_k D_k (s+_k + s-_k)
+             subject to  T_e f_e - s = tau
+    scale:   maximise   lambda - eps * (the same effort)
+             subject to  T_e f_e = lambda tau,  0 <= lambda <= lambda_max
+
+and, for both, this sample's limits:
+
+- a non-rotating actuator: low_i <= f_i <= high_i (bounds on p and m);
+- a rotatable thruster: the thrust circle |f| <= B as a polygon of N faces fixed in the body
+  frame, face normals at 2 pi k / N, each at distance ``apothem`` * B (the survey's polygon,
+  or the inscribed one); the angles this sample allows (feasible sector, the piece free of
+  forbidden sectors, the rate step) as the cone between two half-planes through the origin;
+  a thrust that a rate limit keeps above zero as f . d >= F_low along the thruster's present
+  direction d; a single allowed direction (STUCK, or a window narrower than PINNED) as the
+  line through the origin along it.
+
+Only values change between samples: the bounds, and the coefficients of the cone's edges and
+of the along-row of each rotatable thruster (sent when they differ from the last sample's).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import highspy
+import numpy as np
+import scipy.sparse as sp
+
+from ..effectiveness.model import Model, SampleLimits
+
+INFINITY = highspy.kHighsInf
+PINNED = 1e-12
+"""[rad] A window of angles narrower than this is a single direction."""
+SLACK_RATIO = 1e4
+"""Default weight of a DOF's |slack| against the effort (see :meth:`SampleLP._slack_weights`)."""
+TIE_BREAK = 1e-6
+"""The effort's weight in the scale objective, against lambda, per unit of effort of all
+actuators at full force: among the forces reaching the largest lambda it takes the cheapest
+and costs lambda at most this fraction."""
+
+
+def survey_apothem(sides: int) -> float:
+    """Face distance, as a fraction of the radius, of the polygon between the inscribed and the
+    circumscribed ones: its magnitude error is +-tan^2(pi / 2N) (3.96 % for the octagon, the
+    survey's +-4 %), below the circle at the faces' middles and above it at the corners."""
+    c = math.cos(math.pi / sides)
+    return 2.0 * c / (1.0 + c)
+
+
+def polygon_error(sides: int, apothem: float) -> tuple[float, float]:
+    """(smallest, largest) extent of the polygon over all directions, as a fraction of the
+    radius, minus one: the worst-case magnitude errors of the thrust circle's polygon."""
+    return apothem - 1.0, apothem / math.cos(math.pi / sides) - 1.0
+
+
+@dataclass
+class LPSolution:
+    """The extended force vector (1.16) in newtons, the slack (effort) or lambda (scale), and
+    how the solve went."""
+
+    force: np.ndarray
+    slack: np.ndarray
+    scale: float
+    status: str
+    iterations: int
+    solved: bool
+
+
+class SampleLP:
+    """One HiGHS LP per configuration: the sample's limits as rows and bounds (see module)."""
+
+    def __init__(self, model: Model, sides: int, apothem: float, objective: str, scale_max: float = 1.0):
+        if objective not in ("effort", "scale"):
+            raise ValueError(f"objective is effort or scale, got {objective!r}")
+        self.sides, self.apothem, self.objective, self.scale_max = sides, apothem, objective, scale_max
+        self._highs = highspy.Highs()
+        self._highs.setOptionValue("output_flag", False)
+        self._highs.setOptionValue("presolve", "off")
+        self._build(model)
+
+    # -- set-up ---------------------------------------------------------------------------
+
+    def _build(self, model: Model) -> None:
+        """Columns, rows and the constant coefficients; bounds are filled per sample."""
+        self.model = model
+        n, m = model.n, model.m
+        force = np.maximum(model.force_scale, 1e-9)
+        self._force = force
+        self._dof = model.dof_scale
+        columns: list[float] = []                       # cost per column, physical units x scale
+        scalar_p, scalar_m = {}, {}
+        for i in model.scalar:
+            scalar_p[int(i)] = len(columns)
+            columns.append(model.weight[i] * force[i])
+            scalar_m[int(i)] = len(columns)
+            columns.append(model.weight[i] * force[i])
+        rotatable = []                                  # (f_x, f_y, a_x, a_y) per rotatable thruster
+        for j in model.rot:
+            first = len(columns)
+            columns += [0.0, 0.0, model.weight[j] * force[j], model.weight[j] * force[j]]
+            rotatable.append((first, first + 1, first + 2, first + 3))
+        effort = float(sum(columns)) or 1.0
+        if self.objective == "effort":
+            slack_weight = self._slack_weights(model, effort)
+            self._slack = len(columns)
+            columns += [w for w in slack_weight for _ in range(2)]
+            costs = np.array(columns) / effort
+        else:
+            self._lambda = len(columns)
+            costs = np.append(np.array(columns) * (TIE_BREAK / effort), -1.0)
+        self._scalar_p = np.array([scalar_p[int(i)] for i in model.scalar], dtype=np.int32)
+        self._scalar_m = np.array([scalar_m[int(i)] for i in model.scalar], dtype=np.int32)
+        self._rot_columns = rotatable
+        rows, cols, vals = [], [], []
+        row_count = 0
+
+        def add(entries: list[tuple[int, float]]) -> int:
+            nonlocal row_count
+            for col, val in entries:
+                rows.append(row_count)
+                cols.append(col)
+                vals.append(val)
+            row_count += 1
+            return row_count - 1
+
+        # Equality rows, each divided by its DOF's authority.
+        t = model.t_ec / self._dof[:, None]
+        owner = model.extended_owner
+        self._equality = []
+        for k in range(n):
+            entries = []
+            for c in range(m):
+                i = int(owner[c])
+                if not model.rotatable[i]:
+                    entries += [(scalar_p[i], t[k, c] * force[i]), (scalar_m[i], -t[k, c] * force[i])]
+            for (fx, fy, _, _), (c1, c2) in zip(rotatable, model.rot_columns):
+                i = int(owner[c1])
+                entries += [(fx, t[k, c1] * force[i]), (fy, t[k, c2] * force[i])]
+            if self.objective == "effort":
+                entries += [(self._slack + 2 * k, -1.0), (self._slack + 2 * k + 1, 1.0)]
+            else:
+                entries.append((self._lambda, 0.0))
+            self._equality.append(add(entries))
+        # Rotatable thrusters: magnitudes, polygon, along-row, the cone's two edges.
+        normals = [(math.cos(2.0 * math.pi * k / self.sides), math.sin(2.0 * math.pi * k / self.sides))
+                   for k in range(self.sides)]
+        self._polygon, self._along, self._edges = [], [], []
+        magnitude_rows = []
+        for fx, fy, ax, ay in rotatable:
+            magnitude_rows += [add([(ax, 1.0), (fx, -1.0)]), add([(ax, 1.0), (fx, 1.0)]),
+                               add([(ay, 1.0), (fy, -1.0)]), add([(ay, 1.0), (fy, 1.0)])]
+            self._polygon.append([add([(fx, x), (fy, y)]) for x, y in normals])
+            self._along.append(add([(fx, 1.0), (fy, 0.0)]))
+            self._edges.append((add([(fx, 0.0), (fy, 1.0)]), add([(fx, 0.0), (fy, 1.0)])))
+        matrix = sp.coo_matrix((vals, (rows, cols)), shape=(row_count, len(costs))).tocsc()
+        lp = highspy.HighsLp()
+        lp.num_col_, lp.num_row_ = len(costs), row_count
+        lp.col_cost_ = costs
+        lower = np.zeros(len(costs))
+        upper = np.full(len(costs), INFINITY)
+        for fx, fy, _, _ in rotatable:
+            lower[[fx, fy]] = -INFINITY
+        if self.objective == "scale":
+            upper[self._lambda] = self.scale_max
+        lp.col_lower_, lp.col_upper_ = lower, upper
+        self._row_low = np.full(row_count, -INFINITY)
+        self._row_up = np.full(row_count, INFINITY)
+        self._row_low[magnitude_rows] = 0.0
+        self._row_low[self._equality] = self._row_up[self._equality] = 0.0
+        lp.row_lower_, lp.row_upper_ = self._row_low, self._row_up
+        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+        lp.a_matrix_.start_ = matrix.indptr
+        lp.a_matrix_.index_ = matrix.indices
+        lp.a_matrix_.value_ = matrix.data
+        self._highs.passModel(lp)
+        time_limit = model.vehicle.solver.time_limit
+        self._highs.setOptionValue("time_limit", time_limit if time_limit > 0.0 else INFINITY)
+        self._columns = len(costs)
+        self._coefficients: dict[tuple[int, int], float] = {}
+        self._version = -1
+        self._request = np.zeros(n)
+
+    @staticmethod
+    def _slack_weights(model: Model, effort: float) -> list[float]:
+        """The weight of one DOF's |s| in units of its authority: weights.slack when configured
+        (per newton or newton-metre of error), else SLACK_RATIO times the effort of every
+        actuator at full force, so that an error of 1/SLACK_RATIO of a DOF's authority costs
+        as much as all of them."""
+        if model.vehicle.weights.slack:
+            return list(np.array(model.vehicle.weights.slack) * model.dof_scale)
+        return [SLACK_RATIO * effort] * model.n
+
+    def update_model(self, model: Model) -> None:
+        """A configuration of the same structure: the model is built again with the new values
+        (a few hundred coefficients; the basis of the last solve is kept as the start)."""
+        basis = self._highs.getBasis()
+        self._build(model)
+        if basis.valid:
+            self._highs.setBasis(basis)
+
+    # -- per sample -----------------------------------------------------------------------
+
+    def solve(self, tau: np.ndarray, limits: SampleLimits) -> LPSolution:
+        model = self.model
+        highs = self._highs
+        request = tau / self._dof
+        if self.objective == "effort":
+            self._row_low[self._equality] = self._row_up[self._equality] = request
+        else:
+            for row, value in zip(self._equality, request.tolist()):
+                self._coefficient(row, self._lambda, -value)
+        if limits.version < 0 or limits.version != self._version:
+            force = self._force[model.scalar]
+            low, high = limits.low[model.scalar] / force, limits.high[model.scalar] / force
+            if model.scalar.size:
+                highs.changeColsBounds(model.scalar.size, self._scalar_p, np.maximum(low, 0.0), np.maximum(high, 0.0))
+                highs.changeColsBounds(model.scalar.size, self._scalar_m, np.maximum(-high, 0.0),
+                                       np.maximum(-low, 0.0))
+            self._version = limits.version
+        for k, lim in enumerate(limits.azimuth):
+            self._azimuth_rows(k, lim, float(limits.angle[model.rot[k]]))
+        highs.changeRowsBounds(len(self._row_low), np.arange(len(self._row_low), dtype=np.int32), self._row_low,
+                               self._row_up)
+        highs.run()
+        status = highs.getModelStatus()
+        iterations = int(highs.getInfo().simplex_iteration_count)
+        solved = status == highspy.HighsModelStatus.kOptimal
+        if not solved:
+            return LPSolution(np.zeros(model.m), np.zeros(model.n), 0.0, highs.modelStatusToString(status),
+                              iterations, False)
+        x = np.asarray(highs.getSolution().col_value)
+        force = np.zeros(model.m)
+        scale = self._force
+        force[model.scalar_columns] = (x[self._scalar_p] - x[self._scalar_m]) * scale[model.scalar]
+        for (fx, fy, _, _), (c1, c2), j in zip(self._rot_columns, model.rot_columns, model.rot):
+            force[c1], force[c2] = x[fx] * scale[j], x[fy] * scale[j]
+        if self.objective == "effort":
+            slack = (x[self._slack::2][:model.n] - x[self._slack + 1::2][:model.n]) * self._dof
+            return LPSolution(force, slack, 1.0, "solved", iterations, True)
+        return LPSolution(force, np.zeros(model.n), float(x[self._lambda]), "solved", iterations, True)
+
+    def _azimuth_rows(self, k: int, lim, alpha0: float) -> None:
+        """Bounds and coefficients of rotatable thruster k for this sample (see the module)."""
+        fx, fy, _, _ = self._rot_columns[k]
+        scale = float(self._force[self.model.rot[k]])
+        polygon, along = self._polygon[k], self._along[k]
+        edge_low, edge_high = self._edges[k]
+        low, up = self._row_low, self._row_up
+        if lim.line or lim.high - lim.low < PINNED or lim.magnitude_max == 0.0:
+            direction = lim.low if math.isfinite(lim.low) else alpha0
+            up[polygon] = INFINITY
+            self._row(along, fx, fy, math.cos(direction), math.sin(direction), lim.thrust_low / scale,
+                      lim.thrust_high / scale)
+            self._row(edge_low, fx, fy, -math.sin(direction), math.cos(direction), 0.0, 0.0)
+            low[edge_high], up[edge_high] = -INFINITY, INFINITY
+            return
+        reverse = lim.sigma < 0
+        direction = alpha0 + math.pi if reverse else alpha0
+        smallest, largest = (lim.thrust_low, lim.thrust_high) if not reverse else (-lim.thrust_high, -lim.thrust_low)
+        bound = max(min(lim.physical_max, largest), smallest)
+        pitch = 2.0 * math.pi / self.sides
+        offset = math.remainder(direction, pitch)
+        # The polygon reaches at least the thrust a rate limit keeps, along the present direction.
+        up[polygon] = max(self.apothem * bound, smallest * math.cos(offset)) / scale
+        self._row(along, fx, fy, math.cos(direction), math.sin(direction),
+                  smallest / scale if smallest > 0.0 else -INFINITY, INFINITY)
+        shift = math.pi if reverse else 0.0
+        if math.isfinite(lim.low):
+            start = lim.low + shift
+            self._row(edge_low, fx, fy, -math.sin(start), math.cos(start), 0.0, INFINITY)
+        else:
+            low[edge_low], up[edge_low] = -INFINITY, INFINITY
+        if math.isfinite(lim.high):
+            end = lim.high + shift
+            self._row(edge_high, fx, fy, math.sin(end), -math.cos(end), 0.0, INFINITY)
+        else:
+            low[edge_high], up[edge_high] = -INFINITY, INFINITY
+
+    def _row(self, row: int, fx: int, fy: int, cx: float, cy: float, low: float, up: float) -> None:
+        self._coefficient(row, fx, cx)
+        self._coefficient(row, fy, cy)
+        self._row_low[row], self._row_up[row] = low, up
+
+    def _coefficient(self, row: int, col: int, value: float) -> None:
+        """Change one coefficient, only when it differs from the value HiGHS has."""
+        key = (row, col)
+        if self._coefficients.get(key) != value:
+            self._coefficients[key] = value
+            self._highs.changeCoeff(row, col, value)

@@ -1,0 +1,52 @@
+"""Settings of the ROS node that are not part of the vehicle: the allocation library never
+reads them. Parsed and checked with the vehicle (:func:`allocator_pkg.configuration.parameters.parse_parameters`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+NODE_NAME = "thrust_allocator"
+"""The allocator node's default name."""
+
+FRD = "frd"
+FLU = "flu"
+FRAMES = (FRD, FLU)
+"""Body frame conventions: x forward, y starboard, z down (marine); x forward, y left, z up (REP-103)."""
+
+WRENCH = "wrench"
+WRENCH_STAMPED = "wrench_stamped"
+WRENCH_TYPES = (WRENCH, WRENCH_STAMPED)
+
+TIMER = "timer"
+INPUT = "input"
+TRIGGERS = (TIMER, INPUT)
+
+PARAMS = "params"
+ROBOT_DESCRIPTION = "robot_description"
+GEOMETRY_SOURCES = (PARAMS, ROBOT_DESCRIPTION)
+
+
+@dataclass(frozen=True)
+class NodeSettings:
+    """The node's own settings (see the node keys of :mod:`allocator_pkg.configuration.schema`).
+
+    ``wrench_timeout`` [s] of the stale-input watchdog (0 disables it); whether to publish one
+    Float64 topic per actuator; the body frame convention ``frame`` of the wrenches in and out
+    and the name ``base_frame`` stamped on the outputs; the wrench message type; what starts a
+    sample (``timer`` or ``input``); the rate of the thrust markers (0: none); where positions
+    and directions come from, the URDF file (empty: the ``robot_description`` topic) and each
+    actuator's link in it; how long [s] the thrust limits follow the last battery voltage
+    before they fall back to the nominal voltage.
+    """
+
+    wrench_timeout: float
+    per_actuator_topics: bool = False
+    frame: str = FRD
+    base_frame: str = "base_link"
+    wrench_type: str = WRENCH
+    trigger: str = TIMER
+    markers_rate_hz: float = 10.0
+    geometry_source: str = PARAMS
+    robot_description_file: str = ""
+    battery_timeout: float = 5.0
+    links: dict[str, str] = field(default_factory=dict)
