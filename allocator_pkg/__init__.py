@@ -8,10 +8,12 @@ and the command-line tools::
     result = alloc.allocate([X, Y, Z, K, M, N])
 """
 
-from .allocation.allocator import AllocationResult, Allocator, AllocatorStats
+from .allocation.allocator import Allocator
+from .allocation.result import AllocationResult, AllocatorStats
 from .configuration.parameters import load_vehicle, parse_parameters, read_parameters, vehicle_from_parameters
 from .effectiveness.faults import Fault, FaultMode, FaultSet
 from .methods import METHODS
+from .solvers.outcome import Outcome
 from .vehicle.config import ConfigError, Vehicle
 
 __all__ = [
@@ -23,6 +25,7 @@ __all__ = [
     "Fault",
     "FaultMode",
     "FaultSet",
+    "Outcome",
     "Vehicle",
     "load_vehicle",
     "parse_parameters",

@@ -90,7 +90,7 @@ def test_the_lyapunov_function_never_rises_for_a_held_request_and_falls_by_the_g
     vehicle = vehicle_from(EIGHT, dynamic__gain=0.3)
     for direction in DIRECTIONS:
         allocator = Allocator(vehicle, method="dynamic")
-        method = allocator._method
+        method = allocator._solver.method
         tau = 120.0 * direction / np.linalg.norm(direction)
         request = tau / method._dof
         values = []

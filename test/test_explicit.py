@@ -33,9 +33,9 @@ def problem(vehicle, speed=0.0):
     allocator.set_speed(speed)
     t = configuration_matrix(vehicle.actuators, np.zeros(len(vehicle.actuators)))[list(vehicle.dof_indices)]
     w = np.array([a.weight for a in vehicle.actuators])
-    model = allocator._model
+    model = allocator.model
     q = model.slack_weights(w)
-    low, high = allocator._range_low.copy(), allocator._range_high.copy()
+    low, high = allocator._limits.low.copy(), allocator._limits.high.copy()
     return t, w, q, low, high
 
 
@@ -63,7 +63,7 @@ def limits(low, high, version=-1):
 
 def requests(vehicle, count, scale, seed):
     """Random requests on the controlled DOFs up to ``scale`` times each DOF's authority."""
-    model = Allocator(vehicle, method="explicit")._model
+    model = Allocator(vehicle, method="explicit").model
     rng = np.random.default_rng(seed)
     return model.authority * rng.uniform(-scale, scale, size=(count, model.n))
 
@@ -75,7 +75,7 @@ def test_the_objective_equals_bounded_least_squares_with_the_bounds_as_parameter
     the law takes them as parameters, and every answer is the BVLS optimum."""
     vehicle = load_vehicle(path)
     t, w, q, low, high = problem(vehicle, speed)
-    method = ExplicitAllocation(Allocator(vehicle)._model, BACKENDS["osqp"])
+    method = ExplicitAllocation(Allocator(vehicle).model, BACKENDS["osqp"])
     rng = np.random.default_rng(1)
     for tau in requests(vehicle, 60, scale, seed=2):
         a, b = rng.uniform(low, high), rng.uniform(low, high)
@@ -111,7 +111,7 @@ def test_the_minimax_term_matches_an_independent_qp(path, speed):
     beta = 10.0
     vehicle = vehicle_from(path, weights__minimax=beta)
     t, w, q, low, high = problem(vehicle, speed)
-    method = ExplicitAllocation(Allocator(vehicle)._model, BACKENDS["osqp"])
+    method = ExplicitAllocation(Allocator(vehicle).model, BACKENDS["osqp"])
     taus = np.vstack((requests(vehicle, 30, 0.4, seed=5), requests(vehicle, 30, 1.5, seed=6),
                       np.zeros((2, t.shape[0]))))
     for tau in taus:
@@ -126,7 +126,7 @@ def test_a_repeated_region_is_a_hit_and_computes_no_law():
     """The method starts in the region where no limit is active; a saturating request moves it
     to another, and the same request again is a hit there."""
     allocator = Allocator(load_vehicle(BLUEROV), method="explicit")
-    method = allocator._method
+    method = allocator._solver.method
     assert allocator.allocate([10.0, 5.0, -3.0, 0.2, 0.1, 0.5]).status == "hit; regions 1, hits 1/1"
     first = allocator.allocate([150.0, 5.0, -3.0, 0.2, 0.1, 0.5])
     built = method.built
@@ -142,7 +142,7 @@ def test_a_failure_leaves_the_laws_and_moves_to_the_region_where_the_actuator_is
     vehicle = load_vehicle(BLUEROV)
     t, w, q, low, high = problem(vehicle)
     allocator = Allocator(vehicle, method="explicit")
-    method = allocator._method
+    method = allocator._solver.method
     tau = np.array([20.0, 10.0, -5.0, 0.5, 0.2, 1.0])
     allocator.allocate(tau)
     nominal = method._region.key
@@ -168,7 +168,7 @@ def test_a_new_speed_and_a_new_efficiency_change_values_only():
     vehicle = load_vehicle(INFANTE)
     allocator = Allocator(vehicle, method="explicit")
     allocator.set_speed(2.0)
-    method = allocator._method
+    method = allocator._solver.method
     tau = np.zeros(6)
     tau[[0, 5]] = [500.0, 400.0]
 
@@ -176,7 +176,7 @@ def test_a_new_speed_and_a_new_efficiency_change_values_only():
         for _ in range(100):                                            # through the rate limits
             result = allocator.allocate(tau)
         t, w, q, _, _ = problem(vehicle, allocator.speed)
-        low, high = allocator._range_low, allocator._range_high
+        low, high = allocator._limits.low, allocator._limits.high
         compensated = tau.copy()
         compensated[0] += result.drag
         expected = bvls(t, w, q, low, high, compensated[list(vehicle.dof_indices)])
@@ -205,7 +205,7 @@ def test_a_new_battery_voltage_changes_values_only_and_stays_exact():
     vehicle = load_vehicle(BLUEROV)
     t, w, q, _, _ = problem(vehicle)
     allocator = Allocator(vehicle, method="explicit")
-    method = allocator._method
+    method = allocator._solver.method
     held = requests(vehicle, 1, 0.1, seed=7)[0]
     allocator.allocate(held)
     region = method._region.key
@@ -215,7 +215,7 @@ def test_a_new_battery_voltage_changes_values_only_and_stays_exact():
         allocator.set_voltage(volts)
         allocator.allocate(held)
         assert method._region.key == region and method.built == built
-        low, high = allocator._range_low.copy(), allocator._range_high.copy()
+        low, high = allocator._limits.low.copy(), allocator._limits.high.copy()
         tops.append(high[0])
         for tau in requests(vehicle, 30, 1.2, seed=int(volts)):
             result = allocator.allocate(tau)
@@ -251,7 +251,7 @@ def test_rate_limits_are_parameters_every_sample():
 def test_the_cache_is_bounded_and_the_answers_stay_exact():
     vehicle = load_vehicle(BLUEROV)
     t, w, q, low, high = problem(vehicle)
-    method = ExplicitAllocation(Allocator(vehicle)._model, BACKENDS["osqp"], capacity=3)
+    method = ExplicitAllocation(Allocator(vehicle).model, BACKENDS["osqp"], capacity=3)
     for tau in requests(vehicle, 40, 2.0, seed=7):
         output = method.solve(tau, limits(low, high, version=0))
         assert method.regions <= 3
@@ -265,7 +265,7 @@ def test_reconfiguration_keeps_the_laws_for_new_limits_and_clears_them_for_new_w
     with it a new thrust_max is new data too: weights.slack is set here.)"""
     vehicle = vehicle_from(BLUEROV, weights__slack=[1e7] * 6)
     allocator = Allocator(vehicle, method="explicit")
-    method = allocator._method
+    method = allocator._solver.method
     for tau in requests(vehicle, 10, 1.0, seed=8):
         allocator.allocate(tau)
     regions = method.regions
@@ -319,7 +319,7 @@ def test_a_smooth_sequence_stays_in_few_regions():
     for angle in turn:
         allocator.allocate([40.0 * np.cos(angle), 40.0 * np.sin(angle), 10.0 * np.sin(3 * angle), 0.0, 0.0,
                             5.0 * np.sin(2 * angle)])
-    method = allocator._method
+    method = allocator._solver.method
     assert method.hits >= 0.95 * method.calls and method.solved <= 2
 
 
@@ -332,7 +332,7 @@ def test_precompute_finds_the_otters_nine_regions_and_the_allocator_loads_them(t
     assert "9 regions of 9 active sets" in capsys.readouterr().out
     vehicle = vehicle_from(OTTER, method="explicit", explicit__regions=str(out))
     allocator = Allocator(vehicle)
-    method = allocator._method
+    method = allocator._solver.method
     assert len(method.table) == 9 and method.regions == 9
     for request in requests(vehicle, 100, 2.0, seed=10):
         tau = np.zeros(6)
@@ -374,13 +374,13 @@ def test_precompute_writes_the_file_the_configuration_names_even_when_missing_or
     config = tmp_path / "otter.yaml"
     config.write_text(OTTER.read_text().replace("method: qp", f"method: explicit\n    explicit: {{regions: {out}}}", 1))
     assert explicit_tool.main(["precompute", str(config), "--out", str(out)]) == 0          # missing
-    assert len(Allocator(load_vehicle(config))._method.table) == 9
+    assert len(Allocator(load_vehicle(config))._solver.method.table) == 9
     heavier = "ros__parameters:\n    weights: {slack: [1e3, 1e3]}"
     config.write_text(config.read_text().replace("ros__parameters:", heavier, 1))
     with pytest.raises(ConfigError, match="computed for another configuration"):
         load_vehicle(config)
     assert explicit_tool.main(["precompute", str(config), "--out", str(out)]) == 0          # stale
-    assert len(Allocator(load_vehicle(config))._method.table) == 9
+    assert len(Allocator(load_vehicle(config))._solver.method.table) == 9
 
 
 def test_reconfiguration_refuses_what_the_method_cannot_serve_and_drops_a_cached_method_that_cannot(tmp_path):
@@ -396,10 +396,10 @@ def test_reconfiguration_refuses_what_the_method_cannot_serve_and_drops_a_cached
         allocator.reconfigure(replace(vehicle, saturation="direct"))
     assert allocator.vehicle is vehicle
     allocator.reconfigure(replace(vehicle, method="qp"))
-    assert set(allocator._methods) == {"explicit", "qp"}
+    assert set(allocator._solver.methods) == {"explicit", "qp"}
     heavier = replace(vehicle, method="qp", weights=replace(vehicle.weights, slack=(1e3, 1e3)))
     allocator.reconfigure(heavier)
-    assert set(allocator._methods) == {"qp"}
+    assert set(allocator._solver.methods) == {"qp"}
     with pytest.raises(ValueError, match="computed for another configuration"):
         allocator.reconfigure(replace(heavier, method="explicit"))
     assert allocator.vehicle is heavier and allocator.method == "qp"

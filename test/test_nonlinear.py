@@ -109,9 +109,9 @@ def test_the_linearised_qps_are_solved_to_a_tenth_of_the_configured_tolerance():
     configured tolerance, which reaches the running solver as values."""
     vehicle = vehicle_from(FOUR)
     alloc = Allocator(vehicle, method="nonlinear")
-    settings = alloc._method._qp.backend.settings
+    settings = alloc._solver.method._qp.backend.settings
     assert (settings.eps_abs, settings.eps_rel) == pytest.approx((1e-6, 1e-6))
     alloc.reconfigure(vehicle_from(FOUR, solver__eps_abs=1e-4, solver__eps_rel=2e-4))
-    settings = alloc._method._qp.backend.settings
+    settings = alloc._solver.method._qp.backend.settings
     assert (settings.eps_abs, settings.eps_rel) == pytest.approx((1e-5, 2e-5))
     assert alloc.stats.solver_setups == 1

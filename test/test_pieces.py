@@ -49,8 +49,8 @@ def test_a_stuck_thruster_is_its_line_and_nothing_inside_a_sector():
 
 
 def test_a_vessel_without_sectors_needs_no_planner():
-    assert not PiecePlanner(Allocator(vehicle_from(ROOT / "config" / "example1_rov.yaml"))._model).needed
-    assert PiecePlanner(Allocator(vehicle_from(DP))._model).needed
+    assert not PiecePlanner(Allocator(vehicle_from(ROOT / "config" / "example1_rov.yaml")).model).needed
+    assert PiecePlanner(Allocator(vehicle_from(DP)).model).needed
 
 
 def test_sway_puts_the_starboard_azimuth_past_its_sector():
@@ -71,13 +71,13 @@ def test_sway_puts_the_starboard_azimuth_past_its_sector():
 
 def test_the_plan_stands_while_the_request_stands_and_follows_faults():
     allocator = Allocator(vehicle_from(DP))
-    planner = allocator._planner
+    planner = allocator._limits.planner
     tau = np.array([0.0, 1.0e6, 0.0])
-    low, high = allocator._range_low, allocator._range_high
+    low, high = allocator._limits.low, allocator._limits.high
     first = planner.targets(tau, low, high, {}, np.zeros(4))
     assert planner.targets(tau * (1 + 1e-4), low, high, {}, np.zeros(4)) is first      # kept
     allocator.set_fault("azimuth_stbd", FaultMode.FAILED)
-    again = planner.targets(tau, allocator._range_low, allocator._range_high, {}, np.zeros(4))
+    again = planner.targets(tau, allocator._limits.low, allocator._limits.high, {}, np.zeros(4))
     assert again is not first and math.hypot(*again[0]) == pytest.approx(0.0, abs=1e-3)   # nothing from a failed unit
 
 
@@ -89,7 +89,7 @@ def test_a_stay_is_kept_unless_crossing_pays():
         "dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
         "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0,
         "actuators.a.forbidden_sectors": [-0.2, 0.2, 2.9, 3.4], "actuators.a.azimuth_initial": 1.0})
-    planner = PiecePlanner(Allocator(vehicle)._model)
+    planner = PiecePlanner(Allocator(vehicle).model)
     for start, side in ((1.0, 1.0), (-1.0, -1.0)):
         targets = planner.targets(np.array([150.0, 0.0]), np.zeros(1), np.full(1, 100.0), {}, np.array([start]))
         planner._key = None

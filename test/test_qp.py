@@ -114,7 +114,7 @@ def test_a_moved_thruster_is_taken_by_values_and_answers_as_a_fresh_allocator(co
     a configuration of the same structure changes: the updated solvers (the method's and the
     forbidden-sector planner's) answer as ones set up for the moved geometry."""
     alloc = Allocator(vehicle_from(ROOT / "config" / config, **base))
-    authority = alloc._model.authority
+    authority = alloc.model.authority
     requests = [np.array([c * math.cos(a), c * math.sin(a), 0.0, 0.0, 0.0, 0.2 * c * math.sin(3 * a)])
                 for a in np.linspace(0.0, 2.0 * math.pi, 7, endpoint=False) for c in (0.4, 1.2)]
     scale = np.array([authority[0], authority[1], 0, 0, 0, authority[2]])

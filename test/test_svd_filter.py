@@ -41,7 +41,7 @@ def normalised(vehicle, angles):
 def test_through_a_singular_configuration_thrust_stays_bounded_angles_smooth_condition_kept():
     vehicle = three_azimuths()
     allocator = Allocator(vehicle)
-    method = allocator._method
+    method = allocator._solver.method
     model = Model.build(vehicle, allocator.dt)
     surge = np.array([150.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     for _ in range(80):                                     # all three along x: singular in sway
@@ -78,7 +78,7 @@ def test_through_a_singular_configuration_thrust_stays_bounded_angles_smooth_con
 def test_the_gains_are_the_pseudo_inverses_above_epsilon_and_linear_below():
     vehicle = three_azimuths()
     allocator = Allocator(vehicle)
-    method = allocator._method
+    method = allocator._solver.method
     for spread in (1.0, 0.3, 0.05, 0.01, 0.0):
         allocator.reset()
         method._damped(normalised(vehicle, [0.0, spread, -spread]), np.array([0.3, 0.1, 0.05]))

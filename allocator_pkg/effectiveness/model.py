@@ -22,6 +22,11 @@ DEFAULT_SLACK_RATIO = 1e6
 """Default Q_k: a wrench error of 1/1000 of DOF k's authority costs as much as every
 actuator at full force, sum_i c_i F_i^2 with c_i the effort curvature (W_ii in the qp method)."""
 
+AT_LIMIT = 1e-3
+"""An actuator within this fraction of a limit sits at it: a thrust at an end of its range in
+force, a change of a full rate step, a thruster at its polygon's bound. The limit flags of a
+result, the diagnostics, the markers and the qp method's reading of multipliers all use it."""
+
 SATURATION_TOLERANCE = 1e-3
 """A request counts as met when every controlled DOF is within this fraction of the DOF's
 authority of it (Model.dof_scale)."""

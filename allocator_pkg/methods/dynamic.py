@@ -46,7 +46,7 @@ import numpy as np
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
 from ..effectiveness.sectors import surroundings
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput
+from ..solvers.outcome import MethodOutput, Outcome
 from ..vehicle.angles import wrap
 from ..vehicle.config import RotationConfig, Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
@@ -59,8 +59,9 @@ QUARTER_TURN = 0.5 * math.pi
 RATE_EDGE = 1e-9
 """[rad] A window edge this close to the present angle plus or minus the rate step is the rate
 limit's, not a sector's."""
-AT_LIMIT = 1e-9
-"""A force within this fraction of its range from a limit is at it."""
+ON_BOUND = 1e-9
+"""Rounding, not a modelling choice: a normalised force this close to a bound (or a magnitude
+this fraction from it) is on the bound."""
 
 
 class DynamicAllocation(AllocationMethod):
@@ -136,7 +137,7 @@ class DynamicAllocation(AllocationMethod):
                 break
             step *= 0.5
         if not np.isfinite(new).all():
-            return MethodOutput(np.zeros(self.model.m), "not finite", tries, solved=False)
+            return MethodOutput(np.zeros(self.model.m), "not finite", tries, outcome=Outcome.FAILED)
         self._x, self._request = new, request
         return MethodOutput(self._commanded(new, request, limits) * self._column_force, "solved", tries)
 
@@ -223,7 +224,7 @@ class DynamicAllocation(AllocationMethod):
             range_high = limits.high if sample or limits.range_high is None else limits.range_high
             for i, c in zip(model.scalar.tolist(), self._scalar_columns.tolist()):
                 low, high = range_low[i] / self._column_force[c], range_high[i] / self._column_force[c]
-                held = (x[c] <= low + AT_LIMIT and gradient[c] > 0.0) or (x[c] >= high - AT_LIMIT and gradient[c] < 0.0)
+                held = (x[c] <= low + ON_BOUND and gradient[c] > 0.0) or (x[c] >= high - ON_BOUND and gradient[c] < 0.0)
                 if not held:
                     column = np.zeros(model.m)
                     column[c] = 1.0
@@ -308,7 +309,7 @@ def _free_in_plane(lim: AzimuthLimits, alpha0: float, x1: float, x2: float, g1: 
         angle = lim.low if math.isfinite(lim.low) else alpha0
         cos, sin = math.cos(angle), math.sin(angle)
         along, push = x1 * cos + x2 * sin, -(g1 * cos + g2 * sin)
-        held = (along >= high - AT_LIMIT and push > 0.0) or (along <= low + AT_LIMIT and push < 0.0)
+        held = (along >= high - ON_BOUND and push > 0.0) or (along <= low + ON_BOUND and push < 0.0)
         return [] if held else [((cos, sin), 0.0)]
     magnitude = math.hypot(x1, x2)
     if magnitude <= hold:
@@ -322,11 +323,11 @@ def _free_in_plane(lim: AzimuthLimits, alpha0: float, x1: float, x2: float, g1: 
     tangent = (-radial[1], radial[0])
     outward = -(g1 * radial[0] + g2 * radial[1])
     bound = max(abs(low), abs(high))
-    at_circle = magnitude >= bound * (1.0 - AT_LIMIT) and outward > 0.0
+    at_circle = magnitude >= bound * (1.0 - ON_BOUND) and outward > 0.0
     angle = math.atan2(x2, x1) if lim.sigma > 0 else math.atan2(-x2, -x1)
     angle = alpha0 + wrap(angle - alpha0)
     turning = -(g1 * tangent[0] + g2 * tangent[1])             # > 0: toward larger angles
-    at_edge = (angle <= lim.low + AT_LIMIT and turning < 0.0) or (angle >= lim.high - AT_LIMIT and turning > 0.0)
+    at_edge = (angle <= lim.low + ON_BOUND and turning < 0.0) or (angle >= lim.high - ON_BOUND and turning > 0.0)
     if at_circle and at_edge:
         return []
     if at_circle:
@@ -344,6 +345,6 @@ def _free_along(lim: AzimuthLimits, alpha0: float, x1: float, x2: float, g1: flo
     cos, sin = math.cos(angle), math.sin(angle)
     along, push = x1 * cos + x2 * sin, -(g1 * cos + g2 * sin)
     low, high = lim.thrust_low / scale, lim.thrust_high / scale
-    held = (along >= high - AT_LIMIT and push > 0.0) or (along <= low + AT_LIMIT and push < 0.0) or high - low <= 0.0
+    held = (along >= high - ON_BOUND and push > 0.0) or (along <= low + ON_BOUND and push < 0.0) or high - low <= 0.0
     return [] if held else [((cos, sin), 0.0)]
 

@@ -51,7 +51,7 @@ from numpy.lib.npyio import NpzFile
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput
+from ..solvers.outcome import MethodOutput, Outcome
 from ..solvers.problem import Rows, ScaledProblem, Solution
 from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
@@ -83,9 +83,7 @@ TIGHT = 1e-10
 region (fractions of the variables' ranges)."""
 
 TIGHT_ITERATIONS = 20000
-"""OSQP's iteration limit for that second solve; only a converged one (status SOLVED) is used."""
-
-SOLVED = "solved"
+"""OSQP's iteration limit for that second solve; only a converged one (``Outcome.SOLVED``) is used."""
 
 INDEPENDENT = 1e-9
 """A normalised row whose part outside the span of the rows kept is smaller depends on them."""
@@ -459,7 +457,7 @@ class ExplicitAllocation(AllocationMethod):
         solution = qp.solve(qp.low, qp.up)
         if not solution.usable:
             return MethodOutput(np.zeros(r), f"OSQP: {solution.status}; regions {self.regions}, "
-                                f"hits {self.hits}/{self.calls}", solution.iterations, 0.0, False)
+                                f"hits {self.hits}/{self.calls}", solution.iterations, outcome=solution.outcome)
         iterations = solution.iterations
         found = self._polish(solution, p)
         if found is None:
@@ -470,7 +468,7 @@ class ExplicitAllocation(AllocationMethod):
             tight = qp.solve(qp.low, qp.up)
             qp.update_settings(settings)
             iterations += tight.iterations
-            if tight.usable and tight.status == SOLVED:
+            if tight.outcome is Outcome.SOLVED:
                 solution = tight
                 found = self._polish(solution, p)
         if found is not None:
@@ -478,7 +476,8 @@ class ExplicitAllocation(AllocationMethod):
                                 iterations)
         self.inexact += 1
         return MethodOutput(solution.x[:r].copy(), f"OSQP, no exact region ({solution.status}); "
-                            f"regions {self.regions}, hits {self.hits}/{self.calls}", iterations)
+                            f"regions {self.regions}, hits {self.hits}/{self.calls}", iterations,
+                            outcome=solution.outcome, residual=solution.residual)
 
     def _polish(self, solution: Solution, p: np.ndarray) -> np.ndarray | None:
         """The region of the active set OSQP's answer shows, or one a few moves from it: its

@@ -68,7 +68,7 @@ class LPAllocation(AllocationMethod):
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         solution = self._lp.solve(tau, limits)
-        output = MethodOutput(solution.force, solution.status, solution.iterations, solved=solution.solved)
+        output = MethodOutput(solution.force, solution.status, solution.iterations, outcome=solution.outcome)
         if self._direct is None or not solution.solved:
             return output
         if np.all(np.abs(solution.slack) <= SATURATION_SLACK * self.model.dof_scale):

@@ -227,7 +227,7 @@ class NonlinearAllocation(AllocationMethod):
             iterations += solution.iterations
             status = solution.status
             if not solution.usable:
-                return MethodOutput(np.zeros(model.m), status, iterations, 0.0, False)
+                return MethodOutput(np.zeros(model.m), status, iterations, outcome=solution.outcome)
             self._multipliers = solution.y[:n]
             x = solution.x
             new_force = np.minimum(np.maximum(force + x[:r] / root, low), high)
@@ -254,7 +254,7 @@ class NonlinearAllocation(AllocationMethod):
                 idle = [k for k, (f, hold) in enumerate(zip(force[rot].tolist(), self._hold)) if abs(f) <= hold]
                 if idle:
                     turn = self._idle_turns(tau, extended, limits, idle)
-        return MethodOutput(extended, status, iterations, 0.0, True, angle, turn)
+        return MethodOutput(extended, status, iterations, angle=angle, turn=turn)
 
     def _idle_turns(self, tau: np.ndarray, extended: np.ndarray, limits: SampleLimits,
                     idle: list[int]) -> dict[int, float] | None:

@@ -72,15 +72,15 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
 from ..solvers import BACKENDS, BackendFactory
+from ..solvers.backend import NO_BOUND
 from ..solvers.direct import DirectSolution
 from ..solvers.outcome import MethodOutput
 from ..solvers.problem import Entries, Rows, ScaledProblem, block_index, entry_index
 from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
 
-INFINITY = math.inf
 PINNED = 1e-12
 """[rad] A window of angles narrower than this is a single direction."""
 SLAB_STEP = 0.5 * math.pi
@@ -88,9 +88,6 @@ SLAB_STEP = 0.5 * math.pi
 CURVATURE_CHANGE = 1e-3
 """The thrust-limit curvature is sent to the solver again only when it changes by more than
 this fraction (a new P means a new factorisation)."""
-AT_LIMIT = 1e-3
-"""A thruster pushing within this fraction of its polygon's bound along its direction is at
-its limit: only then are the limit's multipliers read."""
 SATURATION_SLACK = 1e-6
 """Slack, as a fraction of its DOF's authority, above which a request counts as unattainable."""
 PRIORITY_HOLD = 1e-6
@@ -222,15 +219,16 @@ class QPAllocation(AllocationMethod):
         iterations = output.iterations
         for level, lower in zip(self._levels, self._lower):
             low[equality[level]] = up[equality[level]] = tau[level]
-            low[slack[level]], up[slack[level]] = -INFINITY, INFINITY
-            low[equality[lower]], up[equality[lower]] = -INFINITY, INFINITY
+            low[slack[level]], up[slack[level]] = -NO_BOUND, NO_BOUND
+            low[equality[lower]], up[equality[lower]] = -NO_BOUND, NO_BOUND
             low[slack[lower]] = up[slack[lower]] = 0.0
             solution = qp.solve(low, up)
             iterations += solution.iterations
             if not solution.usable:
                 break
             x = solution.x
-            output = MethodOutput(self._forces(problem, x), solution.status, 0, 0.0, True)
+            output = MethodOutput(self._forces(problem, x), solution.status, outcome=solution.outcome,
+                                  residual=solution.residual)
             missed = x[model.m + level]
             low[equality[level]] = tau[level] + np.minimum(missed, 0.0) - self._hold[level]
             up[equality[level]] = tau[level] + np.maximum(missed, 0.0) + self._hold[level]
@@ -320,9 +318,9 @@ class QPAllocation(AllocationMethod):
             qp.low[index["last"]], qp.up[index["last"]] = 0.0, 1.0
             return
         minimax = model.vehicle.weights.minimax > 0.0
-        qp.low[index["minimax"][0::2]], qp.up[index["minimax"][0::2]] = -INFINITY, (0.0 if minimax else INFINITY)
-        qp.low[index["minimax"][1::2]], qp.up[index["minimax"][1::2]] = (0.0 if minimax else -INFINITY), INFINITY
-        qp.up[index["polygon_minimax"].ravel()] = 0.0 if minimax else INFINITY
+        qp.low[index["minimax"][0::2]], qp.up[index["minimax"][0::2]] = -NO_BOUND, (0.0 if minimax else NO_BOUND)
+        qp.low[index["minimax"][1::2]], qp.up[index["minimax"][1::2]] = (0.0 if minimax else -NO_BOUND), NO_BOUND
+        qp.up[index["polygon_minimax"].ravel()] = 0.0 if minimax else NO_BOUND
         qp.low[index["last"]], qp.up[index["last"]] = 0.0, (float(np.max(model.force_scale)) if minimax else 0.0)
 
     def _setup(self, model: Model, scale: bool, stages: bool = False) -> _Problem:
@@ -373,7 +371,7 @@ class QPAllocation(AllocationMethod):
         else:
             force = x[:model.m].copy()
         output = MethodOutput(force if solution.usable else np.zeros(model.m), solution.status,
-                              solution.iterations, 0.0, solution.usable)
+                              solution.iterations, outcome=solution.outcome, residual=solution.residual)
         return output, x
 
     def _prepare(self, problem: _Problem, tau: np.ndarray, limits: SampleLimits) -> None:
@@ -405,12 +403,12 @@ class QPAllocation(AllocationMethod):
             i, step = self._rot[k], self._angle_step[k]
             polygon, along, across, edge_low, edge_high = problem.rows[k]
             alpha0 = float(angles[i])
-            low[edge_low] = low[edge_high] = -INFINITY
-            up[edge_low] = up[edge_high] = INFINITY
+            low[edge_low] = low[edge_high] = -NO_BOUND
+            up[edge_low] = up[edge_high] = NO_BOUND
             if lim.line or lim.high - lim.low < PINNED or lim.magnitude_max == 0.0:
                 # One direction: the force is F along it, F in [thrust_low, thrust_high].
                 directions.append(lim.low if math.isfinite(lim.low) else alpha0)
-                up[polygon] = INFINITY
+                up[polygon] = NO_BOUND
                 low[along], up[along] = lim.thrust_low, lim.thrust_high
                 low[across] = up[across] = 0.0
                 edges += (0.0, 1.0, 0.0, 1.0)
@@ -423,17 +421,17 @@ class QPAllocation(AllocationMethod):
             bounds.append(bound)
             up[polygon] = bound
             narrow = step < SLAB_STEP
-            low[along], up[along] = (max(smallest, 0.0) if narrow or smallest > 0.0 else -INFINITY), INFINITY
-            slab = bound * math.sin(step) if narrow else INFINITY
+            low[along], up[along] = (max(smallest, 0.0) if narrow or smallest > 0.0 else -NO_BOUND), NO_BOUND
+            slab = bound * math.sin(step) if narrow else NO_BOUND
             offset_low, offset_high = lim.low - alpha0, lim.high - alpha0
             edge = [0.0, 1.0, 0.0, 1.0]
-            up[across] = INFINITY
+            up[across] = NO_BOUND
             if offset_high >= step - PINNED and narrow:
                 up[across] = slab
             elif math.isfinite(offset_high):
                 edge[2:] = (-math.sin(offset_high), math.cos(offset_high))
                 up[edge_high] = 0.0
-            low[across] = -INFINITY
+            low[across] = -NO_BOUND
             if offset_low <= -step + PINNED and narrow:
                 low[across] = -slab
             elif math.isfinite(offset_low):

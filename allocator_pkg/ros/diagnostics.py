@@ -16,9 +16,7 @@ from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 
 from ..allocation.allocator import AllocationResult, Allocator
 from ..effectiveness.faults import Fault, FaultMode
-
-AT_LIMIT = 0.999
-"""An actuator at or above this fraction of its limit in force is reported at its limit."""
+from ..effectiveness.model import AT_LIMIT
 
 ACTUATOR_LEVELS = {FaultMode.NOMINAL: DiagnosticStatus.OK, FaultMode.DEGRADED: DiagnosticStatus.WARN,
                    FaultMode.STUCK: DiagnosticStatus.WARN, FaultMode.FAILED: DiagnosticStatus.ERROR}
@@ -168,7 +166,7 @@ def actuator_status(node_name: str, allocator: Allocator, index: int, last: Allo
         values["azimuth [rad]"] = f"{float(last.azimuth[index]):.6g}"
     if not last.available[index]:
         words.append("unavailable")
-    elif limit != 0.0 and fraction >= AT_LIMIT:
+    elif limit != 0.0 and fraction >= 1.0 - AT_LIMIT:
         words.append("at its limit")
     words.append(f"{100.0 * fraction:.0f} % of its limit")
     status = DiagnosticStatus(level=ACTUATOR_LEVELS[mode], name=f"{node_name}: actuator {actuator.name}",

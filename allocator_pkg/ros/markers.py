@@ -18,9 +18,9 @@ from visualization_msgs.msg import Marker, MarkerArray
 from ..allocation.allocator import AllocationResult
 from ..effectiveness.configuration_matrix import actuator_direction
 from ..effectiveness.faults import FaultMode
+from ..effectiveness.model import AT_LIMIT
 from ..vehicle.config import Vehicle
 from ..vehicle.frames import vector_between
-from .diagnostics import AT_LIMIT
 
 COLOURS = {
     FaultMode.NOMINAL: (0.1, 0.75, 0.2),
@@ -42,7 +42,7 @@ def scale(vehicle: Vehicle) -> tuple[float, float]:
 def colour(mode: FaultMode, thrust: float, limits: tuple[float, float]) -> tuple[float, float, float]:
     """The colour of an actuator's mode; a NOMINAL one at its limit in force is orange."""
     limit = limits[1] if thrust >= 0.0 else limits[0]
-    if mode == FaultMode.NOMINAL and limit != 0.0 and abs(thrust / limit) >= AT_LIMIT:
+    if mode == FaultMode.NOMINAL and limit != 0.0 and abs(thrust / limit) >= 1.0 - AT_LIMIT:
         return AT_LIMIT_COLOUR
     return COLOURS[mode]
 

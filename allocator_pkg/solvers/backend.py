@@ -8,6 +8,7 @@ it between solves (OSQP its iterates, an active-set solver its working set).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import ClassVar, Protocol
 
@@ -15,19 +16,30 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
+from .outcome import Outcome
+
+NO_BOUND = math.inf
+"""The bound of a row or variable that has none, in every problem of the package; a backend
+that needs a finite stand-in (OSQP's ``OSQP_INFTY``) clips to its own."""
 
 
 class BackendResult:
-    """A backend's answer in normalised units: ``usable`` when its status means a solution.
+    """A backend's answer in normalised units: its ``outcome`` (``usable`` when that gives a
+    solution), the status text, and the primal ``residual`` where the solver reports one.
     ``y`` holds the row multipliers in OSQP's convention: P x + q + A' y = 0, y >= 0 where a
     row's upper bound holds it, y <= 0 where its lower bound does; ``duals`` is the array, or a
     function that returns it (fetched only when read: most samples never need them)."""
 
-    __slots__ = ("_duals", "iterations", "status", "usable", "x")
+    __slots__ = ("_duals", "iterations", "outcome", "residual", "status", "x")
 
     def __init__(self, x: np.ndarray, duals: np.ndarray | Callable[[], np.ndarray], status: str, iterations: int,
-                 usable: bool):
-        self.x, self._duals, self.status, self.iterations, self.usable = x, duals, status, iterations, usable
+                 outcome: Outcome, residual: float | None = None):
+        self.x, self._duals, self.status, self.iterations = x, duals, status, iterations
+        self.outcome, self.residual = outcome, residual
+
+    @property
+    def usable(self) -> bool:
+        return self.outcome.usable
 
     @property
     def y(self) -> np.ndarray:

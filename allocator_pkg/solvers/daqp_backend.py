@@ -12,6 +12,7 @@ import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
 from .backend import BackendResult, DenseObjective
+from .outcome import Outcome
 
 BOUND = 1e30
 """DAQP's infinity."""
@@ -55,4 +56,4 @@ class DAQPBackend(DenseObjective):
         if usable:
             self.active = multipliers != 0.0
         return BackendResult(np.asarray(x, dtype=float), multipliers, "solved" if usable else f"daqp exit flag {flag}",
-                             int(info["iterations"]), usable)
+                             int(info["iterations"]), Outcome.SOLVED if usable else Outcome.FAILED)

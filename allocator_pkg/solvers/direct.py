@@ -56,4 +56,4 @@ class DirectSolution:
         names lambda*."""
         solution = self._lp.solve(tau, limits)
         status = f"direct: lambda {solution.scale:.6g}" if solution.solved else f"direct: {solution.status}"
-        return MethodOutput(solution.force, status, solution.iterations, solved=solution.solved)
+        return MethodOutput(solution.force, status, solution.iterations, outcome=solution.outcome)

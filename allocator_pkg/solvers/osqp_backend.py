@@ -13,9 +13,11 @@ import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
 from .backend import BackendResult
+from .outcome import Outcome
 
-ACCEPTED = frozenset((int(osqp.SolverStatus.OSQP_SOLVED), int(osqp.SolverStatus.OSQP_SOLVED_INACCURATE)))
-"""OSQP statuses whose solution is used; after any other the pseudo-inverse answers, unless a
+ACCEPTED = {int(osqp.SolverStatus.OSQP_SOLVED): Outcome.SOLVED,
+            int(osqp.SolverStatus.OSQP_SOLVED_INACCURATE): Outcome.INACCURATE}
+"""OSQP statuses whose solution is used, and the outcome each is; after any other the pseudo-inverse answers, unless a
 stopped iterate is feasible enough (ITERATE_TOLERANCE), and an answer not used makes the next
 solve start cold."""
 
@@ -25,8 +27,8 @@ INTERRUPTED = int(osqp.SolverStatus.OSQP_SIGINT)
 CHECK_TERMINATION = 5
 """Iterations between OSQP's convergence checks: warm-started samples often converge in a few."""
 
-INFINITY = float(osqp.constant("OSQP_INFTY"))
-"""OSQP's stand-in for an infinite bound; larger values are clipped to it."""
+OSQP_INFINITY = float(osqp.constant("OSQP_INFTY"))
+"""OSQP's stand-in for an infinite bound (``NO_BOUND``); larger values are clipped to it."""
 
 STOPPED = frozenset((int(osqp.SolverStatus.OSQP_MAX_ITER_REACHED), int(osqp.SolverStatus.OSQP_TIME_LIMIT_REACHED)))
 """Statuses of a solve stopped by its budget: the iterate is used when it is feasible enough."""
@@ -70,11 +72,11 @@ def _result(info, solution, settings: SolverSettings) -> BackendResult:
     status = _STATUS.get(value)
     if status is None:
         status = _STATUS[value] = info.status
-    usable = value in ACCEPTED
+    outcome = ACCEPTED.get(value, Outcome.FAILED)
     if value in STOPPED and info.prim_res <= ITERATE_TOLERANCE * settings.eps_abs:
-        usable = True
+        outcome = Outcome.ITERATION_LIMIT
         status = f"{status}: iterate used (primal residual {info.prim_res:.1e})"
-    return BackendResult(solution.x, lambda: solution.y, status, info.iter, usable)
+    return BackendResult(solution.x, lambda: solution.y, status, info.iter, outcome, info.prim_res)
 
 
 class OSQPBackend:
@@ -85,8 +87,8 @@ class OSQPBackend:
     def setup(self, p_diagonal: np.ndarray, q: np.ndarray, a: sp.csc_matrix, settings: SolverSettings) -> None:
         rows = a.shape[0]
         self.solver = osqp.OSQP()
-        self.solver.setup(P=_diagonal(p_diagonal), q=q, A=a, l=np.full(rows, -INFINITY), u=np.full(rows, INFINITY),
-                          verbose=False, warm_starting=True, polishing=False, scaling=0,
+        self.solver.setup(P=_diagonal(p_diagonal), q=q, A=a, l=np.full(rows, -OSQP_INFINITY),
+                          u=np.full(rows, OSQP_INFINITY), verbose=False, warm_starting=True, polishing=False, scaling=0,
                           check_termination=CHECK_TERMINATION, **osqp_settings(settings))
         self.settings = settings
         self._index_type = np.int64 if self.solver.ext.OSQP_USE_LONG == 1 else np.int32
@@ -135,8 +137,8 @@ class OSQPBackend:
         iterate is used warm-starts the next: its work carries over (at a thruster's limit on
         the DP vessel without rate limits, restarting cold after each such stop left every
         sample at ``max_iter``)."""
-        np.maximum(low, -INFINITY, out=low)
-        np.minimum(up, INFINITY, out=up)
+        np.maximum(low, -OSQP_INFINITY, out=low)
+        np.minimum(up, OSQP_INFINITY, out=up)
         if self._raw is None:
             self.solver.update(l=low, u=up) if q is None else self.solver.update(q=q, l=low, u=up)
             result = self.solver.solve(raise_error=False)
@@ -189,7 +191,7 @@ class FreshOSQPBackend:
         if q is not None:
             self.q = q.copy()
         solver = osqp.OSQP()
-        solver.setup(P=self.p, q=self.q, A=self.a, l=np.maximum(low, -INFINITY), u=np.minimum(up, INFINITY),
+        solver.setup(P=self.p, q=self.q, A=self.a, l=np.maximum(low, -OSQP_INFINITY), u=np.minimum(up, OSQP_INFINITY),
                      verbose=False, polishing=False, scaling=0, check_termination=CHECK_TERMINATION,
                      **osqp_settings(self.settings))
         result = solver.solve(raise_error=False)

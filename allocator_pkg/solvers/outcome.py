@@ -1,23 +1,59 @@
-"""What a method's solve gives back: the extended force vector and how the solve went."""
+"""How a solve ended, and what a method's solve gives back.
+
+:class:`Outcome` is the one vocabulary for it, from a backend's answer up to the
+:class:`~allocator_pkg.allocation.result.AllocationResult` that diagnostics, counters and
+``AllocationStatus.outcome`` read; the status texts stay for people."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import Enum
 
 import numpy as np
+
+
+class Outcome(Enum):
+    """What one solve, or one sample, ended as."""
+
+    SOLVED = "solved"
+    """Converged to the solver's tolerances (or a closed form that needs none)."""
+    INACCURATE = "inaccurate"
+    """Accepted at the solver's looser tolerances (OSQP's "solved inaccurate")."""
+    ITERATION_LIMIT = "iteration limit"
+    """Stopped by ``solver.max_iter`` or ``solver.time_limit``, its iterate feasible enough to use."""
+    FAILED = "failed"
+    """No usable answer; the allocator then lets the pseudo-inverse answer (never a sample's outcome)."""
+    FALLBACK = "fallback"
+    """The sample's forces come from the weighted pseudo-inverse because the method failed."""
+    STOPPED = "stopped"
+    """Zero thrust at once: the wrench input went stale, or the node is shutting down."""
+
+    @property
+    def usable(self) -> bool:
+        """Whether a solve that ended so gave forces to use (all but ``FAILED``)."""
+        return self is not Outcome.FAILED
 
 
 @dataclass(slots=True)
 class MethodOutput:
     """A method's answer: the extended force vector (1.16), and how the solve went.
-    ``angle`` optionally proposes the angle of each actuator (nonlinear method); ``turn``
-    the angle toward which an idle rotatable thruster (by actuator index) turns instead of its
-    limits' goal (the nonlinear method's descent direction)."""
+    ``residual`` is the solver's primal residual where it reports one; ``reason`` why a
+    fallback answered (the failed method's status). ``angle`` optionally proposes the angle of
+    each actuator (nonlinear method); ``turn`` the angle toward which an idle rotatable thruster
+    (by actuator index) turns instead of its limits' goal (the nonlinear method's descent
+    direction)."""
 
     force: np.ndarray
     status: str
     iterations: int = 0
     solve_time: float = 0.0
-    solved: bool = True
+    outcome: Outcome = Outcome.SOLVED
     angle: np.ndarray | None = None
     turn: dict[int, float] | None = None
+    residual: float | None = None
+    reason: str = ""
+
+    @property
+    def solved(self) -> bool:
+        """Whether the forces can be used (the outcome is usable)."""
+        return self.outcome.usable

@@ -23,6 +23,7 @@ import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
 from .backend import Backend, BackendResult
+from .outcome import Outcome
 
 
 class Rows:
@@ -66,12 +67,17 @@ class Solution:
     multipliers in physical units (OSQP's sign convention, see
     :class:`~.backend.BackendResult`), is computed when first read."""
 
-    __slots__ = ("_problem", "_y", "iterations", "status", "usable", "x")
+    __slots__ = ("_problem", "_y", "iterations", "outcome", "residual", "status", "x")
 
-    def __init__(self, x: np.ndarray, status: str, iterations: int, usable: bool, result: BackendResult,
+    def __init__(self, x: np.ndarray, status: str, iterations: int, outcome: Outcome, result: BackendResult,
                  problem: ScaledProblem):
-        self.x, self.status, self.iterations, self.usable = x, status, iterations, usable
+        self.x, self.status, self.iterations, self.outcome = x, status, iterations, outcome
+        self.residual = result.residual
         self._y, self._problem = result, problem
+
+    @property
+    def usable(self) -> bool:
+        return self.outcome.usable
 
     @property
     def y(self) -> np.ndarray:
@@ -164,5 +170,5 @@ class ScaledProblem:
         result = self.backend.solve(np.multiply(low, self.row_scale, out=self._low),
                                     np.multiply(up, self.row_scale, out=self._up), None if q is None else self._q(q))
         x = result.x * self.column_scale
-        usable = result.usable and math.isfinite(x.sum())
-        return Solution(x, result.status, result.iterations, usable, result, self)
+        outcome = result.outcome if math.isfinite(x.sum()) else Outcome.FAILED
+        return Solution(x, result.status, result.iterations, outcome, result, self)

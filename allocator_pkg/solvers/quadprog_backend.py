@@ -12,6 +12,7 @@ import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
 from .backend import BackendResult, DenseObjective
+from .outcome import Outcome
 
 
 class QuadprogBackend(DenseObjective):
@@ -46,11 +47,11 @@ class QuadprogBackend(DenseObjective):
             x, _, _, iterations, multipliers, _ = quadprog.solve_qp(self.p, -self.q, constraints, bounds,
                                                                     meq=int(equal.sum()))
         except ValueError as error:
-            return BackendResult(np.zeros(len(self.q)), np.zeros(len(low)), f"quadprog: {error}", 0, False)
+            return BackendResult(np.zeros(len(self.q)), np.zeros(len(low)), f"quadprog: {error}", 0, Outcome.FAILED)
         # quadprog: P x + q = C lambda, lambda >= 0 on inequalities; OSQP's y is minus that per row.
         y = np.zeros(len(low))
         counts = np.cumsum([equal.sum(), lower.sum(), upper.sum()])
         y[equal] = -multipliers[:counts[0]]
         y[lower] -= multipliers[counts[0]:counts[1]]
         y[upper] += multipliers[counts[1]:]
-        return BackendResult(x, y, "solved", int(iterations[0]), True)
+        return BackendResult(x, y, "solved", int(iterations[0]), Outcome.SOLVED)

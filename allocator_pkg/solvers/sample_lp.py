@@ -38,8 +38,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..effectiveness.model import Model, SampleLimits
+from .backend import NO_BOUND
+from .outcome import Outcome
 
-INFINITY = highspy.kHighsInf
 PINNED = 1e-12
 """[rad] A window of angles narrower than this is a single direction."""
 SLACK_RATIO = 1e4
@@ -74,7 +75,11 @@ class LPSolution:
     scale: float
     status: str
     iterations: int
-    solved: bool
+    outcome: Outcome
+
+    @property
+    def solved(self) -> bool:
+        return self.outcome.usable
 
 
 class SampleLP:
@@ -168,14 +173,14 @@ class SampleLP:
         lp.num_col_, lp.num_row_ = len(costs), row_count
         lp.col_cost_ = costs
         lower = np.zeros(len(costs))
-        upper = np.full(len(costs), INFINITY)
+        upper = np.full(len(costs), NO_BOUND)
         for fx, fy, _, _ in rotatable:
-            lower[[fx, fy]] = -INFINITY
+            lower[[fx, fy]] = -NO_BOUND
         if self.objective == "scale":
             upper[self._lambda] = self.scale_max
         lp.col_lower_, lp.col_upper_ = lower, upper
-        self._row_low = np.full(row_count, -INFINITY)
-        self._row_up = np.full(row_count, INFINITY)
+        self._row_low = np.full(row_count, -NO_BOUND)
+        self._row_up = np.full(row_count, NO_BOUND)
         self._row_low[magnitude_rows] = 0.0
         self._row_low[self._equality] = self._row_up[self._equality] = 0.0
         lp.row_lower_, lp.row_upper_ = self._row_low, self._row_up
@@ -185,7 +190,7 @@ class SampleLP:
         lp.a_matrix_.value_ = matrix.data
         self._highs.passModel(lp)
         time_limit = model.vehicle.solver.time_limit
-        self._highs.setOptionValue("time_limit", time_limit if time_limit > 0.0 else INFINITY)
+        self._highs.setOptionValue("time_limit", time_limit if time_limit > 0.0 else NO_BOUND)
         self._columns = len(costs)
         self._coefficients: dict[tuple[int, int], float] = {}
         self._version = -1
@@ -238,7 +243,7 @@ class SampleLP:
         solved = status == highspy.HighsModelStatus.kOptimal
         if not solved:
             return LPSolution(np.zeros(model.m), np.zeros(model.n), 0.0, highs.modelStatusToString(status),
-                              iterations, False)
+                              iterations, Outcome.FAILED)
         x = np.asarray(highs.getSolution().col_value)
         force = np.zeros(model.m)
         scale = self._force
@@ -247,8 +252,8 @@ class SampleLP:
             force[c1], force[c2] = x[fx] * scale[j], x[fy] * scale[j]
         if self.objective == "effort":
             slack = (x[self._slack::2][:model.n] - x[self._slack + 1::2][:model.n]) * self._dof
-            return LPSolution(force, slack, 1.0, "solved", iterations, True)
-        return LPSolution(force, np.zeros(model.n), float(x[self._lambda]), "solved", iterations, True)
+            return LPSolution(force, slack, 1.0, "solved", iterations, Outcome.SOLVED)
+        return LPSolution(force, np.zeros(model.n), float(x[self._lambda]), "solved", iterations, Outcome.SOLVED)
 
     def _azimuth_rows(self, k: int, lim, alpha0: float) -> None:
         """Bounds and coefficients of rotatable thruster k for this sample (see the module)."""
@@ -259,11 +264,11 @@ class SampleLP:
         low, up = self._row_low, self._row_up
         if lim.line or lim.high - lim.low < PINNED or lim.magnitude_max == 0.0:
             direction = lim.low if math.isfinite(lim.low) else alpha0
-            up[polygon] = INFINITY
+            up[polygon] = NO_BOUND
             self._row(along, fx, fy, math.cos(direction), math.sin(direction), lim.thrust_low / scale,
                       lim.thrust_high / scale)
             self._row(edge_low, fx, fy, -math.sin(direction), math.cos(direction), 0.0, 0.0)
-            low[edge_high], up[edge_high] = -INFINITY, INFINITY
+            low[edge_high], up[edge_high] = -NO_BOUND, NO_BOUND
             return
         reverse = lim.sigma < 0
         direction = alpha0 + math.pi if reverse else alpha0
@@ -274,18 +279,18 @@ class SampleLP:
         # The polygon reaches at least the thrust a rate limit keeps, along the present direction.
         up[polygon] = max(self.apothem * bound, smallest * math.cos(offset)) / scale
         self._row(along, fx, fy, math.cos(direction), math.sin(direction),
-                  smallest / scale if smallest > 0.0 else -INFINITY, INFINITY)
+                  smallest / scale if smallest > 0.0 else -NO_BOUND, NO_BOUND)
         shift = math.pi if reverse else 0.0
         if math.isfinite(lim.low):
             start = lim.low + shift
-            self._row(edge_low, fx, fy, -math.sin(start), math.cos(start), 0.0, INFINITY)
+            self._row(edge_low, fx, fy, -math.sin(start), math.cos(start), 0.0, NO_BOUND)
         else:
-            low[edge_low], up[edge_low] = -INFINITY, INFINITY
+            low[edge_low], up[edge_low] = -NO_BOUND, NO_BOUND
         if math.isfinite(lim.high):
             end = lim.high + shift
-            self._row(edge_high, fx, fy, math.sin(end), -math.cos(end), 0.0, INFINITY)
+            self._row(edge_high, fx, fy, math.sin(end), -math.cos(end), 0.0, NO_BOUND)
         else:
-            low[edge_high], up[edge_high] = -INFINITY, INFINITY
+            low[edge_high], up[edge_high] = -NO_BOUND, NO_BOUND
 
     def _row(self, row: int, fx: int, fy: int, cx: float, cy: float, low: float, up: float) -> None:
         self._coefficient(row, fx, cx)

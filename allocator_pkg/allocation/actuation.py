@@ -1,0 +1,241 @@
+"""The actuation stage of a sample: from the method's extended force to what each actuator is
+commanded, and what that gives.
+
+Thrust and angle of every actuator inside every limit whatever the solver returned
+(``azimuth.resolve`` and a clip); the drag of deflected control surfaces fed forward
+(1.56)-(1.58): the surge request grows by that drag and is solved again until it settles; a
+force inside a dead band snapped to zero or the band's edge; command maps to set-points (a
+reversed thruster's mirrored); the achieved wrench from T_e of what is commanded, the
+unallocated rest, the DOFs short, the limit flags and the power estimate (1.44)."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from ..effectiveness.actuators import CommandMaps, command_map, deadband_forces, drag_gain
+from ..effectiveness.faults import FaultSet, lift_gains
+from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
+from ..solvers.outcome import MethodOutput, Outcome
+from ..vehicle.angles import TWO_PI
+from ..vehicle.config import DOF_NAMES
+from .azimuth import resolve
+from .result import AllocationResult
+from .state import ActuatorState
+
+SURGE = DOF_NAMES.index("surge")
+
+DRAG_PASSES = 4
+"""Solves per sample for the drag feed-forward (1.56)-(1.58): the request plus the drag of the
+last pass's deflections, until the drag stops changing (two or three passes in practice)."""
+
+DEADBAND_EDGE = 1e-12
+"""[N] Rounding allowed when a dead band's edge is checked against this sample's limits."""
+
+
+class ActuationStage:
+    """Per-configuration constants and the values that speed, voltage and faults decide, and
+    one sample's :meth:`actuate`."""
+
+    def __init__(self, model: Model):
+        self.configure(model)
+
+    def configure(self, model: Model) -> None:
+        """Per-configuration constants, as the types the per-sample path reads fastest."""
+        self.model = model
+        vehicle = model.vehicle
+        edges = [(0.0, 0.0) if a.is_surface else deadband_forces(a.command) for a in vehicle.actuators]
+        self._deadband_index = np.array([i for i, (low, high) in enumerate(edges) if high > 0.0], dtype=int)
+        self._deadband_edges = np.array([edges[i] for i in self._deadband_index]).reshape(-1, 2)
+        near = 1.0 - AT_LIMIT
+        thrusters = ~np.isin(np.arange(model.r), model.surfaces)
+        self._thrust_rated = [(int(i), float(model.thrust_step[i]) * near)
+                              for i in np.flatnonzero(thrusters & np.isfinite(model.thrust_step))]
+        self._surface_rated = [(int(i), float(model.thrust_step[i]) * near)
+                               for i in model.surfaces[np.isfinite(model.thrust_step[model.surfaces])]]
+        self._angle_rated = [(int(i), float(model.angle_step[i]) * near) for i in model.rot
+                             if math.isfinite(model.angle_step[i]) and model.angle_step[i] > 0.0]
+        self._any_rated = bool(self._thrust_rated or self._surface_rated or self._angle_rated)
+        self._never = np.zeros(model.r, dtype=bool)
+        self._never.flags.writeable = False
+        rows = np.flatnonzero(model.dof_index == SURGE)
+        self._drag_row = int(rows[0]) if rows.size and model.surfaces.size else None
+        self._dof_index = model.dof_index
+        self._all_dofs = model.n == len(DOF_NAMES)
+        self._dofs = vehicle.dofs
+        self._t_e = model.t_e
+        self._power = model.power.tolist()
+        self._tolerance = model.dof_tolerance.tolist()
+        self._rot_pairs = [(int(i), (int(c1), int(c2))) for i, (c1, c2) in zip(model.rot, model.rot_columns)]
+        self._continuous = [vehicle.actuators[i].rotation.continuous for i in model.rot]
+        self._hold = model.hold.tolist()
+
+    def set_voltage(self, voltage: float | None) -> None:
+        """The command maps at ``voltage``: actuators with the same map share it (one
+        vectorised call)."""
+        maps: dict = {}
+        actuators = self.model.vehicle.actuators
+        self.maps = CommandMaps([None if a.is_surface else maps.setdefault(a.command, command_map(a.command, voltage))
+                                 for a in actuators], [not a.is_surface and a.command.reversed for a in actuators])
+
+    def set_speed(self, speed: float) -> None:
+        """Lift and drag gains of the control surfaces at surge ``speed`` (1.48), (1.57)."""
+        vehicle = self.model.vehicle
+        self.lift = lift_gains(vehicle, speed)
+        self._lift_list = self.lift.tolist()
+        self._drag = np.array([drag_gain(a.surface, vehicle.water_density, speed) if a.is_surface else 0.0
+                               for a in vehicle.actuators])
+
+    def refresh(self, low: np.ndarray, high: np.ndarray, fault_set: FaultSet) -> None:
+        """What the static ranges and faults decide: dead bands, where a thrust counts as at its
+        limit, availability, the command efficiency."""
+        model = self.model
+        if self._deadband_index.size:
+            self._deadband = self._deadband_edges * fault_set.command_efficiency[self._deadband_index, None]
+        # Where a thrust counts as at its limit (an end of zero is no limit to report).
+        self._at_high = np.where(high > 0.0, high * (1.0 - AT_LIMIT), np.inf)
+        self._at_low = np.where(low < 0.0, low * (1.0 - AT_LIMIT), -np.inf)
+        available = fault_set.efficiency > 0.0
+        available[model.surfaces] &= self.lift[model.surfaces] > 0.0
+        available.flags.writeable = False
+        self.available = available
+        fault_set.modes.flags.writeable = False
+        self.modes = fault_set.modes
+        efficiency = fault_set.command_efficiency
+        self._command_efficiency = None if np.all(efficiency == 1.0) else efficiency
+
+    def actuate(self, requested: np.ndarray, tau: np.ndarray, limits: SampleLimits, output: MethodOutput,
+                state: ActuatorState, solve: Callable[[np.ndarray, SampleLimits], MethodOutput], method: str,
+                start: float) -> AllocationResult:
+        """The sample's result from the method's ``output`` for the controlled request ``tau``
+        (``solve`` answers the drag feed-forward's passes); ``state`` is the one the sample
+        started from."""
+        thrust, angle, extended = self.resolve(output, limits)
+        drag = 0.0
+        if self._drag_row is not None:
+            output, thrust, angle, extended, drag = self._compensate_drag(tau, limits, output, thrust, angle,
+                                                                          extended, solve)
+        if self._deadband_index.size:
+            self._snap_deadband(thrust, extended, limits)
+        achieved = self._t_e @ extended
+        if drag:
+            achieved[SURGE] -= drag
+        miss = ((achieved if self._all_dofs else achieved[self._dof_index]) - tau).tolist()
+        short = tuple(dof for dof, m, tolerance in zip(self._dofs, miss, self._tolerance) if abs(m) > tolerance)
+        if self._all_dofs:
+            unallocated = -np.array(miss)
+        else:
+            unallocated = np.zeros(6)
+            unallocated[self._dof_index] = [-m for m in miss]
+        command = self.maps.commands(thrust, self._command_efficiency, self.lift)
+        at_thrust, at_rate = self._limit_flags(thrust, angle, state)
+        power = sum(p * abs(t) ** 1.5 for p, t in zip(self._power, thrust.tolist()))
+        return AllocationResult(thrust, angle, command, achieved, requested, bool(short), output.status,
+                                output.iterations, time.perf_counter() - start, power, method, self.modes,
+                                self.available, unallocated, at_thrust, at_rate, drag, output.outcome, short,
+                                output.residual, output.reason)
+
+    def stop(self, state: ActuatorState, method: str) -> AllocationResult:
+        """Zero thrust, the angles held."""
+        r = self.model.r
+        thrust = np.zeros(r)
+        command = self.maps.commands(thrust, self._command_efficiency, self.lift)
+        return AllocationResult(thrust, state.angle, command, np.zeros(6), np.zeros(6), False, "stopped", 0, 0.0, 0.0,
+                                method, self.modes, self.available, np.zeros(6), np.zeros(r, dtype=bool),
+                                np.zeros(r, dtype=bool), outcome=Outcome.STOPPED)
+
+    def resolve(self, output: MethodOutput, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Per-actuator thrust and angle from the extended force, inside every limit, and the
+        extended force (1.18) they give."""
+        model = self.model
+        if not model.rot.size:
+            thrust = np.minimum(np.maximum(output.force, limits.low), limits.high)
+            return thrust, limits.angle, thrust
+        force = output.force
+        thrust = np.minimum(np.maximum(force[model.starts], limits.low), limits.high)
+        angle = limits.angle.copy()
+        extended = thrust[model.extended_owner]
+        proposals, turns = output.angle, output.turn or {}
+        for k, (i, (c1, c2)) in enumerate(self._rot_pairs):
+            thrust_i, angle_i = resolve(limits.azimuth[k], float(angle[i]), (float(force[c1]), float(force[c2])),
+                                        self._hold[i], self._continuous[k],
+                                        None if proposals is None else float(proposals[i]), turns.get(i))
+            thrust[i], angle[i] = thrust_i, angle_i
+            extended[c1], extended[c2] = thrust_i * math.cos(angle_i), thrust_i * math.sin(angle_i)
+        return thrust, angle, extended
+
+    def _compensate_drag(self, tau: np.ndarray, limits: SampleLimits, output: MethodOutput, thrust: np.ndarray,
+                         angle: np.ndarray, extended: np.ndarray,
+                         solve: Callable[[np.ndarray, SampleLimits], MethodOutput]):
+        """The drag feed-forward (1.56)-(1.58): solve again with the surge request grown by the
+        drag of the last pass's deflections until the drag settles."""
+        drag = 0.0
+        surge = self._drag_row
+        for _ in range(DRAG_PASSES):
+            new_drag = self._surface_drag(thrust)
+            if abs(new_drag - drag) <= 1e-9 * max(1.0, abs(tau[surge])):
+                break
+            drag = new_drag
+            compensated = tau.copy()
+            compensated[surge] += drag
+            again = solve(compensated, limits)
+            again.iterations += output.iterations
+            output = again
+            thrust, angle, extended = self.resolve(output, limits)
+        return output, thrust, angle, extended, self._surface_drag(thrust)
+
+    def _snap_deadband(self, thrust: np.ndarray, extended: np.ndarray, limits: SampleLimits) -> None:
+        """A force inside a dead band (between zero and the force at the band's edge) cannot
+        be commanded: it becomes zero or the edge, whichever is nearer and within this
+        sample's limits (zero when neither is, or on a tie). In place, the extended force
+        with it."""
+        index = self._deadband_index
+        force = thrust[index]
+        low_edge, high_edge = self._deadband[:, 0], self._deadband[:, 1]
+        inside = (force != 0.0) & (force > low_edge) & (force < high_edge)
+        if not inside.any():
+            return
+        model = self.model
+        for k in np.flatnonzero(inside):
+            i = int(index[k])
+            f = float(force[k])
+            edge = float(high_edge[k] if f > 0.0 else low_edge[k])
+            fits = limits.low[i] - DEADBAND_EDGE <= edge <= limits.high[i] + DEADBAND_EDGE
+            new = edge if fits and abs(edge - f) < abs(f) else 0.0
+            thrust[i] = new
+            start = int(model.starts[i])
+            if model.rotatable[i]:
+                extended[start:start + 2] *= new / f
+            else:
+                extended[start] = new
+
+    def _limit_flags(self, thrust: np.ndarray, angle: np.ndarray,
+                     state: ActuatorState) -> tuple[np.ndarray, np.ndarray]:
+        """Which actuators sit at an end of their force range in force, and which moved by a
+        full rate step (thrust, a control surface's deflection, or angle) this sample."""
+        at_thrust = (thrust >= self._at_high) | (thrust <= self._at_low)
+        if not self._any_rated:
+            return at_thrust, self._never
+        now, before = thrust.tolist(), state.thrust.tolist()
+        at_rate = [False] * len(now)
+        for i, step in self._thrust_rated:
+            at_rate[i] = abs(now[i] - before[i]) >= step
+        if self._surface_rated:
+            lift, deflection = self._lift_list, state.deflection.tolist()
+            for i, step in self._surface_rated:
+                at_rate[i] = abs((now[i] / lift[i] if lift[i] > 0.0 else 0.0) - deflection[i]) >= step
+        if self._angle_rated:
+            turned_to, turned_from = angle.tolist(), state.angle.tolist()
+            for i, step in self._angle_rated:
+                at_rate[i] = at_rate[i] or abs(math.remainder(turned_to[i] - turned_from[i], TWO_PI)) >= step
+        return at_thrust, np.array(at_rate)
+
+    def _surface_drag(self, thrust: np.ndarray) -> float:
+        """X_cs of (1.57): the added resistance of all deflected control surfaces."""
+        surfaces = self.model.surfaces
+        lift = self.lift[surfaces]
+        deflection = np.divide(thrust[surfaces], lift, out=np.zeros(surfaces.size), where=lift > 0.0)
+        return float(np.sum(self._drag[surfaces] * deflection * deflection))
