@@ -6,7 +6,7 @@ from conftest import ROOT
 from diagnostic_msgs.msg import DiagnosticStatus
 
 from allocator_pkg import Allocator, FaultMode, load_vehicle
-from allocator_pkg.ros.diagnostics import Counters, diagnostic_statuses, short_dofs
+from allocator_pkg.ros.diagnostics import Counters, diagnostic_statuses
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 NODE = "/rov1/thrust_allocator"
@@ -40,7 +40,7 @@ def test_warn_on_faults_saturation_and_rejected_input_and_error_when_stale():
     allocator.set_fault("main_port", FaultMode.FAILED)
     counters = Counters(rejected_wrenches=2, rejected_in_period=2)
     last = allocator.allocate([1e6, 0.0, 0.0, 0.0, 0.0, 0.0])
-    counters.count(last, short_dofs(allocator, last))
+    counters.count(last)
     result, values = statuses(allocator, counters, last=last)
     assert result[0].level == DiagnosticStatus.WARN
     # main_stbd alone pushes and turns the vehicle: the first sample's azimuths cannot cancel it yet
@@ -57,10 +57,10 @@ def test_warn_on_faults_saturation_and_rejected_input_and_error_when_stale():
 def test_short_dofs_are_those_beyond_the_saturation_tolerance():
     allocator = Allocator(load_vehicle(EXAMPLE))
     result = allocator.allocate([1e6, 0.0, 0.0, 0.0, 0.0, 0.0])         # far more surge than there is
-    assert result.saturated and short_dofs(allocator, result) == ("surge",)
+    assert result.saturated and result.short == ("surge",)
     for _ in range(200):                                                 # let the azimuths turn
         result = allocator.allocate([10.0, 10.0, 0.0, 0.0, 0.0, 1.0])
-    assert not result.saturated and short_dofs(allocator, result) == ()
+    assert not result.saturated and result.short == ()
 
 
 def test_one_status_per_actuator_with_mode_efficiency_angle_and_fraction_of_its_limit():

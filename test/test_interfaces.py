@@ -20,9 +20,13 @@ def test_thruster_commands_fields():
 def test_allocation_status_fields():
     assert AllocationStatus.get_fields_and_field_types() == {
         "header": "std_msgs/Header", "requested": "geometry_msgs/Wrench", "achieved": "geometry_msgs/Wrench",
-        "saturated": "boolean", "method": "string", "solver_status": "string", "iterations": "uint32",
+        "saturated": "boolean", "method": "string", "solver_status": "string", "outcome": "uint8",
+        "iterations": "uint32",
         "solve_time": "double", "power": "double", "unallocated": "geometry_msgs/Wrench",
         "at_thrust_limit": "sequence<boolean>", "at_rate_limit": "sequence<boolean>", "voltage": "double"}
+    assert (AllocationStatus.OUTCOME_SOLVED, AllocationStatus.OUTCOME_INACCURATE,
+            AllocationStatus.OUTCOME_ITERATION_LIMIT, AllocationStatus.OUTCOME_FALLBACK,
+            AllocationStatus.OUTCOME_STOPPED) == (0, 1, 2, 3, 4)
 
 
 def test_set_actuator_fault_service():

@@ -162,7 +162,8 @@ class Allocator:
         if previous is None or previous.vehicle.dofs != vehicle.dofs or not np.array_equal(previous.t_e, model.t_e):
             self._warnings = reachability_warnings(model)      # rank tests: only the geometry decides
             self._notes = actuation_notes(model)
-        self._apply_speed()
+        self._actuation.set_speed(self._speed)
+        self._refresh()
 
     @property
     def stats(self) -> AllocatorStats:
@@ -194,10 +195,7 @@ class Allocator:
         if not math.isfinite(speed):
             raise ValueError(f"speed must be finite, got {speed}")
         self._speed = speed
-        self._apply_speed()
-
-    def _apply_speed(self) -> None:
-        self._actuation.set_speed(self._speed)
+        self._actuation.set_speed(speed)
         self._refresh()
 
     @property
@@ -274,13 +272,7 @@ class Allocator:
 
     def allocate(self, tau: Sequence[float]) -> AllocationResult:
         """Allocate the generalised force [X, Y, Z, K, M, N]; uncontrolled DOFs are ignored."""
-        requested = np.array(tau, dtype=float)
-        if requested.shape != (6,):
-            requested = requested.reshape(-1)
-            if requested.shape != (6,):
-                raise ValueError(f"tau needs 6 components [X, Y, Z, K, M, N], got {requested.size}")
-        if not all(map(math.isfinite, requested.tolist())):
-            raise ValueError(f"tau must be finite, got {requested.tolist()}")
+        requested = checked_request(tau)
         start = time.perf_counter()
         model, state = self._model, self._state
         controlled = requested if model.n == len(DOF_NAMES) else requested[model.dof_index]
@@ -297,3 +289,15 @@ class Allocator:
         result = self._actuation.stop(self._state, self._solver.method.name)
         self._state.commit(self._model, result.thrust, result.azimuth, self._actuation.lift)
         return result
+
+
+def checked_request(tau: Sequence[float]) -> np.ndarray:
+    """The request as a new array of six finite components; ValueError otherwise."""
+    requested = np.array(tau, dtype=float)
+    if requested.shape != (6,):
+        requested = requested.reshape(-1)
+        if requested.shape != (6,):
+            raise ValueError(f"tau needs 6 components [X, Y, Z, K, M, N], got {requested.size}")
+    if not all(map(math.isfinite, requested.tolist())):
+        raise ValueError(f"tau must be finite, got {requested.tolist()}")
+    return requested

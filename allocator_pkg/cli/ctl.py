@@ -33,7 +33,7 @@ from std_srvs.srv import Trigger
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 from allocator_msgs.srv import GetCapability, SetActuatorFault
 
-from ..ros.conversions import array_to_wrench, wrench_to_array
+from ..ros.conversions import OUTCOME_NAMES, array_to_wrench, wrench_to_array
 from ..vehicle.node_settings import NODE_NAME
 
 FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
@@ -174,7 +174,7 @@ class Echo:
             for name in message.name:
                 header += [f"{name}.thrust", f"{name}.command", f"{name}.azimuth", f"{name}.mode"]
             header += [f"{name}.at_{kind}_limit" for kind in ("thrust", "rate") for name in message.name]
-            header += ["saturated", "solve_time", "iterations", "solver_status", "voltage"]
+            header += ["saturated", "solve_time", "iterations", "solver_status", "outcome", "voltage"]
             header += [f"unallocated.{axis}" for axis in ("x", "y", "z", "k", "m", "n")]
             self.writer.writerow(header)
             self.header_done = True
@@ -183,10 +183,11 @@ class Echo:
             row += list(values)
         status = self.status
         if status is None:
-            row += [""] * (2 * len(message.name) + 11)
+            row += [""] * (2 * len(message.name) + 12)
         else:
             row += list(status.at_thrust_limit) + list(status.at_rate_limit)
-            row += [status.saturated, status.solve_time, status.iterations, status.solver_status, status.voltage]
+            row += [status.saturated, status.solve_time, status.iterations, status.solver_status,
+                    OUTCOME_NAMES.get(status.outcome, str(status.outcome)), status.voltage]
             row += wrench_to_array(status.unallocated).tolist()
         self.writer.writerow(row)
 

@@ -11,9 +11,18 @@ from std_msgs.msg import Header
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 
-from ..allocation.allocator import AllocationResult
+from ..allocation.result import AllocationResult
+from ..solvers.outcome import Outcome
 from ..vehicle.frames import wrench_between
 from ..vehicle.node_settings import FRD
+
+OUTCOME_CODES = {Outcome.SOLVED: AllocationStatus.OUTCOME_SOLVED,
+                 Outcome.INACCURATE: AllocationStatus.OUTCOME_INACCURATE,
+                 Outcome.ITERATION_LIMIT: AllocationStatus.OUTCOME_ITERATION_LIMIT,
+                 Outcome.FALLBACK: AllocationStatus.OUTCOME_FALLBACK, Outcome.STOPPED: AllocationStatus.OUTCOME_STOPPED}
+"""``AllocationStatus.outcome`` of each sample outcome (``Outcome.FAILED`` never ends a sample)."""
+OUTCOME_NAMES = {code: outcome.value for outcome, code in OUTCOME_CODES.items()}
+"""The outcome's name of each ``AllocationStatus.outcome`` code, for people and CSV files."""
 
 
 def wrench_to_array(wrench: Wrench) -> np.ndarray:
@@ -62,6 +71,7 @@ def status_message(result: AllocationResult, solver_status: str, header: Header,
     message.saturated = result.saturated
     message.method = result.method
     message.solver_status = solver_status
+    message.outcome = OUTCOME_CODES[result.outcome]
     message.iterations = result.iterations
     message.solve_time = result.solve_time
     message.power = result.power

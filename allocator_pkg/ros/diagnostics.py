@@ -11,12 +11,13 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-import numpy as np
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 
-from ..allocation.allocator import AllocationResult, Allocator
+from ..allocation.allocator import Allocator
+from ..allocation.result import AllocationResult
 from ..effectiveness.faults import Fault, FaultMode
 from ..effectiveness.model import AT_LIMIT
+from ..solvers.outcome import Outcome
 
 ACTUATOR_LEVELS = {FaultMode.NOMINAL: DiagnosticStatus.OK, FaultMode.DEGRADED: DiagnosticStatus.WARN,
                    FaultMode.STUCK: DiagnosticStatus.WARN, FaultMode.FAILED: DiagnosticStatus.ERROR}
@@ -37,26 +38,18 @@ class Counters:
     max_solve_time: float = 0.0
     short: set[str] = field(default_factory=set)
 
-    def count(self, result: AllocationResult, short: tuple[str, ...] = ()) -> None:
-        """One sample's outcome; ``short`` names the DOFs it fell short in."""
+    def count(self, result: AllocationResult) -> None:
+        """One sample: its outcome, and the DOFs it fell short in."""
         self.samples += 1
         self.saturated += result.saturated
-        self.fallbacks += result.status.startswith("fallback")
+        self.fallbacks += result.outcome is Outcome.FALLBACK
         self.max_solve_time = max(self.max_solve_time, result.solve_time)
-        self.short.update(short)
+        self.short.update(result.short)
 
     def reset_period(self) -> None:
         self.samples = self.saturated = self.fallbacks = self.rejected_in_period = 0
         self.max_solve_time = 0.0
         self.short = set()
-
-
-def short_dofs(allocator: Allocator, result: AllocationResult) -> tuple[str, ...]:
-    """The controlled DOFs in which ``result`` misses its request by more than the saturation
-    tolerance (those that make it ``saturated``), in DOF order."""
-    indices = list(allocator.vehicle.dof_indices)
-    missed = np.abs(result.achieved[indices] - result.requested[indices]) > allocator.dof_tolerance
-    return tuple(dof for dof, short in zip(allocator.dofs, missed) if short)
 
 
 def diagnostic_statuses(node_name: str, allocator: Allocator, counters: Counters, stale: bool,
