@@ -123,13 +123,16 @@ class ActuationStage:
         achieved = self._t_e @ extended
         if drag:
             achieved[SURGE] -= drag
-        miss = ((achieved if self._all_dofs else achieved[self._dof_index]) - tau).tolist()
-        short = tuple(dof for dof, m, tolerance in zip(self._dofs, miss, self._tolerance) if abs(m) > tolerance)
+        miss = (achieved if self._all_dofs else achieved[self._dof_index]) - tau
+        short = ()
+        misses = miss.tolist()
+        if any(abs(m) > tolerance for m, tolerance in zip(misses, self._tolerance)):
+            short = tuple(dof for dof, m, tolerance in zip(self._dofs, misses, self._tolerance) if abs(m) > tolerance)
         if self._all_dofs:
-            unallocated = -np.array(miss)
+            unallocated = -miss
         else:
             unallocated = np.zeros(6)
-            unallocated[self._dof_index] = [-m for m in miss]
+            unallocated[self._dof_index] = -miss
         command = self.maps.commands(thrust, self._command_efficiency, self.lift)
         at_thrust, at_rate = self._limit_flags(thrust, angle, state)
         power = sum(p * abs(t) ** 1.5 for p, t in zip(self._power, thrust.tolist()))

@@ -70,7 +70,7 @@ class MethodStage:
         """The method's extended force for ``tau``, or the pseudo-inverse's when it fails
         (``Outcome.FALLBACK``, the failed status as its ``reason``)."""
         output = self.method.solve(tau, limits)
-        if output.solved:
+        if output.outcome is not Outcome.FAILED:
             return output
         self.fallbacks += 1
         fallback = self.fallback.solve(tau, limits)

@@ -30,16 +30,12 @@ class BackendResult:
     row's upper bound holds it, y <= 0 where its lower bound does; ``duals`` is the array, or a
     function that returns it (fetched only when read: most samples never need them)."""
 
-    __slots__ = ("_duals", "iterations", "outcome", "residual", "status", "x")
+    __slots__ = ("_duals", "iterations", "outcome", "residual", "status", "usable", "x")
 
     def __init__(self, x: np.ndarray, duals: np.ndarray | Callable[[], np.ndarray], status: str, iterations: int,
                  outcome: Outcome, residual: float | None = None):
         self.x, self._duals, self.status, self.iterations = x, duals, status, iterations
-        self.outcome, self.residual = outcome, residual
-
-    @property
-    def usable(self) -> bool:
-        return self.outcome.usable
+        self.outcome, self.residual, self.usable = outcome, residual, outcome is not Outcome.FAILED
 
     @property
     def y(self) -> np.ndarray:

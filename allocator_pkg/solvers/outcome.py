@@ -56,4 +56,4 @@ class MethodOutput:
     @property
     def solved(self) -> bool:
         """Whether the forces can be used (the outcome is usable)."""
-        return self.outcome.usable
+        return self.outcome is not Outcome.FAILED

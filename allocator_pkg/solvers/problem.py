@@ -67,17 +67,13 @@ class Solution:
     multipliers in physical units (OSQP's sign convention, see
     :class:`~.backend.BackendResult`), is computed when first read."""
 
-    __slots__ = ("_problem", "_y", "iterations", "outcome", "residual", "status", "x")
+    __slots__ = ("_problem", "_y", "iterations", "outcome", "residual", "status", "usable", "x")
 
     def __init__(self, x: np.ndarray, status: str, iterations: int, outcome: Outcome, result: BackendResult,
                  problem: ScaledProblem):
         self.x, self.status, self.iterations, self.outcome = x, status, iterations, outcome
-        self.residual = result.residual
+        self.residual, self.usable = result.residual, outcome is not Outcome.FAILED
         self._y, self._problem = result, problem
-
-    @property
-    def usable(self) -> bool:
-        return self.outcome.usable
 
     @property
     def y(self) -> np.ndarray:
