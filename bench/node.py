@@ -21,7 +21,7 @@ node's: at exactly the node's rate that phase would stay where the start left it
 publishes one wrench more per window ("probe_rate_hz" = rate + 1 / seconds) and the phase
 sweeps one whole period over the window.
 
-The "input trigger" cases (issue 14) run ``allocator_node`` with ``trigger: input`` and rate_hz
+The "input trigger" cases run ``allocator_node`` with ``trigger: input`` and rate_hz
 1000 as a subprocess and publish at 100 Hz and 1 kHz: every wrench is allocated on arrival,
 so "publish to commands" has no wait for a tick in it.
 

@@ -8,7 +8,7 @@ from pathlib import Path
 TARGET_VEHICLE = "bluerov2_heavy"
 INPUT_RATES = (100.0, 1000.0)
 SETTLING_BEFORE = Path(__file__).resolve().parent / "results" / "settling_before.json"
-"""The settling sweep on the code before issue 12, measured once (see bench/settling.py)."""
+"""The settling sweep on commit aee693f, measured once, for comparison (see bench/settling.py)."""
 SETTLING_OFF_GRID = Path(__file__).resolve().parent / "results" / "settling_offgrid.json"
 """The settling sweep between the full sweep's directions (``--off-grid``), its last run."""
 NOT_IN_THIS_RUN = "not in this run (the next `make bench` measures it)"
@@ -136,7 +136,7 @@ def _targets(result: dict) -> list[str]:
 
 SPEED_TARGETS = (("bluerov2_heavy", "pseudoinverse", 8.0), ("bluerov2_heavy", "qp", 20.0),
                  ("dp_vessel", "qp", 50.0), ("dp_vessel", "nonlinear", 60.0))
-"""(vehicle, method, median us on the smooth sequence) of issue 13's per-sample path (explicit's
+"""(vehicle, method, median us on the smooth sequence) of the per-sample path's targets (explicit's
 targets, median and p99, are ``_explicit_targets``)."""
 
 SETTLING = {"fallback_share": 0.005, "worst_deviation": 2e-3, "p99_us": 1000.0, "dp_median_us": 150.0}
@@ -177,7 +177,7 @@ def _settling_targets(result: dict) -> list[str]:
                         f"{_fmt(times['median'], 0)} / {_fmt(times['p99'], 0)} us | {'yes' if met else 'no'} |")
     return rows
 def _explicit_targets(vehicle: dict | None) -> list[str]:
-    """The explicit method on the target vehicle's smooth sequence (issue 13)."""
+    """The explicit method on the target vehicle's smooth sequence, against its targets."""
     run = vehicle["sequences"].get("smooth", {}).get("methods", {}).get("explicit") if vehicle else None
     rows = []
     for figure, limit in (("median", 10.0), ("p99", 30.0)):

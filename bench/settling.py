@@ -1,7 +1,7 @@
 """Azimuth settling sweep: a constant request held from rest, judged over its last samples.
 
 For every vessel with rotatable thrusters (the shipped ones, and the DP vessel without rate
-limits or forbidden sectors), the methods whose settling issue 12 judged (``qp``, ``nonlinear``;
+limits or forbidden sectors), the methods whose settling the spec judges (``qp``, ``nonlinear``;
 ``lp``, ``dynamic`` and ``svd_filter`` are not swept), and
 requests in every direction of the surge/sway plane at magnitudes from 0.5 to 1.5 times the
 vessel's capability in that direction (an independent LP, Capability with the thrust circle):

@@ -273,8 +273,8 @@ def test_a_wish_that_would_start_a_crossing_puts_the_side_in_question(reversible
 def test_a_fault_during_a_ramp_to_zero_overrides_the_rate_limit(sigma):
     """A thruster ramping its thrust down at the rate limit to cross a sector (or to reverse)
     when a fault narrows its range below that ramp: the thrust goes to the range's edge at once,
-    as everywhere else a fault meets a rate limit. It used to keep ramping from above the new
-    limit (make soak: azimuth_stbd at 168 kN against a DEGRADED limit of 54 kN)."""
+    as everywhere else a fault meets a rate limit, instead of ramping on from above the new limit
+    (the case make soak found: azimuth_stbd at 168 kN against a DEGRADED limit of 54 kN)."""
     vehicle = single_azimuth(azimuth_rate_max=0.5, forbidden_sectors=[1.0, 2.0], reversible=True,
                              thrust_min=-100.0)
     rotation = vehicle.actuators[0].rotation

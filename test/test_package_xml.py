@@ -1,4 +1,4 @@
-"""package.xml declares every ROS package the code imports (issue 14: rcl_interfaces was not),
+"""package.xml declares every ROS package the code imports (rcl_interfaces included),
 and the pip rosdep keys of the solvers are defined in the repository's own rosdep.yaml."""
 
 import ast

@@ -185,7 +185,7 @@ def test_params_file_errors(tmp_path):
     ("/**/thrust_allocator", "/thrust_allocator", True),
     ("/**/thrust_allocator", "/rov1/alloc", False),
     ("thrust_allocator", "/thrust_allocator", True),
-    ("thrust_allocator", "/rov1/thrust_allocator", False),          # the failure of issue 14
+    ("thrust_allocator", "/rov1/thrust_allocator", False),          # a namespace the pattern does not cover
     ("/rov*/thrust_allocator", "/rov1/thrust_allocator", True),
     ("/rov*/thrust_allocator", "/fleet/rov1/thrust_allocator", False),
     ("/robot/thrust_allocator", "thrust_allocator", True),            # a name alone: any namespace

@@ -1,5 +1,5 @@
 """The shared runtime in a node on simulated time: the input trigger, body frames, stamped
-input, thrust markers and parameter types (issue 14). Process-level behaviour: test_process.py."""
+input, thrust markers and parameter types. Process-level behaviour: test_process.py."""
 
 import numpy as np
 import pytest

@@ -26,7 +26,7 @@ def test_read_only_keys():
 
 
 def test_every_key_says_what_it_accepts():
-    """The text of ROS descriptors' additional_constraints (issue 14: dofs and forbidden_sectors had none)."""
+    """The text of ROS descriptors' additional_constraints: every key has one, dofs and forbidden_sectors too."""
     for key in schema.VEHICLE_KEYS + schema.NODE_KEYS + schema.ACTUATOR_KEYS:
         assert key.documented_range(), key.name
     assert "each at most once" in schema.VEHICLE_KEY_BY_NAME["dofs"].documented_range()

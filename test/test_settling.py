@@ -45,8 +45,8 @@ def test_held_requests_settle_near_the_optimum_within_every_limit(swept, method)
 @pytest.mark.parametrize("direction", [75.0, 105.0])
 def test_the_dp_vessel_settles_with_its_starboard_azimuth_past_the_sector(direction, method):
     """Two requests past the capability that the small sweep does not draw, where the optimum has
-    the starboard azimuth past its forbidden sector at full thrust. At 75 deg it used to cycle
-    every 45 samples: the unconstrained wish, across the sector the short way, started a
+    the starboard azimuth past its forbidden sector at full thrust. At 75 deg a planner that
+    let it would cycle every 45 samples: the unconstrained wish, across the sector the short way, started a
     crossing back whenever the unit was more than a rate step and the crossing margin clear of
     the sector's edge, and the piece planner called it back at the next edge. At 105 deg the
     planner's goal lies nearly opposite the unit at rest, the long way round: a window cut

@@ -290,7 +290,7 @@ class _Parser:
             actuator_type = self.parameters.get(schema.actuator_parameter(actuator, "type"))
             self.fail(name, f"unknown key '{key}' for a {actuator_type} actuator")
             return
-        self.fail(name, schema.REMOVED_KEYS.get(name, "unknown key"))
+        self.fail(name, schema.REPLACED_KEYS.get(name, "unknown key"))
 
     def _actuator(self, name: str) -> ActuatorConfig | None:
         """One actuator: the keys common to every type here, the rest by its type's parser."""

@@ -198,12 +198,12 @@ NODE_KEYS: tuple[Key, ...] = (
 )
 """Settings of the ROS node only (:class:`allocator_pkg.vehicle.node_settings.NodeSettings`)."""
 
-REMOVED_KEYS = {
-    "wrench_qos": "removed (issue 14): wrench_command is best-effort by default, which takes reliable and "
+REPLACED_KEYS = {
+    "wrench_qos": "not a parameter: wrench_command is best-effort by default, which takes reliable and "
                   "best-effort publishers alike; to change it set "
                   "qos_overrides./<namespace>/wrench_command.subscription.reliability",
 }
-"""Keys of earlier versions, with what replaced them."""
+"""Keys users reach for that this package does not have, with what does their job."""
 
 _ALL = ACTUATOR_TYPES
 _THR = THRUSTER_TYPES
