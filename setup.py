@@ -29,7 +29,7 @@ setup(
             "allocator_node = allocator_pkg.ros.node:main",
             "allocator_lifecycle_node = allocator_pkg.ros.lifecycle_node:main",
             "allocator-ctl = allocator_pkg.cli.ctl:main",
-            "allocator-capability = allocator_pkg.analysis.capability:main",
+            "allocator-capability = allocator_pkg.cli.capability:main",
             "allocator-explicit = allocator_pkg.cli.explicit:main",
         ],
     },

@@ -131,7 +131,8 @@ def test_with_saturation_direct_the_pseudo_inverse_reaches_the_attainable_set():
 
 
 def test_all_methods_writes_a_plot_per_group_of_methods_with_another_capability(tmp_path):
-    from allocator_pkg.analysis.capability import differing_methods, main
+    from allocator_pkg.analysis.capability import differing_methods
+    from allocator_pkg.cli.capability import main
     from allocator_pkg.configuration.parameters import load_vehicle
 
     vehicle = load_vehicle(ROOT / "config" / "example1_rov.yaml")

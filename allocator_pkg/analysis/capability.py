@@ -19,25 +19,20 @@ convex pieces (cones at most pi wide) and every combination of pieces is solved,
 best. Control surfaces give the lift of the given speed, thrusters with voltage-indexed
 tables the thrust of the given supply voltage.
 
-``allocator-capability`` writes the polar plot (nominal and every single-actuator failure)
-as PNG and the numbers as CSV.
+:func:`region`, :func:`unmodelled` and :func:`differing_methods` tell which registered
+methods can serve a vehicle and which of them share a capability.
 """
 
 from __future__ import annotations
 
-import argparse
-import csv
 import itertools
 import math
-import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 import numpy as np
 from scipy.optimize import linprog
 
-from ..configuration.parameters import load_vehicle
 from ..effectiveness.faults import Fault, FaultMode, FaultSet, static_ranges
 from ..effectiveness.model import Model
 from ..effectiveness.sectors import allowed_arcs, can_push_along, in_forbidden_sector
@@ -45,7 +40,7 @@ from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
 from ..methods.pseudoinverse import PseudoInverseGains
 from ..vehicle.angles import TWO_PI
-from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
+from ..vehicle.config import ActuatorConfig, Vehicle
 
 FORCE_DOFS = ("surge", "sway", "heave")
 
@@ -267,90 +262,6 @@ def default_plane(vehicle: Vehicle) -> tuple[str, str]:
     return (vehicle.dofs[0], vehicle.dofs[1])
 
 
-# -- command line -------------------------------------------------------------------------
-
-def write_csv(path: Path, plane: tuple[str, str], cases: dict[str, Envelope]) -> None:
-    with path.open("w", newline="") as handle:
-        writer = csv.writer(handle)
-        header = ["direction_deg"]
-        for case in cases:
-            header += [f"{case}.{plane[0]}", f"{case}.{plane[1]}", f"{case}.magnitude"]
-        writer.writerow(header)
-        first = next(iter(cases.values()))
-        for k, direction in enumerate(first.directions):
-            row = [f"{math.degrees(direction):.1f}"]
-            for envelope in cases.values():
-                x, y = envelope.points[k]
-                row += [f"{x:.6g}", f"{y:.6g}", f"{envelope.magnitude[k]:.6g}"]
-            writer.writerow(row)
-
-
-def plot(path: Path, title: str, plane: tuple[str, str], cases: dict[str, Envelope], polar: bool) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure = plt.figure(figsize=(8.5, 7.5))
-    axes = figure.add_subplot(projection="polar" if polar else None)
-    for name, envelope in cases.items():
-        style = dict(linewidth=2.4, color="black") if name == "nominal" else dict(linewidth=1.2)
-        if polar:
-            closed = np.append(envelope.directions, envelope.directions[0])
-            axes.plot(closed, np.append(envelope.magnitude, envelope.magnitude[0]) / 1e3, label=name, **style)
-        else:
-            points = np.vstack([envelope.points, envelope.points[:1]])
-            axes.plot(points[:, 0], points[:, 1], label=name, **style)
-    if polar:
-        axes.set_theta_zero_location("N")           # surge ahead, sway to starboard (clockwise)
-        axes.set_theta_direction(-1)
-        axes.set_title(f"{title}\nlargest {plane[0]}/{plane[1]} force [kN] held per direction", pad=18)
-    else:
-        axes.set_xlabel(f"{plane[0]} [{_unit(plane[0])}]")
-        axes.set_ylabel(f"{plane[1]} [{_unit(plane[1])}]")
-        axes.grid(True)
-        axes.set_title(f"{title}\nlargest request held per direction ({plane[0]}, {plane[1]})")
-    axes.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
-    figure.tight_layout()
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-
-
-def _unit(dof: str) -> str:
-    return "N" if dof in FORCE_DOFS else "N m"
-
-
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="allocator-capability", description=__doc__.split("\n\n")[0])
-    parser.add_argument("config", help="vehicle params file")
-    parser.add_argument("--out", default=".", help="folder for <vehicle>_capability.png and .csv")
-    parser.add_argument("--step", type=float, default=5.0, help="degrees between directions (default %(default)s)")
-    parser.add_argument("--yaw-moment", type=float, default=0.0, help="yaw moment held [N m] (default 0)")
-    parser.add_argument("--speed", type=float, default=2.0, help="surge speed for control surfaces [m/s]")
-    parser.add_argument("--method", choices=list(METHODS), help="default: the file's")
-    parser.add_argument("--plane", nargs=2, metavar=("X", "Y"), choices=DOF_NAMES,
-                        help="the two DOFs of the plot (default: surge sway, else the first two controlled)")
-    parser.add_argument("--all-methods", action="store_true",
-                        help="also <vehicle>_<method>_capability.png and .csv for each group of registered methods "
-                             "whose constraints give another capability than the file's method")
-    arguments = parser.parse_args(argv)
-    vehicle = load_vehicle(arguments.config)
-    plane = tuple(arguments.plane) if arguments.plane else None
-    try:
-        capability = Capability(vehicle, arguments.method, arguments.speed, plane)
-    except ValueError as error:
-        print(f"allocator-capability: {error}", file=sys.stderr)
-        return 2
-    stem = Path(arguments.config).stem
-    _write(capability, Path(arguments.out), stem, "", capability.method, arguments.step, arguments.yaw_moment)
-    if arguments.all_methods:
-        for names in differing_methods(vehicle, capability.method):
-            other = Capability(vehicle, names[0], arguments.speed, plane)
-            _write(other, Path(arguments.out), stem, f"_{names[0]}", ", ".join(names), arguments.step,
-                   arguments.yaw_moment)
-    return 0
-
-
 def region(vehicle: Vehicle, method: str) -> tuple:
     """What decides a method's capability: the polygon it puts on a rotatable thruster (sides and
     apothem; none on a vehicle without one), or None when it cannot redistribute force."""
@@ -380,24 +291,3 @@ def differing_methods(vehicle: Vehicle, method: str) -> list[list[str]]:
             groups.setdefault(region(vehicle, name), []).append(name)
     mine = region(vehicle, method)
     return [names for key, names in groups.items() if key != mine]
-
-
-def _write(capability: Capability, out: Path, stem: str, suffix: str, title: str, step: float,
-           yaw_moment: float) -> None:
-    """The nominal envelope and every single-actuator failure as <stem><suffix>_capability.png
-    and .csv, titled with the vehicle and ``title`` (the methods)."""
-    vehicle = capability.vehicle
-    cases = {"nominal": capability.envelope(step, yaw_moment)}
-    for actuator in vehicle.actuators:
-        cases[f"{actuator.name} failed"] = capability.envelope(step, yaw_moment, {actuator.name: FaultMode.FAILED})
-    out.mkdir(parents=True, exist_ok=True)
-    write_csv(out / f"{stem}{suffix}_capability.csv", capability.plane, cases)
-    polar = all(d in ("surge", "sway") for d in capability.plane)
-    held = "" if "yaw" in capability.plane or "yaw" not in vehicle.dofs else f", yaw moment {yaw_moment:g} N m held"
-    plot(out / f"{stem}{suffix}_capability.png", f"{stem} ({title}{held})", capability.plane, cases, polar)
-    print(out / f"{stem}{suffix}_capability.png")
-    print(out / f"{stem}{suffix}_capability.csv")
-
-
-if __name__ == "__main__":
-    sys.exit(main())

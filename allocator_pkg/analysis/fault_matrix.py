@@ -2,7 +2,8 @@
 
 A DOF direction (say +surge) is lost when the remaining actuators cannot produce any amount
 of it with every other controlled DOF held at zero (Capability.scale of the unit request is
-zero). ``docs/faults.md`` is this table for every shipped vehicle (``make docs``).
+zero). :func:`markdown` renders the tables of ``docs/faults.md`` for a list of vehicle files
+(``tools/update_docs.py`` writes the file, ``make docs``).
 """
 
 from __future__ import annotations
