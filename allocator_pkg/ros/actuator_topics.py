@@ -4,21 +4,29 @@ drivers and plots that take one number per actuator."""
 
 from __future__ import annotations
 
-from rclpy.node import Node
+from collections.abc import Callable
+
+from rclpy.publisher import Publisher
+from rclpy.qos import QoSProfile
 from std_msgs.msg import Float64
 
 from ..allocation.allocator import AllocationResult
 from ..vehicle.config import Vehicle
 from . import qos
 
+CreateOutput = Callable[[type, str, QoSProfile], Publisher]
+
 
 class ActuatorTopics:
-    """The publishers of one vehicle's actuators on a node, until :meth:`close`."""
+    """The publishers of one vehicle's actuators, until :meth:`close`. ``create`` makes one
+    output publisher (message type, topic, QoS) and ``destroy`` frees it: the runtime's, so
+    that on a managed node they are lifecycle publishers like its other outputs."""
 
-    def __init__(self, node: Node, vehicle: Vehicle):
-        self._node = node
-        def publisher(topic: str):
-            return node.create_publisher(Float64, topic, qos.output(), qos_overriding_options=qos.overridable())
+    def __init__(self, vehicle: Vehicle, create: CreateOutput, destroy: Callable[[Publisher], None]):
+        self._destroy = destroy
+
+        def publisher(topic: str) -> Publisher:
+            return create(Float64, topic, qos.output())
 
         self._publishers = [
             (i, publisher(f"thrusters/{actuator.name}/thrust"),
@@ -34,7 +42,7 @@ class ActuatorTopics:
 
     def close(self) -> None:
         for _, thrust, azimuth in self._publishers:
-            self._node.destroy_publisher(thrust)
+            self._destroy(thrust)
             if azimuth is not None:
-                self._node.destroy_publisher(azimuth)
+                self._destroy(azimuth)
         self._publishers = []

@@ -2,10 +2,10 @@
 checks, loading a configuration (with a robot description) into an
 :class:`~allocator_pkg.ros.runtime.AllocationRuntime`, and the process's main loop.
 
-:class:`AllocatorBase` is a mixin for rclpy's ``Node`` or ``LifecycleNode`` (listed before
-it). Parameters are checked in the on-set callback against the whole configuration and the
-running allocator, and applied in the post-set callback; before a runtime exists (a lifecycle
-node not yet configured) a change is taken as it is and checked at the next configure.
+:class:`AllocatorBase` is a mixin for rclpy's ``Node`` or ``LifecycleNode`` (the first of a
+node's bases). Parameters are checked in the on-set callback against the whole configuration
+and the running allocator, and applied in the post-set callback; while no runtime exists (a
+lifecycle node not configured) a change is taken as it is and checked at the next configure.
 """
 
 from __future__ import annotations
@@ -84,7 +84,7 @@ class AllocatorBase(WholeSetParameters):
         ``robot_description`` topic, its subscription."""
         self.setup_whole_set_parameters()
         self._runtime: AllocationRuntime | None = None
-        self._pending: tuple[Vehicle, NodeSettings, list[str]] | None = None
+        self._pending_change: tuple[Vehicle, NodeSettings, list[str]] | None = None
         self._description: str | None = None
         self.create_service(SetActuatorFault, "~/set_actuator_fault", self._on_set_fault)
         self.create_service(Trigger, "~/clear_faults", self._on_clear_faults)
@@ -217,7 +217,7 @@ class AllocatorBase(WholeSetParameters):
     def _check_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
         """Check a change against the whole schema and the running allocator; keep what it
         builds for :meth:`_apply_parameters`. Nothing changes here."""
-        self._pending = None
+        self._pending_change = None
         changes = {p.name: ros_parameters.plain(p.value) for p in parameters
                    if ros_parameters.is_allocator_parameter(p.name)}
         runtime = self._runtime
@@ -235,15 +235,15 @@ class AllocatorBase(WholeSetParameters):
         except ValueError as error:
             self.get_logger().warn(f"rejected parameter change: {error}")
             return SetParametersResult(successful=False, reason=str(error))
-        self._pending = (vehicle, settings, sorted(changes))
+        self._pending_change = (vehicle, settings, sorted(changes))
         return SetParametersResult(successful=True)
 
     def _apply_parameters(self, parameters: list[Parameter]) -> None:
         """Apply what :meth:`_check_parameters` accepted, between two samples."""
-        if self._pending is None or self._runtime is None:
+        if self._pending_change is None or self._runtime is None:
             return
-        vehicle, settings, names = self._pending
-        self._pending = None
+        vehicle, settings, names = self._pending_change
+        self._pending_change = None
         self._runtime.apply(vehicle, settings)
         self.get_logger().info(f"applied {', '.join(names)}")
 
@@ -271,8 +271,8 @@ def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None =
 
     What exists once the node is made (modules, the node, its solvers) lives as long as the
     process, so it is frozen out of the garbage collector's reach (``gc.freeze``): a full
-    collection then scans only what came since. Over the whole heap one took 50 ms (25 periods
-    at 500 Hz), once in the first minute of ``make soak``."""
+    collection then scans only what came since. Over the whole heap one takes up to 50 ms (25
+    periods at 500 Hz; ``make soak`` shows one in its first minute)."""
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     stop = threading.Event()
     for signal_number in (signal.SIGINT, signal.SIGTERM):

@@ -3,6 +3,12 @@
 samples. A node builds one from checked parameters (:mod:`allocator_pkg.ros.node_base`),
 activates it, deactivates it and closes it; nothing here parses parameters.
 
+On a ``LifecycleNode`` every output (commands, status, markers, diagnostics, per-actuator
+topics) is a lifecycle publisher: rclpy enables them in the node's active state and drops
+what they are given in any other. The runtime's own :meth:`~AllocationRuntime.activate` and
+:meth:`~AllocationRuntime.deactivate` start and stop the timers and the sampling on a wrench,
+which rclpy leaves running. On a plain ``Node`` the outputs are plain publishers.
+
 A sample runs on the timer at ``rate_hz`` (``trigger: timer``), or at once on each valid
 wrench (``trigger: input``) unless the last sample is less than a period old: the wrench then
 waits, replaced by any newer one, for the timer, set to fire one period after that sample. In
@@ -25,9 +31,13 @@ import threading
 import numpy as np
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Wrench, WrenchStamped
+from lifecycle_msgs.msg import State
 from nav_msgs.msg import Odometry
 from rclpy.duration import Duration
+from rclpy.lifecycle import LifecycleNode, LifecyclePublisher, LifecycleState
 from rclpy.node import Node
+from rclpy.publisher import Publisher
+from rclpy.qos import QoSProfile
 from rclpy.time import Time
 from sensor_msgs.msg import BatteryState
 from std_msgs.msg import Header
@@ -44,12 +54,13 @@ from ..vehicle.node_settings import INPUT, TIMER, NodeSettings
 from . import qos, wrench_input
 from .actuator_topics import ActuatorTopics
 from .conversions import commands_message, status_message
-from .diagnostics import Counters, diagnostic_statuses, short_dofs
+from .diagnostics import Counters, diagnostic_statuses
 from .markers import thrust_markers
 from .watchdog import Watchdog
 
 DIAGNOSTICS_PERIOD = 1.0
 LOG_THROTTLE = 5.0
+ACTIVE = LifecycleState("active", State.PRIMARY_STATE_ACTIVE)
 
 
 class AllocationRuntime:
@@ -57,7 +68,8 @@ class AllocationRuntime:
     parameters a robot description supplied (merged into every later parameter check).
 
     State shared between callbacks sits behind one lock, so that services, parameter changes
-    and samples may come from any thread."""
+    and samples may come from any thread. ``active`` says whether the runtime samples: the
+    timers run and a wrench (input trigger) starts a sample."""
 
     def __init__(self, node: Node, vehicle: Vehicle, settings: NodeSettings, geometry: dict[str, list[float]]):
         self._node = node
@@ -72,23 +84,19 @@ class AllocationRuntime:
         self.active = False
         self._wrench = np.zeros(6)
         self._wrench_time: int | None = None
-        self._pending = False
+        self._waiting_wrench = False
         self._last_sample: int | None = None
         self._last: AllocationResult | None = None
         self._markers_due = 0
         self._reported: set[str] = set()
         self._wrench_type = wrench_input.message_type(settings)
-        self._commands = node.create_publisher(ThrusterCommands, "thruster_commands", qos.output(),
-                                               qos_overriding_options=qos.overridable())
-        self._status = node.create_publisher(AllocationStatus, "allocation_status", qos.output(),
-                                             qos_overriding_options=qos.overridable())
-        # Filled and published again every sample, always under the lock (making them anew cost
+        self._commands = self._output(ThrusterCommands, "thruster_commands", qos.output())
+        self._status = self._output(AllocationStatus, "allocation_status", qos.output())
+        # Filled and published again every sample, always under the lock (making them anew costs
         # more than filling them).
         self._commands_message, self._status_message = ThrusterCommands(), AllocationStatus()
-        self._diagnostics = node.create_publisher(DiagnosticArray, "/diagnostics", qos.diagnostics(),
-                                                  qos_overriding_options=qos.overridable())
-        self._markers = node.create_publisher(MarkerArray, "~/thrust_markers", qos.output(),
-                                              qos_overriding_options=qos.overridable())
+        self._diagnostics = self._output(DiagnosticArray, "/diagnostics", qos.diagnostics())
+        self._markers = self._output(MarkerArray, "~/thrust_markers", qos.output())
         self._wrench_subscription = node.create_subscription(self._wrench_type, "wrench_command", self._on_wrench,
                                                              qos.wrench(), qos_overriding_options=qos.overridable())
         self._odometry = node.create_subscription(Odometry, "odometry", self._on_odometry, qos.odometry(),
@@ -124,10 +132,33 @@ class AllocationRuntime:
             text += f", supply voltage from {self._battery.topic_name}"
         return text + f"; publishing {', '.join(outputs)}"
 
+    # -- outputs ------------------------------------------------------------------------
+
+    def _output(self, message_type: type, topic: str, profile: QoSProfile) -> Publisher:
+        """A publisher of one output: a lifecycle publisher on a LifecycleNode, a plain one on a
+        Node. rclpy enables lifecycle publishers when the node activates; one made while the
+        runtime is active (per_actuator_topics set then) is enabled here, like the others."""
+        node = self._node
+        if not isinstance(node, LifecycleNode):
+            return node.create_publisher(message_type, topic, profile, qos_overriding_options=qos.overridable())
+        publisher = node.create_lifecycle_publisher(message_type, topic, profile,
+                                                    qos_overriding_options=qos.overridable())
+        if self.active:
+            publisher.on_activate(ACTIVE)
+        return publisher
+
+    def _destroy_output(self, publisher: Publisher) -> None:
+        """Destroy an output publisher (a lifecycle one leaves the node's managed entities)."""
+        if isinstance(publisher, LifecyclePublisher):
+            self._node.destroy_lifecycle_publisher(publisher)
+        else:
+            self._node.destroy_publisher(publisher)
+
     # -- life cycle ---------------------------------------------------------------------
 
     def activate(self) -> None:
-        """Start sampling (the watchdog waits for the first wrench) and reporting."""
+        """Start sampling (the watchdog waits for the first wrench) and reporting. A managed
+        node enables its lifecycle publishers first."""
         with self._lock:
             self.active = True
             self._last_sample = None
@@ -135,7 +166,8 @@ class AllocationRuntime:
             self._diagnostics_timer.reset()
 
     def deactivate(self) -> None:
-        """Command zero thrust once, angles held, then stop sampling and reporting."""
+        """Command zero thrust once, angles held, then stop sampling and reporting. A managed
+        node disables its lifecycle publishers after this."""
         with self._lock:
             if self.active:
                 self._publish(self.allocator.stop(), self._node.get_clock().now(), "stopped: deactivated")
@@ -164,7 +196,7 @@ class AllocationRuntime:
             if self._per_actuator is not None:
                 self._per_actuator.close()
             for publisher in (self._commands, self._status, self._diagnostics, self._markers):
-                node.destroy_publisher(publisher)
+                self._destroy_output(publisher)
 
     # -- inputs -------------------------------------------------------------------------
 
@@ -181,8 +213,8 @@ class AllocationRuntime:
                 self._wrench = verdict.wrench
                 self._wrench_time = now.nanoseconds
                 if self.active and self.settings.trigger == INPUT:
-                    waiting = self._pending
-                    self._pending = True
+                    waiting = self._waiting_wrench
+                    self._waiting_wrench = True
                     if self._last_sample is None or now.nanoseconds - self._last_sample >= self._period_ns:
                         self._sample(now)
                         self._schedule(now.nanoseconds)
@@ -244,7 +276,7 @@ class AllocationRuntime:
 
     def _schedule(self, now: int) -> None:
         """Input trigger, after the timer or a sample: the next time the timer has work. Lock held."""
-        if self.watchdog.stale or self._pending:
+        if self.watchdog.stale or self._waiting_wrench:
             self._arm(self._period_ns)
         elif self.watchdog.timeout > 0.0 and self._wrench_time is not None:
             self._arm(self._wrench_time + round(self.watchdog.timeout * 1e9) - now + self._period_ns)
@@ -264,13 +296,13 @@ class AllocationRuntime:
             self._node.get_logger().warn(transition[1])
         elif transition is not None:
             self._node.get_logger().info(transition[1])
-        if not (stale or self._pending or self.settings.trigger == TIMER):
+        if not (stale or self._waiting_wrench or self.settings.trigger == TIMER):
             return
         result = self.allocator.stop() if stale else self.allocator.allocate(self._wrench)
-        self._pending = False
+        self._waiting_wrench = False
         self._last_sample = now.nanoseconds
         self.samples += 1
-        self.counters.count(result, short_dofs(self.allocator, result) if result.saturated else ())
+        self.counters.count(result)
         self._last = result
         self._publish(result, now, f"stale: no valid wrench for {self.watchdog.timeout:g} s" if stale
                       else result.status)
@@ -351,7 +383,7 @@ class AllocationRuntime:
 
     def _apply_per_actuator(self, settings: NodeSettings) -> None:
         if settings.per_actuator_topics and self._per_actuator is None:
-            self._per_actuator = ActuatorTopics(self._node, self.allocator.vehicle)
+            self._per_actuator = ActuatorTopics(self.allocator.vehicle, self._output, self._destroy_output)
         elif not settings.per_actuator_topics and self._per_actuator is not None:
             self._per_actuator.close()
             self._per_actuator = None
