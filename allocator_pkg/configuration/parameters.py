@@ -262,8 +262,28 @@ class _Parser:
             able = ", ".join(name for name, method in METHODS.items() if method.implements_priorities)
             raise ConfigError([("priorities", f"method '{vehicle.method}' does not implement DOF priorities; "
                                               f"methods that do: {able}")])
-        settings = NodeSettings(**{key.name: node[key.name] for key in schema.NODE_KEYS}, links=links)
+        self._ros2_control(node, vehicle)
+        if self.problems:
+            raise ConfigError(self.problems)
+        settings = NodeSettings(**{key.name.replace(".", "_"): node[key.name] for key in schema.NODE_KEYS},
+                                links=links)
         return vehicle, settings
+
+    def _ros2_control(self, node: dict[str, Any], vehicle: Vehicle) -> None:
+        """The ros2_control actuators: known, each once, a rotatable one if angles are published;
+        ``node['ros2_control.actuators']`` becomes a tuple (the configuration order if unset)."""
+        key = "ros2_control.actuators"
+        listed = node[key] or [actuator.name for actuator in vehicle.actuators]
+        by_name = {actuator.name: actuator for actuator in vehicle.actuators}
+        for name in sorted(set(listed) - set(by_name)):
+            self.fail(key, f"'{name}' is not in actuators.names ({', '.join(by_name)})")
+        for name in sorted({name for name in listed if listed.count(name) > 1}):
+            self.fail(key, f"'{name}' is listed {listed.count(name)} times; each actuator at most once")
+        if node["ros2_control.angle_topic"] and not any(by_name[name].rotatable for name in listed
+                                                        if name in by_name):
+            self.fail("ros2_control.angle_topic", f"none of {', '.join(listed)} is a rotatable thruster: no "
+                                                  "azimuth angle to publish")
+        node[key] = tuple(listed)
 
     def _check_names(self, names: list[str]) -> list[str]:
         valid = []

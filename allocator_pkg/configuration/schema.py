@@ -195,6 +195,17 @@ NODE_KEYS: tuple[Key, ...] = (
     Key("robot_description_file", STR, "URDF file read with geometry_source robot_description; empty: the "
         "robot_description topic (transient local, as robot_state_publisher offers it).", default="",
         read_only=True, constraint="a file path, or empty"),
+    Key("ros2_control.thrust_topic", STR, "Topic of a std_msgs/Float64MultiArray of the thrust of the actuators of "
+        "ros2_control.actuators, in that order, each sample: the commands of a ros2_control "
+        "forward_command_controller (e.g. /thruster_controller/commands; docs/ros2_control.md). Empty: none.",
+        default="", unit="N", constraint="a topic name, or empty"),
+    Key("ros2_control.angle_topic", STR, "Topic of a std_msgs/Float64MultiArray of the azimuth angles of the "
+        "rotatable thrusters of ros2_control.actuators, in that order, each sample, for a position controller. "
+        "Empty: none.", default="", unit="rad",
+        constraint="a topic name, or empty; only with a rotatable thruster in ros2_control.actuators"),
+    Key("ros2_control.actuators", STR_LIST, "The actuators of the ros2_control topics in the controller's joint "
+        "order.", default_doc="actuators.names",
+        constraint="names from actuators.names, each at most once"),
 )
 """Settings of the ROS node only (:class:`allocator_pkg.vehicle.node_settings.NodeSettings`)."""
 

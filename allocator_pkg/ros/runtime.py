@@ -4,7 +4,7 @@ samples. A node builds one from checked parameters (:mod:`allocator_pkg.ros.node
 activates it, deactivates it and closes it; nothing here parses parameters.
 
 On a ``LifecycleNode`` every output (commands, status, markers, diagnostics, per-actuator
-topics) is a lifecycle publisher: rclpy enables them in the node's active state and drops
+and ros2_control topics) is a lifecycle publisher: rclpy enables them in the node's active state and drops
 what they are given in any other. The runtime's own :meth:`~AllocationRuntime.activate` and
 :meth:`~AllocationRuntime.deactivate` start and stop the timers and the sampling on a wrench,
 which rclpy leaves running. On a plain ``Node`` the outputs are plain publishers.
@@ -56,6 +56,7 @@ from .actuator_topics import ActuatorTopics
 from .conversions import commands_message, status_message
 from .diagnostics import Counters, diagnostic_statuses
 from .markers import thrust_markers
+from .ros2_control import Ros2ControlOutput, ros2_control_changed
 from .watchdog import Watchdog
 
 DIAGNOSTICS_PERIOD = 1.0
@@ -110,6 +111,7 @@ class AllocationRuntime:
         self._capability: Capability | None = None
         self._per_actuator: ActuatorTopics | None = None
         self._apply_per_actuator(settings)
+        self._ros2_control = Ros2ControlOutput(vehicle, settings, self._output, self._destroy_output)
         self._period_ns = round(1e9 / vehicle.rate_hz)
         self._timer = node.create_timer(1.0 / vehicle.rate_hz, self._on_timer, autostart=False)
         self._diagnostics_timer = node.create_timer(DIAGNOSTICS_PERIOD, self._on_diagnostics, autostart=False)
@@ -123,7 +125,7 @@ class AllocationRuntime:
         """The resolved names of the node's topics, for the start-up log."""
         wrench = self._wrench_subscription.topic_name
         outputs = [self._commands.topic_name, self._status.topic_name, self._markers.topic_name,
-                   self._diagnostics.topic_name]
+                   self._diagnostics.topic_name, *self._ros2_control.topics]
         text = (f"wrench from {wrench} ({wrench_input.TYPE_NAMES[self._wrench_type]}, frame "
                 f"{self.settings.frame.upper()} '{self.settings.base_frame}', trigger {self.settings.trigger})")
         if self._odometry is not None:
@@ -195,6 +197,7 @@ class AllocationRuntime:
                     node.destroy_subscription(subscription)
             if self._per_actuator is not None:
                 self._per_actuator.close()
+            self._ros2_control.close()
             for publisher in (self._commands, self._status, self._diagnostics, self._markers):
                 self._destroy_output(publisher)
 
@@ -314,6 +317,7 @@ class AllocationRuntime:
                                             self._status_message))
         if self._per_actuator is not None:
             self._per_actuator.publish(result)
+        self._ros2_control.publish(result)
         rate = self.settings.markers_rate_hz
         if rate > 0.0 and now.nanoseconds >= self._markers_due:
             self._markers_due = now.nanoseconds + round(1e9 / rate)
@@ -378,6 +382,9 @@ class AllocationRuntime:
             if settings.trigger == TIMER and self._timer.timer_period_ns != self._period_ns:
                 self._timer.timer_period_ns = self._period_ns
             self._apply_per_actuator(settings)
+            if ros2_control_changed(self.settings, settings):
+                self._ros2_control.close()
+                self._ros2_control = Ros2ControlOutput(vehicle, settings, self._output, self._destroy_output)
             self.settings = settings
             self.watchdog.timeout = settings.wrench_timeout
 

@@ -36,7 +36,10 @@ class NodeSettings:
     sample (``timer`` or ``input``); the rate of the thrust markers (0: none); where positions
     and directions come from, the URDF file (empty: the ``robot_description`` topic) and each
     actuator's link in it; how long [s] the thrust limits follow the last battery voltage
-    before they fall back to the nominal voltage.
+    before they fall back to the nominal voltage; the ros2_control topics of thrust and of
+    azimuth angles (empty: none) and the actuators they carry, in the controller's joint order
+    (empty: every actuator in configuration order). A dotted key fills the field of its name
+    with '_' for '.' (``ros2_control.thrust_topic``: ``ros2_control_thrust_topic``).
     """
 
     wrench_timeout: float
@@ -49,4 +52,7 @@ class NodeSettings:
     geometry_source: str = PARAMS
     robot_description_file: str = ""
     battery_timeout: float = 5.0
+    ros2_control_thrust_topic: str = ""
+    ros2_control_angle_topic: str = ""
+    ros2_control_actuators: tuple[str, ...] | None = None
     links: dict[str, str] = field(default_factory=dict)
