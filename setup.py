@@ -32,5 +32,6 @@ setup(
             "allocator-capability = allocator_pkg.cli.capability:main",
             "allocator-explicit = allocator_pkg.cli.explicit:main",
         ],
+        "pytest11": ["allocator_pkg = allocator_pkg.testing.plugin"],     # the allocator_harness fixture
     },
 )

@@ -90,7 +90,7 @@ def test_stuck_angle_outside_the_feasible_sector_is_refused(harness):
     from allocator_msgs.msg import ActuatorFault
     from allocator_msgs.srv import SetActuatorFault
     request = SetActuatorFault.Request(fault=ActuatorFault(actuator="azimuth_fwd", mode=FaultMode.STUCK, azimuth=2.0))
-    response = harness.call(harness.fault, request)
+    response = harness.call(harness.fault_client, request)
     assert not response.success and "outside the feasible sector [-1, 1]" in response.message
     assert harness.node.allocator.faults == {}
 

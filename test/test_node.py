@@ -63,22 +63,22 @@ def fault_request(actuator, mode, efficiency=0.0, azimuth=0.0):
 @pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
 def test_fault_service_modes(harness):
     harness.send_wrench([150.0, 0.0, 0.0, 0.0, 0.0, 0.0])
-    response = harness.call(harness.fault, fault_request("main_port", FaultMode.FAILED))
+    response = harness.call(harness.fault_client, fault_request("main_port", FaultMode.FAILED))
     assert response.success, response.message
     harness.tick(40)
     commands = harness.commands[-1]
     assert commands.thrust[2] == 0.0 and commands.mode[2] == FaultMode.FAILED
     assert harness.status[-1].achieved.force.x == pytest.approx(150.0, rel=1e-3)   # the others compensate
-    assert harness.call(harness.fault, fault_request("main_stbd", FaultMode.DEGRADED, efficiency=0.5)).success
-    assert harness.call(harness.fault, fault_request("azimuth_fwd", FaultMode.STUCK, azimuth=0.4)).success
+    assert harness.call(harness.fault_client, fault_request("main_stbd", FaultMode.DEGRADED, efficiency=0.5)).success
+    assert harness.call(harness.fault_client, fault_request("azimuth_fwd", FaultMode.STUCK, azimuth=0.4)).success
     harness.tick(2)
     assert list(harness.commands[-1].mode) == [FaultMode.STUCK, 0, FaultMode.FAILED, FaultMode.DEGRADED]
     assert harness.commands[-1].azimuth[0] == pytest.approx(0.4)
-    assert harness.call(harness.fault, fault_request("main_port", FaultMode.NOMINAL)).success
+    assert harness.call(harness.fault_client, fault_request("main_port", FaultMode.NOMINAL)).success
     from std_srvs.srv import Trigger
-    cleared = harness.call(harness.clear, Trigger.Request())
+    cleared = harness.call(harness.clear_client, Trigger.Request())
     assert cleared.success and "azimuth_fwd" in cleared.message
-    assert harness.call(harness.clear, Trigger.Request()).message == "no faults were set"
+    assert harness.call(harness.clear_client, Trigger.Request()).message == "no faults were set"
     harness.tick(1)
     assert list(harness.commands[-1].mode) == [0, 0, 0, 0]
 
@@ -93,7 +93,7 @@ def test_fault_service_modes(harness):
     (("main_port", 9), "unknown mode 9; modes: NOMINAL=0, DEGRADED=1, FAILED=2, STUCK=3"),
 ])
 def test_fault_service_errors_change_nothing(harness, request_args, expected):
-    response = harness.call(harness.fault, fault_request(*request_args))
+    response = harness.call(harness.fault_client, fault_request(*request_args))
     assert not response.success
     assert expected in response.message
     assert harness.node.allocator.faults == {}
@@ -107,41 +107,41 @@ def test_parameter_changes_are_checked_as_a_whole(harness):
         return kind.Request(parameters=[Parameter(name.replace("__", "."), value=value).to_parameter_msg()
                                         for name, value in values.items()])
 
-    ok = harness.call(harness.set_parameters, request(SetParameters, actuators__main_port__thrust_max=250.0))
+    ok = harness.call(harness.parameters_client, request(SetParameters, actuators__main_port__thrust_max=250.0))
     assert ok.results[0].successful
     assert harness.node.allocator.vehicle.actuator("main_port").thrust_max == 250.0
-    bad = harness.call(harness.set_parameters, request(SetParameters, actuators__main_port__thrust_min=10.0))
+    bad = harness.call(harness.parameters_client, request(SetParameters, actuators__main_port__thrust_min=10.0))
     assert not bad.results[0].successful
     assert "actuators.main_port.thrust_min" in bad.results[0].reason
     assert harness.node.get_parameter("actuators.main_port.thrust_min").value == -200.0
     # Valid only together: one set_parameters request takes them as a whole (rclpy alone would
     # apply them one by one and refuse the first); a bad value in it refuses all of them.
-    alone = harness.call(harness.set_parameters, request(SetParameters, dofs=["surge", "yaw"]))
+    alone = harness.call(harness.parameters_client, request(SetParameters, dofs=["surge", "yaw"]))
     assert not alone.results[0].successful and "weights.slack" in alone.results[0].reason
-    spoilt = harness.call(harness.set_parameters, request(SetParameters, weights__minimax=2.0, method="magic"))
+    spoilt = harness.call(harness.parameters_client, request(SetParameters, weights__minimax=2.0, method="magic"))
     assert [r.successful for r in spoilt.results] == [False, False] and "method" in spoilt.results[0].reason
     assert harness.node.get_parameter("weights.minimax").value == 0.0
-    together = harness.call(harness.set_parameters,
+    together = harness.call(harness.parameters_client,
                             request(SetParameters, dofs=["surge", "yaw"], weights__slack=[1e6, 2e6]))
     assert [r.successful for r in together.results] == [True, True]
     assert harness.node.allocator.dofs == ("surge", "yaw")
     mixed = request(SetParametersAtomically, rate_hz=10.0, method="magic")
-    result = harness.call(harness.set_atomically, mixed).result
+    result = harness.call(harness.atomic_parameters_client, mixed).result
     assert not result.successful and "method" in result.reason
     assert harness.node.get_parameter("rate_hz").value == 50.0
     assert harness.node.period == pytest.approx(1 / 50)
-    read_only = harness.call(harness.set_parameters, request(SetParameters, actuators__names=["a"]))
+    read_only = harness.call(harness.parameters_client, request(SetParameters, actuators__names=["a"]))
     assert not read_only.results[0].successful
     assert "read-only" in read_only.results[0].reason
     setups = harness.node.allocator.stats.solver_setups
-    harness.call(harness.set_parameters, request(SetParameters, weights__minimax=5.0))
+    harness.call(harness.parameters_client, request(SetParameters, weights__minimax=5.0))
     assert harness.node.allocator.stats.solver_setups == setups      # values only
 
 
 @pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
 def test_faults_survive_reconfiguration(harness):
     from rclpy.parameter import Parameter
-    assert harness.call(harness.fault, fault_request("main_port", FaultMode.FAILED)).success
+    assert harness.call(harness.fault_client, fault_request("main_port", FaultMode.FAILED)).success
     assert harness.node.set_parameters([Parameter("method", value="pseudoinverse")])[0].successful
     harness.tick(1)
     assert harness.commands[-1].mode[2] == FaultMode.FAILED
@@ -191,7 +191,7 @@ def test_diagnostics_levels(harness):
     harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     status = latest_level() if status.level != DiagnosticStatus.OK else status
     assert status.level == DiagnosticStatus.OK and status.message == "allocating"
-    assert harness.call(harness.fault, fault_request("main_port", FaultMode.DEGRADED, efficiency=0.5)).success
+    assert harness.call(harness.fault_client, fault_request("main_port", FaultMode.DEGRADED, efficiency=0.5)).success
     for _ in range(one_second):
         harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
         harness.tick(1)
@@ -331,7 +331,7 @@ def test_get_capability_answers_along_a_direction_in_the_nodes_frame(harness):
     up = harness.call(client, GetCapability.Request(direction=array_to_wrench([0.0, 0.0, 1.0, 0.0, 0.0, 0.0])))
     assert up.success and up.scale == pytest.approx(4 * 39.9, rel=1e-6)          # FLU up: the verticals reversed
     assert wrench_to_array(up.achieved) == pytest.approx([0.0, 0.0, 4 * 39.9, 0.0, 0.0, 0.0], abs=1e-6)
-    harness.call(harness.fault, _fault_request("thruster_5", 2))
+    harness.call(harness.fault_client, _fault_request("thruster_5", 2))
     down = harness.call(client, GetCapability.Request(direction=array_to_wrench([0.0, 0.0, -1.0, 0.0, 0.0, 0.0])))
     assert down.scale == pytest.approx(2 * 51.5, rel=1e-6)                       # a diagonal pair left
     zero = harness.call(client, GetCapability.Request(direction=array_to_wrench([0.0] * 6)))
