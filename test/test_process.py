@@ -282,7 +282,8 @@ def test_allocator_ctl_commands(node_process, tmp_path):
     table = tmp_path / "samples.csv"
     wrench = subprocess.Popen([os.path.join(BIN, "allocator-ctl"), "wrench", "80", "0", "0", "0", "0", "5",
                                "--rate", "20", "--duration", "6"], stdout=subprocess.DEVNULL)
-    echo = ctl("echo", "--duration", "4", "--csv", str(table))
+    recording = tmp_path / "samples.mcap"
+    echo = ctl("echo", "--duration", "4", "--csv", str(table), "--mcap", str(recording))
     wrench.wait(timeout=30)
     assert echo.returncode == 0
     assert "main_stbd" in echo.stdout and "sat" in echo.stdout
@@ -291,3 +292,12 @@ def test_allocator_ctl_commands(node_process, tmp_path):
     assert len(rows) > 10
     thrust = [float(row.split(",")[9]) for row in rows[1:]]            # main_port.thrust
     assert max(thrust) > 10.0 and all(math.isfinite(t) for t in thrust)
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+    with open(recording, "rb") as stream:
+        topics = {}
+        for _, channel, _, message in make_reader(stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages():
+            topics.setdefault(channel.topic, []).append(message)
+    assert {"/wrench_command", "/thruster_commands", "/allocation_status"} == set(topics)
+    assert topics["/wrench_command"][-1].force.x == 80.0 and topics["/wrench_command"][-1].torque.z == 5.0
+    assert len(topics["/thruster_commands"]) == len(rows) - 1

@@ -3,7 +3,7 @@
     allocator-ctl wrench 100 0 0 0 0 20 --rate 20 --duration 5
     allocator-ctl fault main_port failed | degraded 0.5 | stuck 0.3 | nominal
     allocator-ctl clear
-    allocator-ctl echo [--csv FILE]
+    allocator-ctl echo [--csv FILE] [--mcap FILE]             (--mcap: wrench, commands, status for ros2 bag, Foxglove)
     allocator-ctl capability 1 0 0 0 0 0                      (~/get_capability along a wrench)
     allocator-ctl params get [NAME ...]
     allocator-ctl params set NAME=VALUE [NAME=VALUE ...]      (applied atomically)
@@ -23,11 +23,12 @@ from typing import TextIO
 
 import rclpy
 import yaml
-from geometry_msgs.msg import Wrench
+from geometry_msgs.msg import Wrench, WrenchStamped
 from rcl_interfaces.srv import GetParameters, ListParameters, SetParametersAtomically
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter, parameter_value_to_python
+from rclpy.qos import QoSProfile, ReliabilityPolicy
 from std_srvs.srv import Trigger
 
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
@@ -35,6 +36,7 @@ from allocator_msgs.srv import GetCapability, SetActuatorFault
 
 from ..ros.conversions import OUTCOME_NAMES, array_to_wrench, wrench_to_array
 from ..vehicle.node_settings import NODE_NAME
+from .recording import Recording
 
 FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
                "failed": ActuatorFault.FAILED, "stuck": ActuatorFault.STUCK}
@@ -143,24 +145,60 @@ def format_capability(direction: list[float], response: GetCapability.Response) 
             f"[{achieved}] ({response.message})")
 
 
-class Echo:
-    """Prints a compact live table of commands and status; optionally writes every sample to CSV."""
+WRENCH_TYPES = {"geometry_msgs/msg/Wrench": Wrench, "geometry_msgs/msg/WrenchStamped": WrenchStamped}
 
-    def __init__(self, controller: Controller, out: TextIO, csv_file: TextIO | None = None, rate: float = 2.0):
+
+def wrench_type_on(node: Node, topic: str, wait: float = 2.0) -> type:
+    """The wrench type on ``topic`` in the ROS graph (the allocator's ``wrench_type``), waiting up
+    to ``wait`` seconds for it to be discovered; Wrench if none is seen."""
+    end = time.monotonic() + wait
+    while True:
+        for name, types in node.get_topic_names_and_types():
+            found = [WRENCH_TYPES[kind] for kind in types if kind in WRENCH_TYPES]
+            if name == topic and found:
+                return found[0]
+        if time.monotonic() >= end:
+            return Wrench
+        time.sleep(0.05)
+
+
+class Echo:
+    """Prints a compact live table of commands and status; optionally writes every sample to CSV,
+    and records the wrenches (Wrench or WrenchStamped), commands and status to an MCAP file."""
+
+    def __init__(self, controller: Controller, out: TextIO, csv_file: TextIO | None = None, rate: float = 2.0,
+                 recording: Recording | None = None):
         self.out = out
+        self.recording = recording
         self.period = 1.0 / rate if rate > 0 else 0.0
         self.last_print = 0.0
         self.status: AllocationStatus | None = None
         self.writer = csv.writer(csv_file) if csv_file else None
         self.header_done = False
-        node = controller.node
-        node.create_subscription(AllocationStatus, controller.topic("allocation_status"), self._on_status, 10)
-        node.create_subscription(ThrusterCommands, controller.topic("thruster_commands"), self._on_commands, 10)
+        node = self.node = controller.node
+        self._status = node.create_subscription(AllocationStatus, controller.topic("allocation_status"),
+                                                self._on_status, 10)
+        self._commands = node.create_subscription(ThrusterCommands, controller.topic("thruster_commands"),
+                                                  self._on_commands, 10)
+        if recording is not None:
+            topic = node.resolve_topic_name(controller.topic("wrench_command"))
+            self._wrench = node.create_subscription(wrench_type_on(node, topic), topic, self._on_wrench,
+                                                    QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
+
+    def _on_wrench(self, message: Wrench | WrenchStamped) -> None:
+        self._record(self._wrench.topic_name, message)
+
+    def _record(self, topic: str, message) -> None:
+        self.recording.write(topic, message, self.node.get_clock().now().nanoseconds)
 
     def _on_status(self, message: AllocationStatus) -> None:
         self.status = message
+        if self.recording is not None:
+            self._record(self._status.topic_name, message)
 
     def _on_commands(self, message: ThrusterCommands) -> None:
+        if self.recording is not None:
+            self._record(self._commands.topic_name, message)
         if self.writer is not None:
             self._write_csv(message)
         now = time.monotonic()
@@ -214,6 +252,8 @@ def _parser() -> argparse.ArgumentParser:
         capability.add_argument(name, type=float)
     echo = commands.add_parser("echo", help="print a live table of thrust, command, azimuth and status")
     echo.add_argument("--csv", type=argparse.FileType("w"), help="also write every sample to this CSV file")
+    echo.add_argument("--mcap", metavar="FILE", help="also record wrench_command, thruster_commands and "
+                      "allocation_status to this MCAP file (ros2 bag, Foxglove)")
     echo.add_argument("--rate", type=float, default=2.0, help="printed lines per second (default %(default)s)")
     echo.add_argument("--duration", type=float, default=None, help="seconds (default: until Ctrl-C)")
     params = commands.add_parser("params", help="get or set the allocator's parameters")
@@ -270,8 +310,13 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
         print(format_capability(direction, response))
         return 0 if response.success else 1
     if arguments.command == "echo":
-        Echo(controller, sys.stdout, arguments.csv, arguments.rate)
-        _spin_for(node, arguments.duration)
+        recording = Recording(arguments.mcap) if arguments.mcap else None
+        try:
+            Echo(controller, sys.stdout, arguments.csv, arguments.rate, recording)
+            _spin_for(node, arguments.duration)
+        finally:
+            if recording is not None:
+                recording.close()
         return 0
     if arguments.action == "get":
         for name, value in controller.get_parameters(arguments.items).items():
