@@ -6,6 +6,9 @@ sway, for the nominal vehicle and every single-actuator failure) and ``<vehicle>
 (the same numbers); ``--all-methods`` adds ``<vehicle>_<method>_capability.png`` and ``.csv``
 for each group of registered methods whose constraints give another capability than the
 file's method. The numbers come from :class:`~allocator_pkg.analysis.capability.Capability`.
+
+``allocator-capability --dnv-level1 VESSEL.yaml PARTICULARS.yaml [--out folder]`` writes the
+DNV-ST-0111 Level 1 DP capability plots, CSV and summary of :mod:`.dp_capability`.
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from ..configuration.parameters import load_vehicle
 from ..effectiveness.faults import FaultMode
 from ..methods import METHODS
 from ..vehicle.config import DOF_NAMES
+from .dp_capability import write_level1
 
 
 def write_csv(path: Path, plane: tuple[str, str], cases: dict[str, Envelope]) -> None:
@@ -80,7 +84,7 @@ def _unit(dof: str) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="allocator-capability", description=__doc__.split("\n\n")[0])
-    parser.add_argument("config", help="vehicle params file")
+    parser.add_argument("config", nargs="?", help="vehicle params file")
     parser.add_argument("--out", default=".", help="folder for <vehicle>_capability.png and .csv")
     parser.add_argument("--step", type=float, default=5.0, help="degrees between directions (default %(default)s)")
     parser.add_argument("--yaw-moment", type=float, default=0.0, help="yaw moment held [N m] (default 0)")
@@ -91,7 +95,16 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--all-methods", action="store_true",
                         help="also <vehicle>_<method>_capability.png and .csv for each group of registered methods "
                              "whose constraints give another capability than the file's method")
+    parser.add_argument("--dnv-level1", nargs=2, metavar=("VESSEL", "PARTICULARS"),
+                        help="DNV-ST-0111 Level 1 DP capability of a vehicle params file and a particulars file "
+                             "(config/particulars/): <vehicle>_dp_l1_number.png, _dp_l1_wind.png, .csv, .txt")
+    parser.add_argument("--heading-step", type=float, default=10.0,
+                        help="degrees between headings for --dnv-level1 (default %(default)s)")
     arguments = parser.parse_args(argv)
+    if arguments.dnv_level1:
+        return _dnv_level1(arguments)
+    if arguments.config is None:
+        parser.error("a vehicle params file, or --dnv-level1 VESSEL PARTICULARS")
     vehicle = load_vehicle(arguments.config)
     plane = tuple(arguments.plane) if arguments.plane else None
     try:
@@ -124,6 +137,20 @@ def _write(capability: Capability, out: Path, stem: str, suffix: str, title: str
     plot(out / f"{stem}{suffix}_capability.png", f"{stem} ({title}{held})", capability.plane, cases, polar)
     print(out / f"{stem}{suffix}_capability.png")
     print(out / f"{stem}{suffix}_capability.csv")
+
+
+def _dnv_level1(arguments: argparse.Namespace) -> int:
+    """--dnv-level1: the Level 1 files of cli/dp_capability.py, the summary line on stdout."""
+    vessel, particulars = arguments.dnv_level1
+    try:
+        result, paths = write_level1(vessel, particulars, arguments.out, arguments.heading_step, arguments.method)
+    except ValueError as error:                 # a ConfigError too
+        print(f"allocator-capability: {error}", file=sys.stderr)
+        return 2
+    print(result.summary_line())
+    for path in paths:
+        print(path)
+    return 0
 
 
 if __name__ == "__main__":
