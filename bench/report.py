@@ -334,6 +334,29 @@ def _load_section(result: dict) -> list[str]:
     return lines
 
 
+def _overhead_section(overhead: dict) -> list[str]:
+    """The node's own cost against a bare rclpy node of the same rate (bench/overhead.py)."""
+    lines = ["## The node's own cost against a bare rclpy node", "",
+             f"`bench/overhead.py`: every node in a process of its own, driven over Fast DDS on loopback; "
+             f"{overhead['seconds']:g} s per case after a warm-up, {overhead['rounds']} rounds alternating the nodes "
+             "of a rate, medians over the rounds. Input: a WrenchStamped at each rate, answered by a bare node that "
+             "publishes it back at once (`bench/bare.py echo`) and by `allocator_node` with `trigger: input`, "
+             "`wrench_type: wrench_stamped` (its ThrusterCommands, with AllocationStatus published every sample). "
+             "Timer: `allocator_node` with `trigger: timer` against a bare node with one timer publishing one "
+             "message. CPU per sample is utime + stime from /proc over the window per answer (per tick for "
+             "timers); \"x\" is the ratio to the bare node of the same rate in the same run (target <= "
+             f"{overhead['target_ratio']:g}).", "",
+             "| case | node | rate Hz | CPU per sample ms | share of a core | publish to answer p50 / p99 ms | "
+             "CPU x | p50 x |", "|---|---|---|---|---|---|---|---|"]
+    for row in overhead["rows"]:
+        latency = ("" if row["latency_ms_p50"] is None
+                   else f"{_fmt(row['latency_ms_p50'], 3)} / {_fmt(row['latency_ms_p99'], 3)}")
+        lines.append(f"| {row['kind']} | {row['node']} | {row['rate_hz']:g} | {_fmt(row['cpu_ms_per_sample'], 3)} | "
+                     f"{row['cpu_percent']:.1f} % | {latency} | {row['cpu_ratio']:.2f} | "
+                     f"{_fmt(row.get('latency_ratio'), 2)} |")
+    return lines
+
+
 def _settling_section(result: dict, before: dict | None, off_grid: dict | None = None) -> list[str]:
     lines = ["## Rotatable thrusters near their capability", "",
              "`bench/settling.py --full`: a constant request held from rest for {samples} samples and judged over "
@@ -394,5 +417,7 @@ def write(result: dict, path: Path) -> None:
     off_grid = json.loads(SETTLING_OFF_GRID.read_text()) if SETTLING_OFF_GRID.exists() else None
     lines += [*_settling_section(result, before, off_grid), ""]
     lines += ["## Node level", "", *_node_table(result)]
+    if "overhead" in result:
+        lines += ["", *_overhead_section(result["overhead"])]
     lines += ["", *_load_section(result), "", SOAK]
     path.write_text("\n".join(lines) + "\n")

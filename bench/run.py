@@ -59,6 +59,11 @@ def main(argv: list[str] | None = None) -> int:
     subprocess.run([sys.executable, str(ROOT / "bench" / "node.py"), "--out", str(node_out)]
                    + (["--quick"] if arguments.quick else []), check=True)
     result["node"] = json.loads(node_out.read_text())
+    overhead_out = RESULTS / "overhead.json"
+    subprocess.run([sys.executable, str(ROOT / "bench" / "overhead.py"), "--out", str(overhead_out)]
+                   + (["--seconds", "3", "--rounds", "1"] if arguments.quick else ["--seconds", "8", "--rounds", "2"]),
+                   check=True)
+    result["overhead"] = json.loads(overhead_out.read_text())
     load_out = RESULTS / "load.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "load.py"), "--out", str(load_out)]
                    + (["--seconds", "10"] if arguments.quick else []), check=False)

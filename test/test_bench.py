@@ -5,6 +5,7 @@ import json
 import sys
 
 import numpy as np
+import pytest
 from conftest import ROOT
 
 sys.path.insert(0, str(ROOT / "bench"))
@@ -110,3 +111,21 @@ def test_the_report_gives_the_explicit_rows_and_its_regions_when_measured():
     assert ("explicit: 1 region cached; of its solves in the timed samples 99.9 % answered by the previous "
             "region, 0.0 % by a neighbouring one, 0.1 % after OSQP (0 left inexact).") in lines
     assert any(line.startswith("| explicit | 9.0 | 9.5 | 31.0 | 60.0 |") for line in lines)
+
+
+def test_the_overhead_bench_takes_medians_over_rounds_and_ratios_to_the_bare_node_of_the_same_rate():
+    import overhead
+
+    def case(cpu, p50):
+        return {"cpu_ms_per_sample": cpu, "cpu_percent": 10.0 * cpu, "latency_ms_p50": p50, "latency_ms_p99": 2 * p50}
+
+    rounds = [{"input|bare echo|100.0": case(0.5, 1.0), "input|dp_vessel|100.0": case(0.6, 1.5),
+               "input|bare echo|500.0": case(0.2, 0.5), "input|dp_vessel|500.0": case(0.3, 0.5)},
+              {"input|bare echo|100.0": case(0.7, 1.0), "input|dp_vessel|100.0": case(0.8, 1.1),
+               "input|bare echo|500.0": case(0.4, 0.5), "input|dp_vessel|500.0": case(0.5, 0.6)}]
+    rows = {(row["node"], row["rate_hz"]): row for row in overhead.summarise(rounds)}
+    assert rows[("dp_vessel", 100.0)]["cpu_ms_per_sample"] == 0.7 and rows[("bare echo", 100.0)]["cpu_ratio"] == 1.0
+    assert rows[("dp_vessel", 100.0)]["cpu_ratio"] == pytest.approx(0.7 / 0.6)
+    assert rows[("dp_vessel", 500.0)]["cpu_ratio"] == pytest.approx(0.4 / 0.3)
+    assert rows[("dp_vessel", 500.0)]["latency_ratio"] == pytest.approx(1.1)
+    assert rows[("dp_vessel", 100.0)]["latency_ratio"] == pytest.approx(1.3)
