@@ -8,9 +8,11 @@ import math
 import numpy as np
 import pytest
 from conftest import DATA, ROOT, vehicle_from
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 from reference import bounded_least_squares, circle_allocation
 
-from allocator_pkg import Allocator, FaultMode
+from allocator_pkg import Allocator, FaultMode, vehicle_from_parameters
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 from allocator_pkg.effectiveness.model import Model
 
@@ -142,3 +144,116 @@ def test_a_smooth_request_is_followed_with_no_lag_while_no_limit_binds():
         optimum = bounded_least_squares(t, model.weight, q, model.thrust_min, model.thrust_max, tau)
         assert result.thrust == pytest.approx(optimum, abs=1e-9 * 51.5)
         assert not result.saturated
+
+
+# -- the optimum from any state, on vehicles nobody picked -----------------------------------
+
+SETTLED = 1e-6
+"""Relative excess of the objective (1.35) (beta = 0) over scipy's bounded least squares at
+which a held request counts as settled."""
+
+
+def work_class_rov(seed: int, slack: float | None = None):
+    """Eight fixed thrusters of a work-class ROV drawn from ``seed``: four horizontal ones
+    vectored 30-60 deg in the z = 0 plane, four vertical ones 0.4 m above it (z = -0.4, FRD),
+    every lever arm drawn on its own (0.5-1.5 m fore and aft, 0.3-0.8 m to the sides), forward
+    limits of 1500-3000 N and reverse ones 1/1.45 of them."""
+    rng = np.random.default_rng(seed)
+    parameters = {"dofs": ["surge", "sway", "heave", "roll", "pitch", "yaw"],
+                  "actuators.names": [f"t{i}" for i in range(8)]}
+    for i in range(8):
+        fore, side = (1.0 if i % 4 < 2 else -1.0), (1.0 if i % 2 == 0 else -1.0)
+        position = [fore * rng.uniform(0.5, 1.5), side * rng.uniform(0.3, 0.8), 0.0 if i < 4 else -0.4]
+        angle = fore * side * math.radians(rng.uniform(30.0, 60.0))
+        direction = [math.cos(angle), math.sin(angle), 0.0] if i < 4 else [0.0, 0.0, 1.0]
+        forward = rng.uniform(1500.0, 3000.0)
+        parameters.update({f"actuators.t{i}.type": "fixed", f"actuators.t{i}.position": position,
+                           f"actuators.t{i}.direction": direction, f"actuators.t{i}.thrust_max": forward,
+                           f"actuators.t{i}.thrust_min": -forward / 1.45})
+    if slack is not None:
+        parameters["weights.slack"] = [slack] * 6
+    return vehicle_from_parameters(parameters)
+
+
+def objective(model: Model, thrust: np.ndarray, tau: np.ndarray) -> float:
+    """(1.35) with beta = 0 and the slack eliminated, in newtons: 1/2 f'Wf + 1/2 s'Qs."""
+    miss = model.t_ec @ thrust - tau
+    return 0.5 * float(thrust @ (model.weight_ext * thrust) + miss @ (model.slack_weights(model.weight) * miss))
+
+
+def least_objective(model: Model, tau: np.ndarray) -> float:
+    """The minimum of (1.35) (beta = 0) within the thrust ranges, from scipy's BVLS."""
+    q = model.slack_weights(model.weight)
+    optimum = bounded_least_squares(model.t_ec, model.weight_ext, q, model.thrust_min, model.thrust_max, tau)
+    return objective(model, optimum, tau)
+
+
+def excess_after(allocator: Allocator, tau: np.ndarray, samples: int) -> float:
+    """The objective's relative excess over the optimum after holding ``tau`` for ``samples``."""
+    result = held(allocator, tau, samples)[-1]
+    best = least_objective(allocator.model, tau)
+    return (objective(allocator.model, result.thrust, tau) - best) / best
+
+
+def requests(model: Model, seed: int, count: int) -> list[np.ndarray]:
+    """Held requests, each controlled DOF uniform in +-0.8 of its authority."""
+    rng = np.random.default_rng(seed)
+    return [0.8 * rng.uniform(-1.0, 1.0, model.n) * model.authority for _ in range(count)]
+
+
+@pytest.mark.parametrize("slack", [None, 1e4])
+def test_held_requests_from_rest_settle_on_the_optimum_of_a_work_class_rov(slack):
+    """Seed 1's ROV: with three or more bounds active, every request settles within 60 samples
+    from rest, with the default slack weights and with weights.slack 1e4 on every DOF."""
+    vehicle = work_class_rov(1, slack)
+    model = Allocator(vehicle, method="dynamic").model
+    excess = [excess_after(Allocator(vehicle, method="dynamic"), tau, 60) for tau in requests(model, 101, 40)]
+    assert max(excess) < SETTLED
+
+
+@pytest.mark.parametrize("slack", [None, 1e4])
+def test_a_sequence_of_held_requests_settles_on_each_optimum_of_a_work_class_rov(slack):
+    """One allocator follows 40 requests to seed 1's ROV, 60 samples each: each settles."""
+    vehicle = work_class_rov(1, slack)
+    allocator = Allocator(vehicle, method="dynamic")
+    excess = [excess_after(allocator, tau, 60) for tau in requests(allocator.model, 101, 40)]
+    assert max(excess) < SETTLED
+
+
+def test_a_sequence_of_held_requests_settles_on_each_optimum_of_eight_thrusters():
+    """test/data/eight_thrusters.yaml: 170 requests in sequence (seed 11), 200 samples each;
+    the 170th starts from the 169th's optimum, three bounds active and one 0.05 N short of
+    its bound."""
+    allocator = Allocator(vehicle_from(EIGHT), method="dynamic")
+    excess = [excess_after(allocator, tau, 200) for tau in requests(allocator.model, 11, 170)]
+    assert max(excess) < SETTLED
+
+
+@st.composite
+def fixed_vehicle(draw):
+    """4-10 fixed thrusters anywhere within 2 m, in any direction, forward limits of 10-1000 N,
+    reverse ones 0.2-1 of those, weights 0.5-3; all six DOFs controlled."""
+    count = draw(st.integers(min_value=4, max_value=10))
+    coordinate = st.floats(min_value=-2.0, max_value=2.0, allow_nan=False)
+    parameters = {"dofs": ["surge", "sway", "heave", "roll", "pitch", "yaw"],
+                  "actuators.names": [f"t{i}" for i in range(count)]}
+    for i in range(count):
+        direction = draw(st.tuples(coordinate, coordinate, coordinate).filter(lambda v: math.hypot(*v) > 0.2))
+        forward = draw(st.floats(min_value=10.0, max_value=1000.0))
+        parameters.update({f"actuators.t{i}.type": "fixed",
+                           f"actuators.t{i}.position": list(draw(st.tuples(coordinate, coordinate, coordinate))),
+                           f"actuators.t{i}.direction": list(direction), f"actuators.t{i}.thrust_max": forward,
+                           f"actuators.t{i}.thrust_min": -forward * draw(st.floats(min_value=0.2, max_value=1.0)),
+                           f"actuators.t{i}.weight": draw(st.floats(min_value=0.5, max_value=3.0))})
+    return vehicle_from_parameters(parameters)
+
+
+@settings(derandomize=True, max_examples=30, deadline=None, database=None)
+@given(vehicle=fixed_vehicle(), share=st.lists(st.floats(min_value=-0.8, max_value=0.8), min_size=6, max_size=6))
+def test_on_any_fixed_thruster_vehicle_a_held_request_settles_on_the_optimum(vehicle, share):
+    """From rest and then from that optimum to the opposite request: within 150 samples each."""
+    allocator = Allocator(vehicle, method="dynamic")
+    tau = np.array(share) * allocator.model.authority
+    assume(np.any(np.abs(tau) > 1e-6 * np.max(allocator.model.authority)))
+    assert excess_after(allocator, tau, 150) < SETTLED
+    assert excess_after(allocator, -tau, 150) < SETTLED

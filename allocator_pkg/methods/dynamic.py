@@ -10,18 +10,26 @@ limits: thrust ranges with faults, and for a rotatable thruster its exact thrust
 the allowed piece of angles, at most a quarter turn either side of its present angle, so that
 S stays convex). The control-Lyapunov function is V = J(f) - J(f*), zero exactly at the
 optimum. With g = W f + T_e' Q (T_e f - tau) its gradient, H = W + T_e' Q T_e its Hessian
-(constant: T_e is), and Z a basis of the directions in which no limit holds f back (an
-actuator at a limit that the gradient pushes against is held; a rotatable thruster at its
-thrust limit may still turn, with the circle's curvature lambda / B added along the turn, and
-one at an edge of its angles may still change its thrust), the law is
+(constant: T_e is), and Z a basis of the directions in which no limit holds f back, the law is
 
     f+ = P_S( f - Z (Z'HZ + C)^-1 Z' (h g - (1 - h) T_e' Q Delta tau) ),
 
 a Newton step of length h on the optimality conditions plus Johansen's feed-forward term for a
-time-varying request (Delta tau, the change since the last sample, taken whole). While the
-same limits hold f back, V falls by (1 - h)^2 per sample and a smooth request is followed
-with no lag; a step that would raise V (a limit reached or left within the step) is halved,
-at most ``HALVINGS`` times. ``h`` is ``dynamic.gain``.
+time-varying request (Delta tau, the change since the last sample, taken whole). ``h`` is
+``dynamic.gain``.
+
+Which limits hold is an active-set test on the KKT conditions: every fixed-direction force on
+a bound is held, the Newton step d = -Z (Z'HZ + C)^-1 Z' g to the minimum on that face gives
+each held bound's multiplier, the gradient there (g + H d)_i, and the bound whose multiplier
+pulls its force off it hardest is released and the step solved again. (Since H is not
+diagonal, the sign of g_i itself says nothing about whether bound i holds at the optimum.) A
+rotatable thruster at its thrust limit may still turn, with the circle's curvature lambda / B
+added along the turn, and one at an edge of its angles may still change its thrust, where the
+gradient leads. While the same limits hold f back, V falls by (1 - h)^2 per sample and a
+smooth request is followed with no lag. Where a limit stops the step, the state moves to the
+better of the projected step (halved while it would raise V, at most ``HALVINGS`` times) and
+the step cut where the first force reaches its bound, which lowers V along the face's Newton
+direction; so V falls every sample until f is the optimum.
 
 Rate limits are constraints on the update: the forces commanded are the state brought into
 this sample's limits (thrust windows around the last thrusts, the angle window of the rate
@@ -29,8 +37,9 @@ step), and where that moved them, one more Newton step of J within those limits 
 actuators that are free this sample make up what the held ones miss. The commanded
 allocation follows the state at the actuators' rates, and the state is never wound up by
 them; the equilibrium is the optimum once the rate limits stop binding. A sample costs one
-or two small linear solves (the free directions, at most the number of extended forces) and
-a few closed-form projections, no iteration.
+or two small linear solves for the law (the free directions, at most the number of extended
+forces), one more where a rate limit moves the command, and a few closed-form projections, no
+iteration.
 
 The drag feed-forward solves a sample more than once (allocator, (1.56)-(1.58)); those solves
 restart from the sample's starting state, so the law moves once per sample.
@@ -62,6 +71,9 @@ limit's, not a sector's."""
 ON_BOUND = 1e-9
 """Rounding, not a modelling choice: a normalised force this close to a bound (or a magnitude
 this fraction from it) is on the bound."""
+RELEASE = 1e-12
+"""Rounding: a held bound's multiplier of the wrong sign smaller than this share of the
+largest is taken as zero."""
 
 
 class DynamicAllocation(AllocationMethod):
@@ -120,26 +132,86 @@ class DynamicAllocation(AllocationMethod):
         static = self._static_limits(limits)
         x = self._project(self._x, static, limits)
         gradient = self._weight * x + self._weighted_t @ (self._t @ x - request)
-        basis, curvature = self._free_directions(x, gradient, static, limits)
-        step = np.zeros(self.model.m)
-        if basis.shape[1]:
-            reduced = basis.T @ self._hessian @ basis + np.diag(curvature)
-            drive = self._gain * gradient - (1.0 - self._gain) * (self._weighted_t @ (request - self._request))
-            step = -basis @ np.linalg.solve(reduced, basis.T @ drive)
-        value = self._cost(x, request)
-        tries = 0
-        new = x
-        while tries <= HALVINGS and step.any():
-            tries += 1
-            trial = self._project(x + step, static, limits)
-            if self._cost(trial, request) <= value + 1e-12 * max(abs(value), 1.0):
-                new = trial
-                break
-            step *= 0.5
+        drive = self._gain * gradient - (1.0 - self._gain) * (self._weighted_t @ (request - self._request))
+        low, high = self._scalar_bounds(limits)
+        scalar = x[self._scalar_columns]
+        held = (scalar <= low + ON_BOUND) | (scalar >= high - ON_BOUND)
+        full, step = self._newton(x, gradient, drive, static, limits, held)
+        if held.any():
+            released = self._release(scalar, (gradient + self._hessian @ full)[self._scalar_columns], low, high, held)
+            if released >= 0:
+                held[released] = False
+                full, step = self._newton(x, gradient, drive, static, limits, held)
+        new, tries = self._move(x, step, request, static, limits, low, high)
         if not np.isfinite(new).all():
             return MethodOutput(np.zeros(self.model.m), "not finite", tries, outcome=Outcome.FAILED)
         self._x, self._request = new, request
         return MethodOutput(self._commanded(new, request, limits) * self._column_force, "solved", tries)
+
+    def _scalar_bounds(self, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray]:
+        """The static thrust range of each scalar column, normalised."""
+        columns = self._scalar_columns
+        force = self._column_force[columns]
+        low = limits.low if limits.range_low is None else limits.range_low
+        high = limits.high if limits.range_high is None else limits.range_high
+        return low[self.model.scalar] / force, high[self.model.scalar] / force
+
+    def _newton(self, x: np.ndarray, gradient: np.ndarray, drive: np.ndarray, static: list[AzimuthLimits],
+                limits: SampleLimits, held: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The whole Newton step to the minimum of J on the face the held limits leave (the
+        scalar forces ``held`` on their bounds), and the law's step (``drive``) on the same
+        face: one linear solve with two right-hand sides."""
+        basis, curvature = self._free_directions(x, gradient, static, limits, held=held)
+        if not basis.shape[1]:
+            return np.zeros(self.model.m), np.zeros(self.model.m)
+        reduced = basis.T @ self._hessian @ basis + np.diag(curvature)
+        steps = -basis @ np.linalg.solve(reduced, basis.T @ np.column_stack((gradient, drive)))
+        return steps[:, 0], steps[:, 1]
+
+    @staticmethod
+    def _release(scalar: np.ndarray, multiplier: np.ndarray, low: np.ndarray, high: np.ndarray,
+                 held: np.ndarray) -> int:
+        """The held scalar force (its index among the scalar columns) whose bound does not
+        hold: at the minimum on the face, the gradient there (g + H d, the bound's KKT
+        multiplier) pulls it off the bound; the one pulled hardest, or -1 when every held
+        bound's multiplier has the sign that keeps it."""
+        wrong = np.where(held & (scalar <= low + ON_BOUND), -multiplier, 0.0) + \
+            np.where(held & (scalar >= high - ON_BOUND), multiplier, 0.0)
+        worst = int(np.argmax(wrong))
+        return worst if wrong[worst] > RELEASE * max(float(np.max(np.abs(multiplier))), 1.0) else -1
+
+    def _move(self, x: np.ndarray, step: np.ndarray, request: np.ndarray, static: list[AzimuthLimits],
+              limits: SampleLimits, low: np.ndarray, high: np.ndarray) -> tuple[np.ndarray, int]:
+        """The state after ``step``: x + step where no limit stops it. Where one does, the
+        better (lower V) of the step projected on S, halved while it would raise V, and the
+        step cut where the first scalar force reaches its bound, a descent along the face's
+        Newton direction; x when neither lowers V."""
+        if not step.any():
+            return x, 0
+        value = self._cost(x, request)
+        best, best_value = x, value + 1e-12 * max(abs(value), 1.0)
+        target = x + step
+        trial = self._project(target, static, limits)
+        trial_value = self._cost(trial, request)
+        if trial_value <= best_value and np.array_equal(trial, target):
+            return trial, 1
+        columns = self._scalar_columns
+        move = step[columns]
+        moving = move != 0.0
+        room = np.where(move > 0.0, high - x[columns], low - x[columns])
+        share = float(np.min(room[moving] / move[moving], initial=1.0))
+        if 0.0 < share < 1.0:
+            cut = self._project(x + share * step, static, limits)
+            cut_value = self._cost(cut, request)
+            if cut_value <= best_value:
+                best, best_value = cut, cut_value
+        tries = 1
+        while trial_value > best_value and best is x and tries <= HALVINGS:
+            step = 0.5 * step
+            trial = self._project(x + step, static, limits)
+            trial_value = self._cost(trial, request)
+            tries += 1
+        return (trial, tries) if trial_value <= best_value else (best, tries)
 
     def _commanded(self, x: np.ndarray, request: np.ndarray, limits: SampleLimits) -> np.ndarray:
         """The state brought into this sample's limits, then one Newton step of J within them
@@ -213,23 +285,27 @@ class DynamicAllocation(AllocationMethod):
         return out
 
     def _free_directions(self, x: np.ndarray, gradient: np.ndarray, static: list[AzimuthLimits],
-                         limits: SampleLimits, sample: bool = False) -> tuple[np.ndarray, np.ndarray]:
+                         limits: SampleLimits, sample: bool = False,
+                         held: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Z (m x k) and the curvature C (k) the circle adds along each column of Z, within the
-        static limits (or this sample's, ``sample``)."""
+        static limits (or this sample's, ``sample``). The scalar forces ``held`` (given) stay;
+        without it, one on a bound of this sample's range stays where the gradient pushes it
+        against the bound."""
         model = self.model
         columns: list[np.ndarray] = []
         curvature: list[float] = []
         if model.scalar.size:
-            range_low = limits.low if sample or limits.range_low is None else limits.range_low
-            range_high = limits.high if sample or limits.range_high is None else limits.range_high
-            for i, c in zip(model.scalar.tolist(), self._scalar_columns.tolist()):
-                low, high = range_low[i] / self._column_force[c], range_high[i] / self._column_force[c]
-                held = (x[c] <= low + ON_BOUND and gradient[c] > 0.0) or (x[c] >= high - ON_BOUND and gradient[c] < 0.0)
-                if not held:
-                    column = np.zeros(model.m)
-                    column[c] = 1.0
-                    columns.append(column)
-                    curvature.append(0.0)
+            if held is None:
+                force = self._column_force[self._scalar_columns]
+                low, high = limits.low[model.scalar] / force, limits.high[model.scalar] / force
+                push = gradient[self._scalar_columns]
+                held = ((x[self._scalar_columns] <= low + ON_BOUND) & (push > 0.0)) | \
+                    ((x[self._scalar_columns] >= high - ON_BOUND) & (push < 0.0))
+            for c in self._scalar_columns[~held].tolist():
+                column = np.zeros(model.m)
+                column[c] = 1.0
+                columns.append(column)
+                curvature.append(0.0)
         for k, (i, c1, c2) in enumerate(self._rot_pairs):
             free = _free_along(static[k], float(limits.angle[i]), float(x[c1]), float(x[c2]), float(gradient[c1]),
                                float(gradient[c2]), float(self._column_force[c1]), self._hold[i]) if sample else \
