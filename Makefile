@@ -34,6 +34,7 @@ help:
 	@echo "make bench   solver and node benchmarks into bench/results/latest.json and docs/performance.md"
 	@echo "make load    the node under a 10 kHz wrench flood and a busy core, LOAD_SECONDS=$(LOAD_SECONDS) per trigger"
 	@echo "make soak    the node for SOAK_MINUTES=$(SOAK_MINUTES) at 500 Hz under random faults and changes"
+	@echo "make explore generated vehicles by the thousand against independent references, EXPLORE_MINUTES=$(EXPLORE_MINUTES)"
 	@echo "make lock    re-resolve requirements.in into requirements.lock"
 	@echo "make clean   remove .venv and build/"
 
@@ -107,6 +108,11 @@ load: setup
 SOAK_MINUTES ?= 10
 soak: setup
 	$(PY) bench/soak.py --minutes $(SOAK_MINUTES)
+
+EXPLORE_MINUTES ?= 5
+EXPLORE_EXAMPLES ?= 1000
+explore: setup
+	$(PY) tools/explore.py --examples $(EXPLORE_EXAMPLES) --minutes $(EXPLORE_MINUTES)
 
 lock: | prereqs
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)

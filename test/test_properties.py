@@ -5,101 +5,21 @@ feasible and forbidden sectors; requests from zero to 1e9; random fault sets. Wh
 input: outputs are finite and inside every (fault-adjusted) limit, rate limits hold, achieved
 is what the commanded thrusts and angles give, an unsaturated result meets the request, and
 the same inputs give the same outputs. A vehicle a method refuses (a saturation mode it does
-not implement, no rotatable thruster for svd_filter) is not drawn for it.
+not implement, no rotatable thruster for svd_filter) is not drawn for it; nor one the loader
+refuses. The strategies are in generators.py.
 """
-
-import math
 
 import numpy as np
 import pytest
+from generators import FIXED_DIRECTIONS, TYPES, faults, requests, vehicles
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from allocator_pkg import METHODS, Allocator, FaultMode, Vehicle, vehicle_from_parameters
+from allocator_pkg import METHODS, Allocator, FaultMode
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 from allocator_pkg.effectiveness.model import Model
 from allocator_pkg.effectiveness.sectors import in_feasible_sector, in_forbidden_sector
 from allocator_pkg.vehicle.angles import wrap
-from allocator_pkg.vehicle.config import DOF_NAMES, SATURATION_MODES
-
-TYPES = ("fixed", "azimuth", "azimuth_vertical", "rudder", "fin")
-FIXED_DIRECTIONS = ("fixed", "rudder", "fin")
-finite = st.floats(min_value=-3.0, max_value=3.0, allow_nan=False)
-unit_vector = st.tuples(finite, finite, finite).filter(lambda v: math.hypot(*v) > 0.1)
-
-
-@st.composite
-def actuator(draw, name: str, types: tuple[str, ...] = TYPES) -> dict:
-    kind = draw(st.sampled_from(types))
-    keys = {"type": kind, "position": list(draw(st.tuples(finite, finite, finite)))}
-    if kind in ("fixed", "azimuth", "azimuth_vertical"):
-        keys["thrust_max"] = draw(st.floats(min_value=1.0, max_value=1e4))
-        if draw(st.booleans()):
-            keys["thrust_rate_max"] = draw(st.floats(min_value=0.5, max_value=1e5))
-        keys["command_map"] = draw(st.sampled_from(("linear", "quadratic")))
-    if kind in ("fixed", "rudder", "fin"):
-        keys["direction"] = list(draw(unit_vector))
-    if kind == "fixed":
-        keys["thrust_min"] = -draw(st.floats(min_value=0.0, max_value=1.0)) * keys["thrust_max"]
-    if kind in ("azimuth", "azimuth_vertical"):
-        if draw(st.booleans()):
-            keys["azimuth_rate_max"] = draw(st.floats(min_value=0.05, max_value=10.0))
-        if draw(st.booleans()):
-            low = draw(st.floats(min_value=-3.0, max_value=0.0))
-            keys["azimuth_min"], keys["azimuth_max"] = low, low + draw(st.floats(min_value=0.5, max_value=3.0))
-            keys["azimuth_initial"] = keys["azimuth_min"]
-        elif draw(st.booleans()):
-            start = draw(st.floats(min_value=0.5, max_value=2.5))
-            keys["forbidden_sectors"] = [start, start + draw(st.floats(min_value=0.1, max_value=1.0))]
-        if draw(st.booleans()):
-            keys["reversible"] = True
-            keys["thrust_min"] = -draw(st.floats(min_value=0.0, max_value=1.0)) * keys["thrust_max"]
-    if kind in ("rudder", "fin"):
-        keys.update(area=draw(st.floats(min_value=0.01, max_value=1.0)),
-                    lift_coefficient=draw(st.floats(min_value=0.5, max_value=5.0)),
-                    drag_coefficient=draw(st.floats(min_value=0.0, max_value=2.0)),
-                    deflection_max=draw(st.floats(min_value=0.1, max_value=0.6)))
-        if draw(st.booleans()):
-            keys["deflection_rate_max"] = draw(st.floats(min_value=0.1, max_value=5.0))
-    return {f"actuators.{name}.{key}": value for key, value in keys.items()}
-
-
-@st.composite
-def vehicles(draw, types: tuple[str, ...] = TYPES, saturation: tuple[str, ...] = SATURATION_MODES) -> Vehicle:
-    count = draw(st.integers(min_value=1, max_value=12))
-    names = [f"a{i}" for i in range(count)]
-    parameters = {"actuators.names": names, "rate_hz": draw(st.sampled_from([10.0, 50.0, 200.0])),
-                  "dofs": draw(st.lists(st.sampled_from(DOF_NAMES), min_size=1, max_size=6, unique=True)),
-                  "saturation": draw(st.sampled_from(saturation)),
-                  "weights.minimax": draw(st.sampled_from([0.0, 0.0, 10.0]))}
-    for name in names:
-        parameters.update(draw(actuator(name, types)))
-    return vehicle_from_parameters(parameters)
-
-
-@st.composite
-def faults(draw, vehicle: Vehicle) -> dict:
-    result = {}
-    for a in vehicle.actuators:
-        mode = draw(st.sampled_from([None, None, FaultMode.FAILED, FaultMode.DEGRADED, FaultMode.STUCK]))
-        if mode == FaultMode.DEGRADED:
-            result[a.name] = (mode, draw(st.floats(min_value=0.05, max_value=1.0)), 0.0)
-        elif mode == FaultMode.STUCK and (a.rotatable or a.is_surface):
-            if a.rotatable:
-                low, high = (-math.pi, math.pi) if a.rotation.continuous else (a.rotation.azimuth_min,
-                                                                               a.rotation.azimuth_max)
-                angle = draw(st.floats(min_value=low, max_value=high))
-            else:
-                angle = draw(st.floats(min_value=-1.0, max_value=1.0)) * a.surface.deflection_max
-            result[a.name] = (mode, 1.0, angle)
-        elif mode == FaultMode.FAILED:
-            result[a.name] = (mode, 0.0, 0.0)
-    return result
-
-
-requests = st.lists(st.tuples(*[st.one_of(st.just(0.0), st.floats(min_value=-1e3, max_value=1e3),
-                                          st.floats(min_value=-1e9, max_value=1e9))] * 6),
-                    min_size=1, max_size=4)
 
 
 def run(vehicle, method, fault_set, sequence, speed):

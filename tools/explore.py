@@ -1,0 +1,86 @@
+"""Fresh generated vehicles by the thousand, judged as test/test_generated.py judges them.
+
+Every case of test_generated.CASES runs for each of its methods with hypothesis, not
+derandomised, with --examples draws; the seed is printed so that a run can be repeated
+(--seed). A counter-example is printed as a ROS 2 params file (the vehicle), with its faults and
+requests as comments, to keep in test/data/. Not part of CI: ``make explore``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import sys
+import time
+import traceback
+from pathlib import Path
+
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "test"))
+
+from hypothesis import HealthCheck, given, seed, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+from test_generated import CASES  # noqa: E402
+
+
+def params_file(parameters: dict) -> str:
+    """Flat parameters as a ROS 2 params file (``/**: ros__parameters:``)."""
+    nested: dict = {}
+    for name, value in parameters.items():
+        node = nested
+        *parents, leaf = name.split(".")
+        for parent in parents:
+            node = node.setdefault(parent, {})
+        node[leaf] = value
+    return yaml.safe_dump({"/**": {"ros__parameters": nested}}, sort_keys=False)
+
+
+def explore(case, method: str, examples: int, run_seed: int) -> str | None:
+    """The counter-example of one case and method, or None."""
+    @seed(run_seed)
+    @settings(max_examples=examples, deadline=None, database=None, derandomize=False,
+              suppress_health_check=list(HealthCheck), print_blob=True)
+    @given(data=st.data())
+    def check(data):
+        case(data, method)
+
+    try:
+        check()
+    except Exception:               # a judge's assertion or an error: the draws come with it
+        return traceback.format_exc()
+    return None
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--examples", type=int, default=300, help="draws per case and method (default %(default)s)")
+    parser.add_argument("--seed", type=int, default=None, help="default: a fresh one, printed")
+    parser.add_argument("--minutes", type=float, default=None, help="stop starting new cases after this")
+    parser.add_argument("--case", choices=list(CASES), action="append", help="default: every case")
+    arguments = parser.parse_args(argv)
+    run_seed = arguments.seed if arguments.seed is not None else random.SystemRandom().randrange(2 ** 32)
+    print(f"explore: seed {run_seed}, {arguments.examples} draws per case and method", flush=True)
+    start = time.monotonic()
+    found = 0
+    for name in arguments.case or list(CASES):
+        case, methods = CASES[name]
+        for method in methods:
+            if arguments.minutes is not None and time.monotonic() - start > 60.0 * arguments.minutes:
+                print("explore: time is up", flush=True)
+                return 1 if found else 0
+            began = time.monotonic()
+            failure = explore(case, method, arguments.examples, run_seed)
+            print(f"{name} {method}: {'COUNTER-EXAMPLE' if failure else 'ok'} ({time.monotonic() - began:.0f} s)",
+                  flush=True)
+            if failure:
+                found += 1
+                print(failure)
+    print(f"explore: {found} counter-examples; draws printed above as 'Draw 1' (vehicle, parameters), "
+          "'Draw 2' (faults), 'Draw 3' (requests); params_file() turns the parameters into a file for test/data/")
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
