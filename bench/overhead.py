@@ -28,6 +28,7 @@ os.environ.setdefault("ROS_DOMAIN_ID", "42")
 import argparse
 import contextlib
 import json
+import math
 import subprocess
 import sys
 import tempfile
@@ -47,6 +48,8 @@ from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 ROOT = Path(__file__).resolve().parents[1]
 NODE_BINARY = Path(sys.executable).parent / "allocator_node"
 VEHICLES = {"bluerov2_heavy": ROOT / "config" / "bluerov2_heavy.yaml", "dp_vessel": ROOT / "config" / "dp_vessel.yaml"}
+AMPLITUDE = {"bluerov2_heavy": 40.0, "dp_vessel": 2.0e5}
+"""[N] The horizontal force the probe asks of each vehicle: about 40 % of its authority."""
 INPUT_RATES = (100.0, 500.0)
 TIMER_RATES = (50.0, 500.0)
 WARM_UP = 2.0             # s of input before the window (discovery settles, caches fill)
@@ -75,11 +78,19 @@ def bare_command(*arguments: str) -> list[str]:
     return [sys.executable, str(ROOT / "bench" / "bare.py"), *arguments]
 
 
-class Probe:
-    """Publishes numbered wrenches and times the answers: the echo's, or the allocator's
-    commands of the sample whose status carries the number (requested force x)."""
+TAG = 1e-6
+"""[N m] The roll moment that numbers each wrench (k * TAG for the k-th): too small to matter to
+any allocation, exact through the node's frame conversion (roll is the same in FRD and FLU)."""
+PERIOD = 5.0
+"""[s] Period of the slowly turning request the probe sends."""
 
-    def __init__(self, context, allocator: bool):
+
+class Probe:
+    """Publishes numbered wrenches, a request of ``amplitude`` turning slowly in the horizontal
+    plane, and times the answers: the echo's, or the allocator's commands of the sample whose
+    status carries the number."""
+
+    def __init__(self, context, allocator: bool, amplitude: float = 0.0):
         self.node = rclpy.create_node("overhead_probe", context=context)
         self.executor = SingleThreadedExecutor(context=context)
         self.executor.add_node(self.node)
@@ -97,16 +108,17 @@ class Probe:
             self.node.create_subscription(WrenchStamped, "echo", self._on_echo, qos)
         self.message = WrenchStamped()
         self.message.header.frame_id = "base_link"
+        self.amplitude = amplitude
         self.sequence = 0
 
-    def _answer(self, number: float, receipt: float) -> None:
-        published = self.published.pop(int(number), None)
+    def _answer(self, tag: float, receipt: float) -> None:
+        published = self.published.pop(round(tag / TAG), None)
         if published is not None:
             self.answers.append((receipt, receipt - published))
 
     def _on_echo(self, message: WrenchStamped) -> None:
         self.received += 1
-        self._answer(message.wrench.force.x, time.monotonic())
+        self._answer(message.wrench.torque.x, time.monotonic())
 
     def _on_commands(self, message: ThrusterCommands) -> None:
         self.received += 1
@@ -116,12 +128,16 @@ class Probe:
         receipt = time.monotonic()
         if self._commands is not None and self._commands[1] == message.header.stamp:
             receipt = self._commands[0]
-        self._answer(message.requested.force.x, receipt)
+        self._answer(message.requested.torque.x, receipt)
 
     def publish(self) -> None:
         self.sequence += 1
-        self.message.wrench.force.x = float(self.sequence)
-        self.published[self.sequence] = time.monotonic()
+        now = time.monotonic()
+        wrench = self.message.wrench
+        angle = 2.0 * math.pi * now / PERIOD
+        wrench.force.x, wrench.force.y = self.amplitude * math.cos(angle), self.amplitude * math.sin(angle)
+        wrench.torque.x = self.sequence * TAG
+        self.published[self.sequence] = now
         self.wrench.publish(self.message)
 
     def drive(self, rate_hz: float, seconds: float) -> None:
@@ -153,10 +169,11 @@ class Probe:
         self.node.destroy_node()
 
 
-def measure(command: list[str], allocator: bool, rate_hz: float, seconds: float, input_driven: bool) -> dict:
+def measure(command: list[str], allocator: bool, rate_hz: float, seconds: float, input_driven: bool,
+            amplitude: float = 0.0) -> dict:
     """One node process: CPU per answer and latency over one window after the warm-up."""
     with process(command) as child, ros_context() as context:
-        probe = Probe(context, allocator)
+        probe = Probe(context, allocator, amplitude)
         try:
             probe.wait(input_driven)
             if input_driven:
@@ -181,18 +198,19 @@ def measure(command: list[str], allocator: bool, rate_hz: float, seconds: float,
             "latency_ms_p99": float(np.percentile(latencies, 99)) if latencies else None}
 
 
-def cases() -> list[tuple[str, str, float, list[str], bool, bool]]:
-    """(kind, name, rate, command, allocator, input-driven) of every case."""
+def cases() -> list[tuple[str, str, float, list[str], bool, bool, float]]:
+    """(kind, name, rate, command, allocator, input-driven, amplitude) of every case."""
     found = []
     for rate in INPUT_RATES:
-        found.append(("input", "bare echo", rate, bare_command("echo"), False, True))
+        found.append(("input", "bare echo", rate, bare_command("echo"), False, True, 0.0))
         for name, config in VEHICLES.items():
             found.append(("input", name, rate, allocator_command(config, "trigger:=input", "rate_hz:=1000.0",
-                                                                 "wrench_type:=wrench_stamped"), True, True))
+                                                                 "wrench_type:=wrench_stamped"), True, True,
+                          AMPLITUDE[name]))
     for rate in TIMER_RATES:
-        found.append(("timer", "bare timer", rate, bare_command("timer", str(rate)), False, False))
+        found.append(("timer", "bare timer", rate, bare_command("timer", str(rate)), False, False, 0.0))
         found.append(("timer", "bluerov2_heavy", rate, allocator_command(VEHICLES["bluerov2_heavy"], "trigger:=timer",
-                                                                          f"rate_hz:={rate}"), True, False))
+                                                                          f"rate_hz:={rate}"), True, False, 0.0))
     return found
 
 
@@ -239,8 +257,9 @@ def main(argv: list[str] | None = None) -> int:
     rounds = []
     for _ in range(arguments.rounds):
         figures = {}
-        for kind, name, rate, command, allocator, input_driven in cases():
-            figures[f"{kind}|{name}|{rate}"] = measure(command, allocator, rate, arguments.seconds, input_driven)
+        for kind, name, rate, command, allocator, input_driven, amplitude in cases():
+            figures[f"{kind}|{name}|{rate}"] = measure(command, allocator, rate, arguments.seconds, input_driven,
+                                                       amplitude)
         rounds.append(figures)
     rows = summarise(rounds)
     print_rows(rows)
