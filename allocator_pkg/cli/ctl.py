@@ -5,6 +5,7 @@
     allocator-ctl clear
     allocator-ctl echo [--csv FILE] [--mcap FILE]             (--mcap: wrench, commands, status for ros2 bag, Foxglove)
     allocator-ctl capability 1 0 0 0 0 0                      (~/get_capability along a wrench)
+    allocator-ctl step-test [--share 0.1] [--hold 3] [--rest 2] [--actuators]   (direction check on the bench)
     allocator-ctl params get [NAME ...]
     allocator-ctl params set NAME=VALUE [NAME=VALUE ...]      (applied atomically)
 
@@ -37,6 +38,7 @@ from allocator_msgs.srv import GetCapability, SetActuatorFault
 from ..ros.conversions import OUTCOME_NAMES, array_to_wrench, wrench_to_array
 from ..vehicle.node_settings import NODE_NAME
 from .recording import Recording
+from .step_test import StepTest
 
 FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
                "failed": ActuatorFault.FAILED, "stuck": ActuatorFault.STUCK}
@@ -230,6 +232,20 @@ class Echo:
         self.writer.writerow(row)
 
 
+def _share(text: str) -> float:
+    value = float(text)
+    if not 0.0 < value <= 0.5:
+        raise argparse.ArgumentTypeError(f"{text}: a share in (0, 0.5]")
+    return value
+
+
+def _seconds(text: str) -> float:
+    value = float(text)
+    if not 0.0 <= value <= 30.0:
+        raise argparse.ArgumentTypeError(f"{text}: seconds in [0, 30]")
+    return value
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="allocator-ctl", description=__doc__.split("\n\n")[0])
     parser.add_argument("--node", default=NODE_NAME, help="allocator node name (default %(default)s)")
@@ -256,6 +272,18 @@ def _parser() -> argparse.ArgumentParser:
                       "allocation_status to this MCAP file (ros2 bag, Foxglove)")
     echo.add_argument("--rate", type=float, default=2.0, help="printed lines per second (default %(default)s)")
     echo.add_argument("--duration", type=float, default=None, help="seconds (default: until Ctrl-C)")
+    step = commands.add_parser("step-test", help="step each controlled DOF +/- (or, with --actuators, each "
+                               "actuator alone) and print what every actuator was commanded")
+    step.add_argument("--share", type=_share, default=0.1,
+                      help="share of the capability along each DOF, or of each actuator's thrust_max with "
+                           "--actuators, in (0, 0.5] (default %(default)s)")
+    step.add_argument("--hold", type=_seconds, default=3.0, help="seconds of each step, at most 30 "
+                      "(default %(default)s)")
+    step.add_argument("--rest", type=_seconds, default=2.0, help="seconds of zero between steps, at most 30 "
+                      "(default %(default)s)")
+    step.add_argument("--rate", type=float, default=10.0, help="wrenches per second (default %(default)s)")
+    step.add_argument("--actuators", action="store_true", help="hold one actuator at a time through "
+                      "~/hold_actuator (the node's step_test.enabled must be true)")
     params = commands.add_parser("params", help="get or set the allocator's parameters")
     params.add_argument("action", choices=["get", "set"])
     params.add_argument("items", nargs="*", help="names to get, or NAME=VALUE to set")
@@ -318,6 +346,9 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
             if recording is not None:
                 recording.close()
         return 0
+    if arguments.command == "step-test":
+        test = StepTest(controller, sys.stdout, arguments.share, arguments.hold, arguments.rest, arguments.rate)
+        return test.run_actuators(arguments.share) if arguments.actuators else test.run_dofs()
     if arguments.action == "get":
         for name, value in controller.get_parameters(arguments.items).items():
             print(f"{name}: {value}")

@@ -206,6 +206,13 @@ NODE_KEYS: tuple[Key, ...] = (
     Key("ros2_control.actuators", STR_LIST, "The actuators of the ros2_control topics in the controller's joint "
         "order.", default_doc="actuators.names",
         constraint="names from actuators.names, each at most once"),
+    Key("step_test.enabled", BOOL, "Allow ~/hold_actuator (allocator-ctl step-test --actuators): one actuator held "
+        "at a small thrust for a bounded time, every other one held out as FAILED. For a vehicle on the bench or "
+        "tethered, never in operation (docs/step_test.md).", default=False),
+    Key("step_test.thrust_share", FLOAT, "Largest thrust of a hold, as a share of the actuator's largest thrust "
+        "magnitude (thrust_max or -thrust_min).", default=0.2, minimum=0.0, exclusive_minimum=True, maximum=0.5),
+    Key("step_test.duration_max", FLOAT, "Longest hold; a hold ends by itself after its duration.", default=5.0,
+        minimum=0.0, exclusive_minimum=True, maximum=30.0, unit="s"),
 )
 """Settings of the ROS node only (:class:`allocator_pkg.vehicle.node_settings.NodeSettings`)."""
 

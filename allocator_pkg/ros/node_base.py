@@ -26,7 +26,7 @@ from rclpy.signals import SignalHandlerOptions
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
-from allocator_msgs.srv import GetCapability, SetActuatorFault
+from allocator_msgs.srv import GetCapability, HoldActuator, SetActuatorFault
 
 from ..allocation.allocator import Allocator
 from ..configuration import urdf
@@ -89,6 +89,7 @@ class AllocatorBase(WholeSetParameters):
         self.create_service(SetActuatorFault, "~/set_actuator_fault", self._on_set_fault)
         self.create_service(Trigger, "~/clear_faults", self._on_clear_faults)
         self.create_service(GetCapability, "~/get_capability", self._on_get_capability)
+        self.create_service(HoldActuator, "~/hold_actuator", self._on_hold_actuator)
         self.add_pre_set_parameters_callback(ros_parameters.typed)
         self.add_on_set_parameters_callback(self._check_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
@@ -210,6 +211,13 @@ class AllocatorBase(WholeSetParameters):
         response.success, response.message, response.scale, achieved = \
             self._runtime.capability(wrench_to_array(request.direction))
         response.achieved = array_to_wrench(achieved)
+        return response
+
+    def _on_hold_actuator(self, request: HoldActuator.Request, response: HoldActuator.Response):
+        if self._runtime is None:
+            response.success, response.message = False, self._not_configured()
+            return response
+        response.success, response.message = self._runtime.hold(request.actuator, request.thrust, request.duration)
         return response
 
     # -- parameters ---------------------------------------------------------------------

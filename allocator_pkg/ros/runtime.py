@@ -22,11 +22,20 @@ With thrust tables measured at several supply voltages, the runtime follows the 
 counted and logged, the last valid one kept; with none for ``battery_timeout`` seconds the
 thrust limits go back to ``nominal_voltage`` (checked with the diagnostics, once a second),
 and the diagnostics say so.
+
+On the bench (``step_test.enabled``), ``~/hold_actuator`` holds one actuator at a small thrust
+for a bounded time (:meth:`~AllocationRuntime.hold`): every other actuator is set FAILED, and
+each sample allocates the wrench the held thrust gives along the actuator's current direction,
+so that the actuator alone meets it through the same limits, faults, rate limits and dead band
+as any sample's. A stale input still stops it; when the hold ends (its duration, a fault
+service, a parameter change, deactivation) the faults in force before come back.
 """
 
 from __future__ import annotations
 
+import math
 import threading
+from dataclasses import dataclass
 
 import numpy as np
 from diagnostic_msgs.msg import DiagnosticArray
@@ -47,7 +56,7 @@ from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 
 from ..allocation.allocator import AllocationResult, Allocator
 from ..analysis.capability import Capability
-from ..effectiveness.faults import FaultMode
+from ..effectiveness.faults import Fault, FaultMode
 from ..vehicle.config import Vehicle
 from ..vehicle.frames import wrench_between
 from ..vehicle.node_settings import INPUT, TIMER, NodeSettings
@@ -62,6 +71,17 @@ from .watchdog import Watchdog
 DIAGNOSTICS_PERIOD = 1.0
 LOG_THROTTLE = 5.0
 ACTIVE = LifecycleState("active", State.PRIMARY_STATE_ACTIVE)
+
+
+@dataclass
+class Hold:
+    """One actuator held (``index``) at ``thrust`` [N] until ``end`` [ns of the node clock]; the
+    faults in force before it."""
+
+    index: int
+    thrust: float
+    end: int
+    faults: dict[str, Fault]
 
 
 class AllocationRuntime:
@@ -90,6 +110,7 @@ class AllocationRuntime:
         self._last: AllocationResult | None = None
         self._markers_due = 0
         self._reported: set[str] = set()
+        self._hold: Hold | None = None
         self._wrench_type = wrench_input.message_type(settings)
         self._commands = self._output(ThrusterCommands, "thruster_commands", qos.output())
         self._status = self._output(AllocationStatus, "allocation_status", qos.output())
@@ -171,6 +192,7 @@ class AllocationRuntime:
         """Command zero thrust once, angles held, then stop sampling and reporting. A managed
         node disables its lifecycle publishers after this."""
         with self._lock:
+            self._end_hold()
             if self.active:
                 self._publish(self.allocator.stop(), self._node.get_clock().now(), "stopped: deactivated")
             self.active = False
@@ -301,7 +323,14 @@ class AllocationRuntime:
             self._node.get_logger().info(transition[1])
         if not (stale or self._waiting_wrench or self.settings.trigger == TIMER):
             return
-        result = self.allocator.stop() if stale else self.allocator.allocate(self._wrench)
+        if self._hold is not None and (stale or now.nanoseconds >= self._hold.end):
+            self._end_hold()
+        if stale:
+            result = self.allocator.stop()
+        elif self._hold is not None:
+            result = self.allocator.allocate(self._held_wrench())
+        else:
+            result = self.allocator.allocate(self._wrench)
         self._waiting_wrench = False
         self._last_sample = now.nanoseconds
         self.samples += 1
@@ -337,6 +366,7 @@ class AllocationRuntime:
                            f"DEGRADED={ActuatorFault.DEGRADED}, FAILED={ActuatorFault.FAILED}, "
                            f"STUCK={ActuatorFault.STUCK}")
         with self._lock:
+            self._end_hold()
             try:
                 self.allocator.set_fault(fault.actuator, mode, efficiency=fault.efficiency, angle=fault.azimuth)
             except ValueError as error:
@@ -346,6 +376,7 @@ class AllocationRuntime:
     def clear_faults(self) -> str:
         """Every actuator back to NOMINAL; what was cleared."""
         with self._lock:
+            self._end_hold()
             had = sorted(self.allocator.faults)
             self.allocator.clear_faults()
         return f"cleared faults of {', '.join(had)}" if had else "no faults were set"
@@ -377,6 +408,7 @@ class AllocationRuntime:
     def apply(self, vehicle: Vehicle, settings: NodeSettings) -> None:
         """A checked configuration of the same actuators, between two samples."""
         with self._lock:
+            self._end_hold()
             self.allocator.reconfigure(vehicle)
             self._period_ns = round(1e9 / vehicle.rate_hz)
             if settings.trigger == TIMER and self._timer.timer_period_ns != self._period_ns:
@@ -387,6 +419,65 @@ class AllocationRuntime:
                 self._ros2_control = Ros2ControlOutput(vehicle, settings, self._output, self._destroy_output)
             self.settings = settings
             self.watchdog.timeout = settings.wrench_timeout
+
+    # -- the bench: one actuator held ----------------------------------------------------
+
+    def hold(self, actuator: str, thrust: float, duration: float) -> tuple[bool, str]:
+        """Hold ``actuator`` at ``thrust`` [N] for ``duration`` [s], every other one FAILED, from
+        the next sample; (success, message saying why not). Refused unless step_test.enabled,
+        beyond step_test.thrust_share of the actuator's largest thrust or step_test.duration_max,
+        for a control surface, for an actuator acting on no controlled DOF, and while inactive."""
+        settings = self.settings
+        if not settings.step_test_enabled:
+            return False, "refused: step_test.enabled is false (enable it on the bench only)"
+        with self._lock:
+            allocator = self.allocator
+            names = allocator.names
+            if actuator not in names:
+                return False, f"unknown actuator '{actuator}'; actuators: {', '.join(names)}"
+            index = names.index(actuator)
+            config = allocator.vehicle.actuators[index]
+            if config.is_surface:
+                return False, f"{actuator} is a control surface: it has no thrust of its own to hold"
+            largest = max(config.thrust_max, -config.thrust_min)
+            limit = settings.step_test_thrust_share * largest
+            if not (math.isfinite(thrust) and abs(thrust) <= limit):
+                return False, (f"thrust {thrust:g} N of {actuator}: at most {limit:g} N in magnitude "
+                               f"(step_test.thrust_share {settings.step_test_thrust_share:g} of {largest:g} N)")
+            if not (math.isfinite(duration) and 0.0 < duration <= settings.step_test_duration_max):
+                return False, f"duration {duration:g} s: more than 0 and at most step_test.duration_max " \
+                              f"{settings.step_test_duration_max:g} s"
+            if not self.active:
+                return False, "not active: no samples to hold an actuator in"
+            column = allocator.configuration_matrix()[list(allocator.vehicle.dof_indices), index]
+            if not np.any(column):
+                return False, f"{actuator} acts on none of the controlled DOFs ({', '.join(allocator.dofs)})"
+            self._end_hold()
+            saved = allocator.faults
+            for name in names:
+                if name != actuator:
+                    allocator.set_fault(name, FaultMode.FAILED)
+            end = self._node.get_clock().now().nanoseconds + round(duration * 1e9)
+            self._hold = Hold(index, float(thrust), end, saved)
+        self._node.get_logger().warn(f"step test: holding {actuator} at {thrust:g} N for {duration:g} s, every "
+                                     "other actuator FAILED")
+        return True, f"{actuator}: {thrust:g} N for {duration:g} s from the next sample, every other actuator FAILED"
+
+    def _held_wrench(self) -> np.ndarray:
+        """The wrench (FRD) the held thrust gives along the held actuator's current direction. Lock held."""
+        hold = self._hold
+        return self.allocator.configuration_matrix()[:, hold.index] * hold.thrust
+
+    def _end_hold(self) -> None:
+        """Put back the faults in force before the hold, if one runs. Lock held."""
+        hold, self._hold = self._hold, None
+        if hold is None:
+            return
+        allocator = self.allocator
+        allocator.clear_faults()
+        for name, fault in hold.faults.items():
+            allocator.set_fault(name, fault.mode, efficiency=fault.efficiency, angle=fault.angle)
+        self._node.get_logger().info(f"step test: {allocator.names[hold.index]} released, faults as before")
 
     def _apply_per_actuator(self, settings: NodeSettings) -> None:
         if settings.per_actuator_topics and self._per_actuator is None:

@@ -38,8 +38,10 @@ class NodeSettings:
     actuator's link in it; how long [s] the thrust limits follow the last battery voltage
     before they fall back to the nominal voltage; the ros2_control topics of thrust and of
     azimuth angles (empty: none) and the actuators they carry, in the controller's joint order
-    (empty: every actuator in configuration order). A dotted key fills the field of its name
-    with '_' for '.' (``ros2_control.thrust_topic``: ``ros2_control_thrust_topic``).
+    (empty: every actuator in configuration order); whether ``~/hold_actuator`` may hold one
+    actuator at a time, at most what share of its largest thrust and for how long. A dotted
+    key fills the field of its name with '_' for '.' (``ros2_control.thrust_topic``:
+    ``ros2_control_thrust_topic``).
     """
 
     wrench_timeout: float
@@ -55,4 +57,7 @@ class NodeSettings:
     ros2_control_thrust_topic: str = ""
     ros2_control_angle_topic: str = ""
     ros2_control_actuators: tuple[str, ...] | None = None
+    step_test_enabled: bool = False
+    step_test_thrust_share: float = 0.2
+    step_test_duration_max: float = 5.0
     links: dict[str, str] = field(default_factory=dict)
