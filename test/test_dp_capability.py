@@ -8,6 +8,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from conftest import ROOT
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.optimize import linprog
 
 from allocator_pkg import load_vehicle, vehicle_from_parameters
@@ -184,6 +186,17 @@ def test_a_failure_never_raises_a_number(dp_vessel):
         assert np.all(result.numbers[group] <= result.numbers["intact"])
         assert np.all(result.wind_limits[group] <= result.wind_limits["intact"] + 1e-9)
         assert np.all(result.numbers[WORST] <= result.numbers[group])
+
+
+BOX_LEVEL1 = Level1(vehicle_from_parameters(BOX), SMALL)
+
+
+@settings(deadline=None)                  # a linear programme per example: no timing asserted
+@given(level=st.floats(0.0, 11.0), heading=st.floats(-360.0, 360.0),
+       failed=st.sets(st.sampled_from(["surge_port", "surge_stbd", "sway_aft", "sway_fwd"])))
+def test_a_condition_held_with_failures_is_held_intact(level, heading, failed):
+    if BOX_LEVEL1.balanced(level, math.radians(heading), tuple(failed)):
+        assert BOX_LEVEL1.balanced(level, math.radians(heading))
 
 
 def test_every_thruster_failed_gives_zero():
