@@ -2,8 +2,9 @@
 
 Every case of test_generated.CASES runs for each of its methods with hypothesis, not
 derandomised, with --examples draws; the seed is printed so that a run can be repeated
-(--seed). A counter-example is printed as a ROS 2 params file (the vehicle), with its faults and
-requests as comments, to keep in test/data/. Not part of CI: ``make explore``.
+(--seed); --minutes stops starting new cases. A counter-example (shrunk) is printed as a ROS 2
+params file of the vehicle, with its faults, requests and the failed judgement as comments, to
+keep in test/data/. Not part of CI: ``make explore``.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "test"))
 
-from hypothesis import HealthCheck, given, seed, settings  # noqa: E402
+from hypothesis import HealthCheck, Phase, given, seed, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 from test_generated import CASES  # noqa: E402
 
@@ -38,18 +39,40 @@ def params_file(parameters: dict) -> str:
 
 
 def explore(case, method: str, examples: int, run_seed: int) -> str | None:
-    """The counter-example of one case and method, or None."""
+    """The counter-example of one case and method as a params file with its faults and requests
+    as comments, or None. Hypothesis replays the shrunk counter-example last, so the draws
+    recorded last are its."""
+    last: dict = {}
+
     @seed(run_seed)
     @settings(max_examples=examples, deadline=None, database=None, derandomize=False,
-              suppress_health_check=list(HealthCheck), print_blob=True)
+              suppress_health_check=list(HealthCheck), phases=[Phase.generate, Phase.shrink])
     @given(data=st.data())
     def check(data):
+        draw = data.draw
+
+        def recording(strategy, label=None):
+            value = draw(strategy, label)
+            if isinstance(value, tuple) and len(value) >= 2 and isinstance(value[1], dict):
+                last.clear()
+                last["parameters"] = value[1]
+            elif isinstance(value, dict):
+                last["faults"] = value
+            elif isinstance(value, tuple) and len(value) == 2 and isinstance(value[0], str):
+                last["requests"] = value
+            return value
+
+        data.draw = recording
         case(data, method)
 
     try:
         check()
-    except Exception:               # a judge's assertion or an error: the draws come with it
-        return traceback.format_exc()
+    except Exception:               # a judge's assertion or an error, with the shrunk draws
+        comments = [f"# {line}" for line in traceback.format_exc().splitlines()[-12:]]
+        comments.append(f"# faults: {last.get('faults', {})}")
+        kind, requests = last.get("requests", ("none", []))
+        comments.append(f"# requests ({kind}): {[list(map(float, tau)) for tau in requests[:3]]}")
+        return "\n".join(comments) + "\n" + params_file(last.get("parameters", {}))
     return None
 
 
@@ -77,8 +100,7 @@ def main(argv: list[str] | None = None) -> int:
             if failure:
                 found += 1
                 print(failure)
-    print(f"explore: {found} counter-examples; draws printed above as 'Draw 1' (vehicle, parameters), "
-          "'Draw 2' (faults), 'Draw 3' (requests); params_file() turns the parameters into a file for test/data/")
+    print(f"explore: {found} counter-examples (each printed above as a params file for test/data/)")
     return 1 if found else 0
 
 
