@@ -165,9 +165,10 @@ def azimuth_vessels(draw, method: str = "qp", sectors: bool | None = None, rates
 
 
 @st.composite
-def surface_vehicles(draw, method: str = "qp") -> tuple[Vehicle, dict, float]:
+def surface_vehicles(draw, method: str = "qp", drag: bool = True) -> tuple[Vehicle, dict, float]:
     """One or two stern thrusters, 2-4 fins and 1-2 rudders (some behind a propeller), controlled
-    in surge and a drawn subset of heave, roll, pitch, yaw; with the speed it sails at."""
+    in surge and a drawn subset of heave, roll, pitch, yaw; with the speed it sails at. Without
+    ``drag`` the surfaces have none (nothing for the thrusters to feed forward, (1.56))."""
     thrusters = draw(st.integers(min_value=1, max_value=2))
     fins = draw(st.integers(min_value=2, max_value=4))
     rudders = draw(st.integers(min_value=1, max_value=2))
@@ -189,7 +190,7 @@ def surface_vehicles(draw, method: str = "qp") -> tuple[Vehicle, dict, float]:
                 "direction": [0.0, 0.0, -1.0 if side < 0 else 1.0],
                 "area": draw(st.floats(min_value=0.05, max_value=0.15)),
                 "lift_coefficient": draw(st.floats(min_value=2.0, max_value=4.0)),
-                "drag_coefficient": draw(st.floats(min_value=0.0, max_value=1.0)),
+                "drag_coefficient": draw(st.floats(min_value=0.0, max_value=1.0)) if drag else 0.0,
                 "deflection_max": draw(st.floats(min_value=0.2, max_value=0.5))}
         if draw(st.booleans()):
             keys["deflection_rate_max"] = draw(st.floats(min_value=0.5, max_value=2.0))
@@ -198,7 +199,7 @@ def surface_vehicles(draw, method: str = "qp") -> tuple[Vehicle, dict, float]:
         keys = {"type": "rudder", "position": [-2.3, 0.0 if rudders == 1 else (-0.3 if i == 0 else 0.3),
                                                draw(st.floats(min_value=-0.2, max_value=0.2))],
                 "area": draw(st.floats(min_value=0.04, max_value=0.1)), "lift_coefficient": 3.0,
-                "drag_coefficient": draw(st.floats(min_value=0.0, max_value=1.0)),
+                "drag_coefficient": draw(st.floats(min_value=0.0, max_value=1.0)) if drag else 0.0,
                 "deflection_max": draw(st.floats(min_value=0.3, max_value=0.6))}
         if draw(st.booleans()):
             keys.update(flow="propeller_wake", wake_speed_factor=draw(st.floats(min_value=1.0, max_value=1.5)))
