@@ -86,8 +86,8 @@ def test_the_configuration_types_import_nothing_of_the_package_but_angles():
     assert graph()["allocator_pkg.vehicle.config"] == {"allocator_pkg.vehicle.angles"}
 
 
-LAYERS = ("vehicle", "effectiveness", "solvers", "methods", "configuration", "allocation", "analysis", "ros", "cli",
-          "testing")
+LAYERS = ("vehicle", "effectiveness", "solvers", "methods", "configuration", "allocation", "analysis", "simulation",
+          "ros", "cli", "testing")
 """The package's folders, lowest first: a module imports only from its own folder or one below."""
 
 

@@ -1,0 +1,106 @@
+"""A seeded environment: a current with a slowly varying speed and direction, wind with gusts
+and slowly varying wave drift for the vessel; a current for the ROV.
+
+Every slow variation is a first-order Gauss-Markov process x' = -x / T + w (the form Fossen
+2021 gives the slowly varying current speed), discretised exactly: x_k+1 = a x_k + sqrt(1 - a^2) sigma e_k,
+a = exp(-dt / T), e_k standard normal from one ``numpy`` generator seeded by the scenario, so
+its stationary standard deviation is sigma and its correlation time T. The gusts are such a
+process for the wind speed (turbulence intensity sigma / mean), not a Harris or NORSOK
+spectrum; the slowly varying wave drift is the mean drift of
+``analysis.environment_loads.wave_drift_load`` times (1 + such a process), not a Newman
+approximation from a wave spectrum. Directions are where the environment comes from, in
+degrees clockwise from north.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..analysis.environment_loads import VesselParticulars, wave_drift_load, wind_load
+
+
+@dataclass(frozen=True)
+class SlowVariation:
+    """sigma (stationary standard deviation) and T [s] (correlation time) of a Gauss-Markov process."""
+
+    sigma: float = 0.0
+    time_constant: float = 60.0
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.sigma) and self.sigma >= 0.0):
+            raise ValueError(f"variation sigma: a finite number >= 0, not {self.sigma!r}")
+        if not (math.isfinite(self.time_constant) and self.time_constant > 0.0):
+            raise ValueError(f"variation time_constant: a finite number > 0, not {self.time_constant!r}")
+
+
+class GaussMarkov:
+    """x_k+1 = a x_k + sqrt(1 - a^2) sigma e_k, starting at 0."""
+
+    def __init__(self, variation: SlowVariation, generator: np.random.Generator):
+        self.variation = variation
+        self.generator = generator
+        self.value = 0.0
+
+    def step(self, dt: float) -> float:
+        a = math.exp(-dt / self.variation.time_constant)
+        self.value = a * self.value + math.sqrt(1.0 - a * a) * self.variation.sigma * self.generator.standard_normal()
+        return self.value
+
+
+@dataclass(frozen=True)
+class EnvironmentSpec:
+    """Mean values and variations of a scenario's environment (speeds [m/s], directions [deg])."""
+
+    current_speed: float = 0.0
+    current_direction: float = 0.0
+    current_speed_variation: SlowVariation = SlowVariation()
+    current_direction_variation: SlowVariation = SlowVariation()
+    current_down: float = 0.0
+    """Vertical current [m/s] (ROV)."""
+    wind_speed: float = 0.0
+    wind_direction: float = 0.0
+    gusts: SlowVariation = SlowVariation()
+    wave_height: float = 0.0
+    wave_period: float = 8.0
+    wave_direction: float = 0.0
+    drift_variation: SlowVariation = SlowVariation()
+
+
+class Environment:
+    """Current [north, east, down] and, for a hull with particulars, the wind and wave-drift
+    load [X, Y, N] in the body frame; one :meth:`step` per simulation step."""
+
+    def __init__(self, spec: EnvironmentSpec, seed: int, particulars: VesselParticulars | None = None):
+        self.spec = spec
+        self.particulars = particulars
+        generator = np.random.default_rng(seed)
+        self._speed = GaussMarkov(spec.current_speed_variation, generator)
+        self._direction = GaussMarkov(spec.current_direction_variation, generator)
+        self._gust = GaussMarkov(spec.gusts, generator)
+        self._drift = GaussMarkov(spec.drift_variation, generator)
+
+    def step(self, dt: float) -> None:
+        for process in (self._speed, self._direction, self._gust, self._drift):
+            process.step(dt)
+
+    def current(self) -> np.ndarray:
+        """[north, east, down] [m/s] of the water: flowing away from where it comes from."""
+        speed = max(0.0, self.spec.current_speed + self._speed.value)
+        direction = math.radians(self.spec.current_direction + self._direction.value)
+        return np.array([-speed * math.cos(direction), -speed * math.sin(direction), self.spec.current_down])
+
+    def wind_speed(self) -> float:
+        return max(0.0, self.spec.wind_speed + self._gust.value)
+
+    def hull_load(self, heading: float) -> np.ndarray:
+        """[X, Y, N] of wind and wave drift on the hull at ``heading`` [rad] (none without particulars)."""
+        if self.particulars is None:
+            return np.zeros(3)
+        spec = self.spec
+        wind = wind_load(self.particulars, self.wind_speed(), math.radians(spec.wind_direction) - heading)
+        drift = wave_drift_load(self.particulars, spec.wave_height, spec.wave_period,
+                                math.radians(spec.wave_direction) - heading)
+        return wind + drift * max(0.0, 1.0 + self._drift.value)

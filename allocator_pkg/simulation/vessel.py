@@ -1,0 +1,114 @@
+"""The DP vessel in surge, sway and yaw, after the offshore supply vessel ``osv`` of Fossen's
+MSS toolbox (VESSELS/models/osv.m), reduced to the horizontal plane:
+
+    M nu_r' + C(nu_r) nu_r + D nu_r - tau_surge(u_r) - tau_crossflow(nu_r) = tau + tau_env
+    nu = nu_r + nu_c,   eta' = R(psi) nu
+
+(Fossen 2021, (6.111)-(6.116) with an irrotational current, Property 10.1), where nu_r is the
+velocity through the water. Values from osv.m: L 83 m, B 18 m, T 5 m, Cb 0.65, rho 1025,
+m = rho Cb L B T, the centre of gravity 4.5 m aft of the body origin (midships), radius of
+gyration in yaw 0.25 L, added mass MA11 1e6 kg, MA22 3e6 kg, MA26 -6e6 kg m, MA66 1.156e9
+kg m^2 (supply.mat at its lowest frequency), linear damping M_ii / T_i with T1 = T2 = 100 s
+and T6 = 1 s, surge damping blended from linear to quadratic with 1 - tanh(|u_r| / 2 m/s),
+and cross-flow drag over 20 strips. Both drag coefficients are those of
+``analysis.environment_loads`` (current_surge over B T, current_sway as the 2-D cross-flow
+coefficient), so that a current loads this hull as the DP capability analysis says it does.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..analysis.environment_loads import LoadCoefficients
+from .kinematics import coriolis_planar
+
+STRIPS = 20
+"""Hull strips of the cross-flow drag integral."""
+
+
+@dataclass(frozen=True)
+class VesselParameters:
+    """A ship-shaped hull in the horizontal plane (osv.m values by default)."""
+
+    length: float = 83.0
+    beam: float = 18.0
+    draught: float = 5.0
+    block_coefficient: float = 0.65
+    water_density: float = 1025.0
+    x_g: float = -4.5
+    """x [m] of the centre of gravity from the body origin."""
+    yaw_gyration: float = 0.25
+    """Radius of gyration in yaw as a share of the length."""
+    added_mass: tuple[float, float, float, float] = (1.0e6, 3.0e6, -6.0e6, 1.156e9)
+    """MA11 [kg], MA22 [kg], MA26 [kg m], MA66 [kg m^2]."""
+    time_constants: tuple[float, float, float] = (100.0, 100.0, 1.0)
+    """T1, T2, T6 [s] of the linear damping."""
+    crossover_speed: float = 2.0
+    """[m/s] where surge damping turns from linear to quadratic."""
+    coefficients: LoadCoefficients = field(default_factory=LoadCoefficients)
+
+    @property
+    def mass(self) -> float:
+        return self.water_density * self.block_coefficient * self.length * self.beam * self.draught
+
+    def mass_matrix(self) -> np.ndarray:
+        """M = M_RB + M_A in surge, sway, yaw about the body origin."""
+        m, xg = self.mass, self.x_g
+        inertia = m * (self.yaw_gyration * self.length) ** 2 + m * xg ** 2
+        a11, a22, a26, a66 = self.added_mass
+        return np.array([[m + a11, 0.0, 0.0], [0.0, m + a22, m * xg + a26], [0.0, m * xg + a26, inertia + a66]])
+
+    @property
+    def surge_quadratic(self) -> float:
+        """X_|u|u [N s^2/m^2] (negative): -1/2 rho C B T."""
+        return -0.5 * self.water_density * self.coefficients.current_surge * self.beam * self.draught
+
+
+class Vessel:
+    """State eta = [north, east, psi], nu = [u, v, r]; :meth:`derivative` of the pair."""
+
+    dofs = 3
+
+    def __init__(self, parameters: VesselParameters | None = None):
+        self.parameters = p = parameters or VesselParameters()
+        self.mass = p.mass_matrix()
+        self.mass_inverse = np.linalg.inv(self.mass)
+        t1, t2, t6 = p.time_constants
+        self.linear_damping = np.diag([self.mass[0, 0] / t1, self.mass[1, 1] / t2, self.mass[2, 2] / t6])
+        dx = p.length / STRIPS
+        self._strips = -p.length / 2.0 + (np.arange(STRIPS) + 0.5) * dx
+        self._strip_factor = 0.5 * p.water_density * p.draught * p.coefficients.current_sway * dx
+
+    def surge_damping(self, u_r: float) -> float:
+        """X [N] of the hull moving at u_r through the water: sigma Xu u_r + (1 - sigma) X_|u|u
+        |u_r| u_r, sigma = 1 - tanh(|u_r| / crossover)."""
+        p = self.parameters
+        sigma = 1.0 - math.tanh(abs(u_r) / p.crossover_speed)
+        return -sigma * self.linear_damping[0, 0] * u_r + (1.0 - sigma) * p.surge_quadratic * abs(u_r) * u_r
+
+    def crossflow(self, v_r: float, r: float) -> np.ndarray:
+        """[0, Y, N] of the cross-flow drag: -1/2 rho T Cd |v_r + x r| (v_r + x r) dx over the strips."""
+        local = v_r + self._strips * r
+        drag = -self._strip_factor * np.abs(local) * local
+        return np.array([0.0, drag.sum(), (drag * self._strips).sum()])
+
+    def damping(self, nu_r: np.ndarray) -> np.ndarray:
+        """Every damping force on the hull (to the right-hand side)."""
+        linear = -self.linear_damping @ nu_r
+        linear[0] = self.surge_damping(nu_r[0])
+        return linear + self.crossflow(nu_r[1], nu_r[2])
+
+    def derivative(self, eta: np.ndarray, nu: np.ndarray, tau: np.ndarray,
+                   current: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(eta', nu') under the body force ``tau`` [X, Y, N] and a current [north, east] [m/s]."""
+        psi = eta[2]
+        c, s = math.cos(psi), math.sin(psi)
+        nu_c = np.array([c * current[0] + s * current[1], -s * current[0] + c * current[1], 0.0])
+        nu_r = nu - nu_c
+        nu_c_dot = np.array([nu[2] * nu_c[1], -nu[2] * nu_c[0], 0.0])
+        force = tau - coriolis_planar(self.mass, nu_r) @ nu_r + self.damping(nu_r)
+        eta_dot = np.array([c * nu[0] - s * nu[1], s * nu[0] + c * nu[1], nu[2]])
+        return eta_dot, nu_c_dot + self.mass_inverse @ force

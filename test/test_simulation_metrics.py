@@ -1,0 +1,54 @@
+"""allocator_pkg.simulation.metrics on small runs worked out by hand."""
+
+import math
+
+import numpy as np
+import pytest
+
+from allocator_pkg.simulation.metrics import (
+    azimuth_travel,
+    energy,
+    heading_errors,
+    position_errors,
+    run_metrics,
+    thrust_reversals,
+)
+
+
+def test_position_error_is_horizontal_for_a_vessel_and_3d_for_an_rov():
+    position = np.array([[3.0, 4.0, 12.0], [0.0, 0.0, 0.0]])
+    setpoint = np.zeros((2, 3))
+    assert position_errors(position, setpoint, horizontal=True) == pytest.approx([5.0, 0.0])
+    assert position_errors(position, setpoint, horizontal=False) == pytest.approx([13.0, 0.0])
+
+
+def test_heading_error_wraps():
+    assert heading_errors(np.array([math.radians(179.0)]), np.array([math.radians(-179.0)])) == pytest.approx(
+        [math.radians(-2.0)])
+
+
+def test_energy_of_the_power_model():
+    thrust = np.array([[100.0, -400.0], [0.0, 900.0]])
+    # P = 2 |f1|^1.5 + 3 |f2|^1.5: 2 * 1000 + 3 * 8000 = 26000 W, then 3 * 27000 = 81000 W
+    assert energy(thrust, np.array([2.0, 3.0]), 0.1) == pytest.approx(0.1 * (26000.0 + 81000.0))
+
+
+def test_azimuth_travel_takes_the_short_way_round():
+    angles = np.array([[3.0, 0.0], [-3.0, 0.5], [-3.0, 0.0]])
+    assert azimuth_travel(angles) == pytest.approx((2 * math.pi - 6.0) + 0.5 + 0.5)
+
+
+def test_thrust_reversals_ignore_a_thrust_near_zero():
+    thrust = np.array([[10.0], [0.5], [-10.0], [-0.5], [10.0], [20.0]])
+    assert thrust_reversals(thrust, np.array([100.0])) == 2          # +, (0.5 ignored), -, (-0.5 ignored), +, +
+    assert thrust_reversals(thrust, np.array([10000.0])) == 0        # everything below 1 % of 10 kN
+
+
+def test_run_metrics_together():
+    metrics = run_metrics(position=np.array([[3.0, 4.0, 0.0], [0.0, 0.0, 0.0]]), position_setpoint=np.zeros((2, 3)),
+                          heading=np.array([0.1, -0.1]), heading_setpoint=np.zeros(2), horizontal=True,
+                          thrust=np.array([[1.0], [-1.0]]), angles=np.zeros((2, 1)), saturated=np.array([True, False]),
+                          power_coefficients=np.array([1.0]), thrust_scale=np.array([1.0]), period=0.5)
+    assert metrics == pytest.approx({"position_error_rms": math.sqrt(12.5), "position_error_max": 5.0,
+                                     "heading_error_rms": math.degrees(0.1), "energy": 1.0, "azimuth_travel": 0.0,
+                                     "thrust_reversals": 1, "saturated_fraction": 0.5})

@@ -1,0 +1,86 @@
+"""allocator_pkg.simulation.thrusters: the first-order lag, the rate limits, azimuths turning
+at their rate, faults and the wrench T(alpha) f, against hand calculations."""
+
+import math
+
+import numpy as np
+import pytest
+from conftest import ROOT
+
+from allocator_pkg.configuration.parameters import load_vehicle
+from allocator_pkg.simulation.thrusters import Thrusters
+
+VESSEL = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
+ROV = load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml")
+
+
+def run(thrusters, thrust, angle, seconds, dt=0.01):
+    for _ in range(round(seconds / dt)):
+        thrusters.step(np.asarray(thrust, float), np.asarray(angle, float), dt)
+
+
+def test_a_small_step_follows_the_first_order_lag():
+    thrusters = Thrusters(ROV, time_constant=0.2)
+    command = np.full(8, 10.0)                       # 10 N: the lag never asks more than the rate (no limit here)
+    run(thrusters, command, np.zeros(8), 0.2)
+    assert thrusters.thrust == pytest.approx(10.0 * (1 - math.exp(-1.0)), rel=1e-9)
+    run(thrusters, command, np.zeros(8), 2.0)
+    assert thrusters.thrust == pytest.approx(10.0, rel=1e-4)
+
+
+def test_a_large_step_is_held_to_the_rate_limit_then_lags():
+    thrusters = Thrusters(VESSEL, time_constant=1.0)
+    command = np.array([400e3, 0, 0, 0])
+    run(thrusters, command, np.zeros(4), 1.0, dt=0.1)
+    assert thrusters.thrust[0] == pytest.approx(100e3, rel=1e-9)     # 100 kN/s for one second
+    run(thrusters, command, np.zeros(4), 60.0, dt=0.1)
+    assert thrusters.thrust[0] == pytest.approx(400e3, rel=1e-6)
+
+
+def test_thrust_stays_within_the_range_of_the_supply_voltage():
+    thrusters = Thrusters(ROV, time_constant=0.05, voltage=12.0)
+    run(thrusters, np.full(8, 60.0), np.zeros(8), 2.0)
+    assert thrusters.thrust == pytest.approx(36.4, rel=1e-6)         # the 12 V curve's end at 1900 us
+    thrusters.set_voltage(16.0)
+    run(thrusters, np.full(8, 60.0), np.zeros(8), 2.0)
+    assert thrusters.thrust == pytest.approx(51.5, rel=1e-6)
+
+
+def test_azimuths_turn_at_their_rate_the_short_way_round():
+    thrusters = Thrusters(VESSEL, time_constant=1.0)
+    start = thrusters.angle.copy()
+    run(thrusters, np.zeros(4), start + np.array([1.0, -3.0, 0, 0]), 2.0, dt=0.1)
+    assert thrusters.angle[0] == pytest.approx(start[0] + 0.42)
+    assert thrusters.angle[1] == pytest.approx(start[1] - 0.42)
+    run(thrusters, np.zeros(4), start + np.array([1.0, -3.0, 0, 0]), 30.0, dt=0.1)
+    assert thrusters.angle[:2] == pytest.approx(start[:2] + np.array([1.0, -3.0]))
+
+
+def test_faults_as_the_water_sees_them():
+    thrusters = Thrusters(VESSEL, time_constant=0.5)
+    thrusters.set_fault("azimuth_stbd", "stuck", 0.5)
+    thrusters.set_fault("tunnel_fwd", "failed")
+    thrusters.set_fault("tunnel_aft", "degraded", 0.5)
+    run(thrusters, np.array([50e3, 50e3, 50e3, 50e3]), np.array([1.5, 0.3, 0, 0]), 20.0, dt=0.1)
+    assert thrusters.angle[0] == 0.5
+    assert thrusters.angle[1] == pytest.approx(0.3)
+    assert thrusters.thrust == pytest.approx([50e3, 50e3, 0.0, 25e3], rel=1e-6)
+    with pytest.raises(ValueError, match=r"fault\.actuator"):
+        thrusters.set_fault("nope", "failed")
+    with pytest.raises(ValueError, match=r"fault\.mode"):
+        thrusters.set_fault("tunnel_fwd", "melted")
+    thrusters.clear_faults()
+    assert thrusters.efficiency == pytest.approx(1.0) and not thrusters.stuck.any()
+
+
+def test_the_wrench_is_the_configuration_matrix_times_the_thrust():
+    thrusters = Thrusters(VESSEL, time_constant=1.0)
+    thrusters.thrust = np.array([100e3, 0.0, 50e3, 0.0])
+    thrusters.angle = np.array([math.pi / 2, 0.0, 0.0, 0.0])
+    wrench = thrusters.wrench()
+    # 100 kN to starboard at (-41.5, 7.0, 4.5), 50 kN to starboard at (37, 0, 3.5)
+    assert wrench[1] == pytest.approx(150e3, rel=1e-9)
+    assert wrench[5] == pytest.approx(-41.5 * 100e3 + 37.0 * 50e3, rel=1e-9)
+    assert wrench[3] == pytest.approx(-(4.5 * 100e3 + 3.5 * 50e3), rel=1e-9)     # K = y Fz - z Fy
+    with pytest.raises(ValueError, match="thruster_time_constant"):
+        Thrusters(VESSEL, time_constant=0.0)
