@@ -90,6 +90,7 @@ def test_reflection_factor_by_hand():
     # 1 - exp(-0.858518) = 0.576210.
     assert reflection_factor(7.5, 6.0) == pytest.approx(0.576210, abs=1e-6)
     assert reflection_factor(0.0, 6.0) == 1.0
+    assert reflection_factor(1e-200, 6.0) == 1.0                                # shorter waves: a wall
 
 
 def test_wave_drift_load_by_hand():

@@ -127,8 +127,8 @@ def reflection_factor(peak_period: float, draught: float) -> float:
     a deep-water wave below depth T is exp(-2 k T) of the whole and passes under the keel)."""
     if peak_period <= 0.0:
         return 1.0
-    wave_number = (2.0 * math.pi / peak_period) ** 2 / GRAVITY
-    return 1.0 - math.exp(-2.0 * wave_number * draught)
+    deep = GRAVITY * peak_period * peak_period / (8.0 * math.pi ** 2 * draught)    # 1 / (2 k T)
+    return 1.0 if deep == 0.0 else 1.0 - math.exp(-1.0 / deep)
 
 
 def wave_drift_load(vessel: VesselParticulars, hs: float, peak_period: float, direction: float) -> np.ndarray:
