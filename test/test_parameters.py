@@ -149,7 +149,7 @@ def test_params_file_reads_like_rcl(tmp_path):
             dofs: [surge, yaw]
             actuators:
               names: [a]
-              a: {type: fixed, position: [0.0, 0.0, 0.0], direction: [1.0, 0.0, 0.0], thrust_max: 1.0,
+              a: {type: fixed, position: [0.0, 0.5, 0.0], direction: [1.0, 0.0, 0.0], thrust_max: 1.0,
                   command_max: 1e3}
               b: {}
         """)

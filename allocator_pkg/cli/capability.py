@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..allocation.allocator import Allocator
 from ..analysis.capability import FORCE_DOFS, Capability, Envelope, differing_methods
 from ..configuration.parameters import load_vehicle
 from ..effectiveness.faults import FaultMode
@@ -112,6 +113,8 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2
+    for warning in Allocator(vehicle, method=capability.method).warnings:
+        print(f"allocator-capability: warning: {warning}", file=sys.stderr)
     stem = Path(arguments.config).stem
     _write(capability, Path(arguments.out), stem, "", capability.method, arguments.step, arguments.yaw_moment)
     if arguments.all_methods:

@@ -21,7 +21,8 @@ from typing import Any
 import yaml
 
 from ..effectiveness.actuators import command_map
-from ..effectiveness.sectors import in_feasible_sector, in_forbidden_sector
+from ..effectiveness.reach import unreachable_dofs
+from ..effectiveness.sectors import allowed_arcs, in_feasible_sector, in_forbidden_sector
 from ..methods import METHODS
 from ..vehicle.angles import ANGLE_TOLERANCE, TWO_PI
 from ..vehicle.config import (
@@ -168,6 +169,13 @@ def _ros_type(value: Any) -> str:
 
 _MISSING = object()
 
+MIN_ALLOWED_ARC = math.radians(1.0)
+"""[rad] The least total angle a rotatable thruster's feasible sector, less its forbidden
+sectors, must leave to thrust in. One degree is about the pointing accuracy of an azimuth
+drive: a thruster confined to a narrower arc is a fixed thruster whose direction cannot be
+held, and sectors that leave so little are a slip (a start and end swapped, degrees for
+radians) far more often than a design."""
+
 
 class _Parser:
     """Checks every key against the schema and collects all problems."""
@@ -228,6 +236,10 @@ class _Parser:
         if node["base_frame"] == "":
             self.fail("base_frame", "must not be empty")
         dofs = self._dofs(values["dofs"])
+        if dofs and actuators and len(actuators) == len(names):
+            for dof in unreachable_dofs(tuple(actuators), dofs):
+                self.fail("dofs", f"no actuator can produce {dof} at any angle (a zero row of T(alpha)); "
+                                  f"leave {dof} out of dofs to let the vehicle's dynamics hold it")
         slack = self._slack(values["weights.slack"], values["dofs"], dofs)
         priorities = self._priorities(values, dofs)
         nominal_voltage = self._nominal_voltage(values["nominal_voltage"], actuators)
@@ -478,6 +490,12 @@ class _Parser:
         rotation = RotationConfig(azimuth_min=low, azimuth_max=high, rate_max=v["azimuth_rate_max"],
                                   forbidden_sectors=sectors, reversible=v["reversible"],
                                   initial=v["azimuth_initial"])
+        allowed = sum(end - start for start, end in allowed_arcs(rotation))
+        if allowed < MIN_ALLOWED_ARC:
+            key = "forbidden_sectors" if sectors else "azimuth_max"
+            self.fail(param(key), f"leaves {math.degrees(allowed):.3g} deg of the circle to thrust in; at least "
+                                  f"{math.degrees(MIN_ALLOWED_ARC):g} deg is needed")
+            return None
         if not in_feasible_sector(rotation, rotation.initial):
             self.fail(param("azimuth_initial"), f"{rotation.initial:g} rad is outside the feasible sector "
                                                 f"[{low:g}, {high:g}]")
