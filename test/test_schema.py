@@ -22,7 +22,7 @@ def test_every_actuator_type_has_its_keys():
 def test_read_only_keys():
     read_only = {key.name for key in schema.VEHICLE_KEYS + schema.NODE_KEYS + schema.ACTUATOR_KEYS if key.read_only}
     assert read_only == {"actuators.names", "type", "link", "frame", "base_frame", "wrench_type", "geometry_source",
-                         "robot_description_file"}
+                         "robot_description_file", "executor"}
 
 
 def test_every_key_says_what_it_accepts():

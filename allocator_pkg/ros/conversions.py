@@ -3,6 +3,7 @@ demo and the benches build and read the same messages without importing the node
 
 from __future__ import annotations
 
+import array
 import math
 
 import numpy as np
@@ -13,8 +14,7 @@ from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 
 from ..allocation.result import AllocationResult
 from ..solvers.outcome import Outcome
-from ..vehicle.frames import wrench_between
-from ..vehicle.node_settings import FRD
+from ..vehicle.node_settings import FLU, FRD
 
 OUTCOME_CODES = {Outcome.SOLVED: AllocationStatus.OUTCOME_SOLVED,
                  Outcome.INACCURATE: AllocationStatus.OUTCOME_INACCURATE,
@@ -44,6 +44,25 @@ def fill_wrench(wrench: Wrench, values) -> Wrench:
     return wrench
 
 
+def fill_wrench_in(wrench: Wrench, values: np.ndarray, frame: str) -> Wrench:
+    """``wrench`` set to [X, Y, Z, K, M, N] given in FRD, written in the body frame ``frame``
+    (``wrench_between`` for six numbers, without making an array)."""
+    x, y, z, k, m, n = values.tolist()
+    if frame == FLU:
+        y, z, m, n = -y, -z, -m, -n
+    force, torque = wrench.force, wrench.torque
+    force.x, force.y, force.z, torque.x, torque.y, torque.z = x, y, z, k, m, n
+    return wrench
+
+
+def doubles(values: np.ndarray) -> array.array:
+    """A float64 sequence field's own type: the generated setter takes it without checking
+    every element."""
+    field = array.array("d")
+    field.frombytes(np.ascontiguousarray(values, dtype=np.float64).tobytes())
+    return field
+
+
 def commands_message(result: AllocationResult, names: tuple[str, ...], header: Header,
                      message: ThrusterCommands | None = None) -> ThrusterCommands:
     """Every actuator's thrust, set-point, angle and fault mode of one sample, in ``message``
@@ -51,11 +70,14 @@ def commands_message(result: AllocationResult, names: tuple[str, ...], header: H
     or a new one."""
     message = ThrusterCommands() if message is None else message
     message.header = header
-    message.name = list(names)
-    message.thrust = result.thrust.tolist()
-    message.command = result.command.tolist()
-    message.azimuth = result.azimuth.tolist()
-    message.mode = result.mode.tolist()
+    if tuple(message.name) != names:
+        message.name = list(names)
+    message.thrust = doubles(result.thrust)
+    message.command = doubles(result.command)
+    message.azimuth = doubles(result.azimuth)
+    mode = array.array("B")
+    mode.frombytes(result.mode.astype(np.uint8).tobytes())
+    message.mode = mode
     return message
 
 
@@ -66,8 +88,8 @@ def status_message(result: AllocationResult, solver_status: str, header: Header,
     figures of one sample, in ``message`` (every field set) or a new one."""
     message = AllocationStatus() if message is None else message
     message.header = header
-    fill_wrench(message.requested, wrench_between(result.requested, frame))
-    fill_wrench(message.achieved, wrench_between(result.achieved, frame))
+    fill_wrench_in(message.requested, result.requested, frame)
+    fill_wrench_in(message.achieved, result.achieved, frame)
     message.saturated = result.saturated
     message.method = result.method
     message.solver_status = solver_status
@@ -75,7 +97,7 @@ def status_message(result: AllocationResult, solver_status: str, header: Header,
     message.iterations = result.iterations
     message.solve_time = result.solve_time
     message.power = result.power
-    fill_wrench(message.unallocated, wrench_between(result.unallocated, frame))
+    fill_wrench_in(message.unallocated, result.unallocated, frame)
     message.at_thrust_limit = result.at_thrust_limit.tolist()
     message.at_rate_limit = result.at_rate_limit.tolist()
     message.voltage = math.nan if voltage is None else float(voltage)

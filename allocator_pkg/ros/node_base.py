@@ -19,7 +19,8 @@ from pathlib import Path
 
 import rclpy
 from rcl_interfaces.msg import SetParametersResult
-from rclpy.executors import SingleThreadedExecutor
+from rclpy.executors import Executor, SingleThreadedExecutor
+from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
@@ -33,7 +34,7 @@ from ..configuration import urdf
 from ..configuration.parameters import parse_parameters
 from ..configuration.schema import ACTUATOR_PREFIX
 from ..vehicle.config import ConfigError, Vehicle
-from ..vehicle.node_settings import ROBOT_DESCRIPTION, NodeSettings
+from ..vehicle.node_settings import EVENTS, ROBOT_DESCRIPTION, SINGLE_THREADED, NodeSettings
 from . import qos, ros_parameters
 from .conversions import array_to_wrench, wrench_to_array
 from .ros_parameters import WholeSetParameters
@@ -273,6 +274,13 @@ class AllocatorBase(WholeSetParameters):
                                    f"subscriber within {STOP_ACK_TIMEOUT:g} s")
 
 
+def make_executor(node: Node) -> Executor:
+    """The executor the ``executor`` parameter names (read-only; checked with the others, so a
+    value it does not know leaves the default here and is refused by the configuration)."""
+    name = node.get_parameter("executor").value if node.has_parameter("executor") else EVENTS
+    return SingleThreadedExecutor() if name == SINGLE_THREADED else EventsExecutor()
+
+
 def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None = None) -> int:
     """A node's process: spin it until SIGINT/SIGTERM (or its end), then stop it. Exit code 1
     with the report of an invalid configuration found at start.
@@ -293,7 +301,7 @@ def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None =
         return 1
     gc.collect()
     gc.freeze()
-    executor = SingleThreadedExecutor()
+    executor = make_executor(node)
     executor.add_node(node)
     try:
         while not stop.is_set() and not node.finished and rclpy.ok():

@@ -297,21 +297,31 @@ class AllocationRuntime:
                 now = self._node.get_clock().now()
                 self._sample(now)
                 if self.settings.trigger == INPUT:
-                    self._schedule(now.nanoseconds)
+                    self._schedule(now.nanoseconds, exact=True)
 
-    def _schedule(self, now: int) -> None:
-        """Input trigger, after the timer or a sample: the next time the timer has work. Lock held."""
+    def _schedule(self, now: int, exact: bool = False) -> None:
+        """Input trigger, after the timer or a sample: the next time the timer has work. Lock
+        held. ``exact`` after the timer fired (its next call is a whole period of its own away,
+        which may be sooner than needed), else a timer due sooner is kept."""
         if self.watchdog.stale or self._waiting_wrench:
-            self._arm(self._period_ns)
+            self._arm(self._period_ns, exact)
         elif self.watchdog.timeout > 0.0 and self._wrench_time is not None:
-            self._arm(self._wrench_time + round(self.watchdog.timeout * 1e9) - now + self._period_ns)
+            self._arm(self._wrench_time + round(self.watchdog.timeout * 1e9) - now + self._period_ns, exact)
         else:
-            self._arm(round(1e9 * DIAGNOSTICS_PERIOD))          # nothing can fall due: a slow heartbeat
+            self._arm(round(1e9 * DIAGNOSTICS_PERIOD), exact)          # nothing can fall due: a slow heartbeat
 
-    def _arm(self, delay: int) -> None:
-        """Fire the timer ``delay`` ns from now."""
-        self._timer.timer_period_ns = max(delay, 1)
-        self._timer.reset()
+    def _arm(self, delay: int, exact: bool = True) -> None:
+        """Have the timer fire ``delay`` ns from now; unless ``exact``, a timer already due sooner
+        is left alone (when it fires early it finds nothing due and is armed again then), so
+        that a steady input re-arms it about once per watchdog timeout or heartbeat, not every
+        sample."""
+        timer = self._timer
+        if not exact and not timer.is_canceled():
+            until = timer.time_until_next_call()
+            if until is not None and 0 <= until <= delay:
+                return
+        timer.timer_period_ns = max(delay, 1)
+        timer.reset()
 
     def _sample(self, now: Time) -> None:
         """Check the watchdog; allocate the latest wrench (zero thrust while it is stale) unless

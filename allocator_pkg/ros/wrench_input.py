@@ -6,15 +6,14 @@ the one subscribed (they never connect, and DDS says nothing about it)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from geometry_msgs.msg import Wrench, WrenchStamped
 from rclpy.node import Node
 
-from ..vehicle.frames import wrench_between
-from ..vehicle.node_settings import WRENCH_STAMPED, NodeSettings
-from .conversions import wrench_to_array
+from ..vehicle.node_settings import FLU, WRENCH_STAMPED, NodeSettings
 
 TYPE_NAMES = {Wrench: "geometry_msgs/msg/Wrench", WrenchStamped: "geometry_msgs/msg/WrenchStamped"}
 
@@ -40,10 +39,13 @@ def accept(message: Wrench | WrenchStamped, settings: NodeSettings) -> Verdict:
             return Verdict(None, "frame", f"rejected a wrench in frame '{message.header.frame_id}': this node "
                                           f"takes '{settings.base_frame}' (base_frame) only")
         message = message.wrench
-    values = wrench_to_array(message)
-    if not np.all(np.isfinite(values)):
-        return Verdict(None, "values", f"rejected a wrench with non-finite values {values.tolist()}")
-    return Verdict(wrench_between(values, settings.frame))
+    force, torque = message.force, message.torque
+    values = [force.x, force.y, force.z, torque.x, torque.y, torque.z]
+    if not all(map(math.isfinite, values)):
+        return Verdict(None, "values", f"rejected a wrench with non-finite values {values}")
+    if settings.frame == FLU:
+        values[1], values[2], values[4], values[5] = -values[1], -values[2], -values[4], -values[5]
+    return Verdict(np.array(values))
 
 
 def foreign_publishers(node: Node, topic: str, expected: str) -> list[str]:

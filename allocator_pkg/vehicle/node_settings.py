@@ -21,6 +21,12 @@ TIMER = "timer"
 INPUT = "input"
 TRIGGERS = (TIMER, INPUT)
 
+EVENTS = "events"
+SINGLE_THREADED = "single_threaded"
+EXECUTORS = (EVENTS, SINGLE_THREADED)
+"""rclpy executors the node's process can spin with: rclpy's EventsExecutor (callbacks on
+events, no wait set rebuilt per wake-up) or its SingleThreadedExecutor."""
+
 PARAMS = "params"
 ROBOT_DESCRIPTION = "robot_description"
 GEOMETRY_SOURCES = (PARAMS, ROBOT_DESCRIPTION)
@@ -58,6 +64,7 @@ class NodeSettings:
     ros2_control_angle_topic: str = ""
     ros2_control_actuators: tuple[str, ...] | None = None
     step_test_enabled: bool = False
+    executor: str = EVENTS
     step_test_thrust_share: float = 0.2
     step_test_duration_max: float = 5.0
     links: dict[str, str] = field(default_factory=dict)
