@@ -30,7 +30,7 @@ from reference import best_attainable_wrench, weighted_l1_allocation, weighted_p
 from scipy.optimize import lsq_linear
 from test_properties import check
 
-from allocator_pkg import Allocator, load_vehicle
+from allocator_pkg import Allocator, FaultMode, load_vehicle
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 
 RELATIVE = 1e-6
@@ -370,6 +370,19 @@ def test_lp_may_answer_zero_to_a_request_below_its_feasibility_tolerance():
         assert best == pytest.approx(surge, rel=1e-9)
         assert ours == pytest.approx(best, rel=LP_RELATIVE, abs=tolerance)
     assert ours == pytest.approx(best, rel=1e-6)
+
+
+@pytest.mark.parametrize("method", ["qp", pytest.param("nonlinear", marks=pytest.mark.xfail(
+    strict=True, reason="nonlinear leaves the idle az1 along x when the failed az0 has a forbidden sector: the "
+                        "turn it proposes for an idle thruster does not come (without that sector it does)"))])
+def test_an_idle_azimuth_turns_to_help_after_a_failure(method):
+    """explore's counter-example: az0 (with a forbidden sector) failed, 320 kN of sway held past
+    capability. The optimum (SLSQP, and qp) turns az1, 10 m forward and idle along x at the start,
+    to give 7 kN of sway for 71 kN m of yaw; nonlinear leaves it idle, 0.07 of the yaw authority
+    away. Without az0's sector, or with the sector on a working unit, nonlinear turns it."""
+    vehicle = load_vehicle(DATA / "nonlinear_idle_azimuth.yaml")
+    failed = {"az0": (FaultMode.FAILED, 0.0, 0.0)}
+    assert judge_azimuths(vehicle, method, failed, np.array([0.0, 320e3, 0.0, 0.0, 0.0, 0.0])) <= WRENCH
 
 
 def test_the_objective_and_bvls_on_a_problem_by_hand():
