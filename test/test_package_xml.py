@@ -1,5 +1,5 @@
 """package.xml declares every ROS package the code imports (rcl_interfaces included),
-and the pip rosdep keys of the solvers are defined in the repository's own rosdep.yaml."""
+and the pip rosdep keys of what it imports from PyPI are defined in the repository's own rosdep.yaml."""
 
 import ast
 import xml.etree.ElementTree as ElementTree
@@ -31,12 +31,17 @@ def test_every_imported_ros_package_is_an_exec_depend():
     assert "lifecycle_msgs" in depends                      # rclpy.lifecycle's services
 
 
-def test_every_solver_the_code_imports_has_a_pip_rosdep_key_defined_here():
+PIP_PACKAGES = {"osqp": "osqp", "daqp": "daqp", "highspy": "highspy", "mcap": "mcap", "mcap_ros2": "mcap-ros2-support"}
+"""Imported module -> PyPI package of what the code needs from pip (no rosdistro key exists)."""
+
+
+def test_every_pip_package_the_code_imports_has_a_rosdep_key_defined_here():
     depends = {element.text for element in ElementTree.parse(ROOT / "package.xml").getroot().iter("exec_depend")}
     rules = yaml.safe_load((ROOT / "rosdep.yaml").read_text())
     pip_keys = {key for key in depends if key.endswith("-pip")}
-    solvers = imported_modules() & {"osqp", "daqp", "highspy", "quadprog"}
-    assert {"osqp", "daqp", "highspy"} <= solvers
-    assert pip_keys == {f"python3-{name}-pip" for name in solvers if name != "quadprog"} == set(rules)
-    for name in solvers - {"quadprog"}:
-        assert rules[f"python3-{name}-pip"]["ubuntu"]["pip"]["packages"] == [name]
+    imported = imported_modules() & set(PIP_PACKAGES)
+    assert {"osqp", "daqp", "highspy", "mcap", "mcap_ros2"} <= imported
+    assert pip_keys == {f"python3-{PIP_PACKAGES[name]}-pip" for name in imported} == set(rules)
+    for name in imported:
+        for platform in ("debian", "fedora", "osx", "rhel", "ubuntu"):
+            assert rules[f"python3-{PIP_PACKAGES[name]}-pip"][platform]["pip"]["packages"] == [PIP_PACKAGES[name]]
