@@ -128,11 +128,12 @@ def problem(allocator):
     return t, w, model.slack_weights(w), low.copy(), high.copy()
 
 
-def judge_bounded_least_squares(vehicle, method, fault_set, tau, speed=0.0):
-    """The settled answer to a held ``tau`` against BVLS; returns (ours, optimum) objectives."""
+def judge_bounded_least_squares(vehicle, method, fault_set, tau, speed=0.0, before=()):
+    """The settled answer to a held ``tau``, after the requests ``before`` (from any state),
+    against BVLS; returns (ours, optimum) objectives."""
     allocator = allocator_with(vehicle, method, fault_set, speed)
     samples = settle_samples(allocator, method)
-    result = follow(allocator, vehicle, fault_set, np.tile(tau, (samples, 1)))[-1]
+    result = follow(allocator, vehicle, fault_set, [*before, *np.tile(tau, (samples, 1))])[-1]
     t, w, q, low, high = problem(allocator)
     rows = list(vehicle.dof_indices)
     optimum = objective(t, w, q, bvls(t, w, q, low, high, tau[rows]), tau[rows])
@@ -193,11 +194,12 @@ def pieces(vehicle):
 # -- the cases: one draw of a vehicle, faults and requests, judged -----------------------------------
 
 def bounded_least_squares_case(data, method):
-    """qp, explicit, dynamic on fixed thrusters: the settled answer is the BVLS optimum."""
+    """qp, explicit, dynamic on fixed thrusters: the settled answer to the last request of a
+    held, stepped or past-capability sequence is the BVLS optimum."""
     vehicle, _ = data.draw(fixed_vehicles(method))
     fault_set = data.draw(faults(vehicle, stuck=False, at_most=2))
-    _, sequence = data.draw(request_sequences(vehicle, 1, kinds=("held", "past capability")))
-    ours, optimum = judge_bounded_least_squares(vehicle, method, fault_set, sequence[0])
+    _, sequence = data.draw(request_sequences(vehicle, 40, kinds=("held", "stepped", "past capability")))
+    ours, optimum = judge_bounded_least_squares(vehicle, method, fault_set, sequence[-1], before=sequence[:-1])
     tolerance = QP_RELATIVE if method == "qp" else RELATIVE
     assert ours <= optimum * (1.0 + tolerance) + 1e-12 * max(optimum, 1.0)
 
