@@ -31,6 +31,7 @@ setup(
             "allocator-ctl = allocator_pkg.cli.ctl:main",
             "allocator-capability = allocator_pkg.cli.capability:main",
             "allocator-explicit = allocator_pkg.cli.explicit:main",
+            "allocator-sim = allocator_pkg.cli.sim:main",
         ],
         "pytest11": ["allocator_pkg = allocator_pkg.testing.plugin"],     # the allocator_harness fixture
     },

@@ -75,3 +75,11 @@ def test_bad_gains_are_refused():
         Gains(kp=(1.0,) * 3, kd=(1.0, -2.0, 1.0), ki=(0.0,) * 3)
     with pytest.raises(ValueError, match="unallocated_threshold"):
         Gains(kp=(1.0,) * 3, kd=(1.0,) * 3, ki=(0.0,) * 3, unallocated_threshold=(1.0,))
+
+
+def test_settle_answers_a_steady_force_with_the_integral_alone():
+    controller = planar()
+    eta = np.array([0.0, 0.0, math.radians(30.0)])
+    force = np.array([1000.0, -2000.0, 300.0])
+    controller.settle(eta, force)
+    assert controller.wrench(eta, np.zeros(3), eta) == pytest.approx(-force)

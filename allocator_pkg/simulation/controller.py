@@ -41,7 +41,8 @@ class Gains:
         if self.unallocated_threshold and len(self.unallocated_threshold) != len(self.kp):
             raise ValueError("controller.unallocated_threshold: one value per DOF")
         for name in ("kp", "kd", "ki", "unallocated_threshold"):
-            if not all(math.isfinite(v) and v >= 0.0 for v in getattr(self, name)):
+            if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v >= 0.0
+                       for v in getattr(self, name)):
                 raise ValueError(f"controller.{name}: finite numbers >= 0")
 
 
@@ -77,6 +78,12 @@ class StationKeeping:
         e = self.error(eta, setpoint)
         to_body = self._to_body(eta)
         return -self.kp * (to_body @ e) - self.ki * (to_body @ self.integral) - self.kd * np.asarray(nu)
+
+    def settle(self, eta: np.ndarray, force: np.ndarray) -> None:
+        """Start in equilibrium with a body ``force`` on the vehicle: the integral set so that
+        its term alone answers -force (DOFs without integral gain left at zero)."""
+        share = np.divide(np.asarray(force, dtype=float), self.ki, out=np.zeros(self.dofs), where=self.ki > 0.0)
+        self.integral = self._to_body(eta).T @ share
 
     def integrate(self, eta: np.ndarray, setpoint: np.ndarray, dt: float,
                   unallocated: np.ndarray | None = None) -> None:

@@ -86,21 +86,27 @@ class Environment:
         for process in (self._speed, self._direction, self._gust, self._drift):
             process.step(dt)
 
-    def current(self) -> np.ndarray:
-        """[north, east, down] [m/s] of the water: flowing away from where it comes from."""
-        speed = max(0.0, self.spec.current_speed + self._speed.value)
-        direction = math.radians(self.spec.current_direction + self._direction.value)
+    def current(self, mean: bool = False) -> np.ndarray:
+        """[north, east, down] [m/s] of the water (``mean``: without its slow variation), flowing
+        away from where it comes from."""
+        speed = self.spec.current_speed + (0.0 if mean else self._speed.value)
+        direction = math.radians(self.spec.current_direction + (0.0 if mean else self._direction.value))
+        speed = max(0.0, speed)
         return np.array([-speed * math.cos(direction), -speed * math.sin(direction), self.spec.current_down])
 
-    def wind_speed(self) -> float:
-        return max(0.0, self.spec.wind_speed + self._gust.value)
+    def mean_current(self) -> np.ndarray:
+        return self.current(mean=True)
 
-    def hull_load(self, heading: float) -> np.ndarray:
-        """[X, Y, N] of wind and wave drift on the hull at ``heading`` [rad] (none without particulars)."""
+    def wind_speed(self, mean: bool = False) -> float:
+        return max(0.0, self.spec.wind_speed + (0.0 if mean else self._gust.value))
+
+    def hull_load(self, heading: float, mean: bool = False) -> np.ndarray:
+        """[X, Y, N] of wind and wave drift on the hull at ``heading`` [rad] (``mean``: without
+        gusts and drift variation; none without particulars)."""
         if self.particulars is None:
             return np.zeros(3)
         spec = self.spec
-        wind = wind_load(self.particulars, self.wind_speed(), math.radians(spec.wind_direction) - heading)
+        wind = wind_load(self.particulars, self.wind_speed(mean), math.radians(spec.wind_direction) - heading)
         drift = wave_drift_load(self.particulars, spec.wave_height, spec.wave_period,
                                 math.radians(spec.wave_direction) - heading)
-        return wind + drift * max(0.0, 1.0 + self._drift.value)
+        return wind + drift * (1.0 if mean else max(0.0, 1.0 + self._drift.value))

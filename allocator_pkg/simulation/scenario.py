@@ -1,0 +1,218 @@
+"""Scenario files (``config/scenarios/*.yaml``): the vehicle, the method and node parameters,
+the duration and seed, the hull model, the environment, the set-point, the controller's
+gains, timed events and the bounds the run must stay within. Paths are relative to the
+scenario file. Bad input raises ``ScenarioError`` naming the key."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from ..analysis.dp_capability import load_particulars
+from ..analysis.environment_loads import VesselParticulars
+from .controller import Gains
+from .environment import EnvironmentSpec, SlowVariation
+
+MODELS = ("dp_vessel", "bluerov2_heavy")
+FAULT_MODES = ("failed", "stuck", "degraded")
+BOUND_KEYS = ("position_error_max", "heading_error_max", "depth_error_max")
+
+
+class ScenarioError(ValueError):
+    pass
+
+
+@dataclass(frozen=True)
+class Event:
+    """At ``time`` [s]: one of a fault (``fault``: actuator, mode, value), clearing every
+    fault, a battery voltage ramp (``ramp``: to [V], duration [s]) or a node parameter."""
+
+    time: float
+    kind: str
+    actuator: str = ""
+    mode: str = ""
+    value: Any = 0.0
+    duration: float = 0.0
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class Scenario:
+    name: str
+    path: Path
+    vehicle: Path
+    model: str
+    method: str
+    duration: float
+    seed: int
+    thruster_time_constant: float
+    setpoint_position: tuple[float, float, float]
+    setpoint_heading: float
+    """[rad]"""
+    initial_position: tuple[float, float, float]
+    initial_heading: float
+    gains: Gains
+    environment: EnvironmentSpec
+    particulars: VesselParticulars | None = None
+    parameters: dict[str, Any] = field(default_factory=dict)
+    voltage: float | None = None
+    events: tuple[Event, ...] = ()
+    bounds: dict[str, float] = field(default_factory=dict)
+    description: str = ""
+
+    @property
+    def horizontal(self) -> bool:
+        """Position error in the horizontal plane only (a surface vessel)."""
+        return self.model == "dp_vessel"
+
+    def scaled(self, factor: float) -> Scenario:
+        """The same scenario with its duration, event times and ramps times ``factor``."""
+        if not (math.isfinite(factor) and factor > 0.0):
+            raise ScenarioError(f"duration scale: a finite number > 0, not {factor!r}")
+        events = tuple(replace(e, time=e.time * factor, duration=e.duration * factor) for e in self.events)
+        return replace(self, duration=self.duration * factor, events=events)
+
+    def with_method(self, method: str) -> Scenario:
+        return replace(self, method=method)
+
+
+def _number(data: dict, key: str, where: str, default: float | None = None, minimum: float | None = None) -> float:
+    value = data.get(key, default)
+    if value is None:
+        raise ScenarioError(f"{where}{key}: required")
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ScenarioError(f"{where}{key}: a finite number, not {value!r}")
+    if minimum is not None and value < minimum:
+        raise ScenarioError(f"{where}{key}: at least {minimum:g}, not {value!r}")
+    return float(value)
+
+
+def _vector(data: dict, key: str, where: str, size: int, default: list | None = None) -> tuple[float, ...]:
+    value = data.get(key, default)
+    if not isinstance(value, list) or len(value) != size or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value):
+        raise ScenarioError(f"{where}{key}: a list of {size} finite numbers, not {value!r}")
+    return tuple(float(v) for v in value)
+
+
+def _section(data: dict, key: str) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, dict):
+        raise ScenarioError(f"{key}: a mapping, not {value!r}")
+    return value
+
+
+def _variation(data: dict, sigma: str, time: str, where: str) -> SlowVariation:
+    return SlowVariation(_number(data, sigma, where, 0.0, 0.0), _number(data, time, where, 60.0, 1e-6))
+
+
+def _environment(data: dict) -> EnvironmentSpec:
+    current, wind, waves = (_section(data, k) for k in ("current", "wind", "waves"))
+    return EnvironmentSpec(
+        current_speed=_number(current, "speed", "environment.current.", 0.0, 0.0),
+        current_direction=_number(current, "direction", "environment.current.", 0.0),
+        current_speed_variation=_variation(current, "speed_sigma", "time_constant", "environment.current."),
+        current_direction_variation=_variation(current, "direction_sigma", "time_constant", "environment.current."),
+        current_down=_number(current, "down", "environment.current.", 0.0),
+        wind_speed=_number(wind, "speed", "environment.wind.", 0.0, 0.0),
+        wind_direction=_number(wind, "direction", "environment.wind.", 0.0),
+        gusts=_variation(wind, "gust_sigma", "gust_time_constant", "environment.wind."),
+        wave_height=_number(waves, "hs", "environment.waves.", 0.0, 0.0),
+        wave_period=_number(waves, "peak_period", "environment.waves.", 8.0, 0.0),
+        wave_direction=_number(waves, "direction", "environment.waves.", 0.0),
+        drift_variation=_variation(waves, "drift_sigma", "drift_time_constant", "environment.waves."))
+
+
+def _event(data: Any, index: int) -> Event:
+    where = f"events[{index}]."
+    if not isinstance(data, dict):
+        raise ScenarioError(f"events[{index}]: a mapping, not {data!r}")
+    time = _number(data, "time", where, minimum=0.0)
+    kinds = [k for k in ("fault", "clear_faults", "battery_ramp", "parameter") if k in data]
+    if len(kinds) != 1:
+        raise ScenarioError(f"{where[:-1]}: exactly one of fault, clear_faults, battery_ramp, parameter")
+    kind, body = kinds[0], data[kinds[0]]
+    if kind == "clear_faults":
+        return Event(time, kind)
+    if not isinstance(body, dict):
+        raise ScenarioError(f"{where}{kind}: a mapping, not {body!r}")
+    if kind == "fault":
+        mode = body.get("mode")
+        if mode not in FAULT_MODES:
+            raise ScenarioError(f"{where}fault.mode: one of {', '.join(FAULT_MODES)}, not {mode!r}")
+        if not isinstance(body.get("actuator"), str):
+            raise ScenarioError(f"{where}fault.actuator: an actuator name, not {body.get('actuator')!r}")
+        return Event(time, kind, actuator=body["actuator"], mode=mode,
+                     value=_number(body, "value", where + "fault.", 0.0))
+    if kind == "battery_ramp":
+        return Event(time, kind, value=_number(body, "to", where + "battery_ramp.", minimum=0.0),
+                     duration=_number(body, "duration", where + "battery_ramp.", 0.0, 0.0))
+    if not isinstance(body.get("name"), str) or "value" not in body:
+        raise ScenarioError(f"{where}parameter: name and value")
+    return Event(time, kind, name=body["name"], value=body["value"])
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and check a scenario file."""
+    path = Path(path)
+    try:
+        data = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError) as error:
+        raise ScenarioError(f"{path}: {error}") from error
+    if not isinstance(data, dict):
+        raise ScenarioError(f"{path}: a mapping of scenario keys")
+    model = data.get("model")
+    if model not in MODELS:
+        raise ScenarioError(f"model: one of {', '.join(MODELS)}, not {model!r}")
+    for key in ("vehicle", "method"):
+        if not isinstance(data.get(key), str):
+            raise ScenarioError(f"{key}: required, a string")
+    vehicle = (path.parent / data["vehicle"]).resolve()
+    if not vehicle.is_file():
+        raise ScenarioError(f"vehicle: no file {vehicle}")
+    particulars = None
+    if model == "dp_vessel":
+        if not isinstance(data.get("particulars"), str):
+            raise ScenarioError("particulars: required for dp_vessel, a particulars file")
+        try:
+            particulars = load_particulars(path.parent / data["particulars"]).vessel
+        except ValueError as error:
+            raise ScenarioError(f"particulars: {error}") from error
+    setpoint, initial = _section(data, "setpoint"), _section(data, "initial")
+    position = _vector(setpoint, "position", "setpoint.", 3, [0.0, 0.0, 0.0])
+    heading = _number(setpoint, "heading", "setpoint.", 0.0)
+    controller = _section(data, "controller")
+    try:
+        gains = Gains(**{k: tuple(controller.get(k, ())) for k in ("kp", "kd", "ki", "unallocated_threshold")})
+    except (TypeError, ValueError) as error:
+        raise ScenarioError(str(error)) from error
+    if len(gains.kp) != (3 if model == "dp_vessel" else 6):
+        raise ScenarioError(f"controller.kp: {3 if model == 'dp_vessel' else 6} values for {model}")
+    parameters = data.get("parameters", {}) or {}
+    if not isinstance(parameters, dict):
+        raise ScenarioError("parameters: a mapping of node parameters")
+    bounds = _section(data, "bounds")
+    for key in bounds:
+        if key not in BOUND_KEYS:
+            raise ScenarioError(f"bounds.{key}: not one of {', '.join(BOUND_KEYS)}")
+        _number(bounds, key, "bounds.", minimum=0.0)
+    battery = _section(data, "battery")
+    events = data.get("events", []) or []
+    if not isinstance(events, list):
+        raise ScenarioError("events: a list")
+    return Scenario(
+        name=str(data.get("name", path.stem)), path=path, vehicle=vehicle, model=model, method=data["method"],
+        duration=_number(data, "duration", "", minimum=1e-3), seed=int(_number(data, "seed", "", 0.0, 0.0)),
+        thruster_time_constant=_number(data, "thruster_time_constant", "", 1.0, 1e-6),
+        setpoint_position=position, setpoint_heading=math.radians(heading),
+        initial_position=_vector(initial, "position", "initial.", 3, list(position)),
+        initial_heading=math.radians(_number(initial, "heading", "initial.", heading)),
+        gains=gains, environment=_environment(_section(data, "environment")), particulars=particulars,
+        parameters=dict(parameters), voltage=_number(battery, "voltage", "battery.", minimum=0.0) if battery else None,
+        events=tuple(sorted((_event(e, i) for i, e in enumerate(events)), key=lambda e: e.time)),
+        bounds={k: float(v) for k, v in bounds.items()}, description=str(data.get("description", "")))
+

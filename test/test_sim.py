@@ -1,0 +1,117 @@
+"""allocator-sim closed loop with the real allocator_node process, on the four shipped
+scenarios shortened (--duration-scale): the loop holds each within its stated bounds for qp,
+also through its failure; the same seed gives the same metrics; the metrics agree with what
+the MCAP holds; every recorded command is within the limits in force."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from conftest import ROOT
+from mcap_ros2.reader import read_ros2_messages
+
+from allocator_msgs.msg import ActuatorFault
+from allocator_pkg.cli.sim import main, metrics_from_recording, run
+from allocator_pkg.effectiveness.faults import thrust_limits
+from allocator_pkg.simulation.scenario import load_scenario
+from allocator_pkg.vehicle.angles import wrap
+
+pytestmark = pytest.mark.slow
+
+SCENARIOS = {"dp_station_keeping": (0.1, 81), "dp_azimuth_failure": (0.1, 82), "rov_thruster_failure": (0.15, 83),
+             "rov_battery_sag": (0.15, 84)}
+RESULTS = {}
+
+
+def scenario(name):
+    return load_scenario(ROOT / "config" / "scenarios" / f"{name}.yaml").scaled(SCENARIOS[name][0])
+
+
+@pytest.fixture(params=sorted(SCENARIOS))
+def finished(request, tmp_path_factory, monkeypatch):
+    """(scenario, result, output folder) of a shipped scenario run once per session."""
+    name = request.param
+    if name not in RESULTS:
+        monkeypatch.setenv("ROS_DOMAIN_ID", str(SCENARIOS[name][1]))
+        monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+        out = tmp_path_factory.mktemp(name)
+        RESULTS[name] = (scenario(name), run(scenario(name), out, log=lambda _: None), out)
+    return RESULTS[name]
+
+
+def test_the_loop_holds_the_scenario_within_its_bounds(finished):
+    case, result, out = finished
+    metrics = json.loads((out / "metrics.json").read_text())["metrics"]
+    assert metrics == pytest.approx(result.metrics)
+    assert set(case.bounds) and all(metrics[key] <= bound for key, bound in case.bounds.items()), metrics
+    assert metrics["realtime_factor"] > 0.0
+    faulted = np.array(result.trace.faulted)
+    if any(e.kind == "fault" for e in case.events):
+        assert faulted.any()                                # the failure happened inside the run
+        errors = result.trace.position_errors()
+        assert errors[faulted].max() <= case.bounds["position_error_max"]
+
+
+def test_the_metrics_agree_with_the_recording(finished):
+    case, result, out = finished
+    recomputed = metrics_from_recording(out / "run.mcap", result.vehicle, case.horizontal)
+    for key, value in recomputed.items():
+        assert value == pytest.approx(result.metrics[key], rel=1e-9, abs=1e-9), key
+
+
+def test_every_recorded_command_is_within_the_limits_in_force(finished):
+    case, result, out = finished
+    vehicle = result.vehicle
+    period = 1.0 / vehicle.rate_hz
+    topics = {"/thruster_commands": [], "/allocation_status": [], "/clock": [], "/odometry": [], "/setpoint": [],
+              "/wrench_command": []}
+    for item in read_ros2_messages(str(out / "run.mcap")):
+        if item.channel.topic in topics:
+            topics[item.channel.topic].append(item.ros_msg)
+    steps = len(result.trace.time)
+    assert all(len(messages) == steps for messages in topics.values()), {k: len(v) for k, v in topics.items()}
+    previous = None
+    for commands, status in zip(topics["/thruster_commands"], topics["/allocation_status"]):
+        voltage = status.voltage if math.isfinite(status.voltage) else None
+        low, high = thrust_limits(vehicle, voltage)
+        thrust, angle = np.array(commands.thrust), np.array(commands.azimuth)
+        assert np.all(thrust >= low - 1e-6) and np.all(thrust <= high + 1e-6)
+        mode = np.array(list(commands.mode))          # uint8[] reads back as bytes
+        failed = mode == ActuatorFault.FAILED
+        assert np.all(thrust[failed] == 0.0)
+        for i, actuator in enumerate(vehicle.actuators):
+            steady = previous is not None and mode[i] == previous[2][i] == ActuatorFault.NOMINAL
+            if steady and actuator.thrust_rate_max > 0.0:     # a failure stops a thruster at once
+                assert abs(thrust[i] - previous[0][i]) <= actuator.thrust_rate_max * period * (1 + 1e-9) + 1e-6
+            if actuator.rotatable:
+                for start, end in actuator.rotation.forbidden_sectors:
+                    if abs(thrust[i]) > 1e-6:
+                        assert not (start + 1e-6 < wrap(angle[i]) < end - 1e-6), (actuator.name, angle[i])
+                if previous is not None:
+                    assert abs(wrap(angle[i] - previous[1][i])) <= actuator.rotation.rate_max * period + 1e-9
+        previous = (thrust, angle, mode)
+    if case.voltage is not None and any(e.kind == "battery_ramp" for e in case.events):
+        voltages = [s.voltage for s in topics["/allocation_status"]]
+        assert voltages[0] == pytest.approx(16.0) and voltages[-1] < 13.0    # the limits followed the sag
+
+
+def test_the_same_seed_gives_the_same_metrics(finished, tmp_path, monkeypatch):
+    case, result, _ = finished
+    if case.name != "dp_azimuth_failure":
+        pytest.skip("one scenario is enough (with a fault, and the vessel's azimuths)")
+    monkeypatch.setenv("ROS_DOMAIN_ID", "85")
+    monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    again = run(case, tmp_path, log=lambda _: None)
+    for key, value in result.metrics.items():
+        if key != "realtime_factor":
+            assert again.metrics[key] == value, key
+    assert np.array_equal(np.array(again.trace.position), np.array(result.trace.position))
+
+
+def test_a_bad_scenario_is_refused_with_its_key(tmp_path, capsys):
+    bad = tmp_path / "bad.yaml"
+    text = (ROOT / "config" / "scenarios" / "dp_station_keeping.yaml").read_text().replace("../", f"{ROOT}/config/")
+    bad.write_text(text.replace("thruster_time_constant: 2.0", "thruster_time_constant: -1.0"))
+    assert main([str(bad), "--out", str(tmp_path / "out")]) == 1
+    assert "thruster_time_constant" in capsys.readouterr().err
