@@ -20,12 +20,13 @@ MSGS_SOURCES := $(wildcard allocator_msgs/CMakeLists.txt allocator_msgs/package.
 CONFIG ?= config/default.yaml
 PYTEST_ARGS ?=
 
-.PHONY: help setup run test lint lock docs capability demo bench load soak clean prereqs
+.PHONY: help setup run test lint lock docs capability demo sim bench load soak clean prereqs
 
 help:
 	@echo "make run     set up (first time) and start allocator_node with CONFIG=$(CONFIG)"
 	@echo "make test    set up (first time), lint, and run the whole pytest suite"
-	@echo "make demo    station keeping with a thruster failure, live table and a timeline PNG"
+	@echo "make demo    closed loop: a DP vessel on station while an azimuth fails, live table, footprint and timeline PNGs"
+	@echo "make sim     every scenario in config/scenarios/ under SIM_METHODS, side by side, into build/sim/"
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
 	@echo "make docs    regenerate docs/configuration.md (schema), docs/faults.md, docs/thrust_markers.png, docs/priorities.png"
@@ -73,10 +74,15 @@ $(STAMPS)/pkg: $(STAMPS)/msgs setup.py setup.cfg package.xml
 run: setup
 	$(VENV)/bin/allocator_node --ros-args --params-file $(CONFIG)
 
-DEMO_CONFIG ?= config/dp_vessel.yaml
-DEMO_DURATION ?= 40
+DEMO_SCENARIO ?= config/scenarios/dp_azimuth_failure.yaml
 demo: setup
-	$(PY) -m allocator_pkg.cli.demo --config $(DEMO_CONFIG) --duration $(DEMO_DURATION) --out build/demo_timeline.png
+	$(PY) -m allocator_pkg.cli.demo --scenario $(DEMO_SCENARIO) --out build/demo
+
+SCENARIOS := $(wildcard config/scenarios/*.yaml)
+SIM_METHODS ?= qp lp pseudoinverse nonlinear dynamic svd_filter
+sim: setup
+	@for scenario in $(SCENARIOS); do $(VENV)/bin/allocator-sim compare $$scenario --methods $(SIM_METHODS) \
+	  --out build/sim/$$(basename $$scenario .yaml) || exit 1; done
 
 lint: setup
 	@$(VENV)/bin/ruff check .

@@ -1,5 +1,7 @@
-"""make demo in a short run: the node as a process, the scripted controller, the fault, the PNG."""
+"""make demo in a short run: the closed loop with the node as a process, the azimuth failing
+and recovering, the live table, the PNGs."""
 
+import os
 import subprocess
 import sys
 
@@ -9,13 +11,19 @@ from conftest import ROOT
 pytestmark = pytest.mark.slow
 
 
-def test_demo_short_run_writes_its_timeline(tmp_path):
-    out = tmp_path / "timeline.png"
-    command = [sys.executable, "-m", "allocator_pkg.cli.demo", "--config", str(ROOT / "config" / "dp_vessel.yaml"),
-               "--duration", "6", "--out", str(out)]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=120)
+def test_demo_short_run_writes_its_figures(tmp_path):
+    out = tmp_path / "demo"
+    command = [sys.executable, "-m", "allocator_pkg.cli.demo", "--scenario",
+               str(ROOT / "config" / "scenarios" / "dp_azimuth_failure.yaml"), "--duration", "20", "--every", "2",
+               "--out", str(out)]
+    environment = dict(os.environ, ROS_DOMAIN_ID="88", ROS_AUTOMATIC_DISCOVERY_RANGE="LOCALHOST")
+    result = subprocess.run(command, capture_output=True, text=True, timeout=120, env=environment)
     assert result.returncode == 0, result.stdout + result.stderr
-    assert "azimuth_stbd: FAILED" in result.stdout
-    assert "cleared faults of azimuth_stbd" in result.stdout
-    assert f"timeline written to {out}" in result.stdout
-    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "azimuth_port: FAILED" in result.stdout
+    assert "cleared faults of azimuth_port" in result.stdout
+    table = [line for line in result.stdout.splitlines() if " err " in line and "azimuth_stbd" in line]
+    assert len(table) >= 9                                     # a line every 2 s of 20 s
+    for name in ("footprint", "timeline"):
+        path = out / f"{name}.png"
+        assert f"{name} written to {path}" in result.stdout
+        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

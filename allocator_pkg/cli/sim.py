@@ -1,7 +1,7 @@
 """allocator-sim: the real ``allocator_node`` holding a simulated vehicle on station, in
 lock-step on ROS 2 sim time.
 
-    allocator-sim SCENARIO --out DIR [--seed N] [--method M] [--duration-scale S] [--live]
+    allocator-sim SCENARIO --out DIR [--seed N] [--method M] [--duration-scale S] [--live [SECONDS]]
     allocator-sim compare SCENARIO --methods qp lp ... --out DIR [--duration-scale S]
 
 The node runs as its own process, unchanged, with ``use_sim_time`` and ``trigger: input``.
@@ -134,8 +134,9 @@ class Voltage:
         return voltage
 
 
-def run(scenario: Scenario, out: Path, live: bool = False, log=print) -> RunResult:
-    """One closed-loop run of ``scenario`` with the node as a process; outputs into ``out``."""
+def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResult:
+    """One closed-loop run of ``scenario`` with the node as a process; outputs into ``out``;
+    with ``live`` > 0 a line of the live table every ``live`` simulated seconds."""
     import rclpy
     from geometry_msgs.msg import PoseStamped
     from nav_msgs.msg import Odometry
@@ -295,7 +296,7 @@ def run(scenario: Scenario, out: Path, live: bool = False, log=print) -> RunResu
             thrust, azimuth = np.array(commands.thrust), np.array(commands.azimuth)
             trace.add(t, pose.position, pose.attitude, scenario.setpoint_position, scenario.setpoint_heading,
                       thrust, azimuth, status.saturated, status.power, "fault_start" in state)
-            if live and t - printed >= 1.0:
+            if live > 0.0 and t - printed >= live - 1e-9:
                 printed = t
                 error = trace.position_errors()[-1]
                 log(f"{t:6.1f} s  err {error:6.2f} m  " + format_sample(commands, status))
@@ -398,7 +399,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--method", default=None, help="allocation method (default: the scenario's)")
     parser.add_argument("--duration-scale", type=float, default=1.0,
                         help="scale the duration and every event time (short runs)")
-    parser.add_argument("--live", action="store_true", help="a live table, one line per simulated second")
+    parser.add_argument("--live", type=float, nargs="?", const=1.0, default=0.0, metavar="SECONDS",
+                        help="a live table, one line every SECONDS of simulated time (default 1)")
     arguments = parser.parse_args(argv)
     try:
         scenario = _scenario(arguments)
