@@ -1,4 +1,4 @@
-"""allocator-sim closed loop with the real allocator_node process, on the four shipped
+"""allocator-sim closed loop with the real allocator_node process, on the shipped
 scenarios shortened (--duration-scale): the loop holds each within its stated bounds for qp,
 also through its failure; the same seed gives the same metrics; the metrics agree with what
 the MCAP holds; every recorded command is within the limits in force."""
@@ -20,7 +20,7 @@ from allocator_pkg.vehicle.angles import wrap
 pytestmark = pytest.mark.slow
 
 SCENARIOS = {"dp_station_keeping": (0.1, 81), "dp_azimuth_failure": (0.1, 82), "rov_thruster_failure": (0.15, 83),
-             "rov_battery_sag": (0.15, 84)}
+             "rov_battery_sag": (0.15, 84), "dp_stuck_azimuth": (0.1, 86)}
 RESULTS = {}
 
 
@@ -90,6 +90,8 @@ def test_every_recorded_command_is_within_the_limits_in_force(finished):
                         assert not (start + 1e-6 < wrap(angle[i]) < end - 1e-6), (actuator.name, angle[i])
                 if previous is not None:
                     assert abs(wrap(angle[i] - previous[1][i])) <= actuator.rotation.rate_max * period + 1e-9
+                    if mode[i] == previous[2][i] == ActuatorFault.STUCK:
+                        assert angle[i] == previous[1][i]
         previous = (thrust, angle, mode)
     if case.voltage is not None and any(e.kind == "battery_ramp" for e in case.events):
         voltages = [s.voltage for s in topics["/allocation_status"]]

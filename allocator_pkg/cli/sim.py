@@ -48,7 +48,7 @@ from ..vehicle.config import Vehicle
 START_NS = 100_000_000_000
 """Sim time [ns] of the first step (the warm-up steps come before it)."""
 WARM_UP_STEPS = 20
-ANSWER_TIMEOUT = 2.0
+ANSWER_TIMEOUT = 5.0
 """[s] of wall time to wait for the node's answer to a step before sending it again."""
 RETRIES = 3
 TOPICS = {"clock": "/clock", "odometry": "/odometry", "setpoint": "/setpoint", "battery": "/battery_state",
@@ -222,7 +222,9 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
 
     def apply(event: Event, state: dict) -> None:
         if event.kind == "fault":
-            value = float(event.value) if event.mode in ("stuck", "degraded") else 0.0
+            value = 0.0 if event.mode == "failed" else event.value
+            if value is None:                           # stuck where it is
+                value = float(plant.thrusters.angle[vehicle.names.index(event.actuator)])
             response = services.set_fault(event.actuator, event.mode, value)
             if not response.success:
                 raise SimulationError(f"set_actuator_fault refused: {response.message}")

@@ -99,6 +99,8 @@ def compare_table(scenario, metrics: dict[str, dict[str, float]]) -> str:
     lines = [f"{scenario.name}: {scenario.duration:g} s, seed {scenario.seed}", "",
              "| metric | " + " | ".join(methods) + " |", "|---|" + "---:|" * len(methods)]
     for key, label, form in METRIC_ROWS:
+        if key == "depth_error_max" and scenario.horizontal:
+            continue
         if all(key in m for m in metrics.values()):
             lines.append(f"| {label} | " + " | ".join(form.format(metrics[m][key]) for m in methods) + " |")
     return "\n".join(lines) + "\n"

@@ -28,8 +28,10 @@ class ScenarioError(ValueError):
 
 @dataclass(frozen=True)
 class Event:
-    """At ``time`` [s]: one of a fault (``fault``: actuator, mode, value), clearing every
-    fault, a battery voltage ramp (``ramp``: to [V], duration [s]) or a node parameter."""
+    """At ``time`` [s]: one of a fault (``fault``: actuator, mode, value: the share of force
+    left when ``degraded``, the angle [rad] when ``stuck``, None for the angle it has then),
+    clearing every fault, a battery voltage ramp (``ramp``: to [V], duration [s]) or a node
+    parameter."""
 
     time: float
     kind: str
@@ -146,8 +148,8 @@ def _event(data: Any, index: int) -> Event:
             raise ScenarioError(f"{where}fault.mode: one of {', '.join(FAULT_MODES)}, not {mode!r}")
         if not isinstance(body.get("actuator"), str):
             raise ScenarioError(f"{where}fault.actuator: an actuator name, not {body.get('actuator')!r}")
-        return Event(time, kind, actuator=body["actuator"], mode=mode,
-                     value=_number(body, "value", where + "fault.", 0.0))
+        value = None if mode == "stuck" and "value" not in body else _number(body, "value", where + "fault.", 0.0)
+        return Event(time, kind, actuator=body["actuator"], mode=mode, value=value)
     if kind == "battery_ramp":
         return Event(time, kind, value=_number(body, "to", where + "battery_ramp.", minimum=0.0),
                      duration=_number(body, "duration", where + "battery_ramp.", 0.0, 0.0))
