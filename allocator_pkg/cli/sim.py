@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from ..configuration.parameters import load_vehicle
+from ..methods import METHODS
 from ..simulation.controller import StationKeeping
 from ..simulation.environment import Environment
 from ..simulation.kinematics import euler, quaternion
@@ -47,7 +48,7 @@ from ..vehicle.config import Vehicle
 
 START_NS = 100_000_000_000
 """Sim time [ns] of the first step (the warm-up steps come before it)."""
-WARM_UP_STEPS = 20
+WARM_UP_STEPS = 60
 ANSWER_TIMEOUT = 5.0
 """[s] of wall time to wait for the node's answer to a step before sending it again."""
 RETRIES = 3
@@ -212,6 +213,42 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
                                   f"(see {out / 'node.log'})")
         return None
 
+    def stamped(t_ns: int) -> int | None:
+        """The stamp [ns] of the node's latest answer if it is a sample (not a stop) at ``t_ns``."""
+        status = answers.get("status")
+        if status is None or status.outcome == AllocationStatus.OUTCOME_STOPPED:
+            return None
+        return t_ns if status.header.stamp.sec * 1_000_000_000 + status.header.stamp.nanosec == t_ns else None
+
+    def warm_up(t_ns: int) -> None:
+        """Zero requests, one clock step each, from ``t_ns`` to the step before the run; the
+        node must answer the last three each in its own step. A wrench that reached the node
+        before its clock step waits for the next one; the node then answers on the clock alone,
+        and that step sends no wrench, so that nothing waits at the first real step. The
+        allocator stays at zero thrust."""
+        in_step = 0
+        while t_ns < START_NS:
+            stamp = Clock()
+            stamp.clock.sec, stamp.clock.nanosec = divmod(t_ns, 1_000_000_000)
+            answers.clear()
+            publish_battery(t_ns, voltage.at(0.0))
+            clock.publish(stamp)
+            deadline = time.monotonic() + 0.02
+            while time.monotonic() < deadline:
+                executor.spin_once(timeout_sec=0.005)
+            if stamped(t_ns) is not None:                # a waiting wrench, answered on the clock
+                in_step = 0
+            else:
+                answers.clear()
+                services.wrench.publish(array_to_wrench(np.zeros(6)))
+                deadline = time.monotonic() + 1.0
+                while stamped(t_ns) is None and time.monotonic() < deadline:
+                    executor.spin_once(timeout_sec=0.01)
+                in_step = in_step + 1 if stamped(t_ns) is not None else 0
+            t_ns += period_ns
+        if in_step < 3:
+            raise SimulationError(f"allocator_node did not answer in lock-step (see {out / 'node.log'})")
+
     def publish_battery(t_ns: int, value: float | None) -> BatteryState | None:
         if value is None:
             return None
@@ -248,14 +285,7 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
             executor.spin_once(timeout_sec=0.05)
             if process.poll() is not None or time.monotonic() - started > 30.0:
                 raise SimulationError(f"allocator_node did not start (see {out / 'node.log'})")
-        zero = np.zeros(6)
-        synchronised = 0
-        for j in range(WARM_UP_STEPS, 0, -1):          # zero requests until the node answers in step
-            t_ns = START_NS - j * period_ns
-            publish_battery(t_ns, voltage.at(0.0))
-            synchronised = synchronised + 1 if exchange(t_ns, zero, required=False) else 0
-        if synchronised < 2:
-            raise SimulationError(f"allocator_node did not answer in lock-step (see {out / 'node.log'})")
+        warm_up(START_NS - WARM_UP_STEPS * period_ns)
 
         pending = list(scenario.events)
         state: dict = {}
@@ -297,7 +327,7 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
                     recording.write(TOPICS[topic], recordable(item) if topic == "odometry" else item, t_ns)
             thrust, azimuth = np.array(commands.thrust), np.array(commands.azimuth)
             trace.add(t, pose.position, pose.attitude, scenario.setpoint_position, scenario.setpoint_heading,
-                      thrust, azimuth, status.saturated, status.power, "fault_start" in state)
+                      thrust, azimuth, status.saturated, status.power, "fault_start" in state, status.voltage)
             if live > 0.0 and t - printed >= live - 1e-9:
                 printed = t
                 error = trace.position_errors()[-1]
@@ -379,7 +409,14 @@ def main(argv: list[str] | None = None) -> int:
             scenario = _scenario(arguments)
             out = Path(arguments.out)
             results = {}
+            vehicle = load_vehicle(scenario.vehicle)
             for method in arguments.methods:
+                if method not in METHODS:
+                    raise ValueError(f"--methods: {method!r} is not one of {', '.join(METHODS)}")
+                unfit = METHODS[method].problems(vehicle)
+                if unfit:
+                    print(f"sim: {method} left out: it cannot serve this vehicle: {'; '.join(unfit)}", flush=True)
+                    continue
                 print(f"sim: {scenario.name} with {method}", flush=True)
                 result = run(scenario.with_method(method), out / method)
                 sim_plots.plot_run(out / method, result, scenario.with_method(method))

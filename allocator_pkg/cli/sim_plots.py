@@ -71,10 +71,13 @@ def plot_run(out: Path, result, scenario) -> None:
     error.plot(t, heading, color="tab:purple", linewidth=0.8, label="heading error [deg]")
     if not scenario.horizontal:
         error.plot(t, offset[:, 2], color="tab:cyan", linewidth=0.8, label="depth error [m]")
+    rotating = [i for i, actuator in enumerate(result.vehicle.actuators) if actuator.rotatable]
     for i, name in enumerate(result.trace.names):
         thrust.plot(t, a["thrust"][:, i] / scale, linewidth=0.8, label=name)
-        if np.any(a["azimuth"][:, i] != 0.0):
+        if i in rotating:
             azimuth.plot(t, np.degrees(np.unwrap(a["azimuth"][:, i])), linewidth=0.8, label=name)
+    if not rotating:
+        azimuth.plot(t, a["voltage"], color="tab:brown", label="supply voltage the limits follow")
     power.plot(t, a["power"] / 1e3, color="tab:green", label="power (1.44) [kW]")
     power.fill_between(t, 0, np.max(a["power"] / 1e3, initial=0.0) * a["saturated"], step="mid", color="tab:orange",
                        alpha=0.3, label="saturated")
@@ -83,9 +86,10 @@ def plot_run(out: Path, result, scenario) -> None:
         axes.grid(True)
         if axes.get_legend_handles_labels()[0]:
             axes.legend(loc="upper right", fontsize=7)
-    error.set_title(f"{scenario.name} ({scenario.method}); the shaded interval has a fault in force")
+    shaded = "; a fault is in force in the shaded interval" if result.fault_intervals else ""
+    error.set_title(f"{scenario.name} ({scenario.method}){shaded}")
     thrust.set_ylabel(f"thrust [{unit}]")
-    azimuth.set_ylabel("azimuth [deg]")
+    azimuth.set_ylabel("azimuth [deg]" if rotating else "voltage [V]")
     power.set_ylabel("power [kW]")
     power.set_xlabel("time [s]")
     figure.tight_layout()

@@ -1,9 +1,10 @@
 """What one closed-loop run saw, sample by sample, and its metrics (``metrics.run_metrics``):
 the vehicle's position and attitude, the set-point, the commanded thrusts and angles, the
-saturation flag and the power the node reported, and when a fault was in force."""
+saturation flag, power and supply voltage the node reported, and when a fault was in force."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -27,9 +28,11 @@ class Trace:
     saturated: list[bool] = field(default_factory=list)
     power: list[float] = field(default_factory=list)
     faulted: list[bool] = field(default_factory=list)
+    voltage: list[float] = field(default_factory=list)
+    """The supply voltage the node's limits followed (NaN without voltage tables)."""
 
     def add(self, time: float, position, attitude, setpoint, setpoint_heading: float, thrust, azimuth,
-            saturated: bool, power: float, faulted: bool) -> None:
+            saturated: bool, power: float, faulted: bool, voltage: float = math.nan) -> None:
         self.time.append(time)
         self.position.append(list(position))
         self.attitude.append(list(attitude))
@@ -40,11 +43,12 @@ class Trace:
         self.saturated.append(bool(saturated))
         self.power.append(power)
         self.faulted.append(bool(faulted))
+        self.voltage.append(voltage)
 
     def arrays(self) -> dict[str, np.ndarray]:
         return {name: np.array(getattr(self, name), dtype=float) for name in
                 ("time", "position", "attitude", "setpoint", "setpoint_heading", "thrust", "azimuth", "saturated",
-                 "power", "faulted")}
+                 "power", "faulted", "voltage")}
 
     def position_errors(self) -> np.ndarray:
         return position_errors(np.array(self.position), np.array(self.setpoint), self.horizontal)
