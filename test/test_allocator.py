@@ -1,12 +1,13 @@
 """The Allocator facade: public API, faults, commands, state and warnings."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from conftest import DATA, ROOT, vehicle_from
 
-from allocator_pkg import Allocator, FaultMode, load_vehicle, vehicle_from_parameters
+from allocator_pkg import Allocator, ConfigError, FaultMode, load_vehicle, vehicle_from_parameters
 from allocator_pkg.effectiveness.actuators import command_map
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
@@ -89,8 +90,13 @@ def test_reset_returns_to_initial_angles(alloc):
 
 
 def test_uncontrollable_dofs_are_reported():
-    otter_like = vehicle_from(DATA / "eight_thrusters.yaml", dofs=["surge", "heave", "yaw"],
-                              **{f"actuators__t{i}__direction": [1.0, 0.0, 0.0] for i in range(1, 9)})
+    """The loader refuses a controlled DOF out of reach; a Vehicle built in code still gets
+    the warning."""
+    along_x = {f"actuators__t{i}__direction": [1.0, 0.0, 0.0] for i in range(1, 9)}
+    with pytest.raises(ConfigError, match="dofs: no actuator can produce heave"):
+        vehicle_from(DATA / "eight_thrusters.yaml", dofs=["surge", "heave", "yaw"], **along_x)
+    otter_like = replace(vehicle_from(DATA / "eight_thrusters.yaml", dofs=["surge", "yaw"], **along_x),
+                         dofs=("surge", "heave", "yaw"))
     alloc = Allocator(otter_like)
     assert any("no actuator can produce heave" in w for w in alloc.warnings)
     assert alloc.uncontrolled == ("sway", "roll", "pitch")
@@ -98,7 +104,8 @@ def test_uncontrollable_dofs_are_reported():
 
 def test_a_controlled_dof_out_of_reach_is_a_warning_not_an_under_actuation_note():
     along_x = {f"actuators__t{i}__direction": [1.0, 0.0, 0.0] for i in range(1, 9)}
-    controls_sway = Allocator(vehicle_from(DATA / "eight_thrusters.yaml", dofs=["surge", "sway", "yaw"], **along_x))
+    leaves = vehicle_from(DATA / "eight_thrusters.yaml", dofs=["surge", "yaw"], **along_x)
+    controls_sway = Allocator(replace(leaves, dofs=("surge", "sway", "yaw")))
     assert any("no actuator can produce sway" in w for w in controls_sway.warnings) and controls_sway.notes == []
     leaves_sway = Allocator(vehicle_from(DATA / "eight_thrusters.yaml", dofs=["surge", "yaw"], **along_x))
     assert leaves_sway.warnings == []
@@ -194,9 +201,12 @@ def test_warnings_follow_a_reconfigured_geometry():
     alloc = Allocator(vehicle_from_parameters(NARROW_TWIN))
     assert alloc.warnings == []
     in_line = {**NARROW_TWIN, "actuators.port.position": [0.0, 0.0, 0.0], "actuators.stbd.position": [0.0, 0.0, 0.0]}
-    alloc.reconfigure(vehicle_from_parameters({**in_line, "actuators.port.thrust_max": 5e4}))
+    def without_yaw(parameters):                    # the loader refuses yaw out of reach; code may build it
+        return replace(vehicle_from_parameters({**parameters, "dofs": ["surge"]}), dofs=("surge", "yaw"))
+
+    alloc.reconfigure(without_yaw({**in_line, "actuators.port.thrust_max": 5e4}))
     assert alloc.warnings == ["no actuator can produce yaw; requests in it will always be saturated"]
-    alloc.reconfigure(vehicle_from_parameters({**in_line, "actuators.port.thrust_max": 4e4}))
+    alloc.reconfigure(without_yaw({**in_line, "actuators.port.thrust_max": 4e4}))
     assert len(alloc.warnings) == 1
     alloc.reconfigure(vehicle_from_parameters(NARROW_TWIN))
     assert alloc.warnings == []
