@@ -47,8 +47,9 @@ from ..simulation.vessel import Vessel, VesselParameters
 from ..vehicle.config import Vehicle
 
 START_NS = 100_000_000_000
-"""Sim time [ns] of the first step (the warm-up steps come before it)."""
-WARM_UP_STEPS = 60
+"""Sim time [ns] of the first warm-up step; the run starts after the warm-up."""
+WARM_UP_TIMEOUT = 60.0
+"""[s] of wall time the node has to come into step."""
 ANSWER_TIMEOUT = 5.0
 """[s] of wall time to wait for the node's answer to a step before sending it again."""
 RETRIES = 3
@@ -220,14 +221,16 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
             return None
         return t_ns if status.header.stamp.sec * 1_000_000_000 + status.header.stamp.nanosec == t_ns else None
 
-    def warm_up(t_ns: int) -> None:
-        """Zero requests, one clock step each, from ``t_ns`` to the step before the run; the
-        node must answer the last three each in its own step. A wrench that reached the node
-        before its clock step waits for the next one; the node then answers on the clock alone,
-        and that step sends no wrench, so that nothing waits at the first real step. The
-        allocator stays at zero thrust."""
-        in_step = 0
-        while t_ns < START_NS:
+    def warm_up(t_ns: int) -> int:
+        """Zero requests, one clock step each from ``t_ns``, until the node has answered three
+        in a row each in its own step; the time of the run's first step. A wrench that reached
+        the node before its clock step waits for the next one; the node then answers on the
+        clock alone, and that step sends no wrench, so that nothing waits at the first real
+        step. The allocator stays at zero thrust."""
+        in_step, started = 0, time.monotonic()
+        while in_step < 3:
+            if time.monotonic() - started > WARM_UP_TIMEOUT:
+                raise SimulationError(f"allocator_node did not answer in lock-step (see {out / 'node.log'})")
             stamp = Clock()
             stamp.clock.sec, stamp.clock.nanosec = divmod(t_ns, 1_000_000_000)
             answers.clear()
@@ -246,8 +249,7 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
                     executor.spin_once(timeout_sec=0.01)
                 in_step = in_step + 1 if stamped(t_ns) is not None else 0
             t_ns += period_ns
-        if in_step < 3:
-            raise SimulationError(f"allocator_node did not answer in lock-step (see {out / 'node.log'})")
+        return t_ns
 
     def publish_battery(t_ns: int, value: float | None) -> BatteryState | None:
         if value is None:
@@ -285,7 +287,7 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
             executor.spin_once(timeout_sec=0.05)
             if process.poll() is not None or time.monotonic() - started > 30.0:
                 raise SimulationError(f"allocator_node did not start (see {out / 'node.log'})")
-        warm_up(START_NS - WARM_UP_STEPS * period_ns)
+        start_ns = warm_up(START_NS)
 
         pending = list(scenario.events)
         state: dict = {}
@@ -293,7 +295,7 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
         printed = -math.inf
         for k in range(steps):
             t = k * period
-            t_ns = START_NS + k * period_ns
+            t_ns = start_ns + k * period_ns
             while pending and pending[0].time <= t + 1e-9:
                 apply(pending.pop(0), state)
             supply = voltage.at(t)
