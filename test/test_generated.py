@@ -378,9 +378,7 @@ def test_lp_may_answer_zero_to_a_request_below_its_feasibility_tolerance():
     assert ours == pytest.approx(best, rel=1e-6)
 
 
-@pytest.mark.parametrize("method", ["qp", pytest.param("nonlinear", marks=pytest.mark.xfail(
-    strict=True, reason="nonlinear leaves the idle az1 along x when the failed az0 has a forbidden sector: the "
-                        "turn it proposes for an idle thruster does not come (without that sector it does)"))])
+@pytest.mark.parametrize("method", ["qp", "nonlinear"])
 def test_an_idle_azimuth_turns_to_help_after_a_failure(method):
     """explore's counter-example: az0 (with a forbidden sector) failed, 320 kN of sway held past
     capability. The optimum (SLSQP, and qp) turns az1, 10 m forward and idle along x at the start,

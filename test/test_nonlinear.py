@@ -5,10 +5,11 @@ import pytest
 from conftest import DATA, vehicle_from
 from scipy.optimize import minimize
 
-from allocator_pkg import Allocator
+from allocator_pkg import Allocator, FaultMode
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 
 FOUR = DATA / "four_azimuths.yaml"
+IDLE = DATA / "nonlinear_idle_azimuth.yaml"
 
 
 def authority(vehicle):
@@ -115,3 +116,29 @@ def test_the_linearised_qps_are_solved_to_a_tenth_of_the_configured_tolerance():
     settings = alloc._solver.method._qp.backend.settings
     assert (settings.eps_abs, settings.eps_rel) == pytest.approx((1e-5, 2e-5))
     assert alloc.stats.solver_setups == 1
+
+
+def settled_idle_case(sectors, mode, angle):
+    """Thrusts, angles and wrench after 600 samples of 320 kN sway on the idle-azimuth vessel
+    (az1 10 m forward, idle along x at the start), az0 with ``sectors`` and the fault."""
+    vehicle = vehicle_from(IDLE, actuators__az0__forbidden_sectors=sectors)
+    alloc = Allocator(vehicle, method="nonlinear")
+    alloc.set_fault("az0", mode, efficiency=0.0 if mode == FaultMode.FAILED else 1.0, angle=angle)
+    tau = np.array([0.0, 320e3, 0.0, 0.0, 0.0, 0.0])
+    for _ in range(600):
+        result = alloc.allocate(tau)
+    return result
+
+
+@pytest.mark.parametrize(("mode", "angle"), [(FaultMode.FAILED, 0.0), (FaultMode.STUCK, 0.0), (FaultMode.STUCK, 1.5)])
+def test_the_sectors_of_a_failed_or_stuck_thruster_do_not_keep_an_idle_one_from_turning(mode, angle):
+    """az0 out of play: failed, stuck clear of its sector (1-2 rad) or stuck inside it (no
+    thrust, the same as failed). Its sector changes nothing the others may do, so the idle az1
+    turns to give sway (past capability, 120 kN short) as it does on the vessel without that
+    sector, where az0 failed."""
+    reference = settled_idle_case([], FaultMode.FAILED, 0.0)
+    assert reference.thrust[1] > 1e3 and np.sin(reference.azimuth[1]) > 0.99
+    result = settled_idle_case([1.0, 2.0], mode, angle)
+    assert result.thrust[1:] == pytest.approx(reference.thrust[1:], rel=1e-4)
+    assert result.azimuth[1:] == pytest.approx(reference.azimuth[1:], abs=1e-4)
+    assert result.achieved[[0, 1, 5]] == pytest.approx(reference.achieved[[0, 1, 5]], rel=1e-4, abs=1.0)

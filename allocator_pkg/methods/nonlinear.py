@@ -21,8 +21,9 @@ every rotatable thruster, and the slack s:
   cannot help, the multipliers of the equality rows give the direction along which a push
   lowers the cost fastest (the optimality condition of (1.44) at f = 0 in the thruster's x/y
   force); the method proposes that the thruster turn toward it (``MethodOutput.turn``). Only
-  on vessels whose rotatable thrusters all turn freely: with sectors the piece planner
-  chooses each thruster's side globally.
+  while every rotatable thruster in play (neither failed nor stuck) turns freely: with
+  sectors the piece planner chooses each thruster's side globally, and a failed or stuck
+  thruster's sectors leave it nothing to choose.
 - Angle steps: w_j = Omega + the curvature the equality constraint adds along alpha_j, the
   Hessian of the Lagrangian of (1.44), -f_j y't_j(alpha), with y the multipliers of the
   equality rows in the last QP. At an unsaturated optimum y't_j = -3/2 P_j sqrt|f_j| sign(f_j),
@@ -144,7 +145,8 @@ class NonlinearAllocation(AllocationMethod):
         self._c_gain = 0.75 * model.power * share
         self._q_gain = 2.0 / share
         rotations = [model.vehicle.actuators[i].rotation for i in rot]
-        self._idle_turning = bool(rotations) and all(r.continuous and not r.forbidden_sectors for r in rotations)
+        self._cut = [(k, int(i)) for k, (i, r) in enumerate(zip(rot.tolist(), rotations))
+                     if not (r.continuous and not r.forbidden_sectors)]
         self._hold = model.hold[rot].tolist()
         self._missing = model.dof_tolerance
         self._turning_gain = 1.5 * model.power[rot]
@@ -250,11 +252,21 @@ class NonlinearAllocation(AllocationMethod):
             spun = angle[rot]
             extended[model.rot_columns[:, 0]] *= np.cos(spun)
             extended[model.rot_columns[:, 1]] *= np.sin(spun)
-            if self._idle_turning:
+            if self._idle_turning(limits):
                 idle = [k for k, (f, hold) in enumerate(zip(force[rot].tolist(), self._hold)) if abs(f) <= hold]
                 if idle:
                     turn = self._idle_turns(tau, extended, limits, idle)
         return MethodOutput(extended, status, iterations, angle=angle, turn=turn)
+
+    def _idle_turning(self, limits: SampleLimits) -> bool:
+        """Whether idle thrusters may be sent turning this sample: when every rotatable
+        thruster whose forces a sector cuts is out of play (failed, its static range zero, or
+        stuck), as the piece planner then has no side to choose."""
+        if not self._cut:
+            return True
+        range_low = limits.low if limits.range_low is None else limits.range_low
+        range_high = limits.high if limits.range_high is None else limits.range_high
+        return all(limits.azimuth[k].line or range_high[i] <= range_low[i] for k, i in self._cut)
 
     def _idle_turns(self, tau: np.ndarray, extended: np.ndarray, limits: SampleLimits,
                     idle: list[int]) -> dict[int, float] | None:
