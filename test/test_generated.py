@@ -382,8 +382,8 @@ def test_lp_may_answer_zero_to_a_request_below_its_feasibility_tolerance():
 def test_an_idle_azimuth_turns_to_help_after_a_failure(method):
     """explore's counter-example: az0 (with a forbidden sector) failed, 320 kN of sway held past
     capability. The optimum (SLSQP, and qp) turns az1, 10 m forward and idle along x at the start,
-    to give 7 kN of sway for 71 kN m of yaw; nonlinear leaves it idle, 0.07 of the yaw authority
-    away. Without az0's sector, or with the sector on a working unit, nonlinear turns it."""
+    to give 7 kN of sway for 71 kN m of yaw; nonlinear must turn it too, although the vessel has
+    a sector (on the failed unit, where it no longer matters)."""
     vehicle = load_vehicle(DATA / "nonlinear_idle_azimuth.yaml")
     failed = {"az0": (FaultMode.FAILED, 0.0, 0.0)}
     assert judge_azimuths(vehicle, method, failed, np.array([0.0, 320e3, 0.0, 0.0, 0.0, 0.0])) <= WRENCH

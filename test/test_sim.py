@@ -9,7 +9,8 @@ import math
 import numpy as np
 import pytest
 from conftest import ROOT
-from mcap_ros2.reader import read_ros2_messages
+from mcap.reader import make_reader
+from mcap_ros2.decoder import DecoderFactory
 
 from allocator_msgs.msg import ActuatorFault
 from allocator_pkg.cli.sim import main, metrics_from_recording, run
@@ -69,9 +70,10 @@ def test_every_recorded_command_is_within_the_limits_in_force(finished):
     period = 1.0 / vehicle.rate_hz
     topics = {"/thruster_commands": [], "/allocation_status": [], "/clock": [], "/odometry": [], "/setpoint": [],
               "/wrench_command": []}
-    for item in read_ros2_messages(str(out / "run.mcap")):
-        if item.channel.topic in topics:
-            topics[item.channel.topic].append(item.ros_msg)
+    with open(out / "run.mcap", "rb") as stream:
+        for _, channel, _, message in make_reader(stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages():
+            if channel.topic in topics:
+                topics[channel.topic].append(message)
     steps = len(result.trace.time)
     assert all(len(messages) == steps for messages in topics.values()), {k: len(v) for k, v in topics.items()}
     previous = None

@@ -50,8 +50,11 @@ START_NS = 100_000_000_000
 """Sim time [ns] of the first warm-up step; the run starts after the warm-up."""
 WARM_UP_TIMEOUT = 60.0
 """[s] of wall time the node has to come into step."""
-ANSWER_TIMEOUT = 5.0
-"""[s] of wall time to wait for the node's answer to a step before sending it again."""
+ANSWER_TIMEOUT = 30.0
+"""[s] of wall time to wait for the node's answer to a step before sending it again. Long: a
+node that did get the step and answers late (a busy machine) would take a second wrench of the
+same step as one waiting for the next period, and sample twice in one step; a lost message is
+rare on loopback."""
 RETRIES = 3
 TOPICS = {"clock": "/clock", "odometry": "/odometry", "setpoint": "/setpoint", "battery": "/battery_state",
           "wrench": "/wrench_command", "commands": "/thruster_commands", "status": "/allocation_status"}
@@ -360,12 +363,15 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
 
 def metrics_from_recording(path: Path, vehicle: Vehicle, horizontal: bool) -> dict[str, float]:
     """The metrics of a run again, from its ``run.mcap`` alone (odometry, set-point, commands, status)."""
-    from mcap_ros2.reader import read_ros2_messages
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
 
     rows: dict[str, list] = {topic: [] for topic in ("/odometry", "/setpoint", "/thruster_commands",
                                                      "/allocation_status")}
-    for item in read_ros2_messages(str(path), topics=list(rows)):
-        rows[item.channel.topic].append(item.ros_msg)
+    with open(path, "rb") as stream:
+        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+        for _, channel, _, message in reader.iter_decoded_messages(topics=list(rows)):
+            rows[channel.topic].append(message)
     position = np.array([[m.pose.pose.position.x, m.pose.pose.position.y, m.pose.pose.position.z]
                          for m in rows["/odometry"]])
     heading = np.array([euler(m.pose.pose.orientation.x, m.pose.pose.orientation.y, m.pose.pose.orientation.z,
