@@ -20,6 +20,7 @@ method, ``compare.md`` and ``compare.png``. Frames: odometry and set-point in NE
 from __future__ import annotations
 
 import argparse
+import ctypes
 import json
 import math
 import os
@@ -50,6 +51,8 @@ START_NS = 100_000_000_000
 """Sim time [ns] of the first warm-up step; the run starts after the warm-up."""
 WARM_UP_TIMEOUT = 60.0
 """[s] of wall time the node has to come into step."""
+PR_SET_PDEATHSIG = 1
+"""prctl option: the signal a process gets when its parent ends (linux/prctl.h)."""
 ANSWER_TIMEOUT = 30.0
 """[s] of wall time to wait for the node's answer to a step before sending it again. Long: a
 node that did get the step and answers late (a busy machine) would take a second wrench of the
@@ -173,7 +176,8 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
     faults: list[tuple[float, float]] = []
 
     with open(out / "node.log", "w") as node_log:
-        process = subprocess.Popen(node_command(scenario, vehicle), stdout=node_log, stderr=subprocess.STDOUT)
+        process = subprocess.Popen(node_command(scenario, vehicle), stdout=node_log, stderr=subprocess.STDOUT,
+                                   preexec_fn=_ends_with_parent)
     context = rclpy.Context()
     rclpy.init(context=context)
     node = rclpy.create_node("allocator_sim", context=context)
@@ -359,6 +363,14 @@ def run(scenario: Scenario, out: Path, live: float = 0.0, log=print) -> RunResul
                                                   "seed": scenario.seed, "duration": scenario.duration,
                                                   "metrics": metrics}, indent=2) + "\n")
     return RunResult(metrics, trace, vehicle, faults)
+
+
+def _ends_with_parent() -> None:
+    """In the node's process, before it starts: SIGTERM when the simulator's process ends
+    (Linux's PR_SET_PDEATHSIG), so that a simulator killed mid-run leaves no node answering in
+    its domain, where it would take the next run's wrenches for its own."""
+    if sys.platform.startswith("linux"):
+        ctypes.CDLL(None).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
 
 
 def metrics_from_recording(path: Path, vehicle: Vehicle, horizontal: bool) -> dict[str, float]:
