@@ -3,6 +3,12 @@
 keeps DDS on this machine, on loopback and in a domain of its own unless the caller chose them."""
 
 import os
+
+# DDS discovery stays on loopback, in the suite's own domain (as the Makefile sets them), before
+# anything here or in the plugin loads rclpy.
+os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+os.environ.setdefault("ROS_DOMAIN_ID", "42")
+
 from pathlib import Path
 
 import numpy as np
