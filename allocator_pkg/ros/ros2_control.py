@@ -11,10 +11,11 @@ from rclpy.publisher import Publisher
 from rclpy.qos import QoSProfile
 from std_msgs.msg import Float64MultiArray
 
-from ..allocation.allocator import AllocationResult
+from ..allocation.result import AllocationResult
 from ..vehicle.config import Vehicle
 from ..vehicle.node_settings import NodeSettings
 from . import qos
+from .conversions import doubles
 
 CreateOutput = Callable[[type, str, QoSProfile], Publisher]
 
@@ -48,10 +49,10 @@ class Ros2ControlOutput:
 
     def publish(self, result: AllocationResult) -> None:
         if self._thrust is not None:
-            self._thrust_message.data = result.thrust[self._thrust_indices].tolist()
+            self._thrust_message.data = doubles(result.thrust[self._thrust_indices])
             self._thrust.publish(self._thrust_message)
         if self._angle is not None:
-            self._angle_message.data = result.azimuth[self._angle_indices].tolist()
+            self._angle_message.data = doubles(result.azimuth[self._angle_indices])
             self._angle.publish(self._angle_message)
 
     def close(self) -> None:
