@@ -275,7 +275,7 @@ def run_sequence(vehicle, requests: np.ndarray) -> dict:
             allocator.allocate(tau)
         solver_times = timed_backend.times
         solver_times.clear()
-        statistics = getattr(allocator._method, "statistics", None)
+        statistics = getattr(allocator._solver.method, "statistics", None)
         before = statistics() if statistics else None
         times, errors, iterations, power_ratio, saturated = [], [], [], [], 0
         previous = allocator.azimuth
