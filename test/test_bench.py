@@ -129,3 +129,14 @@ def test_the_overhead_bench_takes_medians_over_rounds_and_ratios_to_the_bare_nod
     assert rows[("dp_vessel", 500.0)]["cpu_ratio"] == pytest.approx(0.4 / 0.3)
     assert rows[("dp_vessel", 500.0)]["latency_ratio"] == pytest.approx(1.1)
     assert rows[("dp_vessel", 100.0)]["latency_ratio"] == pytest.approx(1.3)
+
+
+def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator():
+    """The bench's per-sequence loop on a few samples (it reads the method in use from the
+    allocator, which no other test exercises)."""
+    vehicle = load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml")
+    requests = np.tile([10.0, 5.0, -3.0, 0.0, 0.0, 1.0], (solver.WARM_UP + 3, 1))
+    results = solver.run_sequence(vehicle, requests)
+    assert set(results["methods"]) == set(solver.allocators(vehicle))
+    assert results["samples"] == 3 and all(method["saturated_flags"] == 0 and method["fallbacks"] == 0
+                                            for method in results["methods"].values())
