@@ -156,3 +156,46 @@ def test_a_qos_override_on_one_node_leaves_the_next_one_at_the_default(ros_conte
         for node in (overridden, default):
             node.release()
             node.destroy_node()
+
+
+def stamp_ns(message) -> int:
+    return message.header.stamp.sec * 10**9 + message.header.stamp.nanosec
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0, status_rate_hz=10.0)
+def test_status_goes_out_at_most_status_rate_hz_while_commands_go_out_every_sample(harness):
+    harness.send_wrench([150.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    commands, statuses = len(harness.commands), len(harness.status)
+    harness.tick(50)                                              # one second at 50 Hz
+    harness.spin_for(0.2)
+    assert len(harness.commands) - commands == 50
+    reported = harness.status[statuses:]
+    assert 9 <= len(reported) <= 10
+    assert np.diff([stamp_ns(s) for s in reported]).min() >= 10**8
+    sampled = {stamp_ns(c) for c in harness.commands}
+    assert all(stamp_ns(s) in sampled for s in reported)         # each status is one sample's
+    assert harness.set_parameters({"status_rate_hz": 0.0}) == (True, "")
+    before = len(harness.status)
+    harness.tick(10)
+    harness.spin_for(0.2)
+    assert len(harness.status) - before == 10                     # every sample again
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_status_is_neither_built_nor_published_while_nobody_subscribes(harness):
+    from allocator_msgs.msg import AllocationStatus
+    runtime = harness.node.runtime
+    subscription = next(s for s in harness.probe.subscriptions if s.topic_name == "/allocation_status")
+    harness.probe.destroy_subscription(subscription)
+    harness.spin_until(lambda: harness.node.count_subscribers("/allocation_status") == 0)
+    published, samples = runtime.statuses_published, harness.node.samples
+    for _ in range(5):
+        before = len(harness.commands)
+        harness.advance(harness.node.period)
+        harness.spin_until(lambda before=before: len(harness.commands) > before)
+    assert harness.node.samples == samples + 5 and runtime.statuses_published == published
+    harness.probe.create_subscription(AllocationStatus, "allocation_status", harness.status.append, 100)
+    harness.spin_until(lambda: harness.node.count_subscribers("/allocation_status") == 1)
+    received = len(harness.status)
+    harness.tick(3)
+    assert runtime.statuses_published == published + 3 and len(harness.status) == received + 3

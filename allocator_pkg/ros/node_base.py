@@ -14,6 +14,7 @@ import gc
 import signal
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
@@ -41,6 +42,7 @@ from .ros_parameters import WholeSetParameters
 from .runtime import AllocationRuntime
 
 STOP_ACK_TIMEOUT = 1.0       # s the shutdown's zero-thrust command waits for acknowledgements
+SPIN_TIMEOUT = 0.1           # s: the longest the main loop waits before it looks for the end again
 
 
 class NodeConfigError(ConfigError):
@@ -304,8 +306,14 @@ def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None =
     executor = make_executor(node)
     executor.add_node(node)
     try:
-        while not stop.is_set() and not node.finished and rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
+        check = 0.0
+        while not stop.is_set():
+            executor.spin_once(timeout_sec=SPIN_TIMEOUT)
+            now = time.monotonic()
+            if now >= check:        # a lifecycle shutdown or a context gone: looked for every SPIN_TIMEOUT
+                check = now + SPIN_TIMEOUT
+                if node.finished or not rclpy.ok():
+                    break
         node.stop()
     finally:
         executor.shutdown()

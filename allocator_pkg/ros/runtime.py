@@ -47,7 +47,6 @@ from rclpy.lifecycle import LifecycleNode, LifecyclePublisher, LifecycleState
 from rclpy.node import Node
 from rclpy.publisher import Publisher
 from rclpy.qos import QoSProfile
-from rclpy.time import Time
 from sensor_msgs.msg import BatteryState
 from std_msgs.msg import Header
 from visualization_msgs.msg import MarkerArray
@@ -69,6 +68,7 @@ from .ros2_control import Ros2ControlOutput, ros2_control_changed
 from .watchdog import Watchdog
 
 DIAGNOSTICS_PERIOD = 1.0
+NANOSECONDS = 1_000_000_000
 LOG_THROTTLE = 5.0
 ACTIVE = LifecycleState("active", State.PRIMARY_STATE_ACTIVE)
 
@@ -101,6 +101,7 @@ class AllocationRuntime:
         self.counters = Counters()
         self.watchdog = Watchdog(settings.wrench_timeout)
         self.samples = 0
+        self.statuses_published = 0
         self.wrenches_received = 0
         self.active = False
         self._wrench = np.zeros(6)
@@ -112,11 +113,14 @@ class AllocationRuntime:
         self._reported: set[str] = set()
         self._hold: Hold | None = None
         self._wrench_type = wrench_input.message_type(settings)
+        self._clock = node.get_clock()
         self._commands = self._output(ThrusterCommands, "thruster_commands", qos.output())
         self._status = self._output(AllocationStatus, "allocation_status", qos.output())
+        self._status_due = 0
         # Filled and published again every sample, always under the lock (making them anew costs
-        # more than filling them).
+        # more than filling them); both share one header, its stamp set in place.
         self._commands_message, self._status_message = ThrusterCommands(), AllocationStatus()
+        self._header = Header(frame_id=settings.base_frame)
         self._diagnostics = self._output(DiagnosticArray, "/diagnostics", qos.diagnostics())
         self._markers = self._output(MarkerArray, "~/thrust_markers", qos.output())
         self._wrench_subscription = node.create_subscription(self._wrench_type, "wrench_command", self._on_wrench,
@@ -194,7 +198,8 @@ class AllocationRuntime:
         with self._lock:
             self._end_hold()
             if self.active:
-                self._publish(self.allocator.stop(), self._node.get_clock().now(), "stopped: deactivated")
+                self._publish(self.allocator.stop(), self._clock.now().nanoseconds, "stopped: deactivated",
+                              always=True)
             self.active = False
             self._timer.cancel()
             self._diagnostics_timer.cancel()
@@ -204,7 +209,8 @@ class AllocationRuntime:
         for every subscriber to acknowledge it (the node is about to go, and with it the
         reliable writer that would resend it). Whether all did."""
         with self._lock:
-            self._publish(self.allocator.stop(), self._node.get_clock().now(), "stopped: shutting down")
+            self._publish(self.allocator.stop(), self._clock.now().nanoseconds, "stopped: shutting down",
+                          always=True)
         return self._commands.wait_for_all_acked(Duration(seconds=timeout))
 
     def close(self) -> None:
@@ -234,17 +240,17 @@ class AllocationRuntime:
                 self.counters.rejected_frames += verdict.kind == "frame"
                 self.counters.rejected_in_period += 1
             else:
-                now = self._node.get_clock().now()
+                now = self._clock.now().nanoseconds
                 self._wrench = verdict.wrench
-                self._wrench_time = now.nanoseconds
+                self._wrench_time = now
                 if self.active and self.settings.trigger == INPUT:
                     waiting = self._waiting_wrench
                     self._waiting_wrench = True
-                    if self._last_sample is None or now.nanoseconds - self._last_sample >= self._period_ns:
+                    if self._last_sample is None or now - self._last_sample >= self._period_ns:
                         self._sample(now)
-                        self._schedule(now.nanoseconds)
+                        self._schedule(now)
                     elif not waiting:
-                        self._arm(self._last_sample + self._period_ns - now.nanoseconds)
+                        self._arm(self._last_sample + self._period_ns - now)
         if verdict.wrench is None:
             self._node.get_logger().warn(verdict.reason, throttle_duration_sec=LOG_THROTTLE)
 
@@ -269,7 +275,7 @@ class AllocationRuntime:
                 self.counters.rejected_in_period += 1
                 reason = str(error)
             else:
-                self._battery_time = self._node.get_clock().now().nanoseconds
+                self._battery_time = self._clock.now().nanoseconds
                 if self.battery_fallback:
                     self.battery_fallback = False
                     self._node.get_logger().info(f"supply voltage from {self._battery.topic_name}: {voltage:.2f} V")
@@ -294,10 +300,10 @@ class AllocationRuntime:
     def _on_timer(self) -> None:
         with self._lock:
             if self.active:
-                now = self._node.get_clock().now()
+                now = self._clock.now().nanoseconds
                 self._sample(now)
                 if self.settings.trigger == INPUT:
-                    self._schedule(now.nanoseconds, exact=True)
+                    self._schedule(now, exact=True)
 
     def _schedule(self, now: int, exact: bool = False) -> None:
         """Input trigger, after the timer or a sample: the next time the timer has work. Lock
@@ -323,17 +329,18 @@ class AllocationRuntime:
         timer.timer_period_ns = max(delay, 1)
         timer.reset()
 
-    def _sample(self, now: Time) -> None:
-        """Check the watchdog; allocate the latest wrench (zero thrust while it is stale) unless
-        the trigger is the input and no wrench waits. Called with the lock held."""
-        stale, transition = self.watchdog.check(now.nanoseconds, self._wrench_time)
+    def _sample(self, now: int) -> None:
+        """Check the watchdog at ``now`` [ns of the node clock]; allocate the latest wrench (zero
+        thrust while it is stale) unless the trigger is the input and no wrench waits. Called
+        with the lock held."""
+        stale, transition = self.watchdog.check(now, self._wrench_time)
         if transition is not None and transition[0] == "warn":
             self._node.get_logger().warn(transition[1])
         elif transition is not None:
             self._node.get_logger().info(transition[1])
         if not (stale or self._waiting_wrench or self.settings.trigger == TIMER):
             return
-        if self._hold is not None and (stale or now.nanoseconds >= self._hold.end):
+        if self._hold is not None and (stale or now >= self._hold.end):
             self._end_hold()
         if stale:
             result = self.allocator.stop()
@@ -342,24 +349,33 @@ class AllocationRuntime:
         else:
             result = self.allocator.allocate(self._wrench)
         self._waiting_wrench = False
-        self._last_sample = now.nanoseconds
+        self._last_sample = now
         self.samples += 1
         self.counters.count(result)
         self._last = result
         self._publish(result, now, f"stale: no valid wrench for {self.watchdog.timeout:g} s" if stale
                       else result.status)
 
-    def _publish(self, result: AllocationResult, now: Time, status: str) -> None:
-        header = Header(stamp=now.to_msg(), frame_id=self.settings.base_frame)
+    def _publish(self, result: AllocationResult, now: int, status: str, always: bool = False) -> None:
+        """The sample's outputs, stamped ``now`` [ns]. The status goes out only while someone
+        subscribes, and at most status_rate_hz times a second (0: every sample) unless
+        ``always`` (a stop)."""
+        header = self._header
+        stamp = header.stamp
+        stamp.sec, stamp.nanosec = divmod(now, NANOSECONDS)
         self._commands.publish(commands_message(result, self.allocator.names, header, self._commands_message))
-        self._status.publish(status_message(result, status, header, self.settings.frame, self.allocator.voltage,
-                                            self._status_message))
+        if (always or now >= self._status_due) and self._status.get_subscription_count():
+            rate = self.settings.status_rate_hz
+            self._status_due = now + round(1e9 / rate) if rate > 0.0 else 0
+            self._status.publish(status_message(result, status, header, self.settings.frame, self.allocator.voltage,
+                                                self._status_message))
+            self.statuses_published += 1
         if self._per_actuator is not None:
             self._per_actuator.publish(result)
         self._ros2_control.publish(result)
         rate = self.settings.markers_rate_hz
-        if rate > 0.0 and now.nanoseconds >= self._markers_due:
-            self._markers_due = now.nanoseconds + round(1e9 / rate)
+        if rate > 0.0 and now >= self._markers_due:
+            self._markers_due = now + round(1e9 / rate)
             if self._markers.get_subscription_count():
                 limits = self.allocator.ranges
                 self._markers.publish(thrust_markers(self.allocator.vehicle, result, limits, header,
@@ -429,6 +445,7 @@ class AllocationRuntime:
                 self._ros2_control = Ros2ControlOutput(vehicle, settings, self._output, self._destroy_output)
             self.settings = settings
             self.watchdog.timeout = settings.wrench_timeout
+            self._status_due = 0                    # a new status_rate_hz from the next sample
 
     # -- the bench: one actuator held ----------------------------------------------------
 
@@ -467,7 +484,7 @@ class AllocationRuntime:
             for name in names:
                 if name != actuator:
                     allocator.set_fault(name, FaultMode.FAILED)
-            end = self._node.get_clock().now().nanoseconds + round(duration * 1e9)
+            end = self._clock.now().nanoseconds + round(duration * 1e9)
             self._hold = Hold(index, float(thrust), end, saved)
         self._node.get_logger().warn(f"step test: holding {actuator} at {thrust:g} N for {duration:g} s, every "
                                      "other actuator FAILED")
@@ -508,10 +525,10 @@ class AllocationRuntime:
                                    f"(wrench_type: {self.settings.wrench_type})")
         self._reported.update(foreign)
         with self._lock:
-            self._check_battery(node.get_clock().now().nanoseconds)
+            self._check_battery(self._clock.now().nanoseconds)
             battery = None if self._battery is None else (self._battery.topic_name, self.battery_fallback)
             statuses = diagnostic_statuses(node.get_fully_qualified_name(), self.allocator, self.counters,
                                            self.watchdog.stale, self._last, foreign, battery)
             self.counters.reset_period()
-        self._diagnostics.publish(DiagnosticArray(header=Header(stamp=node.get_clock().now().to_msg()),
+        self._diagnostics.publish(DiagnosticArray(header=Header(stamp=self._clock.now().to_msg()),
                                                   status=statuses))

@@ -7,7 +7,7 @@ the one subscribed (they never connect, and DDS says nothing about it)."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from geometry_msgs.msg import Wrench, WrenchStamped
@@ -23,9 +23,9 @@ def message_type(settings: NodeSettings) -> type:
     return WrenchStamped if settings.wrench_type == WRENCH_STAMPED else Wrench
 
 
-@dataclass(frozen=True)
-class Verdict:
-    """The wrench in FRD, or why the message was rejected (``kind`` ``frame`` or ``values``)."""
+class Verdict(NamedTuple):
+    """The wrench in FRD, or why the message was rejected (``kind`` ``frame`` or ``values``); a
+    named tuple, which costs less to make than a frozen dataclass (one per wrench received)."""
 
     wrench: np.ndarray | None
     kind: str = ""

@@ -118,7 +118,7 @@ class Harness:
             expected = self.node.samples + (self._samples_on_timer())
             self._publish_clock()
             self.spin_until(lambda expected=expected: self._caught_up() and self.node.samples >= expected
-                            and len(self.commands) >= self.node.samples and len(self.status) >= self.node.samples)
+                            and len(self.commands) >= self.node.samples and self._has_every_status())
 
     def tick(self, periods: int = 1, period: float | None = None) -> None:
         """Advance simulated time by whole allocation periods (of ``period`` s if given), waiting
@@ -129,7 +129,7 @@ class Harness:
             self.time_ns += round(period * 1e9)
             self._publish_clock()
             self.spin_until(lambda expected=expected: self.node.samples >= expected
-                            and len(self.commands) >= expected and len(self.status) >= expected)
+                            and len(self.commands) >= expected and self._has_every_status())
         if periods == 0:
             self._publish_clock()
             self.spin_until(self._caught_up)
@@ -144,6 +144,12 @@ class Harness:
     def _samples_on_timer(self) -> int:
         runtime = self.node.runtime
         return int(runtime is not None and runtime.active and runtime.settings.trigger == "timer")
+
+    def _has_every_status(self) -> bool:
+        """Whether the probe has every status the node published (one per sample, or fewer with
+        ``status_rate_hz`` above 0)."""
+        runtime = self.node.runtime
+        return runtime is None or len(self.status) >= runtime.statuses_published
 
     def _caught_up(self) -> bool:
         return self.node.get_clock().now().nanoseconds >= self.time_ns

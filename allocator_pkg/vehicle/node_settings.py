@@ -39,14 +39,15 @@ class NodeSettings:
     ``wrench_timeout`` [s] of the stale-input watchdog (0 disables it); whether to publish one
     Float64 topic per actuator; the body frame convention ``frame`` of the wrenches in and out
     and the name ``base_frame`` stamped on the outputs; the wrench message type; what starts a
-    sample (``timer`` or ``input``); the rate of the thrust markers (0: none); where positions
-    and directions come from, the URDF file (empty: the ``robot_description`` topic) and each
-    actuator's link in it; how long [s] the thrust limits follow the last battery voltage
-    before they fall back to the nominal voltage; the ros2_control topics of thrust and of
-    azimuth angles (empty: none) and the actuators they carry, in the controller's joint order
-    (empty: every actuator in configuration order); whether ``~/hold_actuator`` may hold one
-    actuator at a time, at most what share of its largest thrust and for how long. A dotted
-    key fills the field of its name with '_' for '.' (``ros2_control.thrust_topic``:
+    sample (``timer`` or ``input``); how often at most the status goes out (0: every sample);
+    the rate of the thrust markers (0: none); where positions and directions come from, the
+    URDF file (empty: the ``robot_description`` topic) and each actuator's link in it; how long
+    [s] the thrust limits follow the last battery voltage before they fall back to the nominal
+    voltage; the ros2_control topics of thrust and of azimuth angles (empty: none) and the
+    actuators they carry, in the controller's joint order (empty: every actuator in
+    configuration order); whether ``~/hold_actuator`` may hold one actuator at a time, at most
+    what share of its largest thrust and for how long. A dotted key fills the field of its name
+    with '_' for '.' (``ros2_control.thrust_topic``:
     ``ros2_control_thrust_topic``).
     """
 
@@ -56,6 +57,7 @@ class NodeSettings:
     base_frame: str = "base_link"
     wrench_type: str = WRENCH
     trigger: str = TIMER
+    status_rate_hz: float = 0.0
     markers_rate_hz: float = 10.0
     geometry_source: str = PARAMS
     robot_description_file: str = ""
