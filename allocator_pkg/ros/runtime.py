@@ -116,7 +116,7 @@ class AllocationRuntime:
         self._clock = node.get_clock()
         self._commands = self._output(ThrusterCommands, "thruster_commands", qos.output())
         self._status = self._output(AllocationStatus, "allocation_status", qos.output())
-        self._status_due = 0
+        self._status_last: int | None = None
         # Filled and published again every sample, always under the lock (making them anew costs
         # more than filling them); both share one header, its stamp set in place.
         self._commands_message, self._status_message = ThrusterCommands(), AllocationStatus()
@@ -364,9 +364,12 @@ class AllocationRuntime:
         stamp = header.stamp
         stamp.sec, stamp.nanosec = divmod(now, NANOSECONDS)
         self._commands.publish(commands_message(result, self.allocator.names, header, self._commands_message))
-        if (always or now >= self._status_due) and self._status.get_subscription_count():
-            rate = self.settings.status_rate_hz
-            self._status_due = now + round(1e9 / rate) if rate > 0.0 else 0
+        # Due every sample, at a stop, or once a period of status_rate_hz has passed since the last
+        # status (or the clock was set back, as a simulator restarting does).
+        rate, last = self.settings.status_rate_hz, self._status_last
+        due = always or rate == 0.0 or last is None or not 0 <= now - last < 1e9 / rate
+        if due and self._status.get_subscription_count():
+            self._status_last = now
             self._status.publish(status_message(result, status, header, self.settings.frame, self.allocator.voltage,
                                                 self._status_message))
             self.statuses_published += 1
@@ -445,7 +448,7 @@ class AllocationRuntime:
                 self._ros2_control = Ros2ControlOutput(vehicle, settings, self._output, self._destroy_output)
             self.settings = settings
             self.watchdog.timeout = settings.wrench_timeout
-            self._status_due = 0                    # a new status_rate_hz from the next sample
+            self._status_last = None                # a new status_rate_hz from the next sample
 
     # -- the bench: one actuator held ----------------------------------------------------
 
