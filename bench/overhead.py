@@ -5,10 +5,13 @@ Every node runs in a process of its own; the probe here drives it over Fast DDS 
 Input-driven cases: a WrenchStamped on ``wrench_command`` at each input rate (100 and 500 Hz),
 answered by ``bench/bare.py echo`` (one message back at once) and by ``allocator_node`` with
 ``trigger: input`` and ``wrench_type: wrench_stamped`` on the BlueROV2 Heavy and the DP vessel
-(``rate_hz`` 1000, so that every wrench is allocated on arrival). For each: the CPU the process
+(``rate_hz`` 1000, so that every wrench is allocated on arrival), AllocationStatus published
+every sample; and the DP vessel again with ``status_rate_hz`` 50. For each: the CPU the process
 spends per answered sample (utime + stime from /proc/<pid>/stat over the window, divided by the
-answers received), its share of a core, and publish -> answer latency p50/p99 (the echo's
-message; the allocator's ThrusterCommands of the sample that used that wrench).
+answers received), its share of a core, publish -> answer latency p50/p99 (the echo's
+message; the allocator's ThrusterCommands of the sample that used that wrench), and for the
+allocator the p50 of ``allocate`` in the node (AllocationStatus.solve_time, its wall time) with
+its share of the CPU per sample.
 
 Timer cases: ``allocator_node`` with ``trigger: timer`` at 50 and 500 Hz (no wrench input, the
 watchdog off) against ``bench/bare.py timer`` at the same rate: CPU per tick.
@@ -52,6 +55,8 @@ AMPLITUDE = {"bluerov2_heavy": 40.0, "dp_vessel": 2.0e5}
 """[N] The horizontal force the probe asks of each vehicle: about 40 % of its authority."""
 INPUT_RATES = (100.0, 500.0)
 TIMER_RATES = (50.0, 500.0)
+STATUS_RATE = 50.0
+"""[Hz] ``status_rate_hz`` of the DP vessel's extra rows: its status at most this often."""
 WARM_UP = 2.0             # s of input before the window (discovery settles, caches fill)
 START_TIMEOUT = 30.0      # s for a node to answer
 TARGET = 1.2
@@ -99,6 +104,7 @@ class Probe:
         qos = QoSProfile(depth=100)
         self.published: dict[int, float] = {}
         self.answers: list[tuple[float, float]] = []      # (receipt, latency) [s]
+        self.allocate_times: list[float] = []              # [s] AllocationStatus.solve_time: allocate in the node
         self.received = 0
         self._commands: tuple[float, object] | None = None
         if allocator:
@@ -126,6 +132,7 @@ class Probe:
 
     def _on_status(self, message: AllocationStatus) -> None:
         receipt = time.monotonic()
+        self.allocate_times.append(message.solve_time)
         if self._commands is not None and self._commands[1] == message.header.stamp:
             receipt = self._commands[0]
         self._answer(message.requested.torque.x, receipt)
@@ -181,6 +188,7 @@ def measure(command: list[str], allocator: bool, rate_hz: float, seconds: float,
             else:
                 probe.spin(WARM_UP)
             probe.answers.clear()
+            probe.allocate_times.clear()
             received, cpu, clock = probe.received, process_cpu_seconds(child.pid), time.monotonic()
             if input_driven:
                 probe.drive(rate_hz, seconds)
@@ -192,8 +200,10 @@ def measure(command: list[str], allocator: bool, rate_hz: float, seconds: float,
             probe.close()
     latencies = [latency * 1e3 for _, latency in probe.answers]
     samples = received if input_driven else rate_hz * clock
+    allocate = [seconds * 1e3 for seconds in probe.allocate_times]
     return {"cpu_ms_per_sample": 1e3 * cpu / max(samples, 1), "cpu_percent": 100.0 * cpu / clock,
             "answered": received,
+            "allocate_ms_p50": float(np.percentile(allocate, 50)) if allocate else None,
             "latency_ms_p50": float(np.percentile(latencies, 50)) if latencies else None,
             "latency_ms_p99": float(np.percentile(latencies, 99)) if latencies else None}
 
@@ -207,6 +217,10 @@ def cases() -> list[tuple[str, str, float, list[str], bool, bool, float]]:
             found.append(("input", name, rate, allocator_command(config, "trigger:=input", "rate_hz:=1000.0",
                                                                  "wrench_type:=wrench_stamped"), True, True,
                           AMPLITUDE[name]))
+        found.append(("input", f"dp_vessel, status {STATUS_RATE:g} Hz", rate,
+                      allocator_command(VEHICLES["dp_vessel"], "trigger:=input", "rate_hz:=1000.0",
+                                        "wrench_type:=wrench_stamped", f"status_rate_hz:={STATUS_RATE}"),
+                      True, True, AMPLITUDE["dp_vessel"]))
     for rate in TIMER_RATES:
         found.append(("timer", "bare timer", rate, bare_command("timer", str(rate)), False, False, 0.0))
         found.append(("timer", "bluerov2_heavy", rate, allocator_command(VEHICLES["bluerov2_heavy"], "trigger:=timer",
@@ -224,8 +238,9 @@ def summarise(rounds: list[dict]) -> list[dict]:
     rows = []
     for key in rounds[0]:
         kind, name, rate = key.split("|")
-        figures = {field: median([r[key][field] for r in rounds])
-                   for field in ("cpu_ms_per_sample", "cpu_percent", "latency_ms_p50", "latency_ms_p99")}
+        figures = {field: median([r[key].get(field) for r in rounds])
+                   for field in ("cpu_ms_per_sample", "cpu_percent", "latency_ms_p50", "latency_ms_p99",
+                                 "allocate_ms_p50")}
         rows.append({"kind": kind, "node": name, "rate_hz": float(rate), **figures,
                      "rounds": [r[key]["cpu_ms_per_sample"] for r in rounds]})
     for row in rows:
@@ -234,18 +249,22 @@ def summarise(rounds: list[dict]) -> list[dict]:
         row["cpu_ratio"] = row["cpu_ms_per_sample"] / bare["cpu_ms_per_sample"]
         if row["latency_ms_p50"] is not None and bare["latency_ms_p50"]:
             row["latency_ratio"] = row["latency_ms_p50"] / bare["latency_ms_p50"]
+        if row["allocate_ms_p50"] is not None:
+            row["allocate_share"] = row["allocate_ms_p50"] / row["cpu_ms_per_sample"]
     return rows
 
 
 def print_rows(rows: list[dict]) -> None:
-    print(f"{'case':>6} {'node':>15} {'rate':>6} {'CPU/sample':>11} {'core':>6} {'p50':>7} {'p99':>7} "
-          f"{'CPU x':>6} {'p50 x':>6}")
+    print(f"{'case':>6} {'node':>24} {'rate':>6} {'CPU/sample':>11} {'core':>6} {'p50':>7} {'p99':>7} "
+          f"{'CPU x':>6} {'p50 x':>6} {'allocate':>9}")
     for row in rows:
         p50 = "" if row["latency_ms_p50"] is None else f"{row['latency_ms_p50']:.3f}"
         p99 = "" if row["latency_ms_p99"] is None else f"{row['latency_ms_p99']:.3f}"
-        print(f"{row['kind']:>6} {row['node']:>15} {row['rate_hz']:6g} {row['cpu_ms_per_sample']:9.3f}ms "
+        allocate = "" if row["allocate_ms_p50"] is None else \
+            f"{row['allocate_ms_p50']:.3f} ({100 * row['allocate_share']:.0f} %)"
+        print(f"{row['kind']:>6} {row['node']:>24} {row['rate_hz']:6g} {row['cpu_ms_per_sample']:9.3f}ms "
               f"{row['cpu_percent']:5.1f}% {p50:>7} {p99:>7} {row['cpu_ratio']:6.2f} "
-              f"{row.get('latency_ratio', float('nan')):6.2f}", flush=True)
+              f"{row.get('latency_ratio', float('nan')):6.2f} {allocate:>9}", flush=True)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -341,20 +341,31 @@ def _overhead_section(overhead: dict) -> list[str]:
              f"{overhead['seconds']:g} s per case after a warm-up, {overhead['rounds']} rounds alternating the nodes "
              "of a rate, medians over the rounds. Input: a WrenchStamped at each rate, answered by a bare node that "
              "publishes it back at once (`bench/bare.py echo`) and by `allocator_node` with `trigger: input`, "
-             "`wrench_type: wrench_stamped` (its ThrusterCommands, with AllocationStatus published every sample). "
+             "`wrench_type: wrench_stamped` (its ThrusterCommands, with AllocationStatus published every sample; in "
+             "the rows marked `status 50 Hz`, `status_rate_hz: 50`). "
              "Timer: `allocator_node` with `trigger: timer` against a bare node with one timer publishing one "
              "message. CPU per sample is utime + stime from /proc over the window per answer (per tick for "
              "timers); \"x\" is the ratio to the bare node of the same rate in the same run (target <= "
-             f"{overhead['target_ratio']:g}).", "",
+             f"{overhead['target_ratio']:g}). The last column is `allocate`'s wall time in the node "
+             "(AllocationStatus.solve_time) against the process's CPU per sample: the same call takes several "
+             "times its solver-bench median there, as the core idles between samples (its caches go cold).", "",
              "| case | node | rate Hz | CPU per sample ms | share of a core | publish to answer p50 / p99 ms | "
-             "CPU x | p50 x |", "|---|---|---|---|---|---|---|---|"]
+             "CPU x | p50 x | allocate in the node p50 ms (share of CPU per sample) |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for row in overhead["rows"]:
         latency = ("" if row["latency_ms_p50"] is None
                    else f"{_fmt(row['latency_ms_p50'], 3)} / {_fmt(row['latency_ms_p99'], 3)}")
         lines.append(f"| {row['kind']} | {row['node']} | {row['rate_hz']:g} | {_fmt(row['cpu_ms_per_sample'], 3)} | "
                      f"{row['cpu_percent']:.1f} % | {latency} | {row['cpu_ratio']:.2f} | "
-                     f"{_fmt(row.get('latency_ratio'), 2)} |")
+                     f"{_fmt(row.get('latency_ratio'), 2)} | {_allocate_share(row)} |")
     return lines
+
+
+def _allocate_share(row: dict) -> str:
+    """``allocate``'s p50 wall time in the node and its share of the CPU per sample (none for a bare node)."""
+    if row.get("allocate_ms_p50") is None:
+        return ""
+    return f"{_fmt(row['allocate_ms_p50'], 3)} ({100 * row['allocate_share']:.0f} %)"
 
 
 def _settling_section(result: dict, before: dict | None, off_grid: dict | None = None) -> list[str]:

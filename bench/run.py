@@ -61,7 +61,7 @@ def main(argv: list[str] | None = None) -> int:
     result["node"] = json.loads(node_out.read_text())
     overhead_out = RESULTS / "overhead.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "overhead.py"), "--out", str(overhead_out)]
-                   + (["--seconds", "3", "--rounds", "1"] if arguments.quick else ["--seconds", "8", "--rounds", "2"]),
+                   + (["--seconds", "3", "--rounds", "1"] if arguments.quick else ["--seconds", "8", "--rounds", "3"]),
                    check=True)
     result["overhead"] = json.loads(overhead_out.read_text())
     load_out = RESULTS / "load.json"

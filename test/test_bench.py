@@ -116,19 +116,23 @@ def test_the_report_gives_the_explicit_rows_and_its_regions_when_measured():
 def test_the_overhead_bench_takes_medians_over_rounds_and_ratios_to_the_bare_node_of_the_same_rate():
     import overhead
 
-    def case(cpu, p50):
-        return {"cpu_ms_per_sample": cpu, "cpu_percent": 10.0 * cpu, "latency_ms_p50": p50, "latency_ms_p99": 2 * p50}
+    def case(cpu, p50, allocate=None):
+        return {"cpu_ms_per_sample": cpu, "cpu_percent": 10.0 * cpu, "latency_ms_p50": p50, "latency_ms_p99": 2 * p50,
+                "allocate_ms_p50": allocate}
 
-    rounds = [{"input|bare echo|100.0": case(0.5, 1.0), "input|dp_vessel|100.0": case(0.6, 1.5),
-               "input|bare echo|500.0": case(0.2, 0.5), "input|dp_vessel|500.0": case(0.3, 0.5)},
-              {"input|bare echo|100.0": case(0.7, 1.0), "input|dp_vessel|100.0": case(0.8, 1.1),
-               "input|bare echo|500.0": case(0.4, 0.5), "input|dp_vessel|500.0": case(0.5, 0.6)}]
+    rounds = [{"input|bare echo|100.0": case(0.5, 1.0), "input|dp_vessel|100.0": case(0.6, 1.5, 0.1),
+               "input|bare echo|500.0": case(0.2, 0.5), "input|dp_vessel|500.0": case(0.3, 0.5, 0.1)},
+              {"input|bare echo|100.0": case(0.7, 1.0), "input|dp_vessel|100.0": case(0.8, 1.1, 0.3),
+               "input|bare echo|500.0": case(0.4, 0.5), "input|dp_vessel|500.0": case(0.5, 0.6, 0.2)}]
     rows = {(row["node"], row["rate_hz"]): row for row in overhead.summarise(rounds)}
     assert rows[("dp_vessel", 100.0)]["cpu_ms_per_sample"] == 0.7 and rows[("bare echo", 100.0)]["cpu_ratio"] == 1.0
     assert rows[("dp_vessel", 100.0)]["cpu_ratio"] == pytest.approx(0.7 / 0.6)
     assert rows[("dp_vessel", 500.0)]["cpu_ratio"] == pytest.approx(0.4 / 0.3)
     assert rows[("dp_vessel", 500.0)]["latency_ratio"] == pytest.approx(1.1)
     assert rows[("dp_vessel", 100.0)]["latency_ratio"] == pytest.approx(1.3)
+    assert rows[("dp_vessel", 100.0)]["allocate_share"] == pytest.approx(0.2 / 0.7)
+    assert rows[("dp_vessel", 500.0)]["allocate_share"] == pytest.approx(0.15 / 0.4)
+    assert "allocate_share" not in rows[("bare echo", 500.0)]
 
 
 def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator():
