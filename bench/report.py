@@ -348,7 +348,7 @@ def _overhead_section(overhead: dict) -> list[str]:
              "timers); \"x\" is the ratio to the bare node of the same rate in the same run (target <= "
              f"{overhead['target_ratio']:g}). The last column is `allocate`'s wall time in the node "
              "(AllocationStatus.solve_time) against the process's CPU per sample: the same call takes several "
-             "times its solver-bench median there, as the core idles between samples (its caches go cold).", "",
+             "times its solver-bench median there, where the core idles between samples.", "",
              "| case | node | rate Hz | CPU per sample ms | share of a core | publish to answer p50 / p99 ms | "
              "CPU x | p50 x | allocate in the node p50 ms (share of CPU per sample) |",
              "|---|---|---|---|---|---|---|---|---|"]
