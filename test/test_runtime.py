@@ -199,3 +199,15 @@ def test_status_is_neither_built_nor_published_while_nobody_subscribes(harness):
     received = len(harness.status)
     harness.tick(3)
     assert runtime.statuses_published == published + 3 and len(harness.status) == received + 3
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0, status_rate_hz=10.0)
+def test_a_clock_set_back_does_not_silence_the_status(harness):
+    harness.tick(100)                                             # two seconds at 50 Hz
+    before = len(harness.status)
+    harness.time_ns -= 10**9                                      # a second back: a simulator restarting
+    harness.advance(harness.node.period)                          # (the timer restarts a period after the jump)
+    harness.tick(2)
+    harness.spin_for(0.2)
+    assert len(harness.status) > before
+    assert stamp_ns(harness.status[-1]) <= harness.time_ns

@@ -188,9 +188,9 @@ NODE_KEYS: tuple[Key, ...] = (
         "run on events, about 0.3 ms less CPU per sample than `single_threaded` on this package's benchmark) or "
         "`single_threaded` (rclpy's SingleThreadedExecutor, which rebuilds its wait set at every wake-up). Read "
         "when the process starts.", default="events", choices=EXECUTORS, read_only=True),
-    Key("status_rate_hz", FLOAT, "Most often allocation_status goes out: 0 every sample; above 0 at most this many "
-        "times a second, the samples between not reported (thruster_commands and the diagnostics still cover "
-        "every sample). Either way it is built and published only while someone subscribes.", default=0.0,
+    Key("status_rate_hz", FLOAT, "How often at most allocation_status goes out: 0, every sample; above 0, at most "
+        "this many times a second, the samples between not reported (thruster_commands and the diagnostics still "
+        "cover every sample). Either way it is built and published only while someone subscribes.", default=0.0,
         minimum=0.0, unit="Hz"),
     Key("markers_rate_hz", FLOAT, "Rate of ~/thrust_markers (visualization_msgs/MarkerArray), built only while "
         "someone subscribes (0: never).", default=10.0, minimum=0.0, maximum=10.0, unit="Hz"),
