@@ -213,14 +213,12 @@ def cases() -> list[tuple[str, str, float, list[str], bool, bool, float]]:
     found = []
     for rate in INPUT_RATES:
         found.append(("input", "bare echo", rate, bare_command("echo"), False, True, 0.0))
-        for name, config in VEHICLES.items():
-            found.append(("input", name, rate, allocator_command(config, "trigger:=input", "rate_hz:=1000.0",
-                                                                 "wrench_type:=wrench_stamped"), True, True,
+        inputs = [(name, name, ()) for name in VEHICLES]
+        inputs.append((f"dp_vessel, status {STATUS_RATE:g} Hz", "dp_vessel", (f"status_rate_hz:={STATUS_RATE}",)))
+        for label, name, extra in inputs:
+            found.append(("input", label, rate, allocator_command(VEHICLES[name], "trigger:=input", "rate_hz:=1000.0",
+                                                                  "wrench_type:=wrench_stamped", *extra), True, True,
                           AMPLITUDE[name]))
-        found.append(("input", f"dp_vessel, status {STATUS_RATE:g} Hz", rate,
-                      allocator_command(VEHICLES["dp_vessel"], "trigger:=input", "rate_hz:=1000.0",
-                                        "wrench_type:=wrench_stamped", f"status_rate_hz:={STATUS_RATE}"),
-                      True, True, AMPLITUDE["dp_vessel"]))
     for rate in TIMER_RATES:
         found.append(("timer", "bare timer", rate, bare_command("timer", str(rate)), False, False, 0.0))
         found.append(("timer", "bluerov2_heavy", rate, allocator_command(VEHICLES["bluerov2_heavy"], "trigger:=timer",

@@ -159,7 +159,8 @@ def test_a_qos_override_on_one_node_leaves_the_next_one_at_the_default(ros_conte
 
 
 def stamp_ns(message) -> int:
-    return message.header.stamp.sec * 10**9 + message.header.stamp.nanosec
+    from rclpy.time import Time
+    return Time.from_msg(message.header.stamp).nanoseconds
 
 
 @pytest.mark.params(EXAMPLE, wrench_timeout=0.0, status_rate_hz=10.0)

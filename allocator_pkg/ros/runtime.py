@@ -42,6 +42,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Wrench, WrenchStamped
 from lifecycle_msgs.msg import State
 from nav_msgs.msg import Odometry
+from rclpy.constants import S_TO_NS
 from rclpy.duration import Duration
 from rclpy.lifecycle import LifecycleNode, LifecyclePublisher, LifecycleState
 from rclpy.node import Node
@@ -68,9 +69,14 @@ from .ros2_control import Ros2ControlOutput, ros2_control_changed
 from .watchdog import Watchdog
 
 DIAGNOSTICS_PERIOD = 1.0
-NANOSECONDS = 1_000_000_000
 LOG_THROTTLE = 5.0
 ACTIVE = LifecycleState("active", State.PRIMARY_STATE_ACTIVE)
+
+
+def status_period(settings: NodeSettings) -> int:
+    """The shortest time [ns] between two statuses, 1 / status_rate_hz (0: every sample)."""
+    rate = settings.status_rate_hz
+    return round(S_TO_NS / rate) if rate > 0.0 else 0
 
 
 @dataclass
@@ -117,6 +123,7 @@ class AllocationRuntime:
         self._commands = self._output(ThrusterCommands, "thruster_commands", qos.output())
         self._status = self._output(AllocationStatus, "allocation_status", qos.output())
         self._status_last: int | None = None
+        self._status_period = status_period(settings)
         # Filled and published again every sample, always under the lock (making them anew costs
         # more than filling them); both share one header, its stamp set in place.
         self._commands_message, self._status_message = ThrusterCommands(), AllocationStatus()
@@ -362,12 +369,12 @@ class AllocationRuntime:
         ``always`` (a stop)."""
         header = self._header
         stamp = header.stamp
-        stamp.sec, stamp.nanosec = divmod(now, NANOSECONDS)
+        stamp.sec, stamp.nanosec = divmod(now, S_TO_NS)
         self._commands.publish(commands_message(result, self.allocator.names, header, self._commands_message))
         # Due every sample, at a stop, or once a period of status_rate_hz has passed since the last
         # status (or the clock was set back, as a simulator restarting does).
-        rate, last = self.settings.status_rate_hz, self._status_last
-        due = always or rate == 0.0 or last is None or not 0 <= now - last < 1e9 / rate
+        period, last = self._status_period, self._status_last
+        due = always or not period or last is None or not 0 <= now - last < period
         if due and self._status.get_subscription_count():
             self._status_last = now
             self._status.publish(status_message(result, status, header, self.settings.frame, self.allocator.voltage,
@@ -448,6 +455,7 @@ class AllocationRuntime:
                 self._ros2_control = Ros2ControlOutput(vehicle, settings, self._output, self._destroy_output)
             self.settings = settings
             self.watchdog.timeout = settings.wrench_timeout
+            self._status_period = status_period(settings)
             self._status_last = None                # a new status_rate_hz from the next sample
 
     # -- the bench: one actuator held ----------------------------------------------------
