@@ -126,6 +126,8 @@ class PiecePlanner:
                           for a in model.vehicle.actuators if a.rotatable)
         self._key = None
         self.last_targets = {}
+        self._replan = REPLAN_CHANGE * model.dof_scale
+        self._slack_weights = model.slack_weights(model.weight)
         if not self.needed:
             self._problem = None
         elif self._problem is None or old.structure != model.structure:
@@ -179,7 +181,7 @@ class PiecePlanner:
         """The force each rotatable thruster (by actuator index) should give, from the best
         combination of pieces; kept while the request, faults and speed stay."""
         key = (low.tobytes(), high.tobytes(), tuple(sorted(stuck.items())))
-        if self._key == key and np.all(np.abs(tau - self._tau) <= REPLAN_CHANGE * self.model.dof_scale):
+        if self._key == key and np.all(np.abs(tau - self._tau) <= self._replan):
             return self.last_targets
         model = self.model
         choices = [convex_pieces(model.vehicle.actuators[i].rotation, low[i], high[i], stuck.get(int(i)))
@@ -235,7 +237,7 @@ class PiecePlanner:
             return None, math.inf
         force = solution.x[:model.m]
         slack = model.t_ec @ force - tau
-        cost = float(model.weight_ext @ (force * force) + model.slack_weights(model.weight) @ (slack * slack))
+        cost = float(model.weight_ext @ (force * force) + self._slack_weights @ (slack * slack))
         return force, cost
 
 
