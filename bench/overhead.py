@@ -11,7 +11,9 @@ spends per answered sample (utime + stime from /proc/<pid>/stat over the window,
 answers received), its share of a core, publish -> answer latency p50/p99 (the echo's
 message; the allocator's ThrusterCommands of the sample that used that wrench), and for the
 allocator the p50 of ``allocate`` in the node (AllocationStatus.solve_time, its wall time) with
-its share of the CPU per sample.
+its share of the CPU per sample, and the CPU per sample beyond ``allocate`` (the CPU per sample
+less ``allocate``'s mean wall time in the window): what the node spends on everything but the
+maths, against the bare node's CPU per sample.
 
 Timer cases: ``allocator_node`` with ``trigger: timer`` at 50 and 500 Hz (no wrench input, the
 watchdog off) against ``bench/bare.py timer`` at the same rate: CPU per tick.
@@ -201,9 +203,11 @@ def measure(command: list[str], allocator: bool, rate_hz: float, seconds: float,
     latencies = [latency * 1e3 for _, latency in probe.answers]
     samples = received if input_driven else rate_hz * clock
     allocate = [seconds * 1e3 for seconds in probe.allocate_times]
-    return {"cpu_ms_per_sample": 1e3 * cpu / max(samples, 1), "cpu_percent": 100.0 * cpu / clock,
+    cpu_per_sample = 1e3 * cpu / max(samples, 1)
+    return {"cpu_ms_per_sample": cpu_per_sample, "cpu_percent": 100.0 * cpu / clock,
             "answered": received,
             "allocate_ms_p50": float(np.percentile(allocate, 50)) if allocate else None,
+            "beyond_allocate_ms": cpu_per_sample - float(np.mean(allocate)) if allocate else None,
             "latency_ms_p50": float(np.percentile(latencies, 50)) if latencies else None,
             "latency_ms_p99": float(np.percentile(latencies, 99)) if latencies else None}
 
@@ -238,7 +242,7 @@ def summarise(rounds: list[dict]) -> list[dict]:
         kind, name, rate = key.split("|")
         figures = {field: median([r[key].get(field) for r in rounds])
                    for field in ("cpu_ms_per_sample", "cpu_percent", "latency_ms_p50", "latency_ms_p99",
-                                 "allocate_ms_p50")}
+                                 "allocate_ms_p50", "beyond_allocate_ms")}
         rows.append({"kind": kind, "node": name, "rate_hz": float(rate), **figures,
                      "rounds": [r[key]["cpu_ms_per_sample"] for r in rounds]})
     for row in rows:
@@ -249,12 +253,14 @@ def summarise(rounds: list[dict]) -> list[dict]:
             row["latency_ratio"] = row["latency_ms_p50"] / bare["latency_ms_p50"]
         if row["allocate_ms_p50"] is not None:
             row["allocate_share"] = row["allocate_ms_p50"] / row["cpu_ms_per_sample"]
+        if row["beyond_allocate_ms"] is not None:
+            row["beyond_allocate_ratio"] = row["beyond_allocate_ms"] / bare["cpu_ms_per_sample"]
     return rows
 
 
 def print_rows(rows: list[dict]) -> None:
     print(f"{'case':>6} {'node':>24} {'rate':>6} {'CPU/sample':>11} {'core':>6} {'p50':>7} {'p99':>7} "
-          f"{'CPU x':>6} {'p50 x':>6} {'allocate':>9}")
+          f"{'CPU x':>6} {'p50 x':>6} {'allocate':>9} {'beyond x':>8}")
     for row in rows:
         p50 = "" if row["latency_ms_p50"] is None else f"{row['latency_ms_p50']:.3f}"
         p99 = "" if row["latency_ms_p99"] is None else f"{row['latency_ms_p99']:.3f}"
@@ -262,7 +268,8 @@ def print_rows(rows: list[dict]) -> None:
             f"{row['allocate_ms_p50']:.3f} ({100 * row['allocate_share']:.0f} %)"
         print(f"{row['kind']:>6} {row['node']:>24} {row['rate_hz']:6g} {row['cpu_ms_per_sample']:9.3f}ms "
               f"{row['cpu_percent']:5.1f}% {p50:>7} {p99:>7} {row['cpu_ratio']:6.2f} "
-              f"{row.get('latency_ratio', float('nan')):6.2f} {allocate:>9}", flush=True)
+              f"{row.get('latency_ratio', float('nan')):6.2f} {allocate:>9} "
+              f"{row.get('beyond_allocate_ratio', float('nan')):8.2f}", flush=True)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -118,7 +118,7 @@ def test_the_overhead_bench_takes_medians_over_rounds_and_ratios_to_the_bare_nod
 
     def case(cpu, p50, allocate=None):
         return {"cpu_ms_per_sample": cpu, "cpu_percent": 10.0 * cpu, "latency_ms_p50": p50, "latency_ms_p99": 2 * p50,
-                "allocate_ms_p50": allocate}
+                "allocate_ms_p50": allocate, "beyond_allocate_ms": None if allocate is None else cpu - 1.5 * allocate}
 
     rounds = [{"input|bare echo|100.0": case(0.5, 1.0), "input|dp_vessel|100.0": case(0.6, 1.5, 0.1),
                "input|bare echo|500.0": case(0.2, 0.5), "input|dp_vessel|500.0": case(0.3, 0.5, 0.1)},
@@ -133,6 +133,9 @@ def test_the_overhead_bench_takes_medians_over_rounds_and_ratios_to_the_bare_nod
     assert rows[("dp_vessel", 100.0)]["allocate_share"] == pytest.approx(0.2 / 0.7)
     assert rows[("dp_vessel", 500.0)]["allocate_share"] == pytest.approx(0.15 / 0.4)
     assert "allocate_share" not in rows[("bare echo", 500.0)]
+    assert rows[("dp_vessel", 100.0)]["beyond_allocate_ratio"] == pytest.approx(((0.6 - 0.15) + (0.8 - 0.45)) / 2 / 0.6)
+    assert rows[("dp_vessel", 500.0)]["beyond_allocate_ratio"] == pytest.approx(((0.3 - 0.15) + (0.5 - 0.3)) / 2 / 0.3)
+    assert "beyond_allocate_ratio" not in rows[("bare echo", 100.0)]
 
 
 def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator():
