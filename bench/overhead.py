@@ -200,16 +200,24 @@ def measure(command: list[str], allocator: bool, rate_hz: float, seconds: float,
                                     time.monotonic() - clock)
         finally:
             probe.close()
-    latencies = [latency * 1e3 for _, latency in probe.answers]
     samples = received if input_driven else rate_hz * clock
-    allocate = [seconds * 1e3 for seconds in probe.allocate_times]
+    return window_figures(cpu, clock, samples, received, [latency for _, latency in probe.answers],
+                          probe.allocate_times)
+
+
+def window_figures(cpu: float, clock: float, samples: float, answered: int, latencies: list[float],
+                   allocate_times: list[float]) -> dict:
+    """One window's figures from its CPU seconds, wall seconds, samples, answers, the answers'
+    latencies [s] and ``allocate``'s wall times [s] (empty for a bare node)."""
+    latencies_ms = [latency * 1e3 for latency in latencies]
+    allocate_ms = [seconds * 1e3 for seconds in allocate_times]
     cpu_per_sample = 1e3 * cpu / max(samples, 1)
     return {"cpu_ms_per_sample": cpu_per_sample, "cpu_percent": 100.0 * cpu / clock,
-            "answered": received,
-            "allocate_ms_p50": float(np.percentile(allocate, 50)) if allocate else None,
-            "beyond_allocate_ms": cpu_per_sample - float(np.mean(allocate)) if allocate else None,
-            "latency_ms_p50": float(np.percentile(latencies, 50)) if latencies else None,
-            "latency_ms_p99": float(np.percentile(latencies, 99)) if latencies else None}
+            "answered": answered,
+            "allocate_ms_p50": float(np.percentile(allocate_ms, 50)) if allocate_ms else None,
+            "beyond_allocate_ms": cpu_per_sample - float(np.mean(allocate_ms)) if allocate_ms else None,
+            "latency_ms_p50": float(np.percentile(latencies_ms, 50)) if latencies_ms else None,
+            "latency_ms_p99": float(np.percentile(latencies_ms, 99)) if latencies_ms else None}
 
 
 def cases() -> list[tuple[str, str, float, list[str], bool, bool, float]]:

@@ -138,6 +138,19 @@ def test_the_overhead_bench_takes_medians_over_rounds_and_ratios_to_the_bare_nod
     assert "beyond_allocate_ratio" not in rows[("bare echo", 100.0)]
 
 
+def test_a_window_of_the_overhead_bench_gives_cpu_per_sample_and_what_is_spent_beyond_allocate():
+    import overhead
+
+    # 0.5 s of CPU over 10 s of wall time and 1000 samples; allocate took 0.1 ms in 3 samples of 4 and 0.5 ms in 1.
+    figures = overhead.window_figures(0.5, 10.0, 1000, 1000, [1e-3, 2e-3, 3e-3], [1e-4, 1e-4, 1e-4, 5e-4])
+    assert figures["cpu_ms_per_sample"] == pytest.approx(0.5) and figures["cpu_percent"] == pytest.approx(5.0)
+    assert figures["allocate_ms_p50"] == pytest.approx(0.1)
+    assert figures["beyond_allocate_ms"] == pytest.approx(0.5 - 0.2)
+    assert figures["latency_ms_p50"] == pytest.approx(2.0)
+    bare = overhead.window_figures(0.5, 10.0, 1000, 1000, [1e-3], [])
+    assert bare["allocate_ms_p50"] is None and bare["beyond_allocate_ms"] is None
+
+
 def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator():
     """The bench's per-sequence loop on a few samples (it reads the method in use from the
     allocator, which no other test exercises)."""
