@@ -364,6 +364,24 @@ def _overhead_section(overhead: dict) -> list[str]:
     return lines
 
 
+def _idle_core_section(idle: dict) -> list[str]:
+    """``allocate``'s CPU per sample after the core idles (bench/idle_core.py)."""
+    lines = ["## `allocate` on an idle core", "",
+             f"`bench/idle_core.py`: `allocate` in a plain loop, no ROS, {idle['samples']} samples of the node-cost "
+             f"probe's turning request at {idle['rate_hz']:g} Hz per case, timed by the thread's CPU clock: back to "
+             "back, and after the thread sleeps the gap before every sample (2 ms: a 500 Hz node's idle time, "
+             f"10 ms: a 100 Hz node's); medians over {idle['rounds']} rounds. \"x\" is the multiple of the "
+             "back-to-back figure. The same work costs that much more CPU when the core has idled, which is "
+             "why `allocate` takes several times its solver-bench median inside the node (the table above).", "",
+             "| vehicle | idle before each sample ms | CPU per sample p50 us | mean us | p50 x | mean x |",
+             "|---|---|---|---|---|---|"]
+    for vehicle, rows in idle["vehicles"].items():
+        for row in rows:
+            lines.append(f"| {vehicle} | {row['gap_ms']:g} | {_fmt(row['cpu_us_p50'], 1)} | "
+                         f"{_fmt(row['cpu_us_mean'], 1)} | {row['p50_multiple']:.2f} | {row['mean_multiple']:.2f} |")
+    return lines
+
+
 def _allocate_share(row: dict) -> str:
     """``allocate``'s p50 wall time in the node and its share of the CPU per sample (none for a bare node)."""
     if row.get("allocate_ms_p50") is None:
@@ -433,5 +451,7 @@ def write(result: dict, path: Path) -> None:
     lines += ["## Node level", "", *_node_table(result)]
     if "overhead" in result:
         lines += ["", *_overhead_section(result["overhead"])]
+    if "idle_core" in result:
+        lines += ["", *_idle_core_section(result["idle_core"])]
     lines += ["", *_load_section(result), "", SOAK]
     path.write_text("\n".join(lines) + "\n")

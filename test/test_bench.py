@@ -10,6 +10,7 @@ from conftest import ROOT
 
 sys.path.insert(0, str(ROOT / "bench"))
 
+import idle_core
 import report
 import soak
 import solver
@@ -149,6 +150,29 @@ def test_a_window_of_the_overhead_bench_gives_cpu_per_sample_and_what_is_spent_b
     assert figures["latency_ms_p50"] == pytest.approx(2.0)
     bare = overhead.window_figures(0.5, 10.0, 1000, 1000, [1e-3], [])
     assert bare["allocate_ms_p50"] is None and bare["beyond_allocate_ms"] is None
+
+
+def test_the_idle_core_bench_asks_the_node_cost_probes_request_and_times_every_sample():
+    import overhead
+
+    turn = idle_core.requests(overhead.AMPLITUDE["dp_vessel"], round(idle_core.RATE_HZ * overhead.PERIOD) + 1)
+    assert np.allclose(turn[0], [2.0e5, 0, 0, 0, 0, 0]) and np.allclose(turn[-1], [2.0e5, 0, 0, 0, 0, 0], atol=1e-6)
+    quarter = turn[round(idle_core.RATE_HZ * overhead.PERIOD / 4)]
+    assert np.allclose(quarter, [0, 2.0e5, 0, 0, 0, 0], atol=1e-6)
+    result = idle_core.measure(rounds=1, samples=3)
+    for rows in result["vehicles"].values():
+        assert [row["gap_ms"] for row in rows] == list(idle_core.GAPS_MS)
+        assert rows[0]["p50_multiple"] == rows[0]["mean_multiple"] == 1.0
+        assert all(row["cpu_us_p50"] > 0.0 and np.isfinite(row["mean_multiple"]) for row in rows)
+
+
+def test_the_report_gives_allocates_cpu_after_each_idle_gap():
+    idle = {"rounds": 3, "samples": 400, "rate_hz": 100.0, "vehicles": {"dp_vessel": [
+        {"gap_ms": 0.0, "cpu_us_p50": 110.0, "cpu_us_mean": 120.0, "p50_multiple": 1.0, "mean_multiple": 1.0},
+        {"gap_ms": 10.0, "cpu_us_p50": 330.0, "cpu_us_mean": 300.0, "p50_multiple": 3.0, "mean_multiple": 2.5}]}}
+    lines = report._idle_core_section(idle)
+    assert "| dp_vessel | 0 | 110.0 | 120.0 | 1.00 | 1.00 |" in lines
+    assert "| dp_vessel | 10 | 330.0 | 300.0 | 3.00 | 2.50 |" in lines
 
 
 def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator():
