@@ -5,9 +5,10 @@ between. The same work then takes more CPU: caches and branch predictors lose wh
 sample left there (and a virtual machine's idle vCPU may run elsewhere). This bench measures
 that multiple on this machine, with no ROS in the way: per vehicle, the same 400 samples of a
 request that turns in the horizontal plane (the node-cost probe's: ``overhead.AMPLITUDE``, one
-turn in ``overhead.PERIOD``, here at 100 Hz with ``dt`` 0.01 s), from an allocator warmed up by 300 samples, timed
-by the thread's CPU clock around each ``allocate``: back to back, and after sleeping each gap
-before every sample. Gaps alternate in rounds; each figure is the median over rounds.
+turn in ``overhead.PERIOD``, here at 100 Hz with ``dt`` 0.01 s), from an allocator warmed up
+by 300 samples, timed by the thread's CPU clock around each ``allocate``: back to back, and
+after sleeping each gap before every sample. Gaps alternate in rounds; each figure is the
+median over rounds.
 
     .venv/bin/python bench/idle_core.py [--rounds 3] [--samples 400]
 """
