@@ -144,7 +144,7 @@ class AllocationRuntime:
         self._per_actuator: ActuatorTopics | None = None
         self._apply_per_actuator(settings)
         self._ros2_control = Ros2ControlOutput(vehicle, settings, self._output, self._destroy_output)
-        self._period_ns = round(1e9 / vehicle.rate_hz)
+        self._period_ns = round(S_TO_NS / vehicle.rate_hz)
         self._timer = node.create_timer(1.0 / vehicle.rate_hz, self._on_timer, autostart=False)
         self._diagnostics_timer = node.create_timer(DIAGNOSTICS_PERIOD, self._on_diagnostics, autostart=False)
 
@@ -294,7 +294,7 @@ class AllocationRuntime:
         """Back to the nominal voltage when no valid battery voltage came for battery_timeout. Lock held."""
         if self._battery is None or self.battery_fallback:
             return
-        if self._battery_time is None or now - self._battery_time > self.settings.battery_timeout * 1e9:
+        if self._battery_time is None or now - self._battery_time > self.settings.battery_timeout * S_TO_NS:
             self.battery_fallback = True
             nominal = self.allocator.vehicle.nominal_voltage
             self.allocator.set_voltage(nominal)
@@ -319,9 +319,9 @@ class AllocationRuntime:
         if self.watchdog.stale or self._waiting_wrench:
             self._arm(self._period_ns, exact)
         elif self.watchdog.timeout > 0.0 and self._wrench_time is not None:
-            self._arm(self._wrench_time + round(self.watchdog.timeout * 1e9) - now + self._period_ns, exact)
+            self._arm(self._wrench_time + round(self.watchdog.timeout * S_TO_NS) - now + self._period_ns, exact)
         else:
-            self._arm(round(1e9 * DIAGNOSTICS_PERIOD), exact)          # nothing can fall due: a slow heartbeat
+            self._arm(round(S_TO_NS * DIAGNOSTICS_PERIOD), exact)          # nothing can fall due: a slow heartbeat
 
     def _arm(self, delay: int, exact: bool = True) -> None:
         """Have the timer fire ``delay`` ns from now; unless ``exact``, a timer already due sooner
@@ -385,7 +385,7 @@ class AllocationRuntime:
         self._ros2_control.publish(result)
         rate = self.settings.markers_rate_hz
         if rate > 0.0 and now >= self._markers_due:
-            self._markers_due = now + round(1e9 / rate)
+            self._markers_due = now + round(S_TO_NS / rate)
             if self._markers.get_subscription_count():
                 limits = self.allocator.ranges
                 self._markers.publish(thrust_markers(self.allocator.vehicle, result, limits, header,
@@ -446,7 +446,7 @@ class AllocationRuntime:
         with self._lock:
             self._end_hold()
             self.allocator.reconfigure(vehicle)
-            self._period_ns = round(1e9 / vehicle.rate_hz)
+            self._period_ns = round(S_TO_NS / vehicle.rate_hz)
             if settings.trigger == TIMER and self._timer.timer_period_ns != self._period_ns:
                 self._timer.timer_period_ns = self._period_ns
             self._apply_per_actuator(settings)
@@ -495,7 +495,7 @@ class AllocationRuntime:
             for name in names:
                 if name != actuator:
                     allocator.set_fault(name, FaultMode.FAILED)
-            end = self._clock.now().nanoseconds + round(duration * 1e9)
+            end = self._clock.now().nanoseconds + round(duration * S_TO_NS)
             self._hold = Hold(index, float(thrust), end, saved)
         self._node.get_logger().warn(f"step test: holding {actuator} at {thrust:g} N for {duration:g} s, every "
                                      "other actuator FAILED")
