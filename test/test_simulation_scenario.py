@@ -56,3 +56,67 @@ def test_bad_input_names_its_key(tmp_path, old, new, key):
     path.write_text(text.replace(old, new))
     with pytest.raises(ScenarioError, match=key):
         load_scenario(path)
+
+
+def _bad(tmp_path, old: str, new: str, base: str = "dp_azimuth_failure.yaml"):
+    text = (ROOT / "config" / "scenarios" / base).read_text().replace("../", f"{ROOT}/config/")
+    old, new = old.replace("../", f"{ROOT}/config/"), new.replace("../", f"{ROOT}/config/")
+    assert old in text
+    path = tmp_path / "bad.yaml"
+    path.write_text(text.replace(old, new, 1))
+    return path
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("environment:", "enviroment:", "enviroment: unknown key; did you mean environment"),
+    ("direction: 20.0", "dir: 20.0", r"environment\.current\.dir: unknown key; did you mean direction"),
+    ("speed_sigma: 0.05", "speed_sigm: 0.05", r"environment\.current\.speed_sigm: unknown key; did you mean "
+                                              "speed_sigma"),
+    ("{time: 220.0, clear_faults: true}", "{time: 220.0, clear_faults: true, note: x}",
+     r"events\[1\]\.note: unknown key"),
+    ("bounds: {", "bounds: {depth_eror_max: 1.0, ", r"bounds\.depth_eror_max: unknown key; did you mean "
+                                                   "depth_error_max"),
+])
+def test_unknown_keys_are_refused_at_any_depth_with_the_nearest_known_one(tmp_path, old, new, message):
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(_bad(tmp_path, old, new))
+
+
+def test_a_vehicle_file_for_another_hull_is_refused(tmp_path):
+    with pytest.raises(ScenarioError, match=r"vehicle: .*bluerov2_heavy.yaml controls heave, roll, pitch, which the "
+                                            "dp_vessel model"):
+        load_scenario(_bad(tmp_path, "vehicle: ../dp_vessel.yaml", "vehicle: ../bluerov2_heavy.yaml"))
+    with pytest.raises(ScenarioError, match=r"vehicle: .*dp_vessel.yaml does not control heave"):
+        load_scenario(_bad(tmp_path, "vehicle: ../bluerov2_heavy.yaml", "vehicle: ../dp_vessel.yaml",
+                           base="rov_thruster_failure.yaml"))
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("method: qp", "method: qpp", "method: 'qpp' is not a method; did you mean qp"),
+    ("method: qp", "method: explicit", "explicit.*cannot serve this vehicle.*azimuth_stbd, azimuth_port rotate"),
+    ("actuator: azimuth_port", "actuator: azimuth_left", r"events\[0\]\.fault\.actuator: 'azimuth_left' is not "
+                                                         "an actuator of the vehicle"),
+    ("{actuator: azimuth_port, mode: failed}", "{actuator: azimuth_port, mode: degraded}",
+     r"events\[0\]\.fault\.value: required for degraded"),
+    ("{actuator: azimuth_port, mode: failed}", "{actuator: azimuth_port, mode: degraded, value: 1.5}",
+     r"events\[0\]\.fault\.value: DEGRADED needs an efficiency in \(0, 1\]"),
+    ("{actuator: azimuth_port, mode: failed}", "{actuator: tunnel_fwd, mode: stuck}",
+     r"events\[0\]\.fault\.value: STUCK applies to rotatable thrusters"),
+    ("{time: 220.0, clear_faults: true}", "{time: 220.0, parameter: {name: weights.minmax, value: 1.0}}",
+     r"events\[1\]\.parameter\.name: 'weights\.minmax' is not a parameter"),
+    ("{time: 220.0, clear_faults: true}", "{time: 220.0, parameter: {name: frame, value: flu}}",
+     r"events\[1\]\.parameter\.name: 'frame' is read-only"),
+    ("{time: 220.0, clear_faults: true}", "{time: 220.0, parameter: {name: weights.minimax, value: -1.0}}",
+     r"events\[1\]\.parameter: the allocator refuses it: parameters\.weights\.minimax: must be >= 0"),
+    ("seed: 2", "seed: 2\nparameters: {rate_hz: 0.0}", r"parameters\.rate_hz: must be > 0"),
+])
+def test_the_method_the_parameters_and_every_event_are_checked_at_load(tmp_path, old, new, message):
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(_bad(tmp_path, old, new))
+
+
+def test_another_method_is_checked_against_the_vehicle():
+    scenario = load_scenario(ROOT / "config" / "scenarios" / "dp_azimuth_failure.yaml")
+    assert scenario.with_method("nonlinear").method == "nonlinear"
+    with pytest.raises(ScenarioError, match=r"explicit.*cannot serve"):
+        scenario.with_method("explicit")

@@ -1,7 +1,10 @@
 """Scenario files (``config/scenarios/*.yaml``): the vehicle, the method and node parameters,
 the duration and seed, the hull model, the environment, the set-point, the controller's
 gains, timed events and the bounds the run must stay within. Paths are relative to the
-scenario file. Bad input raises ``ScenarioError`` naming the key."""
+scenario file. Bad input raises ``ScenarioError`` naming the key, before anything runs: an
+unknown key at any depth (with the nearest known one), a vehicle file that does not fit the hull
+model or whose parameters the allocator refuses, a method that cannot serve it, an event the
+vehicle cannot take (:mod:`.scenario_check`)."""
 
 from __future__ import annotations
 
@@ -14,8 +17,12 @@ import yaml
 
 from ..analysis.dp_capability import load_particulars
 from ..analysis.environment_loads import VesselParticulars
+from ..configuration.parameters import read_parameters, vehicle_from_parameters
+from ..effectiveness.faults import FaultMode, FaultSet
+from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec, SlowVariation
+from .scenario_check import check_method_serves, check_parameter, check_vehicle, unknown_keys
 
 MODELS = ("dp_vessel", "bluerov2_heavy")
 FAULT_MODES = ("failed", "stuck", "degraded")
@@ -79,7 +86,22 @@ class Scenario:
         return replace(self, duration=self.duration * factor, events=events)
 
     def with_method(self, method: str) -> Scenario:
+        """The same scenario under another method; ScenarioError when it cannot serve the vehicle."""
+        try:
+            check_method_serves(method, vehicle_config(self.vehicle, self.parameters))
+        except ValueError as error:
+            raise ScenarioError(str(error)) from error
         return replace(self, method=method)
+
+
+def vehicle_config(path: Path, parameters: dict[str, Any]) -> Vehicle:
+    """The vehicle the node runs: the vehicle file with the scenario's node parameters over it;
+    ScenarioError (naming each key the allocator refuses) otherwise."""
+    try:
+        return vehicle_from_parameters({**read_parameters(path), **parameters})
+    except ConfigError as error:
+        raise ScenarioError("; ".join(f"{'vehicle' if key == str(path) else 'parameters.' + key}: {reason}"
+                                      for key, reason in error.problems)) from error
 
 
 def _number(data: dict, key: str, where: str, default: float | None = None, minimum: float | None = None) -> float:
@@ -148,6 +170,8 @@ def _event(data: Any, index: int) -> Event:
             raise ScenarioError(f"{where}fault.mode: one of {', '.join(FAULT_MODES)}, not {mode!r}")
         if not isinstance(body.get("actuator"), str):
             raise ScenarioError(f"{where}fault.actuator: an actuator name, not {body.get('actuator')!r}")
+        if mode == "degraded" and "value" not in body:
+            raise ScenarioError(f"{where}fault.value: required for degraded, the share of force left in (0, 1]")
         value = None if mode == "stuck" and "value" not in body else _number(body, "value", where + "fault.", 0.0)
         return Event(time, kind, actuator=body["actuator"], mode=mode, value=value)
     if kind == "battery_ramp":
@@ -156,6 +180,30 @@ def _event(data: Any, index: int) -> Event:
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
+
+
+def _check_event(event: Event, index: int, vehicle: Vehicle) -> None:
+    """Raise ScenarioError when the vehicle cannot take the event: an actuator it does not have,
+    a fault that actuator cannot have, a parameter the allocator does not know or a value it
+    refuses."""
+    where = f"events[{index}]"
+    try:
+        if event.kind == "fault":
+            if event.actuator not in vehicle.names:
+                raise ValueError(f"{where}.fault.actuator: '{event.actuator}' is not an actuator of the vehicle "
+                                 f"({', '.join(vehicle.names)})")
+            actuator = vehicle.actuator(event.actuator)
+            angle = event.value if event.value is not None else (
+                actuator.rotation.initial if actuator.rotation is not None else 0.0)
+            mode = FaultMode[event.mode.upper()]
+            try:
+                FaultSet(vehicle).with_fault(event.actuator, mode, efficiency=event.value, angle=angle)
+            except ValueError as error:
+                raise ValueError(f"{where}.fault.value: {error}") from error
+        elif event.kind == "parameter":
+            check_parameter(event.name, f"{where}.parameter.name")
+    except ValueError as error:
+        raise ScenarioError(str(error)) from error
 
 
 def load_scenario(path: str | Path) -> Scenario:
@@ -167,6 +215,9 @@ def load_scenario(path: str | Path) -> Scenario:
         raise ScenarioError(f"{path}: {error}") from error
     if not isinstance(data, dict):
         raise ScenarioError(f"{path}: a mapping of scenario keys")
+    unknown = unknown_keys(data)
+    if unknown:
+        raise ScenarioError("; ".join(unknown))
     model = data.get("model")
     if model not in MODELS:
         raise ScenarioError(f"model: one of {', '.join(MODELS)}, not {model!r}")
@@ -176,6 +227,15 @@ def load_scenario(path: str | Path) -> Scenario:
     vehicle = (path.parent / data["vehicle"]).resolve()
     if not vehicle.is_file():
         raise ScenarioError(f"vehicle: no file {vehicle}")
+    parameters = data.get("parameters", {}) or {}
+    if not isinstance(parameters, dict):
+        raise ScenarioError("parameters: a mapping of node parameters")
+    config = vehicle_config(vehicle, parameters)
+    try:
+        check_vehicle(model, config, data["vehicle"])
+        check_method_serves(data["method"], config)
+    except ValueError as error:
+        raise ScenarioError(str(error)) from error
     particulars = None
     if model == "dp_vessel":
         if not isinstance(data.get("particulars"), str):
@@ -194,9 +254,6 @@ def load_scenario(path: str | Path) -> Scenario:
         raise ScenarioError(str(error)) from error
     if len(gains.kp) != (3 if model == "dp_vessel" else 6):
         raise ScenarioError(f"controller.kp: {3 if model == 'dp_vessel' else 6} values for {model}")
-    parameters = data.get("parameters", {}) or {}
-    if not isinstance(parameters, dict):
-        raise ScenarioError("parameters: a mapping of node parameters")
     bounds = _section(data, "bounds")
     for key in bounds:
         if key not in BOUND_KEYS:
@@ -206,6 +263,16 @@ def load_scenario(path: str | Path) -> Scenario:
     events = data.get("events", []) or []
     if not isinstance(events, list):
         raise ScenarioError("events: a list")
+    checked = [_event(e, i) for i, e in enumerate(events)]
+    changed = dict(parameters)
+    for index, event in sorted(enumerate(checked), key=lambda item: item[1].time):
+        _check_event(event, index, config)
+        if event.kind == "parameter":
+            changed[event.name] = event.value
+            try:
+                config = vehicle_config(vehicle, changed)
+            except ScenarioError as error:
+                raise ScenarioError(f"events[{index}].parameter: the allocator refuses it: {error}") from error
     return Scenario(
         name=str(data.get("name", path.stem)), path=path, vehicle=vehicle, model=model, method=data["method"],
         duration=_number(data, "duration", "", minimum=1e-3), seed=int(_number(data, "seed", "", 0.0, 0.0)),
@@ -215,6 +282,6 @@ def load_scenario(path: str | Path) -> Scenario:
         initial_heading=math.radians(_number(initial, "heading", "initial.", heading)),
         gains=gains, environment=_environment(_section(data, "environment")), particulars=particulars,
         parameters=dict(parameters), voltage=_number(battery, "voltage", "battery.", minimum=0.0) if battery else None,
-        events=tuple(sorted((_event(e, i) for i, e in enumerate(events)), key=lambda e: e.time)),
+        events=tuple(sorted(checked, key=lambda e: e.time)),
         bounds={k: float(v) for k, v in bounds.items()}, description=str(data.get("description", "")))
 
