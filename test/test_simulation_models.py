@@ -107,3 +107,14 @@ def test_quaternion_round_trip_and_rotation_is_orthonormal():
     assert np.allclose(r @ r.T, np.eye(3)) and np.linalg.det(r) == pytest.approx(1.0)
     assert rotation(0, 0, math.pi / 2) @ np.array([1.0, 0, 0]) == pytest.approx([0, 1.0, 0])
 
+
+
+def test_a_beam_current_loads_the_hull_at_rest_with_the_analysis_drag_plus_the_linear_damping():
+    vessel = Vessel()
+    particulars = VesselParticulars(lpp=83.0, beam=18.0, draught=5.0, wind_area_frontal=1.0, wind_area_lateral=1.0)
+    _, nu_dot = vessel.derivative(np.zeros(3), np.zeros(3), np.zeros(3), np.array([0.0, 0.75]))
+    felt = vessel.mass @ nu_dot
+    balance = current_load(particulars, 0.75, math.pi / 2)[1] * 1025.0 / 1026.0
+    linear = (4.977e6 + 3e6) / 100.0 * 0.75           # (m + MA22) / T2 times the current, by hand
+    assert felt[1] == pytest.approx(-balance + linear, rel=1e-3)
+    assert (felt[1], -balance) == pytest.approx((143.6e3, 83.8e3), abs=0.1e3)

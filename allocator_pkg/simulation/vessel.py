@@ -1,5 +1,5 @@
 """The DP vessel in surge, sway and yaw, after the offshore supply vessel ``osv`` of Fossen's
-MSS toolbox (VESSELS/models/osv.m), reduced to the horizontal plane:
+MSS toolbox (``CRAFT/SHIP/models/osv.m``), reduced to the horizontal plane:
 
     M nu_r' + C(nu_r) nu_r + D nu_r - tau_surge(u_r) - tau_crossflow(nu_r) = tau + tau_env
     nu = nu_r + nu_c,   eta' = R(psi) nu
@@ -7,12 +7,19 @@ MSS toolbox (VESSELS/models/osv.m), reduced to the horizontal plane:
 (Fossen 2021, (6.111)-(6.116) with an irrotational current, Property 10.1), where nu_r is the
 velocity through the water. Values from osv.m: L 83 m, B 18 m, T 5 m, Cb 0.65, rho 1025,
 m = rho Cb L B T, the centre of gravity 4.5 m aft of the body origin (midships), radius of
-gyration in yaw 0.25 L, added mass MA11 1e6 kg, MA22 3e6 kg, MA26 -6e6 kg m, MA66 1.156e9
-kg m^2 (supply.mat at its lowest frequency), linear damping M_ii / T_i with T1 = T2 = 100 s
-and T6 = 1 s, surge damping blended from linear to quadratic with 1 - tanh(|u_r| / 2 m/s),
-and cross-flow drag over 20 strips. Both drag coefficients are those of
-``analysis.environment_loads`` (current_surge over B T, current_sway as the 2-D cross-flow
-coefficient), so that a current loads this hull as the DP capability analysis says it does.
+gyration in yaw 0.25 L, linear damping M_ii / T_i with T1 = T2 = 100 s and T6 = 1 s, surge
+damping blended from linear to quadratic with 1 - tanh(|u_r| / 2 m/s), and cross-flow drag
+over 20 strips. The added mass, MA11 1e6 kg, MA22 3e6 kg, MA26 -6e6 kg m, MA66 1.156e9 kg m^2
+(supply.mat at its lowest frequency), is that of osv.m as MSS published it under
+``VESSELS/models/`` before its 2025-03 release; the release that moved it to ``CRAFT/SHIP/``
+recomputed it as 6e5 kg, 2e6 kg, -9.1e6 kg m and 1.2416e9 kg m^2.
+
+The quadratic drag coefficients are those of ``analysis.environment_loads`` (current_surge
+over B T, current_sway as the 2-D cross-flow coefficient), which the DP capability analysis
+uses; the linear damping comes on top and the analysis leaves it out. So a current loads
+this hull more than the capability balance says: at rest in a 0.75 m/s beam current it feels
+143.6 kN of sway force against the balance's 83.8 kN, the difference being M_22 / T2 times
+the current (59.8 kN).
 """
 
 from __future__ import annotations
