@@ -42,3 +42,13 @@ def test_wrong_python_version_is_named(tmp_path):
     result = run(str(fake), os.environ["PATH"])
     assert result.returncode == 1
     assert "is Python 3.9.1; the ROS 2 Jazzy wheels need 3.11 or 3.12" in result.stderr
+
+
+def test_an_interpreter_that_does_not_run_is_named_with_what_it_said(tmp_path):
+    shim = tmp_path / "python3.12"
+    shim.write_text('#!/bin/sh\necho "pyenv: python3.12: command not found" >&2\nexit 127\n')
+    shim.chmod(0o755)
+    result = run(str(shim), os.environ["PATH"])
+    assert result.returncode == 1
+    assert f"'{shim}' does not run ({shim}: pyenv: python3.12: command not found)" in result.stderr
+    assert "is Python ;" not in result.stderr

@@ -11,8 +11,10 @@ fail() {
 
 if ! command -v "$python" >/dev/null 2>&1; then
     fail "'$python' not found. Install Python 3.11 or 3.12 (the ROS 2 Jazzy wheels exist for those), or run 'make PYTHON=/path/to/python3.12 ...'."
+elif ! version=$("$python" -c 'import platform; print(platform.python_version())' 2>&1) || [ -z "$version" ]; then
+    fail "'$python' does not run ($(command -v "$python"): ${version:-no output}); a broken interpreter or version-manager shim? Run 'make PYTHON=/path/to/python3.12 ...'."
 elif ! "$python" -c 'import sys; sys.exit(0 if sys.version_info[:2] in ((3, 11), (3, 12)) else 1)' >/dev/null 2>&1; then
-    fail "'$python' is Python $("$python" -c 'import platform; print(platform.python_version())' 2>/dev/null); the ROS 2 Jazzy wheels need 3.11 or 3.12. Run 'make PYTHON=/path/to/python3.12 ...'."
+    fail "'$python' is Python $version; the ROS 2 Jazzy wheels need 3.11 or 3.12. Run 'make PYTHON=/path/to/python3.12 ...'."
 elif ! "$python" -c 'import venv, ensurepip' >/dev/null 2>&1; then
     fail "'$python' lacks the venv/ensurepip modules (on Debian/Ubuntu: apt install python3-venv)."
 elif ! "$python" -c 'import sysconfig, os, sys; sys.exit(0 if os.path.exists(os.path.join(sysconfig.get_paths()["include"], "Python.h")) else 1)' >/dev/null 2>&1; then
