@@ -128,3 +128,30 @@ def test_wrenches_as_arrays_and_messages_on_both_nodes(allocator_harness, node):
 def test_an_unknown_node_kind_is_named(allocator_harness):
     with pytest.raises(ValueError, match="node must be one of plain, lifecycle, not 'managed'"):
         allocator_harness(EXAMPLE, node="managed")
+
+
+def test_a_relative_params_file_is_found_next_to_the_test_then_in_the_current_directory(tmp_path, monkeypatch):
+    tests = tmp_path / "tests"
+    (tests / "config").mkdir(parents=True)
+    beside = tests / "config" / "rov.yaml"
+    beside.write_text(EXAMPLE.read_text())
+    monkeypatch.chdir(ROOT)
+    assert plugin.params_path("config/rov.yaml", tests) == beside
+    assert plugin.params_path("config/example1_rov.yaml", tests) == EXAMPLE
+    assert plugin.params_path(str(EXAMPLE), tests) == EXAMPLE
+    with pytest.raises(FileNotFoundError, match=re.escape(f"no such params file: config/none.yaml (looked for "
+                                                          f"{tests}/config/none.yaml and {ROOT}/config/none.yaml)")):
+        plugin.params_path("config/none.yaml", tests)
+
+
+def test_the_readme_example_runs_from_another_directory_with_its_vehicle_beside_it(tmp_path):
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "example1_rov.yaml").write_text(EXAMPLE.read_text())
+    (tmp_path / "test_readme_example.py").write_text(readme_example())
+    env = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
+           "ROS_DOMAIN_ID": os.environ.get("ROS_DOMAIN_ID", plugin.own_domain(os.getpid()))}
+    result = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                             str(tmp_path / "test_readme_example.py")],
+                            cwd="/", env=env, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "1 passed" in result.stdout

@@ -3,7 +3,8 @@
 ``allocator_harness(params_file, parameters={...}, node="plain" | "lifecycle")`` returns a
 :class:`~allocator_pkg.testing.harness.Harness` running the allocator node of that params file
 and a probe in one in-process executor on simulated time; every harness a test made, its
-executor and its rclpy context are torn down after the test.
+executor and its rclpy context are torn down after the test. A relative ``params_file`` is
+looked for next to the calling test file, then in the current directory.
 
 DDS stays on this machine: unless the caller set them, ``ROS_AUTOMATIC_DISCOVERY_RANGE`` is
 ``LOCALHOST`` and ``ROS_DOMAIN_ID`` a domain of this pytest process's own (1 to 100, from its
@@ -40,8 +41,20 @@ class HarnessFactory(Protocol):
                  node: str = "plain", timeout: float = 10.0): ...
 
 
+def params_path(params_file: str | Path, caller: Path) -> Path:
+    """The params file a test names: as given when absolute, else next to the test file in
+    ``caller`` (a directory), else in the current directory. FileNotFoundError naming every
+    place looked at."""
+    path = Path(params_file).expanduser()
+    places = [path] if path.is_absolute() else [caller / path, Path.cwd() / path]
+    for place in places:
+        if place.is_file():
+            return place.resolve()
+    raise FileNotFoundError(f"no such params file: {params_file} (looked for {' and '.join(map(str, places))})")
+
+
 @pytest.fixture
-def allocator_harness() -> Iterator[HarnessFactory]:
+def allocator_harness(request: pytest.FixtureRequest) -> Iterator[HarnessFactory]:
     """A factory of harnesses: ``allocator_harness(params_file, parameters={...},
     node="plain" | "lifecycle")``. Each harness has a context of its own, shut down with it
     after the test."""
@@ -52,10 +65,11 @@ def allocator_harness() -> Iterator[HarnessFactory]:
 
     def make(params_file: str | Path, parameters: Mapping[str, Any] | None = None, node: str = "plain",
              timeout: float = 10.0) -> Harness:
+        path = params_path(params_file, request.path.parent)
         context = rclpy.Context()
         rclpy.init(context=context)
         made.append((None, context))
-        harness = Harness(context, params_file, parameters, node, timeout)
+        harness = Harness(context, path, parameters, node, timeout)
         made[-1] = (harness, context)
         return harness
 
