@@ -40,3 +40,12 @@ def test_a_capability_answer_in_words():
         "scale 2.5 along [100 0 0 0 0 0]; achieved there [250.00 0.00 0.00 0.00 0.00 0.00] (steady state)")
     refused = GetCapability.Response(success=False, message="not configured")
     assert format_capability([1.0, 0, 0, 0, 0, 0], refused) == "no capability: not configured"
+
+
+def test_unknown_parameters_are_named_with_the_nearest_declared_one():
+    from allocator_pkg.cli.ctl import unknown_parameters
+    declared = ["rate_hz", "weights.minimax", "weights.slack", "wrench_timeout"]
+    assert unknown_parameters(["rate_hz", "weights.minimax"], declared, "/thrust_allocator") == []
+    assert unknown_parameters(["weights.minmax", "nosuch.param"], declared, "/rov1/thrust_allocator") == [
+        "'weights.minmax' is not a parameter of /rov1/thrust_allocator; did you mean weights.minimax?",
+        "'nosuch.param' is not a parameter of /rov1/thrust_allocator"]

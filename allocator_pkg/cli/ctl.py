@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import difflib
 import math
 import sys
 import time
@@ -93,10 +94,12 @@ class Controller:
     def capability(self, direction: list[float]) -> GetCapability.Response:
         return self.call(GetCapability, "get_capability", GetCapability.Request(direction=array_to_wrench(direction)))
 
+    def parameter_names(self) -> list[str]:
+        """Every parameter the node has declared, sorted."""
+        return sorted(self.call(ListParameters, "list_parameters", ListParameters.Request()).result.names)
+
     def get_parameters(self, names: list[str]) -> dict[str, object]:
-        if not names:
-            listed = self.call(ListParameters, "list_parameters", ListParameters.Request())
-            names = sorted(listed.result.names)
+        names = names or self.parameter_names()
         response = self.call(GetParameters, "get_parameters", GetParameters.Request(names=names))
         return {name: parameter_value_to_python(value) for name, value in zip(names, response.values)}
 
@@ -104,6 +107,17 @@ class Controller:
         request = SetParametersAtomically.Request(
             parameters=[Parameter(name, value=value).to_parameter_msg() for name, value in values.items()])
         return self.call(SetParametersAtomically, "set_parameters_atomically", request).result
+
+
+def unknown_parameters(names: list[str], declared: list[str], node: str) -> list[str]:
+    """What to say of each of ``names`` the node has not declared, with the nearest it has."""
+    problems = []
+    for name in names:
+        if name not in declared:
+            nearest = difflib.get_close_matches(name, declared, n=1, cutoff=0.6)
+            problems.append(f"'{name}' is not a parameter of {node}"
+                            + (f"; did you mean {nearest[0]}?" if nearest else ""))
+    return problems
 
 
 def parse_value(text: str) -> object:
@@ -349,17 +363,24 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
     if arguments.command == "step-test":
         test = StepTest(controller, sys.stdout, arguments.share, arguments.hold, arguments.rest, arguments.rate)
         return test.run_actuators(arguments.share) if arguments.actuators else test.run_dofs()
+    values = {}
+    if arguments.action == "set":
+        for item in arguments.items:
+            name, separator, text = item.partition("=")
+            if not separator:
+                print(f"allocator-ctl: '{item}' is not NAME=VALUE", file=sys.stderr)
+                return 2
+            values[name] = parse_value(text)
+    names = list(values) if arguments.action == "set" else arguments.items
+    unknown = unknown_parameters(names, controller.parameter_names(), controller.service_prefix) if names else []
+    for problem in unknown:
+        print(f"allocator-ctl: {problem}", file=sys.stderr)
+    if unknown:
+        return 1
     if arguments.action == "get":
         for name, value in controller.get_parameters(arguments.items).items():
             print(f"{name}: {value}")
         return 0
-    values = {}
-    for item in arguments.items:
-        name, separator, text = item.partition("=")
-        if not separator:
-            print(f"allocator-ctl: '{item}' is not NAME=VALUE", file=sys.stderr)
-            return 2
-        values[name] = parse_value(text)
     result = controller.set_parameters(values)
     print("applied" if result.successful else f"rejected: {result.reason}")
     return 0 if result.successful else 1
