@@ -5,6 +5,9 @@ watchdog, the faults in force before put back."""
 import pytest
 from conftest import ROOT
 
+from allocator_pkg import Allocator, parse_parameters, read_parameters
+from allocator_pkg.ros.hold import refusal
+
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 MAIN_PORT = 2                     # index in actuators.names
 RATE_STEP = 600.0 / 50.0          # main_port's thrust_rate_max [N/s] over one period at 50 Hz [N]
@@ -83,3 +86,21 @@ def test_the_watchdog_stops_a_hold(harness):
     assert list(harness.commands[-1].mode) == [0, 0, 0, 0]      # and the hold is over
     feed(harness, 5)
     assert abs(harness.commands[-1].thrust[MAIN_PORT]) < 1e-3              # zero wrench, no hold
+
+
+def bench(path, **overrides):
+    """The allocator and node settings of a params file, step_test.enabled."""
+    vehicle, settings = parse_parameters({**read_parameters(path), "step_test.enabled": True, **overrides})
+    return Allocator(vehicle), settings
+
+
+def test_a_control_surface_an_inactive_node_and_an_actuator_off_the_dofs_are_refused():
+    allocator, settings = bench(ROOT / "config" / "infante_auv.yaml")
+    assert refusal(allocator, settings, "fin_bow_port", 1.0, 1.0, active=True) == \
+        "fin_bow_port is a control surface: it has no thrust of its own to hold"
+    assert refusal(allocator, settings, "thruster_port", 1.0, 1.0, active=False) == \
+        "not active: no samples to hold an actuator in"
+    assert refusal(allocator, settings, "thruster_port", 1.0, 1.0, active=True) is None
+    planar, settings = bench(ROOT / "config" / "bluerov2_heavy.yaml", dofs=["surge", "sway", "yaw"])
+    assert refusal(planar, settings, "thruster_5", 1.0, 1.0, active=True) == \
+        "thruster_5 acts on none of the controlled DOFs (surge, sway, yaw)"

@@ -201,21 +201,6 @@ def test_diagnostics_levels(harness):
     assert "main_port DEGRADED" in harness.diagnostics[-1].status[0].message
 
 
-@pytest.mark.params(EXAMPLE, per_actuator_topics=True, wrench_timeout=0.0)
-def test_per_actuator_topics(harness):
-    from std_msgs.msg import Float64
-    thrust, azimuth = [], []
-    harness.probe.create_subscription(Float64, "thrusters/main_stbd/thrust", thrust.append, 10)
-    harness.probe.create_subscription(Float64, "thrusters/azimuth_fwd/azimuth", azimuth.append, 10)
-    harness.spin_until(lambda: harness.node.count_subscribers("thrusters/main_stbd/thrust") > 0)
-    harness.send_wrench([60.0, 0.0, 0.0, 0.0, 0.0, 0.0])
-    harness.tick(3)
-    expected = harness.commands[-1]
-    harness.spin_until(lambda: thrust and azimuth and thrust[-1].data == expected.thrust[3]
-                       and azimuth[-1].data == expected.azimuth[0])
-    assert expected.thrust[3] > 0.0
-
-
 @pytest.mark.params(ROOT / "config" / "infante_auv.yaml")
 def test_odometry_sets_the_speed_of_control_surfaces(harness):
     from nav_msgs.msg import Odometry
@@ -293,34 +278,6 @@ def test_an_under_actuated_vehicle_says_so_in_diagnostics(harness):
 
 
 BLUEROV = ROOT / "config" / "bluerov2_heavy.yaml"
-
-
-@pytest.mark.params(BLUEROV, wrench_timeout=0.0, battery_timeout=2.0)
-def test_the_battery_voltage_sets_the_thrust_limits_and_bad_ones_are_counted(harness):
-    from sensor_msgs.msg import BatteryState
-    battery = harness.probe.create_publisher(BatteryState, "battery_state", 10)
-    harness.spin_until(lambda: battery.get_subscription_count() > 0)
-    values = harness.diagnostics_after_a_second()
-    assert values["voltage source"] == "nominal_voltage (no battery voltage)" and values["voltage [V]"] == "16"
-    battery.publish(BatteryState(voltage=12.0))
-    harness.spin_until(lambda: harness.node.allocator.voltage == 12.0)
-    harness.send_wrench([0.0, 0.0, 400.0, 0.0, 0.0, 0.0])
-    harness.tick(2)
-    status = harness.status[-1]
-    assert status.voltage == 12.0 and status.saturated
-    assert status.achieved.force.z == pytest.approx(4 * 36.4, rel=1e-4)          # 12 V: 36.4 N a thruster
-    assert status.unallocated.force.z == pytest.approx(400.0 - 4 * 36.4, rel=1e-3)
-    assert list(status.at_thrust_limit) == [False] * 4 + [True] * 4
-    for count, bad in enumerate((math.nan, 25.0, -1.0), start=1):
-        battery.publish(BatteryState(voltage=bad))
-        harness.spin_until(lambda count=count: harness.node.runtime.counters.rejected_battery == count)
-    assert harness.node.allocator.voltage == 12.0
-    values = harness.diagnostics_after_a_second()
-    assert values["rejected battery states"] == "3" and values["voltage source"].endswith("battery_state")
-    harness.tick(round(2.0 / harness.node.period))                              # no battery for battery_timeout
-    values = harness.diagnostics_after_a_second()
-    assert values["voltage [V]"] == "16" and values["voltage source"] == "nominal_voltage (no battery voltage)"
-    assert harness.node.allocator.voltage == 16.0
 
 
 @pytest.mark.params(BLUEROV, wrench_timeout=0.0, frame="flu")

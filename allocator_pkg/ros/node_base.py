@@ -131,17 +131,19 @@ class AllocatorBase(WholeSetParameters):
         return self._description_topic is not None and self._description is None
 
     def load(self) -> AllocationRuntime:
-        """Check the parameters (and the robot description) as a whole, declare every key with
-        its descriptor and build the runtime, not yet active. Raises NodeConfigError."""
+        """Check the parameters (and the robot description) as a whole, build the allocator (which
+        refuses a method that cannot serve the vehicle), declare every key with its descriptor
+        and build the runtime, not yet active. Raises NodeConfigError."""
         parameters = ros_parameters.allocator_parameters(self)
         try:
             geometry = self._geometry(parameters)
             vehicle, settings = parse_parameters({**parameters, **geometry})
+            allocator = Allocator(vehicle)
         except ConfigError as error:
             raise NodeConfigError(self.get_fully_qualified_name(), parameters, error.problems) from error
         ros_parameters.declare(self, vehicle)
         ros_parameters.retype(self)
-        runtime = AllocationRuntime(self, vehicle, settings, geometry)
+        runtime = AllocationRuntime(self, allocator, settings, geometry)
         logger = self.get_logger()
         for warning in runtime.allocator.warnings:
             logger.warn(warning)
