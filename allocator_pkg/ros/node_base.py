@@ -1,6 +1,7 @@
 """What ``allocator_node`` and ``allocator_lifecycle_node`` share: the services, the parameter
-checks, loading a configuration (with a robot description) into an
-:class:`~allocator_pkg.ros.runtime.AllocationRuntime`, and the process's main loop.
+checks and loading a configuration (with a robot description) into an
+:class:`~allocator_pkg.ros.runtime.AllocationRuntime`; their process's main loop is
+:mod:`allocator_pkg.ros.main_loop`.
 
 :class:`AllocatorBase` is a mixin for rclpy's ``Node`` or ``LifecycleNode`` (the first of a
 node's bases). Parameters are checked in the on-set callback against the whole configuration
@@ -10,21 +11,11 @@ lifecycle node not configured) a change is taken as it is and checked at the nex
 
 from __future__ import annotations
 
-import gc
-import signal
-import sys
-import threading
-import time
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from pathlib import Path
 
-import rclpy
 from rcl_interfaces.msg import SetParametersResult
-from rclpy.executors import Executor, SingleThreadedExecutor
-from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.signals import SignalHandlerOptions
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
@@ -35,14 +26,13 @@ from ..configuration import urdf
 from ..configuration.parameters import parse_parameters
 from ..configuration.schema import ACTUATOR_PREFIX
 from ..vehicle.config import ConfigError, Vehicle
-from ..vehicle.node_settings import EVENTS, ROBOT_DESCRIPTION, SINGLE_THREADED, NodeSettings
+from ..vehicle.node_settings import ROBOT_DESCRIPTION, NodeSettings
 from . import qos, ros_parameters
 from .conversions import array_to_wrench, wrench_to_array
 from .ros_parameters import WholeSetParameters
 from .runtime import AllocationRuntime
 
 STOP_ACK_TIMEOUT = 1.0       # s the shutdown's zero-thrust command waits for acknowledgements
-SPIN_TIMEOUT = 0.1           # s: the longest the main loop waits before it looks for the end again
 
 
 class NodeConfigError(ConfigError):
@@ -277,49 +267,3 @@ class AllocatorBase(WholeSetParameters):
             self.get_logger().warn(f"stopped: published zero thrust, not acknowledged by every "
                                    f"subscriber within {STOP_ACK_TIMEOUT:g} s")
 
-
-def make_executor(node: Node) -> Executor:
-    """The executor the ``executor`` parameter names (read-only; checked with the others, so a
-    value it does not know leaves the default here and is refused by the configuration)."""
-    name = node.get_parameter("executor").value if node.has_parameter("executor") else EVENTS
-    return SingleThreadedExecutor() if name == SINGLE_THREADED else EventsExecutor()
-
-
-def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None = None) -> int:
-    """A node's process: spin it until SIGINT/SIGTERM (or its end), then stop it. Exit code 1
-    with the report of an invalid configuration found at start.
-
-    What exists once the node is made (modules, the node, its solvers) lives as long as the
-    process, so it is frozen out of the garbage collector's reach (``gc.freeze``): a full
-    collection then scans only what came since. Over the whole heap one takes up to 50 ms (25
-    periods at 500 Hz; ``make soak`` shows one in its first minute)."""
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    stop = threading.Event()
-    for signal_number in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signal_number, lambda *_: stop.set())
-    try:
-        node = make_node()
-    except NodeConfigError as error:
-        print(error.report(), file=sys.stderr)
-        rclpy.try_shutdown()
-        return 1
-    gc.collect()
-    gc.freeze()
-    executor = make_executor(node)
-    executor.add_node(node)
-    try:
-        check = 0.0
-        while not stop.is_set():
-            executor.spin_once(timeout_sec=SPIN_TIMEOUT)
-            now = time.monotonic()
-            if now >= check:        # a lifecycle shutdown or a context gone: looked for every SPIN_TIMEOUT
-                check = now + SPIN_TIMEOUT
-                if node.finished or not rclpy.ok():
-                    break
-        node.stop()
-    finally:
-        executor.shutdown()
-        node.release()
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
