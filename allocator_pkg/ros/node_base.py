@@ -5,13 +5,16 @@ checks and loading a configuration (with a robot description) into an
 
 :class:`AllocatorBase` is a mixin for rclpy's ``Node`` or ``LifecycleNode`` (the first of a
 node's bases). Parameters are checked in the on-set callback against the whole configuration
-and the running allocator, and applied in the post-set callback; while no runtime exists (a
-lifecycle node not configured) a change is taken as it is and checked at the next configure.
+and the running allocator (its actuators, and whether the method can serve the vehicle), and
+applied in the post-set callback; while no runtime exists (a lifecycle node not configured) a
+change is taken as it is and checked at the next configure, and the services answer
+``success: false`` (:func:`when_configured`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+import functools
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 from rcl_interfaces.msg import SetParametersResult
@@ -33,6 +36,7 @@ from .ros_parameters import WholeSetParameters
 from .runtime import AllocationRuntime
 
 STOP_ACK_TIMEOUT = 1.0       # s the shutdown's zero-thrust command waits for acknowledgements
+NOT_CONFIGURED = "not configured: the allocator has no configuration yet"
 
 
 class NodeConfigError(ConfigError):
@@ -66,6 +70,21 @@ def compact(names: list[str]) -> str:
         else:
             parts.setdefault(name, [])
     return ", ".join(head + "{" + ", ".join(keys) + "}" if keys else head for head, keys in parts.items())
+
+
+def when_configured(answer: Callable) -> Callable:
+    """A service callback that answers ``success: false`` with :data:`NOT_CONFIGURED` while the
+    node has no runtime, else ``answer(node, runtime, request, response)``."""
+
+    @functools.wraps(answer)
+    def callback(self: AllocatorBase, request, response):
+        runtime = self._runtime
+        if runtime is None:
+            response.success, response.message = False, NOT_CONFIGURED
+            return response
+        return answer(self, runtime, request, response)
+
+    return callback
 
 
 class AllocatorBase(WholeSetParameters):
@@ -179,47 +198,40 @@ class AllocatorBase(WholeSetParameters):
 
     # -- services -----------------------------------------------------------------------
 
-    def _not_configured(self) -> str:
-        return "not configured: the allocator has no configuration yet"
-
-    def _on_set_fault(self, request: SetActuatorFault.Request, response: SetActuatorFault.Response):
-        if self._runtime is None:
-            response.success, response.message = False, self._not_configured()
-            return response
-        response.success, response.message = self._runtime.set_fault(request.fault)
+    @when_configured
+    def _on_set_fault(self, runtime: AllocationRuntime, request: SetActuatorFault.Request,
+                      response: SetActuatorFault.Response):
+        response.success, response.message = runtime.set_fault(request.fault)
         if response.success:
             self.get_logger().info(response.message)
         return response
 
-    def _on_clear_faults(self, request: Trigger.Request, response: Trigger.Response):
-        if self._runtime is None:
-            response.success, response.message = False, self._not_configured()
-            return response
-        response.success, response.message = True, self._runtime.clear_faults()
+    @when_configured
+    def _on_clear_faults(self, runtime: AllocationRuntime, request: Trigger.Request, response: Trigger.Response):
+        response.success, response.message = True, runtime.clear_faults()
         self.get_logger().info(response.message)
         return response
 
-    def _on_get_capability(self, request: GetCapability.Request, response: GetCapability.Response):
-        if self._runtime is None:
-            response.success, response.message = False, self._not_configured()
-            return response
+    @when_configured
+    def _on_get_capability(self, runtime: AllocationRuntime, request: GetCapability.Request,
+                           response: GetCapability.Response):
         response.success, response.message, response.scale, achieved = \
-            self._runtime.capability(wrench_to_array(request.direction))
+            runtime.capability(wrench_to_array(request.direction))
         response.achieved = array_to_wrench(achieved)
         return response
 
-    def _on_hold_actuator(self, request: HoldActuator.Request, response: HoldActuator.Response):
-        if self._runtime is None:
-            response.success, response.message = False, self._not_configured()
-            return response
-        response.success, response.message = self._runtime.hold(request.actuator, request.thrust, request.duration)
+    @when_configured
+    def _on_hold_actuator(self, runtime: AllocationRuntime, request: HoldActuator.Request,
+                          response: HoldActuator.Response):
+        response.success, response.message = runtime.hold(request.actuator, request.thrust, request.duration)
         return response
 
     # -- parameters ---------------------------------------------------------------------
 
     def _check_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
-        """Check a change against the whole schema and the running allocator; keep what it
-        builds for :meth:`_apply_parameters`. Nothing changes here."""
+        """Check a change against the whole schema and the running allocator (the same actuators,
+        a method that can serve the vehicle); keep what it builds for :meth:`_apply_parameters`.
+        Nothing changes here: a change refused is refused whole."""
         self._pending_change = None
         changes = {p.name: ros_parameters.plain(p.value) for p in parameters
                    if ros_parameters.is_allocator_parameter(p.name)}
