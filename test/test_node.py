@@ -139,6 +139,36 @@ def test_parameter_changes_are_checked_as_a_whole(harness):
 
 
 @pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_a_change_to_a_method_that_cannot_serve_the_vehicle_is_refused_whole(harness):
+    """explicit needs actuators of fixed direction; example1_rov has azimuths. The change is
+    refused with the other values in it, and the running configuration keeps allocating."""
+    from rclpy.parameter import Parameter
+    before = harness.node.allocator.vehicle
+    result = harness.node.set_parameters_atomically([Parameter("weights.minimax", value=3.0),
+                                                     Parameter("method", value="explicit")])
+    assert not result.successful
+    assert "method" in result.reason and "'explicit' cannot serve this vehicle" in result.reason
+    assert harness.node.get_parameter("method").value == "qp"
+    assert harness.node.get_parameter("weights.minimax").value == 0.0
+    assert harness.node.allocator.vehicle == before and harness.node.allocator.method == "qp"
+    harness.send_wrench([50.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(2)
+    assert harness.status[-1].method == "qp" and harness.status[-1].solver_status == "solved"
+
+
+def test_a_params_file_whose_method_cannot_serve_the_vehicle_is_refused_naming_method(ros_context):
+    from rclpy.parameter import Parameter
+
+    from allocator_pkg.ros.node import AllocatorNode
+    from allocator_pkg.ros.node_base import NodeConfigError
+    with pytest.raises(NodeConfigError) as error:
+        AllocatorNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(EXAMPLE)],
+                      parameter_overrides=[Parameter("method", value="explicit")])
+    assert [name for name, _ in error.value.problems] == ["method"]
+    assert "'explicit' cannot serve this vehicle" in error.value.report()
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
 def test_faults_survive_reconfiguration(harness):
     from rclpy.parameter import Parameter
     assert harness.call(harness.fault_client, fault_request("main_port", FaultMode.FAILED)).success
@@ -301,3 +331,19 @@ def _fault_request(actuator, mode):
     from allocator_msgs.msg import ActuatorFault
     from allocator_msgs.srv import SetActuatorFault
     return SetActuatorFault.Request(fault=ActuatorFault(actuator=actuator, mode=mode))
+
+
+def test_every_service_of_an_unconfigured_node_answers_not_configured(ros_context):
+    from std_srvs.srv import Trigger
+
+    from allocator_msgs.srv import GetCapability, HoldActuator, SetActuatorFault
+    from allocator_pkg.ros.lifecycle_node import AllocatorLifecycleNode
+    node = AllocatorLifecycleNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(EXAMPLE)])
+    try:
+        for callback, kind in ((node._on_set_fault, SetActuatorFault), (node._on_clear_faults, Trigger),
+                               (node._on_get_capability, GetCapability), (node._on_hold_actuator, HoldActuator)):
+            response = callback(kind.Request(), kind.Response())
+            assert (response.success, response.message) == \
+                (False, "not configured: the allocator has no configuration yet"), kind
+    finally:
+        node.destroy_node()
