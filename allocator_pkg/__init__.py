@@ -1,7 +1,7 @@
 """Thrust allocation for marine and underwater vehicles.
 
-The core is plain Python (numpy, OSQP, HiGHS, PyYAML); ROS lives only in ``allocator_pkg.ros.node``
-and the command-line tools::
+The core is plain Python (numpy, OSQP, DAQP, HiGHS, PyYAML); ROS lives in ``allocator_pkg.ros``
+and the command-line tools in ``allocator_pkg.cli``::
 
     from allocator_pkg import load_vehicle, Allocator, FaultMode
     alloc = Allocator(load_vehicle("config/example1_rov.yaml"))

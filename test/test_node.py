@@ -139,6 +139,36 @@ def test_parameter_changes_are_checked_as_a_whole(harness):
 
 
 @pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
+def test_a_change_to_a_method_that_cannot_serve_the_vehicle_is_refused_whole(harness):
+    """explicit needs actuators of fixed direction; example1_rov has azimuths. The change is
+    refused with the other values in it, and the running configuration keeps allocating."""
+    from rclpy.parameter import Parameter
+    before = harness.node.allocator.vehicle
+    result = harness.node.set_parameters_atomically([Parameter("weights.minimax", value=3.0),
+                                                     Parameter("method", value="explicit")])
+    assert not result.successful
+    assert "method" in result.reason and "'explicit' cannot serve this vehicle" in result.reason
+    assert harness.node.get_parameter("method").value == "qp"
+    assert harness.node.get_parameter("weights.minimax").value == 0.0
+    assert harness.node.allocator.vehicle == before and harness.node.allocator.method == "qp"
+    harness.send_wrench([50.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(2)
+    assert harness.status[-1].method == "qp" and harness.status[-1].solver_status == "solved"
+
+
+def test_a_params_file_whose_method_cannot_serve_the_vehicle_is_refused_naming_method(ros_context):
+    from rclpy.parameter import Parameter
+
+    from allocator_pkg.ros.node import AllocatorNode
+    from allocator_pkg.ros.node_base import NodeConfigError
+    with pytest.raises(NodeConfigError) as error:
+        AllocatorNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(EXAMPLE)],
+                      parameter_overrides=[Parameter("method", value="explicit")])
+    assert [name for name, _ in error.value.problems] == ["method"]
+    assert "'explicit' cannot serve this vehicle" in error.value.report()
+
+
+@pytest.mark.params(EXAMPLE, wrench_timeout=0.0)
 def test_faults_survive_reconfiguration(harness):
     from rclpy.parameter import Parameter
     assert harness.call(harness.fault_client, fault_request("main_port", FaultMode.FAILED)).success
@@ -199,21 +229,6 @@ def test_diagnostics_levels(harness):
     values = {kv.key: kv.value for kv in harness.diagnostics[-1].status[0].values}
     assert values["mode main_port"] == "DEGRADED"
     assert "main_port DEGRADED" in harness.diagnostics[-1].status[0].message
-
-
-@pytest.mark.params(EXAMPLE, per_actuator_topics=True, wrench_timeout=0.0)
-def test_per_actuator_topics(harness):
-    from std_msgs.msg import Float64
-    thrust, azimuth = [], []
-    harness.probe.create_subscription(Float64, "thrusters/main_stbd/thrust", thrust.append, 10)
-    harness.probe.create_subscription(Float64, "thrusters/azimuth_fwd/azimuth", azimuth.append, 10)
-    harness.spin_until(lambda: harness.node.count_subscribers("thrusters/main_stbd/thrust") > 0)
-    harness.send_wrench([60.0, 0.0, 0.0, 0.0, 0.0, 0.0])
-    harness.tick(3)
-    expected = harness.commands[-1]
-    harness.spin_until(lambda: thrust and azimuth and thrust[-1].data == expected.thrust[3]
-                       and azimuth[-1].data == expected.azimuth[0])
-    assert expected.thrust[3] > 0.0
 
 
 @pytest.mark.params(ROOT / "config" / "infante_auv.yaml")
@@ -295,34 +310,6 @@ def test_an_under_actuated_vehicle_says_so_in_diagnostics(harness):
 BLUEROV = ROOT / "config" / "bluerov2_heavy.yaml"
 
 
-@pytest.mark.params(BLUEROV, wrench_timeout=0.0, battery_timeout=2.0)
-def test_the_battery_voltage_sets_the_thrust_limits_and_bad_ones_are_counted(harness):
-    from sensor_msgs.msg import BatteryState
-    battery = harness.probe.create_publisher(BatteryState, "battery_state", 10)
-    harness.spin_until(lambda: battery.get_subscription_count() > 0)
-    values = harness.diagnostics_after_a_second()
-    assert values["voltage source"] == "nominal_voltage (no battery voltage)" and values["voltage [V]"] == "16"
-    battery.publish(BatteryState(voltage=12.0))
-    harness.spin_until(lambda: harness.node.allocator.voltage == 12.0)
-    harness.send_wrench([0.0, 0.0, 400.0, 0.0, 0.0, 0.0])
-    harness.tick(2)
-    status = harness.status[-1]
-    assert status.voltage == 12.0 and status.saturated
-    assert status.achieved.force.z == pytest.approx(4 * 36.4, rel=1e-4)          # 12 V: 36.4 N a thruster
-    assert status.unallocated.force.z == pytest.approx(400.0 - 4 * 36.4, rel=1e-3)
-    assert list(status.at_thrust_limit) == [False] * 4 + [True] * 4
-    for count, bad in enumerate((math.nan, 25.0, -1.0), start=1):
-        battery.publish(BatteryState(voltage=bad))
-        harness.spin_until(lambda count=count: harness.node.runtime.counters.rejected_battery == count)
-    assert harness.node.allocator.voltage == 12.0
-    values = harness.diagnostics_after_a_second()
-    assert values["rejected battery states"] == "3" and values["voltage source"].endswith("battery_state")
-    harness.tick(round(2.0 / harness.node.period))                              # no battery for battery_timeout
-    values = harness.diagnostics_after_a_second()
-    assert values["voltage [V]"] == "16" and values["voltage source"] == "nominal_voltage (no battery voltage)"
-    assert harness.node.allocator.voltage == 16.0
-
-
 @pytest.mark.params(BLUEROV, wrench_timeout=0.0, frame="flu")
 def test_get_capability_answers_along_a_direction_in_the_nodes_frame(harness):
     from allocator_msgs.srv import GetCapability
@@ -344,3 +331,19 @@ def _fault_request(actuator, mode):
     from allocator_msgs.msg import ActuatorFault
     from allocator_msgs.srv import SetActuatorFault
     return SetActuatorFault.Request(fault=ActuatorFault(actuator=actuator, mode=mode))
+
+
+def test_every_service_of_an_unconfigured_node_answers_not_configured(ros_context):
+    from std_srvs.srv import Trigger
+
+    from allocator_msgs.srv import GetCapability, HoldActuator, SetActuatorFault
+    from allocator_pkg.ros.lifecycle_node import AllocatorLifecycleNode
+    node = AllocatorLifecycleNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(EXAMPLE)])
+    try:
+        for callback, kind in ((node._on_set_fault, SetActuatorFault), (node._on_clear_faults, Trigger),
+                               (node._on_get_capability, GetCapability), (node._on_hold_actuator, HoldActuator)):
+            response = callback(kind.Request(), kind.Response())
+            assert (response.success, response.message) == \
+                (False, "not configured: the allocator has no configuration yet"), kind
+    finally:
+        node.destroy_node()

@@ -38,8 +38,8 @@ from allocator_msgs.srv import GetCapability, SetActuatorFault
 
 from ..ros.conversions import OUTCOME_NAMES, array_to_wrench, wrench_to_array
 from ..vehicle.node_settings import NODE_NAME
+from .direction_check import DirectionCheck
 from .recording import Recording
-from .step_test import StepTest
 
 FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
                "failed": ActuatorFault.FAILED, "stuck": ActuatorFault.STUCK}
@@ -361,8 +361,8 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
                 recording.close()
         return 0
     if arguments.command == "step-test":
-        test = StepTest(controller, sys.stdout, arguments.share, arguments.hold, arguments.rest, arguments.rate)
-        return test.run_actuators(arguments.share) if arguments.actuators else test.run_dofs()
+        check = DirectionCheck(controller, sys.stdout, arguments.share, arguments.hold, arguments.rest, arguments.rate)
+        return check.run_actuators(arguments.share) if arguments.actuators else check.run_dofs()
     values = {}
     if arguments.action == "set":
         for item in arguments.items:

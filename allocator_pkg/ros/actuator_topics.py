@@ -19,8 +19,9 @@ CreateOutput = Callable[[type, str, QoSProfile], Publisher]
 
 class ActuatorTopics:
     """The publishers of one vehicle's actuators, until :meth:`close`. ``create`` makes one
-    output publisher (message type, topic, QoS) and ``destroy`` frees it: the runtime's, so
-    that on a managed node they are lifecycle publishers like its other outputs."""
+    output publisher (message type, topic, QoS) and ``destroy`` frees it: those of
+    :class:`~allocator_pkg.ros.outputs.Outputs`, so that on a managed node they are lifecycle
+    publishers like the other outputs."""
 
     def __init__(self, vehicle: Vehicle, create: CreateOutput, destroy: Callable[[Publisher], None]):
         self._destroy = destroy

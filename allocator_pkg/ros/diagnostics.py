@@ -1,5 +1,6 @@
 """What the node reports on /diagnostics: counters kept between reports, and the statuses
 built from them as pure functions (no node, no clock), so that they are tested on their own.
+A rejected input is counted here and logged at most once per :data:`LOG_THROTTLE` seconds.
 
 Every status is named after the node's full name, so that allocators in several namespaces
 stay apart in a diagnostic aggregator: ``/rov1/thrust_allocator: thrust allocation`` for the
@@ -19,6 +20,7 @@ from ..effectiveness.faults import Fault, FaultMode
 from ..effectiveness.model import AT_LIMIT
 from ..solvers.outcome import Outcome
 
+LOG_THROTTLE = 5.0           # s between two log lines of one kind of rejected input
 ACTUATOR_LEVELS = {FaultMode.NOMINAL: DiagnosticStatus.OK, FaultMode.DEGRADED: DiagnosticStatus.WARN,
                    FaultMode.STUCK: DiagnosticStatus.WARN, FaultMode.FAILED: DiagnosticStatus.ERROR}
 

@@ -21,7 +21,8 @@ import sys
 from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
 
 from ..vehicle.node_settings import NODE_NAME
-from .node_base import AllocatorBase, NodeConfigError, spin
+from .main_loop import spin
+from .node_base import AllocatorBase, NodeConfigError
 
 
 class AllocatorLifecycleNode(AllocatorBase, LifecycleNode):

@@ -2,7 +2,8 @@
 its configuration is valid.
 
 The topics, timers and samples are :mod:`allocator_pkg.ros.runtime`'s, the services, parameter
-checks and loading :mod:`allocator_pkg.ros.node_base`'s, shared with the managed variant
+checks and loading :mod:`allocator_pkg.ros.node_base`'s and the process's main loop
+:mod:`allocator_pkg.ros.main_loop`'s, shared with the managed variant
 :mod:`allocator_pkg.ros.lifecycle_node`. See README.md for the interface.
 """
 
@@ -13,7 +14,8 @@ import sys
 from rclpy.node import Node
 
 from ..vehicle.node_settings import NODE_NAME
-from .node_base import AllocatorBase, NodeConfigError, spin
+from .main_loop import spin
+from .node_base import AllocatorBase, NodeConfigError
 
 
 class AllocatorNode(AllocatorBase, Node):

@@ -1,30 +1,24 @@
 """What ``allocator_node`` and ``allocator_lifecycle_node`` share: the services, the parameter
-checks, loading a configuration (with a robot description) into an
-:class:`~allocator_pkg.ros.runtime.AllocationRuntime`, and the process's main loop.
+checks and loading a configuration (with a robot description) into an
+:class:`~allocator_pkg.ros.runtime.AllocationRuntime`; their process's main loop is
+:mod:`allocator_pkg.ros.main_loop`.
 
 :class:`AllocatorBase` is a mixin for rclpy's ``Node`` or ``LifecycleNode`` (the first of a
 node's bases). Parameters are checked in the on-set callback against the whole configuration
-and the running allocator, and applied in the post-set callback; while no runtime exists (a
-lifecycle node not configured) a change is taken as it is and checked at the next configure.
+and the running allocator (its actuators, and whether the method can serve the vehicle), and
+applied in the post-set callback; while no runtime exists (a lifecycle node not configured) a
+change is taken as it is and checked at the next configure, and the services answer
+``success: false`` (:func:`when_configured`).
 """
 
 from __future__ import annotations
 
-import gc
-import signal
-import sys
-import threading
-import time
+import functools
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-import rclpy
 from rcl_interfaces.msg import SetParametersResult
-from rclpy.executors import Executor, SingleThreadedExecutor
-from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.signals import SignalHandlerOptions
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
@@ -35,14 +29,14 @@ from ..configuration import urdf
 from ..configuration.parameters import parse_parameters
 from ..configuration.schema import ACTUATOR_PREFIX
 from ..vehicle.config import ConfigError, Vehicle
-from ..vehicle.node_settings import EVENTS, ROBOT_DESCRIPTION, SINGLE_THREADED, NodeSettings
+from ..vehicle.node_settings import ROBOT_DESCRIPTION, NodeSettings
 from . import qos, ros_parameters
 from .conversions import array_to_wrench, wrench_to_array
 from .ros_parameters import WholeSetParameters
 from .runtime import AllocationRuntime
 
 STOP_ACK_TIMEOUT = 1.0       # s the shutdown's zero-thrust command waits for acknowledgements
-SPIN_TIMEOUT = 0.1           # s: the longest the main loop waits before it looks for the end again
+NOT_CONFIGURED = "not configured: the allocator has no configuration yet"
 
 
 class NodeConfigError(ConfigError):
@@ -76,6 +70,21 @@ def compact(names: list[str]) -> str:
         else:
             parts.setdefault(name, [])
     return ", ".join(head + "{" + ", ".join(keys) + "}" if keys else head for head, keys in parts.items())
+
+
+def when_configured(answer: Callable) -> Callable:
+    """A service callback that answers ``success: false`` with :data:`NOT_CONFIGURED` while the
+    node has no runtime, else ``answer(node, runtime, request, response)``."""
+
+    @functools.wraps(answer)
+    def callback(self: AllocatorBase, request, response):
+        runtime = self._runtime
+        if runtime is None:
+            response.success, response.message = False, NOT_CONFIGURED
+            return response
+        return answer(self, runtime, request, response)
+
+    return callback
 
 
 class AllocatorBase(WholeSetParameters):
@@ -131,17 +140,19 @@ class AllocatorBase(WholeSetParameters):
         return self._description_topic is not None and self._description is None
 
     def load(self) -> AllocationRuntime:
-        """Check the parameters (and the robot description) as a whole, declare every key with
-        its descriptor and build the runtime, not yet active. Raises NodeConfigError."""
+        """Check the parameters (and the robot description) as a whole, build the allocator (which
+        refuses a method that cannot serve the vehicle), declare every key with its descriptor
+        and build the runtime, not yet active. Raises NodeConfigError."""
         parameters = ros_parameters.allocator_parameters(self)
         try:
             geometry = self._geometry(parameters)
             vehicle, settings = parse_parameters({**parameters, **geometry})
+            allocator = Allocator(vehicle)
         except ConfigError as error:
             raise NodeConfigError(self.get_fully_qualified_name(), parameters, error.problems) from error
         ros_parameters.declare(self, vehicle)
         ros_parameters.retype(self)
-        runtime = AllocationRuntime(self, vehicle, settings, geometry)
+        runtime = AllocationRuntime(self, allocator, settings, geometry)
         logger = self.get_logger()
         for warning in runtime.allocator.warnings:
             logger.warn(warning)
@@ -187,47 +198,40 @@ class AllocatorBase(WholeSetParameters):
 
     # -- services -----------------------------------------------------------------------
 
-    def _not_configured(self) -> str:
-        return "not configured: the allocator has no configuration yet"
-
-    def _on_set_fault(self, request: SetActuatorFault.Request, response: SetActuatorFault.Response):
-        if self._runtime is None:
-            response.success, response.message = False, self._not_configured()
-            return response
-        response.success, response.message = self._runtime.set_fault(request.fault)
+    @when_configured
+    def _on_set_fault(self, runtime: AllocationRuntime, request: SetActuatorFault.Request,
+                      response: SetActuatorFault.Response):
+        response.success, response.message = runtime.set_fault(request.fault)
         if response.success:
             self.get_logger().info(response.message)
         return response
 
-    def _on_clear_faults(self, request: Trigger.Request, response: Trigger.Response):
-        if self._runtime is None:
-            response.success, response.message = False, self._not_configured()
-            return response
-        response.success, response.message = True, self._runtime.clear_faults()
+    @when_configured
+    def _on_clear_faults(self, runtime: AllocationRuntime, request: Trigger.Request, response: Trigger.Response):
+        response.success, response.message = True, runtime.clear_faults()
         self.get_logger().info(response.message)
         return response
 
-    def _on_get_capability(self, request: GetCapability.Request, response: GetCapability.Response):
-        if self._runtime is None:
-            response.success, response.message = False, self._not_configured()
-            return response
+    @when_configured
+    def _on_get_capability(self, runtime: AllocationRuntime, request: GetCapability.Request,
+                           response: GetCapability.Response):
         response.success, response.message, response.scale, achieved = \
-            self._runtime.capability(wrench_to_array(request.direction))
+            runtime.capability(wrench_to_array(request.direction))
         response.achieved = array_to_wrench(achieved)
         return response
 
-    def _on_hold_actuator(self, request: HoldActuator.Request, response: HoldActuator.Response):
-        if self._runtime is None:
-            response.success, response.message = False, self._not_configured()
-            return response
-        response.success, response.message = self._runtime.hold(request.actuator, request.thrust, request.duration)
+    @when_configured
+    def _on_hold_actuator(self, runtime: AllocationRuntime, request: HoldActuator.Request,
+                          response: HoldActuator.Response):
+        response.success, response.message = runtime.hold(request.actuator, request.thrust, request.duration)
         return response
 
     # -- parameters ---------------------------------------------------------------------
 
     def _check_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
-        """Check a change against the whole schema and the running allocator; keep what it
-        builds for :meth:`_apply_parameters`. Nothing changes here."""
+        """Check a change against the whole schema and the running allocator (the same actuators,
+        a method that can serve the vehicle); keep what it builds for :meth:`_apply_parameters`.
+        Nothing changes here: a change refused is refused whole."""
         self._pending_change = None
         changes = {p.name: ros_parameters.plain(p.value) for p in parameters
                    if ros_parameters.is_allocator_parameter(p.name)}
@@ -275,49 +279,3 @@ class AllocatorBase(WholeSetParameters):
             self.get_logger().warn(f"stopped: published zero thrust, not acknowledged by every "
                                    f"subscriber within {STOP_ACK_TIMEOUT:g} s")
 
-
-def make_executor(node: Node) -> Executor:
-    """The executor the ``executor`` parameter names (read-only; checked with the others, so a
-    value it does not know leaves the default here and is refused by the configuration)."""
-    name = node.get_parameter("executor").value if node.has_parameter("executor") else EVENTS
-    return SingleThreadedExecutor() if name == SINGLE_THREADED else EventsExecutor()
-
-
-def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None = None) -> int:
-    """A node's process: spin it until SIGINT/SIGTERM (or its end), then stop it. Exit code 1
-    with the report of an invalid configuration found at start.
-
-    What exists once the node is made (modules, the node, its solvers) lives as long as the
-    process, so it is frozen out of the garbage collector's reach (``gc.freeze``): a full
-    collection then scans only what came since. Over the whole heap one takes up to 50 ms (25
-    periods at 500 Hz; ``make soak`` shows one in its first minute)."""
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    stop = threading.Event()
-    for signal_number in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signal_number, lambda *_: stop.set())
-    try:
-        node = make_node()
-    except NodeConfigError as error:
-        print(error.report(), file=sys.stderr)
-        rclpy.try_shutdown()
-        return 1
-    gc.collect()
-    gc.freeze()
-    executor = make_executor(node)
-    executor.add_node(node)
-    try:
-        check = 0.0
-        while not stop.is_set():
-            executor.spin_once(timeout_sec=SPIN_TIMEOUT)
-            now = time.monotonic()
-            if now >= check:        # a lifecycle shutdown or a context gone: looked for every SPIN_TIMEOUT
-                check = now + SPIN_TIMEOUT
-                if node.finished or not rclpy.ok():
-                    break
-        node.stop()
-    finally:
-        executor.shutdown()
-        node.release()
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0

@@ -28,7 +28,8 @@ def ros2_control_changed(old: NodeSettings, new: NodeSettings) -> bool:
 
 class Ros2ControlOutput:
     """The publishers of the thrust and angle arrays, until :meth:`close`. ``create`` and
-    ``destroy`` are the runtime's (lifecycle publishers on a managed node)."""
+    ``destroy`` are those of :class:`~allocator_pkg.ros.outputs.Outputs` (lifecycle publishers
+    on a managed node)."""
 
     def __init__(self, vehicle: Vehicle, settings: NodeSettings, create: CreateOutput,
                  destroy: Callable[[Publisher], None]):

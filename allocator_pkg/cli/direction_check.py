@@ -72,7 +72,7 @@ def actuator_lines(commands: ThrusterCommands) -> list[str]:
     return lines
 
 
-class StepTest:
+class DirectionCheck:
     """Drives one allocator through the steps; ``controller`` is allocator-ctl's Controller."""
 
     def __init__(self, controller, out: TextIO, share: float, hold: float, rest: float, rate: float):

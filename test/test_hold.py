@@ -1,19 +1,12 @@
-"""The direction check: ~/hold_actuator on the node (refused unless step_test.enabled, bounded,
-through the limits, faults and rate limits, stopped by the watchdog, the faults put back), the
-words of each direction, and allocator-ctl step-test against a node process."""
+"""~/hold_actuator on the node (the bench's step test): refused unless step_test.enabled and
+within its bounds, the held thrust through the limits, faults and rate limits, stopped by the
+watchdog, the faults in force before put back."""
 
-import os
-import subprocess
-import sys
-
-import numpy as np
 import pytest
 from conftest import ROOT
 
-from allocator_pkg.cli.step_test import MOTIONS, describe, motion
-from allocator_pkg.vehicle.config import DOF_NAMES
-from allocator_pkg.vehicle.frames import wrench_between
-from allocator_pkg.vehicle.node_settings import FLU, FRD
+from allocator_pkg import Allocator, parse_parameters, read_parameters
+from allocator_pkg.ros.hold import refusal
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 MAIN_PORT = 2                     # index in actuators.names
@@ -95,52 +88,19 @@ def test_the_watchdog_stops_a_hold(harness):
     assert abs(harness.commands[-1].thrust[MAIN_PORT]) < 1e-3              # zero wrench, no hold
 
 
-def test_flu_words_are_the_frd_words_of_the_same_wrench():
-    for i, dof in enumerate(DOF_NAMES):
-        for sign in (1.0, -1.0):
-            flu = np.zeros(6)
-            flu[i] = sign
-            frd = wrench_between(flu, FLU)
-            assert motion(dof, sign, FLU) == motion(dof, frd[i], FRD)
+def bench(path, **overrides):
+    """The allocator and node settings of a params file, step_test.enabled."""
+    vehicle, settings = parse_parameters({**read_parameters(path), "step_test.enabled": True, **overrides})
+    return Allocator(vehicle), settings
 
 
-def test_frd_words_follow_the_axes_and_the_right_hand_rule():
-    """x forward, y starboard, z down: +Z pushes down; +N about z down turns x toward y, the nose
-    to starboard; +M about y turns z toward x, so x toward -z, the nose up; +K turns y toward z,
-    the starboard side down."""
-    assert [MOTIONS[FRD][dof][0] for dof in DOF_NAMES] == ["move forward", "move to starboard", "move down",
-                                                          "roll starboard side down", "pitch nose up",
-                                                          "turn nose to starboard"]
-    assert describe(np.array([40.0, 0.0, 0.0, 0.0, 0.0, 18.0]), ["surge", "sway", "yaw"], FRD) == \
-        "surge +40.0 N (move forward), yaw +18.0 N m (turn nose to starboard)"
-
-
-BIN = os.path.dirname(sys.executable)
-
-
-def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node():
-    node = subprocess.Popen([os.path.join(BIN, "allocator_node"), "--ros-args", "--params-file", str(EXAMPLE),
-                             "-p", "step_test.enabled:=true"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
-        ctl = [os.path.join(BIN, "allocator-ctl"), "step-test", "--share", "0.1", "--hold", "0.6", "--rest", "0.2"]
-        steps = subprocess.run(ctl, capture_output=True, text=True, timeout=60)
-        held = subprocess.run([*ctl, "--actuators"], capture_output=True, text=True, timeout=60)
-    finally:
-        node.terminate()
-        node.wait(timeout=20)
-    assert steps.returncode == 0, steps.stderr
-    lines = steps.stdout.splitlines()
-    assert lines[0].startswith("step test: 3 DOFs (surge, sway, yaw)")
-    surge = next(i for i, line in enumerate(lines) if line.startswith("surge +:"))
-    assert lines[surge].endswith("the vehicle should move forward")
-    assert [line.split()[0] for line in lines[surge + 1:surge + 5]] == ["azimuth_fwd", "azimuth_aft", "main_port",
-                                                                        "main_stbd"]
-    # 10 % of the surge capability with nothing failed; main_port and main_stbd push forward.
-    assert all(float(lines[surge + k].split()[1]) > 0.0 for k in (3, 4))
-    assert any(line.startswith("yaw -:") and line.endswith("should turn nose to port") for line in lines)
-    assert held.returncode == 0, held.stdout + held.stderr
-    port = held.stdout.split("main_port: +30.0 N alone")[1]
-    assert port.split("\n")[3].split()[:3] == ["main_port", "30.00", "N"]
-    # main_port alone at 30 N: along x at y = -0.45 m, N = x F_y - y F_x = +13.5 N m
-    assert "pushes the vehicle: surge +30.0 N (move forward), yaw +13.5 N m (turn nose to starboard)" in port
+def test_a_control_surface_an_inactive_node_and_an_actuator_off_the_dofs_are_refused():
+    allocator, settings = bench(ROOT / "config" / "infante_auv.yaml")
+    assert refusal(allocator, settings, "fin_bow_port", 1.0, 1.0, active=True) == \
+        "fin_bow_port is a control surface: it has no thrust of its own to hold"
+    assert refusal(allocator, settings, "thruster_port", 1.0, 1.0, active=False) == \
+        "not active: no samples to hold an actuator in"
+    assert refusal(allocator, settings, "thruster_port", 1.0, 1.0, active=True) is None
+    planar, settings = bench(ROOT / "config" / "bluerov2_heavy.yaml", dofs=["surge", "sway", "yaw"])
+    assert refusal(planar, settings, "thruster_5", 1.0, 1.0, active=True) == \
+        "thruster_5 acts on none of the controlled DOFs (surge, sway, yaw)"
