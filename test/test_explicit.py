@@ -1,6 +1,7 @@
 """The explicit method (1.35), survey 4.1: exact against independent solvers (scipy's BVLS,
 quadprog with the minimax term), and its cache of laws (hits, neighbours, faults, speed, rate
-limits, reconfiguration, a bounded size). No timing here: `make bench` times it."""
+limits, reconfiguration, a bounded size). The law itself: test_explicit_law.py. No timing
+here: `make bench` times it."""
 
 from dataclasses import replace
 

@@ -13,7 +13,8 @@ the set of parameters the vehicle can meet:
   nominal voltage (a region only a higher voltage reaches is found online).
 
 The active sets and the law's fingerprint (T, W, Q, beta) are what a regions file holds
-(``allocator-explicit precompute`` writes it, :mod:`allocator_pkg.methods.explicit` reads it).
+(``allocator-explicit precompute`` writes it,
+:func:`allocator_pkg.methods.explicit_law.read_regions` reads it).
 """
 
 from __future__ import annotations
@@ -25,7 +26,8 @@ import numpy as np
 
 from ..effectiveness.faults import FaultSet, static_ranges
 from ..effectiveness.model import Model
-from ..methods.explicit import ExplicitAllocation, Law
+from ..methods.explicit import ExplicitAllocation
+from ..methods.explicit_law import Law
 from ..vehicle.config import Vehicle
 
 TAU_RANGE = 10.0

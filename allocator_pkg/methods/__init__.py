@@ -1,4 +1,6 @@
-"""Allocation methods, one module each, and the registry everything else derives from.
+"""Allocation methods, one module each (``qp`` builds its problems in ``qp_problem``,
+``explicit`` takes its law from ``explicit_law``), and the registry everything else derives
+from.
 
 ``METHODS`` maps each configuration name to its :class:`~.base.AllocationMethod`: the
 schema's choices for ``method``, the allocator's construction, ``allocator-capability

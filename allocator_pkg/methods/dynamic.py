@@ -1,48 +1,13 @@
-"""Dynamic allocation with a control-Lyapunov update law (section 5.1), after Johansen (2004).
+"""Allocation method ``dynamic``: a control-Lyapunov update law (survey section 5.1, after
+Johansen 2004), with no optimiser in the sample.
 
-No optimiser runs in a sample. The allocation is a state, the forces f (extended, (1.16)),
-moved once per sample by an update law whose equilibrium is the optimum of
-
-    J(f) = 1/2 f' W f + 1/2 (T_e f - tau)' Q (T_e f - tau),   f in S
-
-(the criterion (1.35) with beta = 0 and the slack s = T_e f - tau eliminated; S the static
-limits: thrust ranges with faults, and for a rotatable thruster its exact thrust circle within
-the allowed piece of angles, at most a quarter turn either side of its present angle, so that
-S stays convex). The control-Lyapunov function is V = J(f) - J(f*), zero exactly at the
-optimum. With g = W f + T_e' Q (T_e f - tau) its gradient, H = W + T_e' Q T_e its Hessian
-(constant: T_e is), and Z a basis of the directions in which no limit holds f back, the law is
-
-    f+ = P_S( f - Z (Z'HZ + C)^-1 Z' (h g - (1 - h) T_e' Q Delta tau) ),
-
-a Newton step of length h on the optimality conditions plus Johansen's feed-forward term for a
-time-varying request (Delta tau, the change since the last sample, taken whole). ``h`` is
-``dynamic.gain``.
-
-Which limits hold is an active-set test on the KKT conditions: every fixed-direction force on
-a bound is held, the Newton step d = -Z (Z'HZ + C)^-1 Z' g to the minimum on that face gives
-each held bound's multiplier, the gradient there (g + H d)_i, and the bound whose multiplier
-pulls its force off it hardest is released and the step solved again. (Since H is not
-diagonal, the sign of g_i itself says nothing about whether bound i holds at the optimum.) A
-rotatable thruster at its thrust limit may still turn, with the circle's curvature lambda / B
-added along the turn, and one at an edge of its angles may still change its thrust, where the
-gradient leads. While the same limits hold f back, V falls by (1 - h)^2 per sample and a
-smooth request is followed with no lag. Where a limit stops the step, the state moves to the
-better of the projected step (halved while it would raise V, at most ``HALVINGS`` times) and
-the step cut where the first force reaches its bound, which lowers V along the face's Newton
-direction; so V falls every sample until f is the optimum.
-
-Rate limits are constraints on the update: the forces commanded are the state brought into
-this sample's limits (thrust windows around the last thrusts, the angle window of the rate
-step), and where that moved them, one more Newton step of J within those limits lets the
-actuators that are free this sample make up what the held ones miss. The commanded
-allocation follows the state at the actuators' rates, and the state is never wound up by
-them; the equilibrium is the optimum once the rate limits stop binding. A sample costs one
-or two small linear solves for the law (the free directions, at most the number of extended
-forces), one more where a rate limit moves the command, and a few closed-form projections, no
-iteration.
-
-The drag feed-forward solves a sample more than once (allocator, (1.56)-(1.58)); those solves
-restart from the sample's starting state, so the law moves once per sample.
+The allocation is a state, the extended forces (1.16), moved once per sample by a Newton step
+of length h (``dynamic.gain``) plus the feed-forward of the request's change, along the
+directions no limit holds, and projected on the static limits. Its equilibrium is the optimum
+of (1.35) with beta = 0, the slack eliminated and each rotatable thruster's exact circle; which
+bounds hold is decided by their KKT multipliers. The commanded forces are the state brought
+into this sample's rate windows, with one more Newton step for the actuators left free.
+docs/theory.md (section `dynamic`) has the law and why it descends; docs/performance.md the cost.
 """
 
 from __future__ import annotations

@@ -1,25 +1,12 @@
-"""Linear programming allocation (section 5.3): the survey's criterion, a weighted sum of
-force magnitudes against the magnitudes of the wrench error,
+"""Allocation method ``lp``: the survey's linear programme (section 5.3), weighted force
+magnitudes against the magnitudes of the wrench error, on one warm-started HiGHS problem.
 
-    minimise   sum_i w_i |f_i| + sum_j w_j (|f_xj| + |f_yj|) + sum_k q_k |s_k|
-    subject to T_e f_e - s = tau, and this sample's limits,
-
-with each rotatable thruster's magnitude as the 1-norm of its x/y components and its thrust
-circle (1.46) as the survey's polygon of N = ``azimuth_polygon_sides`` sides (octagon by
-default) between the inscribed and circumscribed ones, whose magnitude error is
-+-tan^2(pi/2N), +-3.96 % for the octagon; sectors and rate limits as in ``qp``
-(:class:`~.sample_lp.SampleLP`). q_k is ``weights.slack`` when configured, else 1e4 times the
-effort of all actuators at full force per unit of the DOF's authority: an exact penalty, so
-that s = 0 whenever the request is attainable.
-
-One HiGHS problem per configuration; each sample changes bounds and a few coefficients and
-the dual simplex starts from the last basis. A vertex of the LP has at most as many actuators
-strictly between their limits as there are controlled DOFs: the answer is sparse (fewer
-actuators working than the QP's, which spreads the load), and it jumps from one vertex to
-another where the QP's changes smoothly.
-
-``saturation: direct``: an unattainable request (a slack above 1e-6 of its DOF's authority)
-is answered by Durham's boundary solution instead (:mod:`~.direct`).
+A rotatable thruster's magnitude is the 1-norm of its x/y components and its circle (1.46) the
+survey's polygon of ``azimuth_polygon_sides`` sides; sectors and rate limits are those of
+``qp`` (:class:`~.sample_lp.SampleLP` holds the programme). Answers are vertices: sparse, and
+jumping where the QP's change smoothly. ``saturation: direct`` answers an unattainable request
+with Durham's boundary solution. docs/theory.md (section `lp`) has the criterion, the polygon's
+error and the sparsity; docs/performance.md the cost.
 """
 
 from __future__ import annotations

@@ -1,49 +1,12 @@
-"""Nonlinear allocation (1.44) by sequential linearised QPs (1.45), Johansen et al. (2004).
+"""Allocation method ``nonlinear``: the nonlinear problem (1.44) by sequential linearised QPs
+(1.45), after Johansen et al. (2004).
 
-Variables per QP: the force change Delta f of every actuator (signed thrust along its
-axis; for rotatable thrusters along the current angle), the angle change Delta alpha of
-every rotatable thruster, and the slack s:
-
-    minimise   sum_i c_i (f0_i + Delta f_i)^2  +  s' Q s  +  sum_j w_j Delta alpha_j^2
-               + d/dalpha [rho / (eps + det(T W^-1 T'))]|alpha0 . Delta alpha
-    subject to T(alpha0) Delta f + d(T(alpha) f)/dalpha|alpha0,f0 Delta alpha - s = tau - T(alpha0) f0
-               low - f0 <= Delta f <= high - f0
-               alpha_low - alpha0 <= Delta alpha <= alpha_high - alpha0
-
-- Power: P_i |f_i|^(3/2) is replaced near f0 by a quadratic with its gradient at f0,
-  3/2 P_i sqrt(|f0_i|) sign(f0_i), so that a fixed point of the iteration satisfies the
-  optimality conditions of (1.44), and ``POWER_CURVATURE`` times its curvature there,
-  3/4 P_i / sqrt(|f0_i|). Actuators with P_i = 0 (control surfaces) keep the quadratic
-  W_ii f_i^2 exactly.
-- An idle thruster (thrust below its hold threshold) has no angle gradient: d(T(alpha) f)/dalpha
-  is zero at f = 0, so the linearised QPs keep it wherever it points, even when pushing another
-  way would lower the cost. Where the wrench misses the request and pushing along its angle
-  cannot help, the multipliers of the equality rows give the direction along which a push
-  lowers the cost fastest (the optimality condition of (1.44) at f = 0 in the thruster's x/y
-  force); the method proposes that the thruster turn toward it (``MethodOutput.turn``). Only
-  while every rotatable thruster in play (neither failed nor stuck) turns freely: with
-  sectors the piece planner chooses each thruster's side globally, and a failed or stuck
-  thruster's sectors leave it nothing to choose.
-- Angle steps: w_j = Omega + the curvature the equality constraint adds along alpha_j, the
-  Hessian of the Lagrangian of (1.44), -f_j y't_j(alpha), with y the multipliers of the
-  equality rows in the last QP. At an unsaturated optimum y't_j = -3/2 P_j sqrt|f_j| sign(f_j),
-  so it is 3/2 P_j |f_j|^(3/2), which is also the floor; at a thruster's limit its thrust
-  multiplier adds to it, often by orders of magnitude. Omega alone (1.45) would have to be
-  tuned to each vessel's force scale, and the unsaturated value alone is far too small near
-  capability: the step overshoots by a full rate step every sample and the angles alternate.
-- Slack: the default Q is derived with c_i at half range in place of W (see
-  :meth:`allocator_pkg.effectiveness.model.Model.slack_weights`).
-- Singularity avoidance: the gradient of rho / (eps + det(T W^-1 T')) at alpha0, a linear cost.
-- Limits: this sample's thrust window and allowed angles (feasible sector, the piece free of
-  forbidden sectors, rate limit) from :mod:`allocator_pkg.allocation.azimuth`.
-
-The QP is written in g_i = sqrt(c_i) Delta f_i and h_j = F_j Delta alpha_j, the force across
-the thruster that turning makes (F_j its thrust, at least a floor): in those units an angle
-step moves the wrench as much as a force does, and its curvature is of the forces' order,
-so the solver sees no direction many times flatter than the others (in radians, a rate step
-of a degree or two is a variable a hundred times weaker than the forces, on which ADMM
-crawls). Between linearisations ``q``, ``l``, ``u``, the ``Ax`` values of the equality rows
-and the curvature of h (``Px``) change, on one OSQP instance, and each solve is warm-started.
+Each QP, on one warm-started OSQP problem, takes the force changes of every actuator, the angle
+changes of the rotatable thrusters and the slack: the power replaced near f0 by a quadratic with
+its gradient, angle steps weighted by the curvature of the Lagrangian, the singularity term as a
+linear cost, and an idle thruster sent toward the steepest descent. The variables are scaled to
+forces, so that ADMM sees no direction far flatter than the others. docs/theory.md (section
+`nonlinear`) has the QP and why each term is as it is; docs/performance.md the cost.
 """
 
 from __future__ import annotations
@@ -63,12 +26,10 @@ from .base import CIRCLE_SIDES, AllocationMethod
 POWER_CURVATURE = 1.25
 """The power's curvature in each linearised QP, as a multiple of its true curvature at f0,
 3/4 P_i / sqrt(|f0_i|). 2 is c_i f_i^2 with c_i = 3/4 P_i / sqrt(|f0_i|), which lies above
-P_i |f_i|^(3/2) everywhere and so never overshoots, but each step goes only half way: Example 1
-held at its capability toward 267.5 deg was still turning 0.47 deg in the last 100 of 400
-samples. 1 is Newton's step, which overshoots where angles and forces trade against each
-other: the DP vessel without rate limits held at 0.8-0.9 times its capability in pure surge
-swung by 0.2-0.65 deg. Between them no case of the settling sweep, on or off its grid, moves
-by more than 0.02 deg."""
+P_i |f_i|^(3/2) everywhere and so never overshoots, but each step goes only half way and the
+angles settle slowly; 1 is Newton's step, which overshoots where angles and forces trade
+against each other. docs/theory.md (`nonlinear`) gives the cases; bench/settling.py measures
+them."""
 
 TOLERANCE_SHARE = 0.1
 """The linearised QPs are solved to this share of ``solver.eps_abs`` and ``eps_rel`` (and a
@@ -76,7 +37,7 @@ stopped solve's iterate is used within this share of the usual residual). The it
 across samples on the QPs' answers, primal and dual (the multipliers set the angles'
 curvature), and a warm-started solve stops as soon as it is within tolerance: where the
 optimum lies in a nearly flat valley (both azimuths at full thrust, the tunnels trading yaw),
-answers within 1e-5 moved the angles along it by 0.1-0.5 deg over hundreds of samples."""
+answers within the usual tolerance let the angles drift along it (docs/theory.md, `nonlinear`)."""
 
 IDLE_PRICE = 1e-2
 """An idle thruster turns toward the direction of steepest descent only when a push along it is

@@ -1,26 +1,12 @@
-"""Weighted generalised inverse (1.29) of the extended configuration (1.32)-(1.34).
+"""Allocation method ``pseudoinverse``: the weighted generalised inverse (1.29) of the extended
+configuration (1.32)-(1.34), with no solver.
 
-f_e = W^-1 T_e' (T_e W^-1 T_e')^-1 tau, computed as W^-1/2 pinv(T_e W^-1/2) so that it
-also answers (in the least-squares sense) when some DOF cannot be produced. The gain
-matrix is computed once per set of usable actuators and cached, never per sample: faults,
-stuck angles and actuators the sample's limits pin down change which set is used.
-
-Saturation: ``weighted`` clips each actuator to its limits (the allocator's final
-step); ``preserve_direction`` first scales every free force by one factor so that the most
-loaded actuator just reaches its limit (the uniform scale-down of common ROS thruster
-managers), then clips what rate limits still leave outside; ``direct`` keeps the
-pseudo-inverse while it is within every limit of the sample and otherwise takes Durham's
-solution (:mod:`~.direct`): the request met exactly when it is attainable, else scaled back to
-the boundary of the attainable set along its own direction.
-
-DOF priorities (``Vehicle.priority_levels``): sequential desaturation. Level by level, highest
-first, the weighted pseudo-inverse of that level's rows restricted to the null space of the
-levels above (the task-priority inverse: what it adds leaves their wrench unchanged) gives the
-force the level still wants, scaled by the largest factor in [0, 1] that keeps every actuator
-within its limits. A higher level thus gets as much of its request along its own direction
-as the limits allow before a lower level gets anything, and a lower level only uses what the
-higher ones leave. When every level fits, the sum is the ordinary weighted pseudo-inverse
-(the nested row spaces add up to the stacked one). The gains are cached like the others.
+:class:`PseudoInverseGains` caches the gains, computed as W^-1/2 pinv(T_e W^-1/2) once per set
+of usable actuators; :class:`PseudoInverseAllocation` applies them, holds the actuators the
+sample's limits pin down, and saturates by clipping, by one common scale
+(``preserve_direction``) or by Durham's direct method (``direct``). DOF priorities are met by
+sequential desaturation in the null space of the levels above. docs/theory.md (sections
+`pseudoinverse` and DOF priorities) has the theory.
 """
 
 from __future__ import annotations

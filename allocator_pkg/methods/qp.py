@@ -1,85 +1,29 @@
-"""Constrained allocation (1.35) as one warm-started OSQP problem per configuration.
+"""Allocation method ``qp`` (the default): the constrained QP (1.35)-(1.40) on one warm-started
+solver problem per configuration (:mod:`~.qp_problem`).
 
-Decision vector z = [f_e, s, fbar] (1.38): extended forces (two per rotatable thruster),
-one slack per controlled DOF, and the largest force fbar:
-
-    minimise   f_e' W f_e + s' Q s + beta fbar
-    subject to T_e f_e - s = tau                          (equality of (1.35))
-               low_i <= f_i <= high_i                     (thrust box, tightened by rate limits)
-               -fbar <= f_i <= fbar                       (minimax, scalar actuators)
-               n_k . (u_j, v_j) <= B_j,  k = 1..N         (|f_j| <= B_j, the N-gon of 5.3, rotatable j)
-               n_k . (u_j, v_j) <= fbar                   (minimax, rotatable j)
-               u_j >= u_min,  v_j within this sample's angles (rate limit and sector edges)
-
-A rotatable thruster's two extended components are written in its own frame this sample:
-(u, v) = R(-d) f_j, with d the direction it pushes in now (its angle, or the opposite one
-when it pushes backwards), u along d and v across it. Its polygon has a face normal along d
-at distance B, the most it may push this sample (thrust limit with faults, thrust rate), so
-that along d the bound is exact: at rest, the thruster gives its full thrust, not the
-1 - cos(pi/N) less of a polygon fixed in the body frame, and off d the polygon overestimates
-by at most 1/cos(pi/N) (the final thrust is clipped to the exact limits). The angles
-reachable this sample are simple bounds on v (|v| <= B sin(step) for a rate step below
-90 degrees) and, where a forbidden sector, the feasible sector or the half-plane a wide window
-is cut to lies nearer than the rate step, a half-plane through the origin at that edge. Each
-sample changes only values: the entries of T_e R(d) in the equality rows and the edge rows
-(``Ax``), and the bounds (``l``, ``u``). P never changes. Why this form, and not a cone of
-two half-planes in the body frame, is in docs/theory.md (azimuths near capability).
-
-The matrices are built once per configuration with every entry that can ever be non-zero
-stored explicitly (T_e dense, both components of every half-plane), so that each sample
-only updates values on the same pattern; OSQP keeps its previous primal and dual iterates
-and starts the next sample from them (warm start). A configuration change of values only
-(positions, directions, weights, limits) updates ``Ax``/``Px``/``q`` on the same pattern;
-only a change of the pattern itself (number or type of actuators, DOFs, polygon sides,
-saturation mode) sets the problem up again.
-
-The problem is normalised once per configuration (:class:`~allocator_pkg.solvers.problem.ScaledProblem`):
-forces by their actuator's range, slacks by their DOF's authority, rows by their largest
-coefficient, the cost by its largest curvature, so that the Q >> W weighting of (1.35) does
-not cost OSQP thousands of iterations when a request saturates.
-
-``saturation: preserve_direction`` adds a second problem on the same pattern idea, with a
-scale lambda in place of the slack: maximise lambda subject to T_e f_e = lambda tau and the
-same limits (Durham's direct idea, section 4.3), minus a small multiple of the effort
-f_e' W f_e, so that among the forces reaching the largest lambda it takes the cheapest. It is
-solved only when the first problem reports the request unattainable.
-
-``saturation: direct`` answers an unattainable request with Durham's boundary solution from a
-linear programme instead (:mod:`~.direct`): exact where the scale problem above stops at
-OSQP's tolerance, and trading no scale for effort.
-
-DOF priorities (``Vehicle.priority_levels``): when the ordinary solve reports the request
-unattainable, a cascade follows, one solve per level, highest first, on a problem of the same
-rows plus one bound row per slack, set up once per configuration and changed by values only
-(bounds, and the same moving entries as the main problem): the level's equality rows ask for
-tau with their slacks free; every lower level's equality rows are switched off (bounds at
-infinity) and its slacks pinned at zero; every higher level's equality rows are bounds
-around what its own stage achieved, T_k f in [tau_k + min(s_k, 0), tau_k + max(s_k, 0)]
-widened by ``PRIORITY_HOLD`` of the DOF's authority, with its slacks pinned at zero: a
-level's achieved wrench is held as a constraint for the next (lexicographic: a lower level
-may only leave it as it is, or nearer the request). The stages are solved by DAQP, an exact
-active-set solver, as the forbidden-sector planner is: held on the face of the attainable set
-a saturated level leaves, the feasible set of the next stage is a sliver on which OSQP's
-ADMM ran into ``max_iter`` in most samples tried (BlueROV2 Heavy, random requests), where DAQP
-needs 20 to 60 iterations.
+Each sample writes values only: the request, the thrust boxes, and for each rotatable thruster
+the polygon of (1.46) turned to the direction it pushes in, the bounds of this sample's angles
+and, at its thrust limit, the circle's curvature. An unattainable request is then answered by
+the scale problem of ``saturation: preserve_direction``, by Durham's direct method for
+``saturation: direct`` (section 4.3), or by the cascade of DOF priorities, one DAQP stage per
+level. docs/theory.md has the theory (sections `qp`, DOF priorities, and rotatable thrusters
+near their capability); docs/performance.md the cost.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
 from ..solvers import BACKENDS, BackendFactory
 from ..solvers.backend import NO_BOUND
 from ..solvers.direct import DirectSolution
 from ..solvers.outcome import MethodOutput
-from ..solvers.problem import Entries, Rows, ScaledProblem, block_index, entry_index
 from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
+from .qp_problem import QPProblem, build, constant_bounds, objective
 
 PINNED = 1e-12
 """[rad] A window of angles narrower than this is a single direction."""
@@ -95,40 +39,8 @@ PRIORITY_HOLD = 1e-6
 move away from the request while a lower level is solved: a margin for rounding, so that every
 stage is feasible."""
 CASCADE_BACKEND = "daqp"
-"""The backend of the priority cascade's stages (see the module docstring)."""
-
-
-@dataclass
-class _Problem:
-    """One solver problem and the rows a sample writes (indices into its rows, and into the
-    stored entries of A for the values that follow the thrusters' directions)."""
-
-    qp: ScaledProblem
-    equality: np.ndarray
-    box: np.ndarray
-    polygon: np.ndarray
-    polygon_minimax: np.ndarray
-    along: np.ndarray
-    across: np.ndarray
-    edge_low: np.ndarray
-    edge_high: np.ndarray
-    rotated_index: np.ndarray
-    edge_index: np.ndarray
-    scale_index: np.ndarray
-    p_diagonal: np.ndarray
-    rows: list[tuple]
-    moving: Entries
-    index: dict
-    t_ec_index: np.ndarray
-    slack: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
-    rotated: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    directions: list[float] = field(default_factory=list)
-    cos: list[float] = field(default_factory=list)
-    sin: list[float] = field(default_factory=list)
-    edges: list[float] = field(default_factory=list)
-    multiplier: list[float] = field(default_factory=list)
-    curvature: list[float] = field(default_factory=list)
-    version: int = -1
+"""The backend of the priority cascade's stages: exact on the sliver a saturated level leaves
+the next (docs/theory.md, DOF priorities)."""
 
 
 class QPAllocation(AllocationMethod):
@@ -179,8 +91,8 @@ class QPAllocation(AllocationMethod):
             # structure); the moving entries are written again by the next sample.
             values = problem.qp.a.data.copy()
             values[problem.t_ec_index] = model.t_ec.ravel()
-            p, q = self._objective(model, scale)
-            self._constant_bounds(problem.qp, model, problem.index, scale)
+            p, q = objective(model, scale)
+            constant_bounds(problem.qp, model, problem.index, scale)
             problem.qp.update_matrix(values)
             problem.qp.update_objective(p, q)
             problem.qp.update_settings(model.vehicle.solver)
@@ -210,8 +122,9 @@ class QPAllocation(AllocationMethod):
         return scaled if scaled.solved else output
 
     def _cascade(self, tau: np.ndarray, limits: SampleLimits, output: MethodOutput) -> MethodOutput:
-        """The lexicographic solve of DOF priorities, by values only (see the module
-        docstring); a stage that fails leaves the last usable answer."""
+        """The lexicographic solve of DOF priorities, by values only (docs/theory.md, DOF
+        priorities): each level's achieved wrench is held while the next is solved; a stage
+        that fails leaves the last usable answer."""
         problem, model = self._stages, self.model
         self._prepare(problem, tau, limits)
         qp, equality, slack = problem.qp, problem.equality, problem.slack
@@ -236,7 +149,7 @@ class QPAllocation(AllocationMethod):
         output.iterations = iterations
         return output
 
-    def _forces(self, problem: _Problem, x: np.ndarray) -> np.ndarray:
+    def _forces(self, problem: QPProblem, x: np.ndarray) -> np.ndarray:
         """The extended forces of a solution, rotatable thrusters back in the body frame."""
         force = x[:self.model.m].copy()
         for (c1, c2), cos, sin in zip(self._rot_columns, problem.cos, problem.sin):
@@ -244,116 +157,16 @@ class QPAllocation(AllocationMethod):
             force[c1], force[c2] = cos * u - sin * v, sin * u + cos * v
         return force
 
-    # -- set-up -------------------------------------------------------------------------
-
-    @staticmethod
-    def _columns(model: Model, scale: bool) -> tuple[int, int, int]:
-        """(first slack or the lambda column, fbar column or -1, number of columns)."""
-        if scale:
-            return model.m, -1, model.m + 1
-        return model.m, model.m + model.n, model.m + model.n + 1
-
-    def _column_scale(self, model: Model, scale: bool) -> np.ndarray:
-        force = model.force_scale[model.extended_owner]
-        if scale:
-            return np.concatenate((force, [1.0]))
-        return np.concatenate((force, np.maximum(model.authority, 1e-9), [float(np.max(force))]))
-
-    @staticmethod
-    def _objective(model: Model, scale: bool) -> tuple[np.ndarray, np.ndarray]:
-        """Diagonal of P and q, physical units (OSQP minimises 1/2 x'Px + q'x)."""
-        extra, top, columns = QPAllocation._columns(model, scale)
-        q = np.zeros(columns)
-        if scale:
-            force = model.force_scale[model.extended_owner]
-            epsilon = 1e-3 / float(np.sum(model.weight_ext * force * force))
-            q[extra] = -1.0
-            return np.concatenate((2.0 * epsilon * model.weight_ext, [0.0])), q
-        q[top] = model.vehicle.weights.minimax
-        return np.concatenate((2.0 * model.weight_ext, 2.0 * model.slack_weights(model.weight), [0.0])), q
-
-    @staticmethod
-    def _constraints(model: Model, scale: bool, stages: bool = False) -> tuple[sp.csc_matrix, dict]:
-        sides = model.vehicle.azimuth_polygon_sides
-        extra, top, columns = QPAllocation._columns(model, scale)
-        rows = Rows()
-        equality = []
-        for k in range(model.n):
-            entries = [(c, float(model.t_ec[k, c])) for c in range(model.m)]
-            entries.append((extra, 0.0) if scale else (extra + k, -1.0))
-            equality.append(rows.add(entries))
-        box = [rows.add([(int(c), 1.0)]) for c in model.scalar_columns]
-        minimax = []
-        if not scale:
-            for c in model.scalar_columns:
-                minimax.append(rows.add([(int(c), 1.0), (top, -1.0)]))
-                minimax.append(rows.add([(int(c), 1.0), (top, 1.0)]))
-        normals = [(math.cos(2.0 * math.pi * k / sides), math.sin(2.0 * math.pi * k / sides)) for k in range(sides)]
-        polygon, polygon_minimax, along, across, edge_low, edge_high = [], [], [], [], [], []
-        for c1, c2 in model.rot_columns:
-            c1, c2 = int(c1), int(c2)
-            polygon.append([rows.add([(c1, x), (c2, y)]) for x, y in normals])
-            if not scale:
-                polygon_minimax.append([rows.add([(c1, x), (c2, y), (top, -1.0)]) for x, y in normals])
-            along.append(rows.add([(c1, 1.0)]))
-            across.append(rows.add([(c2, 1.0)]))
-            edge_low.append(rows.add([(c1, 0.0), (c2, 1.0)]))
-            edge_high.append(rows.add([(c1, 0.0), (c2, 1.0)]))
-        last = rows.add([(extra, 1.0)] if scale else [(top, 1.0)])
-        slack = [rows.add([(extra + k, 1.0)]) for k in range(model.n)] if stages else []
-        index = dict(equality=np.array(equality, int), box=np.array(box, int), minimax=np.array(minimax, int),
-                     polygon=np.array(polygon, int).reshape(len(model.rot), sides),
-                     polygon_minimax=np.array(polygon_minimax, int).reshape(len(model.rot), 0 if scale else sides),
-                     along=np.array(along, int),
-                     across=np.array(across, int), edge_low=np.array(edge_low, int),
-                     edge_high=np.array(edge_high, int), last=last, slack=np.array(slack, int))
-        return rows.matrix(columns), index
-
-    @staticmethod
-    def _constant_bounds(qp: ScaledProblem, model: Model, index: dict, scale: bool) -> None:
-        """Bounds that only a configuration changes. Without a minimax weight the fbar rows are
-        switched off and fbar pinned at 0: a free, uncosted variable would slow OSQP down."""
-        if scale:
-            qp.low[index["equality"]] = qp.up[index["equality"]] = 0.0
-            qp.low[index["last"]], qp.up[index["last"]] = 0.0, 1.0
-            return
-        minimax = model.vehicle.weights.minimax > 0.0
-        qp.low[index["minimax"][0::2]], qp.up[index["minimax"][0::2]] = -NO_BOUND, (0.0 if minimax else NO_BOUND)
-        qp.low[index["minimax"][1::2]], qp.up[index["minimax"][1::2]] = (0.0 if minimax else -NO_BOUND), NO_BOUND
-        qp.up[index["polygon_minimax"].ravel()] = 0.0 if minimax else NO_BOUND
-        qp.low[index["last"]], qp.up[index["last"]] = 0.0, (float(np.max(model.force_scale)) if minimax else 0.0)
-
-    def _setup(self, model: Model, scale: bool, stages: bool = False) -> _Problem:
-        a, index = self._constraints(model, scale, stages)
-        p, q = self._objective(model, scale)
-        extra = self._columns(model, scale)[0]
-        qp = ScaledProblem(p, q, a, self._column_scale(model, scale), model.vehicle.solver,
-                           effort=np.arange(0 if not scale else model.m, model.m if not scale else model.m + 1),
-                           backend=BACKENDS[CASCADE_BACKEND]() if stages else self.backend())
-        self._constant_bounds(qp, model, index, scale)
-        rows = index["equality"]
-        rotated_index = np.array([[[entry_index(a, int(row), int(col)) for col in pair] for row in rows]
-                                  for pair in model.rot_columns], dtype=np.int64).reshape(len(model.rot), 2 * len(rows))
-        edge_index = np.array([[entry_index(a, int(row), int(col)) for row in (low, high) for col in pair]
-                               for pair, low, high in zip(model.rot_columns, index["edge_low"], index["edge_high"])],
-                              dtype=np.int64).reshape(len(model.rot), 4)
-        scale_index = np.array([entry_index(a, row, extra) for row in rows] if scale else [], dtype=np.int64)
+    def _setup(self, model: Model, scale: bool, stages: bool = False) -> QPProblem:
+        """One of the method's problems (:func:`~.qp_problem.build`) on its backend, the
+        cascade's on ``CASCADE_BACKEND``."""
+        problem = build(model, scale, BACKENDS[CASCADE_BACKEND]() if stages else self.backend(), stages)
         self.setups += 1
-        rotatable = len(model.rot)
-        per_thruster = [(index["polygon"][k], int(index["along"][k]), int(index["across"][k]),
-                         int(index["edge_low"][k]), int(index["edge_high"][k])) for k in range(rotatable)]
-        return _Problem(qp=qp, equality=rows, box=index["box"], polygon=index["polygon"],
-                        polygon_minimax=index["polygon_minimax"], along=index["along"],
-                        across=index["across"], edge_low=index["edge_low"], edge_high=index["edge_high"],
-                        rotated_index=rotated_index.reshape(-1), edge_index=edge_index.reshape(-1),
-                        scale_index=scale_index, p_diagonal=p, rows=per_thruster,
-                        moving=qp.entries(np.concatenate((rotated_index.reshape(-1), edge_index.reshape(-1)))),
-                        index=index, t_ec_index=block_index(a, rows, model.m),
-                        multiplier=[0.0] * rotatable, curvature=[0.0] * rotatable, slack=index["slack"])
+        return problem
 
     # -- per sample ---------------------------------------------------------------------
 
-    def _solve(self, problem: _Problem, tau: np.ndarray, limits: SampleLimits) -> tuple[MethodOutput, np.ndarray]:
+    def _solve(self, problem: QPProblem, tau: np.ndarray, limits: SampleLimits) -> tuple[MethodOutput, np.ndarray]:
         model = self.model
         qp = problem.qp
         self._prepare(problem, tau, limits)
@@ -374,7 +187,7 @@ class QPAllocation(AllocationMethod):
                               solution.iterations, outcome=solution.outcome, residual=solution.residual)
         return output, x
 
-    def _prepare(self, problem: _Problem, tau: np.ndarray, limits: SampleLimits) -> None:
+    def _prepare(self, problem: QPProblem, tau: np.ndarray, limits: SampleLimits) -> None:
         """This sample's values in a problem: the request, the thrust boxes (when the limits
         changed), the rotatable thrusters' rows."""
         model = self.model
@@ -390,7 +203,7 @@ class QPAllocation(AllocationMethod):
         if model.rot.size:
             self._azimuth_rows(problem, limits)
 
-    def _azimuth_rows(self, problem: _Problem, limits: SampleLimits) -> None:
+    def _azimuth_rows(self, problem: QPProblem, limits: SampleLimits) -> None:
         """Each rotatable thruster in its own frame (u along the direction d it pushes in, v
         across it): the equality entries T_e R(d), the polygon's bound, and the bounds and
         edges of this sample's angles. Only values change, and values are sent to the solver
@@ -450,7 +263,7 @@ class QPAllocation(AllocationMethod):
         elif p_diagonal is not None:
             qp.update_objective(p_diagonal)
 
-    def _circle_curvature(self, problem: _Problem, bounds: list[float]) -> np.ndarray | None:
+    def _circle_curvature(self, problem: QPProblem, bounds: list[float]) -> np.ndarray | None:
         """The curvature of |f| <= B across the pushing direction, weighted by the thrust
         limit's multiplier of the last sample: 1/2 (lambda / B) v^2 added to the cost.
 

@@ -1,30 +1,12 @@
-"""SVD and filtering (section 5.4), after Sordalen (1997), with damped least squares after
-Berge and Fossen (1997).
+"""Allocation method ``svd_filter``: SVD and filtering (survey section 5.4), after Sordalen
+(1997), with damped least squares after Berge and Fossen (1997).
 
-Two steps per sample:
-
-1. Directions. The extended solution (1.33), computed once per set of usable actuators from
-   the SVD of T_e W^-1/2 (the pseudo-inverse's cache), says how much force each rotatable
-   thruster should give in x and y. That vector is low-pass filtered,
-   v+ = v + kappa (f_e,j - v) with kappa = 1 - exp(-dt / T) (T = ``svd_filter.time_constant``),
-   and the thruster is steered toward atan2 of v, within this sample's angles (rate step,
-   sectors): toward the direction where most force is needed, smoothly, whatever the extended
-   solution does from one sample to the next (the jumps of (1.34)).
-2. Thrusts at those angles. With the angles fixed, tau = T(alpha) f is linear in one force per
-   actuator; written in units of each DOF's authority D and of the largest actuator's range F,
-   weighted, A = D^-1 T(alpha) F W^-1/2 = U S V' (W normalised to a largest weight of 1), and
-       x = V diag(g(s_i)) U' D^-1 tau,  g(s) = 1/s for s >= eps,  s / eps^2 below it,
-   the damped least-squares inverse with the damping lambda_i^2 = eps^2 - s_i^2 for the
-   singular values below eps = ``svd_filter.damping_threshold``: equal to the weighted
-   pseudo-inverse (1.43) of T(alpha) away from singular configurations, and never a gain above
-   1/eps where (1.43) grows without bound (all azimuths parallel: s -> 0). The force that a
-   singular direction would need is given up, not blown up; the filter turns the thrusters out
-   of the singularity as the extended solution asks for that direction.
-
-Saturation: ``weighted`` clips each thrust to its limits (the allocator's final step);
-``preserve_direction`` scales all free thrusts by one factor first, as the pseudo-inverse does.
-A vehicle without rotatable thrusters is refused: there is nothing to steer, and the method
-would be the pseudo-inverse.
+Each sample steers every rotatable thruster toward a low-pass filtered copy of the force the
+extended solution (1.33) wants of it, then gives the thrusts at those angles by the damped
+least-squares inverse of T(alpha): the weighted pseudo-inverse (1.43) for singular values
+above the damping threshold eps, no gain above 1/eps below it, so that a singular configuration
+asks for no unbounded force. Vehicles without rotatable thrusters are refused. docs/theory.md (section
+`svd_filter`) has the filter, the damping and its behaviour through a singularity.
 """
 
 from __future__ import annotations
