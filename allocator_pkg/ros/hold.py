@@ -58,7 +58,7 @@ def refusal(allocator: Allocator, settings: NodeSettings, actuator: str, thrust:
     step_test.duration_max, for a control surface, while the runtime is not ``active``, and
     for an actuator acting on no controlled DOF."""
     if not settings.step_test_enabled:
-        return "refused: step_test.enabled is false (enable it on the bench only)"
+        return "step_test.enabled is false (enable it on the bench only)"
     names = allocator.names
     if actuator not in names:
         return f"unknown actuator '{actuator}'; actuators: {', '.join(names)}"
