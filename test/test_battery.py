@@ -36,3 +36,38 @@ def test_the_battery_voltage_sets_the_thrust_limits_and_bad_ones_are_counted(har
     values = harness.diagnostics_after_a_second()
     assert values["voltage [V]"] == "16" and values["voltage source"] == "nominal_voltage (no battery voltage)"
     assert harness.node.allocator.voltage == 16.0
+
+
+def test_a_voltage_before_the_simulated_clock_starts_counts_from_its_start():
+    """Before the first /clock a node on simulated time reads 0: a voltage stamped then must not
+    look battery_timeout old when the clock starts at 100 s (it did, with a false warning)."""
+    import threading
+
+    import rclpy
+    from rclpy.parameter import Parameter
+    from sensor_msgs.msg import BatteryState
+
+    from allocator_pkg import Allocator, load_vehicle
+    from allocator_pkg.ros.battery import BatteryInput
+    from allocator_pkg.ros.diagnostics import Counters
+
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    try:
+        node = rclpy.create_node("battery_probe", context=context,
+                                 parameter_overrides=[Parameter("use_sim_time", value=True)])
+        allocator = Allocator(load_vehicle(BLUEROV))
+        battery = BatteryInput(node, threading.Lock(), allocator, Counters())
+        assert node.get_clock().now().nanoseconds == 0
+        battery._on_battery(BatteryState(voltage=12.0))
+        assert allocator.voltage == 12.0 and not battery.fallback
+        start = 100_000_000_000
+        battery.check(start, 5.0)
+        battery.check(start + 4_900_000_000, 5.0)
+        assert allocator.voltage == 12.0 and not battery.fallback
+        battery.check(start + 5_100_000_000, 5.0)
+        assert allocator.voltage == 16.0 and battery.fallback
+        battery.close()
+        node.destroy_node()
+    finally:
+        rclpy.try_shutdown(context=context)

@@ -2,7 +2,8 @@
 measured at several voltages: each valid voltage sets the thrust limits
 (``Allocator.set_voltage``); a NaN or out-of-table one is rejected, counted and logged, the last
 valid one kept; with none for ``battery_timeout`` seconds the limits go back to
-``nominal_voltage``, and the diagnostics say so."""
+``nominal_voltage``, and the diagnostics say so. A voltage that arrives before a simulated clock
+has started counts from the clock's first reading, not from time zero."""
 
 from __future__ import annotations
 
@@ -47,7 +48,7 @@ class BatteryInput:
                 self._counters.rejected_in_period += 1
                 reason = str(error)
             else:
-                self._time = self._clock.now().nanoseconds
+                self._time = self._clock.now().nanoseconds or None    # 0: simulated time not started
                 if self.fallback:
                     self.fallback = False
                     self._node.get_logger().info(f"supply voltage from {self.topic_name}: {voltage:.2f} V")
@@ -60,7 +61,9 @@ class BatteryInput:
         seconds up to ``now`` [ns of the node clock]. Lock held."""
         if self.fallback:
             return
-        if self._time is None or now - self._time > timeout * S_TO_NS:
+        if self._time is None:                # came before the clock started: counts from its start
+            self._time = now
+        if now - self._time > timeout * S_TO_NS:
             self.fallback = True
             nominal = self._allocator.vehicle.nominal_voltage
             self._allocator.set_voltage(nominal)
