@@ -1,6 +1,7 @@
-"""Configurations that cannot work are refused by the loader, naming the key; the node refuses
-the same as a runtime parameter change and keeps its configuration; a DOF produced only
-weakly is a warning (start-up log, allocator-capability), not an error."""
+"""Configurations that cannot work are refused by the loader, naming the key, and a method that
+cannot serve the vehicle by the allocator; the node refuses the same as a runtime parameter
+change and keeps its configuration; a DOF produced only weakly is a warning (start-up log,
+allocator-capability), not an error."""
 
 import math
 
@@ -21,6 +22,22 @@ def test_a_valid_vehicle_and_every_shipped_one_still_load():
     vehicle_from_parameters(VALID)
     for path in sorted((ROOT / "config").glob("*.yaml")) + sorted((ROOT / "test" / "data").glob("*.yaml")):
         assert Allocator(load_vehicle(path)).warnings == [], path
+
+
+@pytest.mark.parametrize(("changes", "key", "reason"), [
+    ({"method": "explicit"}, "method", "'explicit' cannot serve this vehicle: it needs actuators of fixed direction "
+                                       "(survey 4.1), and azi rotate; use qp or nonlinear"),
+    ({"method": "dynamic", "saturation": "direct"}, "method",
+     "'dynamic' cannot serve this vehicle: it does not implement saturation 'direct' (it takes weighted)"),
+    ({"method": "nonlinear", "priorities": [1, 0]}, "priorities",
+     "method 'nonlinear' does not implement DOF priorities; methods that do: qp, pseudoinverse"),
+])
+def test_a_method_that_cannot_serve_the_vehicle_loads_and_the_allocator_refuses_it(changes, key, reason):
+    """Whether a method can serve a vehicle is the allocator's one check, naming the key."""
+    vehicle = vehicle_from_parameters(with_changes(**changes))
+    with pytest.raises(ConfigError) as error:
+        Allocator(vehicle)
+    assert error.value.problems == [(key, reason)]
 
 
 def test_heave_on_horizontal_azimuths_and_tunnels_is_refused_naming_dofs():

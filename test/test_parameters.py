@@ -1,6 +1,8 @@
 """Loading and validating vehicle configurations (ROS 2 params files)."""
 
 import math
+import subprocess
+import sys
 import textwrap
 
 import pytest
@@ -271,8 +273,6 @@ def test_each_invalid_voltage_key_is_named_with_its_reason(changes, key, reason)
         ({"priorities": [0, -1]}, "priorities", "must be >= 0, got -1"),
         ({"priorities": [0.5, 1.0]}, "priorities", "expected a list of integers"),
         ({"priorities": ["yaw", "surge"]}, "priorities", "expected a list of integers"),
-        ({"priorities": [1, 0], "method": "nonlinear"}, "priorities",
-         "method 'nonlinear' does not implement DOF priorities; methods that do: qp, pseudoinverse"),
         ({"priorities": [1, 0], "saturation": "preserve_direction"}, "priorities", "use one or the other"),
         ({"actuators__port__command_deadband": -1.0}, "actuators.port.command_deadband", "must be >= 0"),
         ({"actuators__port__command_max": 2.0, "actuators__port__command_deadband": 2.0},
@@ -291,3 +291,16 @@ def test_priorities_are_given_in_dofs_order_and_kept_in_dof_order():
     assert vehicle.priority_levels == ((1,), (0,))
     same = vehicle_from_parameters(with_changes(priorities=[3, 3]))
     assert same.priority_levels == ()                       # one level: nothing to order
+
+
+def test_reading_a_configuration_loads_no_solver():
+    """The configuration sits below the solvers and the methods: importing it (with the package)
+    loads none of OSQP, DAQP and HiGHS; the allocator does."""
+    code = ("import sys\n"
+            "import allocator_pkg.configuration.parameters\n"
+            "solvers = ('osqp', 'daqp', 'highspy')\n"
+            "print([name for name in solvers if name in sys.modules])\n"
+            "from allocator_pkg import Allocator\n"
+            "print([name for name in solvers if name in sys.modules])\n")
+    lines = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.splitlines()
+    assert lines == ["[]", "['osqp', 'daqp', 'highspy']"]

@@ -23,7 +23,6 @@ import yaml
 from ..effectiveness.actuators import command_map
 from ..effectiveness.reach import unreachable_dofs
 from ..effectiveness.sectors import allowed_arcs, in_feasible_sector, in_forbidden_sector
-from ..methods import METHODS
 from ..vehicle.angles import ANGLE_TOLERANCE, TWO_PI
 from ..vehicle.config import (
     AZIMUTH,
@@ -267,13 +266,6 @@ class _Parser:
             nominal_voltage=nominal_voltage,
             explicit_regions=values["explicit.regions"],
         )
-        unfit = METHODS[vehicle.method].problems(vehicle)
-        if unfit:
-            raise ConfigError([("method", f"'{vehicle.method}' cannot serve this vehicle: {'; '.join(unfit)}")])
-        if vehicle.priority_levels and not METHODS[vehicle.method].implements_priorities:
-            able = ", ".join(name for name, method in METHODS.items() if method.implements_priorities)
-            raise ConfigError([("priorities", f"method '{vehicle.method}' does not implement DOF priorities; "
-                                              f"methods that do: {able}")])
         self._ros2_control(node, vehicle)
         if self.problems:
             raise ConfigError(self.problems)

@@ -17,7 +17,6 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-from ..methods import METHODS
 from ..vehicle.config import (
     ACTUATOR_TYPES,
     COMMAND_MAPS,
@@ -25,6 +24,7 @@ from ..vehicle.config import (
     FIN,
     FIXED,
     FLOW_MODELS,
+    METHOD_NAMES,
     ROTATABLE_TYPES,
     RUDDER,
     SATURATION_MODES,
@@ -105,7 +105,7 @@ class Key:
 VEHICLE_KEYS: tuple[Key, ...] = (
     Key("rate_hz", FLOAT, "Allocation rate: one sample per period, also the dt of rate limits.",
         default=50.0, minimum=0.0, exclusive_minimum=True, maximum=10000.0, unit="Hz"),
-    Key("method", STR, "Allocation method (see docs/theory.md).", default="qp", choices=tuple(METHODS)),
+    Key("method", STR, "Allocation method (see docs/theory.md).", default="qp", choices=METHOD_NAMES),
     Key("dofs", STR_LIST, "Controlled degrees of freedom; the others of the requested wrench are ignored.",
         default=list(DOF_NAMES), default_doc="all six",
         constraint=f"at least one of {', '.join(DOF_NAMES)}, each at most once"),

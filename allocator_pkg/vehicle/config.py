@@ -23,6 +23,9 @@ ROTATABLE_TYPES = (AZIMUTH, AZIMUTH_VERTICAL)
 SURFACE_TYPES = (RUDDER, FIN)
 THRUSTER_TYPES = (FIXED, AZIMUTH, AZIMUTH_VERTICAL)
 
+METHOD_NAMES = ("qp", "pseudoinverse", "nonlinear", "lp", "dynamic", "svd_filter", "explicit")
+"""The allocation methods a configuration may name, in the order of the registry
+:data:`allocator_pkg.methods.METHODS` (which holds their implementations)."""
 SATURATION_MODES = ("weighted", "preserve_direction", "direct")
 COMMAND_MAPS = ("linear", "quadratic", "table")
 FLOW_MODELS = ("free", "propeller_wake")
