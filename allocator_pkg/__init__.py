@@ -14,7 +14,8 @@ imported when first used, so that reading a configuration loads no solver.
 from importlib import import_module
 from typing import Any
 
-from .configuration.parameters import load_vehicle, parse_parameters, read_parameters, vehicle_from_parameters
+from .configuration.parameters import load_vehicle, parse_parameters, vehicle_from_parameters
+from .configuration.params_file import read_parameters
 from .effectiveness.faults import Fault, FaultMode, FaultSet
 from .vehicle.config import ConfigError, Vehicle
 

@@ -11,7 +11,7 @@ from test_parameters import VALID, problem_for, with_changes
 
 from allocator_pkg import Allocator, ConfigError, load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.cli import capability as capability_tool
-from allocator_pkg.configuration.parameters import MIN_ALLOWED_ARC
+from allocator_pkg.configuration.actuators import MIN_ALLOWED_ARC
 from allocator_pkg.effectiveness.reach import WEAK_SHARE
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"

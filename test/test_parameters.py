@@ -9,7 +9,7 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg import ConfigError, load_vehicle, read_parameters, vehicle_from_parameters
-from allocator_pkg.configuration.parameters import section_matches
+from allocator_pkg.configuration.params_file import section_matches
 
 VALID = {
     "dofs": ["surge", "yaw"],
