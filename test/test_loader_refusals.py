@@ -12,6 +12,7 @@ from test_parameters import VALID, problem_for, with_changes
 from allocator_pkg import Allocator, ConfigError, load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.cli import capability as capability_tool
 from allocator_pkg.configuration.actuators import MIN_ALLOWED_ARC
+from allocator_pkg.configuration.params_file import write_parameters
 from allocator_pkg.effectiveness.reach import WEAK_SHARE
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
@@ -158,16 +159,7 @@ def test_a_weak_dof_is_a_warning_not_an_error():
 
 
 def test_allocator_capability_prints_the_warnings(tmp_path, capsys):
-    path = tmp_path / "weak.yaml"
-    nested: dict = {}
-    for name, value in WEAK_HEAVE.items():
-        node = nested
-        *parents, leaf = name.split(".")
-        for parent in parents:
-            node = node.setdefault(parent, {})
-        node[leaf] = value
-    import yaml
-    path.write_text(yaml.safe_dump({"/**": {"ros__parameters": nested}}))
+    path = write_parameters(tmp_path / "weak.yaml", WEAK_HEAVE)
     assert capability_tool.main([str(path), "--out", str(tmp_path), "--step", "45",
                                  "--plane", "surge", "yaw"]) == 0
     assert "warning: heave is weak: its authority is 0.5 %" in capsys.readouterr().err
