@@ -27,6 +27,7 @@ from ..vehicle.config import (
     SurfaceConfig,
 )
 from . import schema
+from .fields import actuator_field, filled
 from .schema import ACTUATOR_KEY_BY_NAME
 from .values import MISSING, Reader
 
@@ -60,23 +61,20 @@ def parse_actuator(reader: Reader, name: str) -> ActuatorConfig | None:
     power = v["power_coefficient"]
     if power is None:
         power = 0.0 if surface else 1.0
-    common = dict(name=name, type=actuator_type, position=tuple(v["position"]),
-                  direction=_direction(reader, actuator_type, v.get("direction"), param("direction")),
-                  weight=weight, power_coefficient=power)
-    return (_surface if actuator_type in SURFACE_TYPES else _thruster)(reader, name, v, common)
+    derived = dict(name=name, position=tuple(v["position"]),
+                   direction=_direction(reader, actuator_type, v.get("direction"), param("direction")),
+                   weight=weight, power_coefficient=power)
+    return (_surface if actuator_type in SURFACE_TYPES else _thruster)(reader, name, v, derived)
 
 
-def _surface(reader: Reader, name: str, v: dict[str, Any], common: dict[str, Any]) -> ActuatorConfig:
-    surface = SurfaceConfig(
-        area=v["area"], lift_coefficient=v["lift_coefficient"], drag_coefficient=v["drag_coefficient"],
-        deflection_max=v["deflection_max"], deflection_rate_max=v["deflection_rate_max"], flow=v["flow"],
-        wake_speed_factor=v["wake_speed_factor"], min_control_speed=v["min_control_speed"])
-    return ActuatorConfig(**common, surface=surface)
+def _surface(reader: Reader, name: str, v: dict[str, Any], derived: dict[str, Any]) -> ActuatorConfig:
+    """A rudder or fin: its hydrofoil data."""
+    return filled(ActuatorConfig, v, actuator_field, **derived, surface=filled(SurfaceConfig, v, actuator_field))
 
 
-def _thruster(reader: Reader, name: str, v: dict[str, Any], common: dict[str, Any]) -> ActuatorConfig | None:
+def _thruster(reader: Reader, name: str, v: dict[str, Any], derived: dict[str, Any]) -> ActuatorConfig | None:
     """A fixed or rotatable thruster: thrust range, command map and, if it turns, rotation."""
-    rotatable = common["type"] in (AZIMUTH, AZIMUTH_VERTICAL)
+    rotatable = v["type"] in (AZIMUTH, AZIMUTH_VERTICAL)
     rotation = _rotation(reader, name, v) if rotatable else None
     reversible = rotation.reversible if rotation else True
     thrust_max = v["thrust_max"]
@@ -88,8 +86,8 @@ def _thruster(reader: Reader, name: str, v: dict[str, Any], common: dict[str, An
     command = _command_map(reader, name, v, thrust_min, thrust_max)
     if command is None or (rotatable and rotation is None):
         return None
-    return ActuatorConfig(**common, thrust_min=thrust_min, thrust_max=thrust_max,
-                          thrust_rate_max=v["thrust_rate_max"], command=command, rotation=rotation)
+    return filled(ActuatorConfig, v, actuator_field, **derived, thrust_min=thrust_min, command=command,
+                  rotation=rotation)
 
 
 def _direction(reader: Reader, actuator_type: str, direction: list[float] | None,
@@ -169,12 +167,10 @@ def _command_map(reader: Reader, name: str, v: dict[str, Any], thrust_min: float
             reader.fail(param("command_deadband"), f"{deadband:g} leaves no command beyond it in "
                                                    f"[{command_min:g}, {command_max:g}]")
             return None
-    gain = v["gain"]
-    config = CommandMapConfig(kind=kind, gain=gain,
-                              gain_reverse=v["gain_reverse"] if v["gain_reverse"] is not None else gain,
-                              command_min=command_min, command_max=command_max,
-                              table_command=table_command, table_thrust=table_thrust,
-                              table_voltage=table_voltage, deadband=deadband, reversed=v["reversed"])
+    config = filled(CommandMapConfig, v, actuator_field,
+                    gain_reverse=v["gain_reverse"] if v["gain_reverse"] is not None else v["gain"],
+                    command_min=command_min, command_max=command_max, table_command=table_command,
+                    table_thrust=table_thrust, table_voltage=table_voltage)
     low, high = command_map(config, table_voltage[0] if table_voltage else None).force_range()
     if not low <= 0.0 <= high:
         reader.fail(param("command_min"), f"the command range [{command_min:g}, {command_max:g}] must include "
@@ -207,9 +203,7 @@ def _rotation(reader: Reader, name: str, v: dict[str, Any]) -> RotationConfig | 
         if width < ANGLE_TOLERANCE:
             reader.fail(param("forbidden_sectors"), f"sector [{start:g}, {end:g}] is empty or the whole circle")
             return None
-    rotation = RotationConfig(azimuth_min=low, azimuth_max=high, rate_max=v["azimuth_rate_max"],
-                              forbidden_sectors=sectors, reversible=v["reversible"],
-                              initial=v["azimuth_initial"])
+    rotation = filled(RotationConfig, v, actuator_field, forbidden_sectors=sectors)
     allowed = sum(end - start for start, end in allowed_arcs(rotation))
     if allowed < MIN_ALLOWED_ARC:
         key = "forbidden_sectors" if sectors else "azimuth_max"

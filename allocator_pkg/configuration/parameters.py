@@ -27,6 +27,7 @@ from ..vehicle.config import (
 from ..vehicle.node_settings import NodeSettings
 from . import schema
 from .actuators import parse_actuator
+from .fields import filled, node_field, vehicle_field
 from .params_file import read_parameters
 from .schema import ACTUATOR_KEY_BY_NAME, ACTUATOR_PREFIX, NODE_KEY_BY_NAME, VEHICLE_KEY_BY_NAME
 from .values import MISSING, Reader
@@ -59,16 +60,13 @@ class _Parser(Reader):
         names = self.value(names_key)
         known = set(VEHICLE_KEY_BY_NAME) | set(NODE_KEY_BY_NAME)
         actuators: list[ActuatorConfig] = []
-        links: dict[str, str] = {}
         if names is not MISSING:
             names = self._check_names(names)
             for name in names:
                 actuator = parse_actuator(self, name)
                 if actuator is not None:
                     actuators.append(actuator)
-                link = self.parameters.get(schema.actuator_parameter(name, "link"), name)
-                links[name] = link if isinstance(link, str) else name
-                if not link:
+                if not self.parameters.get(schema.actuator_parameter(name, "link"), name):
                     self.fail(schema.actuator_parameter(name, "link"), "must not be empty")
                 known.update(schema.actuator_parameter(name, key) for key in ACTUATOR_KEY_BY_NAME)
         for name in self.parameters:
@@ -89,38 +87,19 @@ class _Parser(Reader):
         nominal_voltage = self._nominal_voltage(values["nominal_voltage"], actuators)
         if self.problems:
             raise ConfigError(self.problems)
-        vehicle = Vehicle(
-            actuators=tuple(actuators),
-            dofs=dofs,
-            method=values["method"],
-            saturation=values["saturation"],
-            rate_hz=values["rate_hz"],
-            weights=Weights(slack=slack, minimax=values["weights.minimax"],
-                            azimuth_change=values["weights.azimuth_change"]),
-            singularity_rho=values["singularity.rho"],
-            singularity_epsilon=values["singularity.epsilon"],
-            azimuth_polygon_sides=values["azimuth_polygon_sides"],
-            nonlinear_max_iterations=values["nonlinear.max_iterations"],
-            solver=SolverSettings(eps_abs=values["solver.eps_abs"], eps_rel=values["solver.eps_rel"],
-                                  max_iter=values["solver.max_iter"], time_limit=values["solver.time_limit"]),
-            water_density=values["water_density"],
-            dynamic_gain=values["dynamic.gain"],
-            svd_filter_time_constant=values["svd_filter.time_constant"],
-            svd_filter_damping_threshold=values["svd_filter.damping_threshold"],
-            priorities=priorities,
-            nominal_voltage=nominal_voltage,
-            explicit_regions=values["explicit.regions"],
-        )
-        self._ros2_control(node, vehicle)
+        vehicle = filled(Vehicle, values, vehicle_field, actuators=tuple(actuators), dofs=dofs,
+                         weights=filled(Weights, values, vehicle_field, slack=slack),
+                         solver=filled(SolverSettings, values, vehicle_field),
+                         priorities=priorities, nominal_voltage=nominal_voltage)
+        ros2_control_actuators = self._ros2_control(node, vehicle)
         if self.problems:
             raise ConfigError(self.problems)
-        settings = NodeSettings(**{key.name.replace(".", "_"): node[key.name] for key in schema.NODE_KEYS},
-                                links=links)
+        settings = filled(NodeSettings, node, node_field, ros2_control_actuators=ros2_control_actuators)
         return vehicle, settings
 
-    def _ros2_control(self, node: dict[str, Any], vehicle: Vehicle) -> None:
-        """The ros2_control actuators: known, each once, a rotatable one if angles are published;
-        ``node['ros2_control.actuators']`` becomes a tuple (the configuration order if unset)."""
+    def _ros2_control(self, node: dict[str, Any], vehicle: Vehicle) -> tuple[str, ...]:
+        """The ros2_control actuators: known, each once, a rotatable one if angles are published
+        (the configuration order if unset)."""
         key = "ros2_control.actuators"
         listed = node[key] or [actuator.name for actuator in vehicle.actuators]
         by_name = {actuator.name: actuator for actuator in vehicle.actuators}
@@ -132,7 +111,7 @@ class _Parser(Reader):
                                                         if name in by_name):
             self.fail("ros2_control.angle_topic", f"none of {', '.join(listed)} is a rotatable thruster: no "
                                                   "azimuth angle to publish")
-        node[key] = tuple(listed)
+        return tuple(listed)
 
     def _check_names(self, names: list[str]) -> list[str]:
         valid = []
