@@ -61,6 +61,9 @@ def test_valid_parameters_and_defaults():
     rudder = vehicle.actuator("rudder")
     assert rudder.direction == (0.0, 1.0, 0.0)                   # rudder lift along +y by default
     assert rudder.weight == pytest.approx(0.1) and port.weight == 1.0
+    assert rudder.power_coefficient == 0.0 and port.power_coefficient == 1.0 == azi.power_coefficient
+    fin = vehicle_from_parameters(with_changes(actuators__rudder__type="fin")).actuator("rudder")
+    assert fin.direction == (0.0, 0.0, 1.0)                      # fin lift along +z by default
     assert vehicle.method == "qp" and vehicle.rate_hz == 50.0
     assert vehicle.dofs == ("surge", "yaw")
     assert vehicle.weights.slack == ()                           # derived per DOF by the allocator

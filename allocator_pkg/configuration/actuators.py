@@ -17,9 +17,7 @@ from ..vehicle.angles import ANGLE_TOLERANCE, TWO_PI
 from ..vehicle.config import (
     AZIMUTH,
     AZIMUTH_VERTICAL,
-    FIN,
     FIXED,
-    RUDDER,
     SURFACE_TYPES,
     ActuatorConfig,
     CommandMapConfig,
@@ -53,17 +51,11 @@ def parse_actuator(reader: Reader, name: str) -> ActuatorConfig | None:
         if key.name not in applicable_names and param(key.name) in reader.parameters:
             reader.fail(param(key.name), f"does not apply to a {actuator_type} actuator; its keys are "
                                          f"{', '.join(sorted(applicable_names))}")
-    v = {key.name: reader.value(key, param(key.name)) for key in applicable}
+    v = {key.name: reader.value(key, param(key.name), actuator_type) for key in applicable}
     if any(value is MISSING for value in v.values()):
         return None
-    surface = actuator_type in (RUDDER, FIN)
-    weight = v["weight"] if v["weight"] is not None else (0.1 if surface else 1.0)
-    power = v["power_coefficient"]
-    if power is None:
-        power = 0.0 if surface else 1.0
     derived = dict(name=name, position=tuple(v["position"]),
-                   direction=_direction(reader, actuator_type, v.get("direction"), param("direction")),
-                   weight=weight, power_coefficient=power)
+                   direction=_direction(reader, actuator_type, v.get("direction"), param("direction")))
     return (_surface if actuator_type in SURFACE_TYPES else _thruster)(reader, name, v, derived)
 
 
@@ -96,10 +88,6 @@ def _direction(reader: Reader, actuator_type: str, direction: list[float] | None
         if actuator_type == FIXED:
             reader.fail(name, "required for a fixed actuator")
             return (1.0, 0.0, 0.0)
-        if actuator_type == RUDDER:
-            return (0.0, 1.0, 0.0)
-        if actuator_type == FIN:
-            return (0.0, 0.0, 1.0)
         return (0.0, 0.0, 0.0)
     norm = math.sqrt(sum(c * c for c in direction))
     if norm < 1e-9:

@@ -31,16 +31,16 @@ class Reader:
     def fail(self, name: str, reason: str) -> None:
         self.problems.append((name, reason))
 
-    def value(self, key: Key, name: str | None = None) -> Any:
+    def value(self, key: Key, name: str | None = None, actuator_type: str | None = None) -> Any:
         """The typed value of a key (under the parameter name ``name``, by default the key's),
-        its default, or MISSING (after recording why)."""
+        its default (for an actuator of ``actuator_type``), or MISSING (after recording why)."""
         name = name or key.name
         raw = self.parameters.get(name, MISSING)
         if raw is MISSING:
             if key.required:
                 self.fail(name, "required key is missing")
                 return MISSING
-            return key.default
+            return key.default_for(actuator_type)
         value = coerce(key, raw)
         if isinstance(value, Invalid):
             self.fail(name, value.reason)
