@@ -175,6 +175,7 @@ def parameter(name, value):
     ("dofs", ["surge", "sway", "heave", "yaw"], "dofs: no actuator can produce heave at any angle"),
     ("actuators.azimuth_fwd.forbidden_sectors", [0.5e-8, -0.5e-8],
      "actuators.azimuth_fwd.forbidden_sectors: leaves 5.73e-07 deg of the circle"),
+    ("method", "explicit", "'explicit' cannot serve this vehicle: it needs actuators of fixed direction"),
 ])
 def test_the_node_refuses_the_same_at_a_runtime_change_and_keeps_its_configuration(harness, name, value, reason):
     node = harness.node
@@ -186,3 +187,14 @@ def test_the_node_refuses_the_same_at_a_runtime_change_and_keeps_its_configurati
     harness.send_wrench([50.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     harness.tick(2)
     assert harness.status[-1].solver_status == "solved"
+
+
+def test_the_node_refuses_at_start_a_method_that_cannot_serve_the_vehicle(tmp_path, ros_context):
+    """The allocator's check, reported as every invalid configuration is: naming the key."""
+    from allocator_pkg.ros.node import AllocatorNode
+    from allocator_pkg.ros.node_base import NodeConfigError
+    params = write_parameters(tmp_path / "explicit.yaml", {**read_parameters(EXAMPLE), "method": "explicit"})
+    with pytest.raises(NodeConfigError) as error:
+        AllocatorNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(params)])
+    assert [key for key, _ in error.value.problems] == ["method"]
+    assert "method: 'explicit' cannot serve this vehicle" in error.value.report()

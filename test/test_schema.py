@@ -39,3 +39,11 @@ def test_the_method_names_are_the_registered_methods():
     """The schema offers METHOD_NAMES without loading a method; they name the registry's entries."""
     assert schema.VEHICLE_KEY_BY_NAME["method"].choices == METHOD_NAMES
     assert tuple(METHODS) == METHOD_NAMES
+
+
+def test_a_default_by_type_is_for_a_type_the_key_applies_to():
+    keyed = [key for key in schema.ACTUATOR_KEYS if key.type_defaults]
+    assert {key.name for key in keyed} == {"direction", "weight", "power_coefficient"}
+    for key in keyed:
+        assert set(key.type_defaults) <= set(key.applies_to), key.name
+        assert key.default_for("no such type") is key.default is None
