@@ -30,8 +30,8 @@ NO_KEY = {Vehicle: {"actuators", "weights", "solver"}, ActuatorConfig: {"name", 
 """Fields of no key: built from other keys."""
 
 DERIVED = {"dofs", "weights.slack", "priorities", "nominal_voltage", "ros2_control.actuators", "position", "direction",
-           "weight", "power_coefficient", "thrust_min", "gain_reverse", "command_min", "command_max", "table_command",
-           "table_thrust", "table_voltage", "forbidden_sectors"}
+           "thrust_min", "gain_reverse", "command_min", "command_max", "table_command", "table_thrust", "table_voltage",
+           "forbidden_sectors"}
 """Keys whose field the builder derives by hand (an order, a default that depends on other keys,
 a normalised vector, sector pairs); every other key's value is its field's as it stands."""
 
@@ -66,13 +66,14 @@ NODE_VALUES = {
     "step_test.enabled": True, "step_test.thrust_share": 0.3, "step_test.duration_max": 10.0,
 }
 THRUSTER_VALUES = {
-    "type": "azimuth", "thrust_max": 20.0, "thrust_rate_max": 5.0, "command_map": "quadratic", "gain": 2.0,
-    "command_deadband": 0.1, "reversed": True, "azimuth_min": -1.0, "azimuth_max": 2.0, "azimuth_rate_max": 0.5,
-    "reversible": True, "azimuth_initial": 0.3,
+    "type": "azimuth", "weight": 2.0, "power_coefficient": 0.5, "thrust_max": 20.0, "thrust_rate_max": 5.0,
+    "command_map": "quadratic", "gain": 2.0, "command_deadband": 0.1, "reversed": True, "azimuth_min": -1.0,
+    "azimuth_max": 2.0, "azimuth_rate_max": 0.5, "reversible": True, "azimuth_initial": 0.3,
 }
 SURFACE_VALUES = {
-    "type": "fin", "area": 0.2, "lift_coefficient": 2.5, "drag_coefficient": 0.3, "deflection_max": 0.6,
-    "deflection_rate_max": 0.4, "flow": "propeller_wake", "wake_speed_factor": 1.3, "min_control_speed": 0.8,
+    "type": "fin", "weight": 0.3, "power_coefficient": 0.2, "area": 0.2, "lift_coefficient": 2.5,
+    "drag_coefficient": 0.3, "deflection_max": 0.6, "deflection_rate_max": 0.4, "flow": "propeller_wake",
+    "wake_speed_factor": 1.3, "min_control_speed": 0.8,
 }
 
 

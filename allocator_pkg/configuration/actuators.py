@@ -38,7 +38,8 @@ radians) far more often than a design."""
 
 
 def parse_actuator(reader: Reader, name: str) -> ActuatorConfig | None:
-    """One actuator: the keys common to every type here, the rest by its type's parser."""
+    """One actuator: the keys of its type, its position and direction here, a control
+    surface's hydrofoil data too, a thruster's the rest by :func:`_thruster`."""
     def param(key: str) -> str:
         return schema.actuator_parameter(name, key)
 
@@ -56,12 +57,9 @@ def parse_actuator(reader: Reader, name: str) -> ActuatorConfig | None:
         return None
     derived = dict(name=name, position=tuple(v["position"]),
                    direction=_direction(reader, actuator_type, v.get("direction"), param("direction")))
-    return (_surface if actuator_type in SURFACE_TYPES else _thruster)(reader, name, v, derived)
-
-
-def _surface(reader: Reader, name: str, v: dict[str, Any], derived: dict[str, Any]) -> ActuatorConfig:
-    """A rudder or fin: its hydrofoil data."""
-    return filled(ActuatorConfig, v, actuator_field, **derived, surface=filled(SurfaceConfig, v, actuator_field))
+    if actuator_type in SURFACE_TYPES:
+        return filled(ActuatorConfig, v, actuator_field, **derived, surface=filled(SurfaceConfig, v, actuator_field))
+    return _thruster(reader, name, v, derived)
 
 
 def _thruster(reader: Reader, name: str, v: dict[str, Any], derived: dict[str, Any]) -> ActuatorConfig | None:
