@@ -66,6 +66,7 @@ from std_srvs.srv import Trigger
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 from allocator_msgs.srv import SetActuatorFault
 from allocator_pkg import METHODS, ConfigError, FaultMode, Vehicle, read_parameters, vehicle_from_parameters
+from allocator_pkg.allocation.solve import check_method
 from allocator_pkg.effectiveness.model import Model
 from allocator_pkg.effectiveness.sectors import in_feasible_sector, in_forbidden_sector
 from allocator_pkg.vehicle.angles import wrap
@@ -336,7 +337,9 @@ class Disturber:
     def change_parameters(self, action: str, values: dict, state: State) -> None:
         candidate = {**self.parameters, **values}
         try:
-            after, expect = State(vehicle_from_parameters(candidate), state.efficiency), True
+            vehicle = vehicle_from_parameters(candidate)
+            check_method(vehicle.method, vehicle)
+            after, expect = State(vehicle, state.efficiency), True
         except ConfigError:
             after, expect = state, False
         request = SetParametersAtomically.Request(

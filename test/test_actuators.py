@@ -87,8 +87,8 @@ def test_propeller_wake_flow():
 def _table(voltages, rows, command=(1100.0, 1500.0, 1900.0)):
     from allocator_pkg.vehicle.config import CommandMapConfig
     return CommandMapConfig(kind="table", gain=1.0, gain_reverse=1.0, command_min=-math.inf, command_max=math.inf,
-                            table_command=tuple(command), table_thrust=tuple(v for row in rows for v in row),
-                            table_voltage=tuple(voltages))
+                            deadband=0.0, reversed=False, table_command=tuple(command),
+                            table_thrust=tuple(v for row in rows for v in row), table_voltage=tuple(voltages))
 
 
 def test_a_voltage_table_interpolates_between_its_rows():
@@ -127,7 +127,8 @@ def test_thrust_limits_follow_a_voltage_table_and_only_narrow_thrust_min_max():
 def test_a_dead_band_gives_no_force_inside_and_its_edges_forces(kind, edge):
     from allocator_pkg.effectiveness.actuators import command_map, deadband_forces
     from allocator_pkg.vehicle.config import CommandMapConfig
-    config = CommandMapConfig(kind=kind, gain=2.0, gain_reverse=1.0, command_min=-5.0, command_max=5.0, deadband=0.3)
+    config = CommandMapConfig(kind=kind, gain=2.0, gain_reverse=1.0, command_min=-5.0, command_max=5.0, deadband=0.3,
+                              reversed=False)
     low, high = deadband_forces(config)
     assert high == pytest.approx(edge) and low == pytest.approx(-edge / 2.0)      # reverse gain is half
     m = command_map(config)
@@ -135,7 +136,7 @@ def test_a_dead_band_gives_no_force_inside_and_its_edges_forces(kind, edge):
     assert m.force(0.3) == pytest.approx(high) and m.force(-0.3) == pytest.approx(low)
     assert m.command(high) == pytest.approx(0.3)                                  # the edge's force: the edge
     assert deadband_forces(CommandMapConfig(kind=kind, gain=2.0, gain_reverse=1.0, command_min=-5.0,
-                                            command_max=5.0)) == (0.0, 0.0)
+                                            command_max=5.0, deadband=0.0, reversed=False)) == (0.0, 0.0)
 
 
 def test_a_reversed_thruster_mirrors_its_command_about_zero_force():

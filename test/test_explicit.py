@@ -284,13 +284,13 @@ def test_reconfiguration_keeps_the_laws_for_new_limits_and_clears_them_for_new_w
 def test_rotatable_thrusters_and_saturations_other_than_weighted_are_refused_by_name():
     with pytest.raises(ConfigError, match=r"method: 'explicit' cannot serve this vehicle: it needs actuators of "
                                           r"fixed direction \(survey 4.1\), and azimuth_fwd, azimuth_aft rotate"):
-        vehicle_from(ROOT / "config" / "example1_rov.yaml", method="explicit")
+        Allocator(vehicle_from(ROOT / "config" / "example1_rov.yaml", method="explicit"))
     with pytest.raises(ValueError, match="azimuth_fwd, azimuth_aft rotate"):
         Allocator(load_vehicle(ROOT / "config" / "example1_rov.yaml"), method="explicit")
     for saturation in ("preserve_direction", "direct"):
         with pytest.raises(ConfigError, match=f"it does not implement saturation '{saturation}' "
                                               r"\(it takes weighted\)"):
-            vehicle_from(BLUEROV, method="explicit", saturation=saturation)
+            Allocator(vehicle_from(BLUEROV, method="explicit", saturation=saturation))
     with pytest.raises(ValueError, match=r"method 'explicit' cannot serve this vehicle: .* rotate"):
         Capability(load_vehicle(ROOT / "config" / "example1_rov.yaml"), method="explicit")
 
@@ -346,9 +346,10 @@ def test_a_regions_file_for_other_data_and_vehicles_it_cannot_enumerate_are_refu
     out = tmp_path / "otter.regions.npz"
     explicit_tool.main(["precompute", str(OTTER), "--out", str(out)])
     with pytest.raises(ConfigError, match="was computed for another configuration"):
-        vehicle_from(OTTER, method="explicit", explicit__regions=str(out), actuators__propeller_port__weight=2.0)
+        Allocator(vehicle_from(OTTER, method="explicit", explicit__regions=str(out),
+                               actuators__propeller_port__weight=2.0))
     with pytest.raises(ConfigError, match=r"explicit\.regions: .*No such file"):
-        vehicle_from(OTTER, method="explicit", explicit__regions=str(tmp_path / "missing.npz"))
+        Allocator(vehicle_from(OTTER, method="explicit", explicit__regions=str(tmp_path / "missing.npz")))
     capsys.readouterr()
     assert explicit_tool.main(["precompute", str(ROOT / "config" / "dp_vessel.yaml"), "--out", str(out)]) == 1
     assert "azimuth_stbd, azimuth_port rotate" in capsys.readouterr().err
@@ -367,7 +368,7 @@ def test_files_that_are_no_regions_file_are_refused_with_a_clear_error(tmp_path)
     np.savez(other, values=np.arange(3))
     for path, reason in ((array, "not an .npz archive"), (corrupt, "cannot read"), (other, "no fingerprint")):
         with pytest.raises(ConfigError, match=f"explicit.regions: .*{reason}"):
-            vehicle_from(OTTER, method="explicit", explicit__regions=str(path))
+            Allocator(vehicle_from(OTTER, method="explicit", explicit__regions=str(path)))
 
 
 def test_precompute_writes_the_file_the_configuration_names_even_when_missing_or_stale(tmp_path):
@@ -379,7 +380,7 @@ def test_precompute_writes_the_file_the_configuration_names_even_when_missing_or
     heavier = "ros__parameters:\n    weights: {slack: [1e3, 1e3]}"
     config.write_text(config.read_text().replace("ros__parameters:", heavier, 1))
     with pytest.raises(ConfigError, match="computed for another configuration"):
-        load_vehicle(config)
+        Allocator(load_vehicle(config))
     assert explicit_tool.main(["precompute", str(config), "--out", str(out)]) == 0          # stale
     assert len(Allocator(load_vehicle(config))._solver.method.table) == 9
 

@@ -86,7 +86,7 @@ def test_the_configuration_types_import_nothing_of_the_package_but_angles():
     assert graph()["allocator_pkg.vehicle.config"] == {"allocator_pkg.vehicle.angles"}
 
 
-LAYERS = ("vehicle", "effectiveness", "solvers", "methods", "configuration", "allocation", "analysis", "simulation",
+LAYERS = ("vehicle", "effectiveness", "configuration", "solvers", "methods", "allocation", "analysis", "simulation",
           "ros", "cli", "testing")
 """The package's folders, lowest first: a module imports only from its own folder or one below."""
 

@@ -1,6 +1,7 @@
-"""Configurations that cannot work are refused by the loader, naming the key; the node refuses
-the same as a runtime parameter change and keeps its configuration; a DOF produced only
-weakly is a warning (start-up log, allocator-capability), not an error."""
+"""Configurations that cannot work are refused by the loader, naming the key, and a method that
+cannot serve the vehicle by the allocator; the node refuses the same as a runtime parameter
+change and keeps its configuration; a DOF produced only weakly is a warning (start-up log,
+allocator-capability), not an error."""
 
 import math
 
@@ -10,7 +11,8 @@ from test_parameters import VALID, problem_for, with_changes
 
 from allocator_pkg import Allocator, ConfigError, load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.cli import capability as capability_tool
-from allocator_pkg.configuration.parameters import MIN_ALLOWED_ARC
+from allocator_pkg.configuration.actuators import MIN_ALLOWED_ARC
+from allocator_pkg.configuration.params_file import write_parameters
 from allocator_pkg.effectiveness.reach import WEAK_SHARE
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
@@ -21,6 +23,22 @@ def test_a_valid_vehicle_and_every_shipped_one_still_load():
     vehicle_from_parameters(VALID)
     for path in sorted((ROOT / "config").glob("*.yaml")) + sorted((ROOT / "test" / "data").glob("*.yaml")):
         assert Allocator(load_vehicle(path)).warnings == [], path
+
+
+@pytest.mark.parametrize(("changes", "key", "reason"), [
+    ({"method": "explicit"}, "method", "'explicit' cannot serve this vehicle: it needs actuators of fixed direction "
+                                       "(survey 4.1), and azi rotate; use qp or nonlinear"),
+    ({"method": "dynamic", "saturation": "direct"}, "method",
+     "'dynamic' cannot serve this vehicle: it does not implement saturation 'direct' (it takes weighted)"),
+    ({"method": "nonlinear", "priorities": [1, 0]}, "priorities",
+     "method 'nonlinear' does not implement DOF priorities; methods that do: qp, pseudoinverse"),
+])
+def test_a_method_that_cannot_serve_the_vehicle_loads_and_the_allocator_refuses_it(changes, key, reason):
+    """Whether a method can serve a vehicle is the allocator's one check, naming the key."""
+    vehicle = vehicle_from_parameters(with_changes(**changes))
+    with pytest.raises(ConfigError) as error:
+        Allocator(vehicle)
+    assert error.value.problems == [(key, reason)]
 
 
 def test_heave_on_horizontal_azimuths_and_tunnels_is_refused_naming_dofs():
@@ -141,16 +159,7 @@ def test_a_weak_dof_is_a_warning_not_an_error():
 
 
 def test_allocator_capability_prints_the_warnings(tmp_path, capsys):
-    path = tmp_path / "weak.yaml"
-    nested: dict = {}
-    for name, value in WEAK_HEAVE.items():
-        node = nested
-        *parents, leaf = name.split(".")
-        for parent in parents:
-            node = node.setdefault(parent, {})
-        node[leaf] = value
-    import yaml
-    path.write_text(yaml.safe_dump({"/**": {"ros__parameters": nested}}))
+    path = write_parameters(tmp_path / "weak.yaml", WEAK_HEAVE)
     assert capability_tool.main([str(path), "--out", str(tmp_path), "--step", "45",
                                  "--plane", "surge", "yaw"]) == 0
     assert "warning: heave is weak: its authority is 0.5 %" in capsys.readouterr().err
@@ -166,6 +175,7 @@ def parameter(name, value):
     ("dofs", ["surge", "sway", "heave", "yaw"], "dofs: no actuator can produce heave at any angle"),
     ("actuators.azimuth_fwd.forbidden_sectors", [0.5e-8, -0.5e-8],
      "actuators.azimuth_fwd.forbidden_sectors: leaves 5.73e-07 deg of the circle"),
+    ("method", "explicit", "'explicit' cannot serve this vehicle: it needs actuators of fixed direction"),
 ])
 def test_the_node_refuses_the_same_at_a_runtime_change_and_keeps_its_configuration(harness, name, value, reason):
     node = harness.node
@@ -177,3 +187,14 @@ def test_the_node_refuses_the_same_at_a_runtime_change_and_keeps_its_configurati
     harness.send_wrench([50.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     harness.tick(2)
     assert harness.status[-1].solver_status == "solved"
+
+
+def test_the_node_refuses_at_start_a_method_that_cannot_serve_the_vehicle(tmp_path, ros_context):
+    """The allocator's check, reported as every invalid configuration is: naming the key."""
+    from allocator_pkg.ros.node import AllocatorNode
+    from allocator_pkg.ros.node_base import NodeConfigError
+    params = write_parameters(tmp_path / "explicit.yaml", {**read_parameters(EXAMPLE), "method": "explicit"})
+    with pytest.raises(NodeConfigError) as error:
+        AllocatorNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(params)])
+    assert [key for key, _ in error.value.problems] == ["method"]
+    assert "method: 'explicit' cannot serve this vehicle" in error.value.report()

@@ -1,6 +1,6 @@
 """The method registry and interface: every name the rest of the package offers comes from
-``METHODS``, every registered method implements the interface, and a new method registered
-there is taken everywhere with no other change."""
+``METHODS`` (the schema's from ``METHOD_NAMES``, the same names), every registered method
+implements the interface, and a new method registered there is taken everywhere."""
 
 from dataclasses import replace
 
@@ -61,8 +61,9 @@ class HalfPseudoInverse(PseudoInverseAllocation):
 
 @pytest.fixture
 def registered(monkeypatch):
-    """HalfPseudoInverse added to the registry, as its one line in methods/__init__.py would
-    (the schema reads the registry when it is imported, so its key is rebuilt here)."""
+    """HalfPseudoInverse added to the registry, as its one line in methods/__init__.py and its
+    name in METHOD_NAMES would (the schema reads the names when it is imported, so its key is
+    rebuilt here)."""
     monkeypatch.setitem(METHODS, HalfPseudoInverse.name, HalfPseudoInverse)
     key = replace(schema.VEHICLE_KEY_BY_NAME["method"], choices=tuple(METHODS))
     monkeypatch.setitem(schema.VEHICLE_KEY_BY_NAME, "method", key)
@@ -87,7 +88,7 @@ def test_a_method_that_cannot_serve_a_vehicle_is_refused_with_its_reason(registe
     parameters = read_parameters(ROOT / "config" / "otter_usv.yaml")
     parameters["method"] = "half"
     with pytest.raises(ConfigError, match="method: 'half' cannot serve this vehicle: works on four actuators only"):
-        vehicle_from_parameters(parameters)
+        Allocator(vehicle_from_parameters(parameters))
 
 
 def test_an_unknown_method_is_refused_everywhere():
@@ -104,7 +105,7 @@ def test_svd_filter_is_refused_for_a_vehicle_without_rotatable_thrusters():
     parameters["method"] = "svd_filter"
     with pytest.raises(ConfigError, match="method: 'svd_filter' cannot serve this vehicle: it steers rotatable "
                                           "thrusters and this vehicle has none"):
-        vehicle_from_parameters(parameters)
+        Allocator(vehicle_from_parameters(parameters))
     with pytest.raises(ValueError, match="'svd_filter' cannot serve this vehicle"):
         Allocator(load_vehicle(ROOT / "config" / "bluerov2_heavy.yaml"), method="svd_filter")
 
@@ -115,7 +116,7 @@ def test_a_saturation_mode_a_method_does_not_implement_is_refused_with_its_reaso
     parameters.update(method=name, saturation="direct")
     with pytest.raises(ConfigError, match=f"'{name}' cannot serve this vehicle: it does not implement saturation "
                                           "'direct'"):
-        vehicle_from_parameters(parameters)
+        Allocator(vehicle_from_parameters(parameters))
 
 
 @pytest.mark.parametrize("name", [name for name in METHODS if "direct" in METHODS[name].saturation_modes])
@@ -141,7 +142,7 @@ def test_a_method_implements_priorities_or_is_refused_with_them(name):
         Allocator(vehicle).allocate([500.0, 0.0, 0.0, 0.0, 0.0, 300.0])
         return
     with pytest.raises(ConfigError, match=f"priorities: method '{name}' does not implement DOF priorities"):
-        vehicle_from_parameters(parameters)
+        Allocator(vehicle_from_parameters(parameters))
     prioritised = vehicle_from(path, priorities=levels)
     with pytest.raises(ValueError, match=f"method '{name}' does not implement DOF priorities"):
         Allocator(prioritised, method=name)

@@ -1,13 +1,12 @@
 """Loading and validating vehicle configurations (ROS 2 params files)."""
 
 import math
-import textwrap
+import subprocess
+import sys
 
 import pytest
-from conftest import ROOT
 
-from allocator_pkg import ConfigError, load_vehicle, read_parameters, vehicle_from_parameters
-from allocator_pkg.configuration.parameters import section_matches
+from allocator_pkg import ConfigError, vehicle_from_parameters
 
 VALID = {
     "dofs": ["surge", "yaw"],
@@ -62,6 +61,9 @@ def test_valid_parameters_and_defaults():
     rudder = vehicle.actuator("rudder")
     assert rudder.direction == (0.0, 1.0, 0.0)                   # rudder lift along +y by default
     assert rudder.weight == pytest.approx(0.1) and port.weight == 1.0
+    assert rudder.power_coefficient == 0.0 and port.power_coefficient == 1.0 == azi.power_coefficient
+    fin = vehicle_from_parameters(with_changes(actuators__rudder__type="fin")).actuator("rudder")
+    assert fin.direction == (0.0, 0.0, 1.0)                      # fin lift along +z by default
     assert vehicle.method == "qp" and vehicle.rate_hz == 50.0
     assert vehicle.dofs == ("surge", "yaw")
     assert vehicle.weights.slack == ()                           # derived per DOF by the allocator
@@ -134,82 +136,6 @@ def test_table_map_validation():
                                       actuators__port__table_thrust=[1.0, 2.0])
 
 
-def write(tmp_path, text):
-    path = tmp_path / "vehicle.yaml"
-    path.write_text(textwrap.dedent(text))
-    return path
-
-
-def test_params_file_reads_like_rcl(tmp_path):
-    path = write(tmp_path, """
-        /robot/thrust_allocator:
-          ros__parameters:
-            weights:
-              slack: [1e6, 1.0e+6]
-            dofs: [surge, yaw]
-            actuators:
-              names: [a]
-              a: {type: fixed, position: [0.0, 0.5, 0.0], direction: [1.0, 0.0, 0.0], thrust_max: 1.0,
-                  command_max: 1e3}
-              b: {}
-        """)
-    parameters = read_parameters(path)
-    assert parameters["weights.slack"] == [1e6, 1e6]            # 1e6 is a float, as rcl reads it
-    assert "actuators.b" not in parameters
-    vehicle = load_vehicle(path, node_name="thrust_allocator")
-    assert vehicle.weights.slack == (1e6, 1e6)
-
-
-def test_params_file_errors(tmp_path):
-    with pytest.raises(ConfigError, match="a ROS parameter list holds one type"):
-        load_vehicle(write(tmp_path, """
-            n:
-              ros__parameters:
-                actuators:
-                  names: [a]
-                  a: {type: fixed, position: [1, 0.5, 0], direction: [1.0, 0.0, 0.0], thrust_max: 1.0}
-            """))
-    with pytest.raises(ConfigError, match="not valid YAML"):
-        load_vehicle(write(tmp_path, "n: [unclosed"))
-    with pytest.raises(ConfigError, match="ros__parameters"):
-        load_vehicle(write(tmp_path, "n: {rate_hz: 5}"))
-    with pytest.raises(ConfigError, match="cannot read"):
-        load_vehicle(tmp_path / "missing.yaml")
-    with pytest.raises(ConfigError, match="no section for node 'other'"):
-        load_vehicle(write(tmp_path, "/rov1/thrust_allocator: {ros__parameters: {rate_hz: 5}}"), node_name="other")
-
-
-@pytest.mark.parametrize(("section", "node", "applies"), [
-    ("/**", "/rov1/thrust_allocator", True),
-    ("/**/thrust_allocator", "/rov1/thrust_allocator", True),
-    ("/**/thrust_allocator", "/thrust_allocator", True),
-    ("/**/thrust_allocator", "/rov1/alloc", False),
-    ("thrust_allocator", "/thrust_allocator", True),
-    ("thrust_allocator", "/rov1/thrust_allocator", False),          # a namespace the pattern does not cover
-    ("/rov*/thrust_allocator", "/rov1/thrust_allocator", True),
-    ("/rov*/thrust_allocator", "/fleet/rov1/thrust_allocator", False),
-    ("/robot/thrust_allocator", "thrust_allocator", True),            # a name alone: any namespace
-])
-def test_sections_apply_to_nodes_as_rcl_matches_them(section, node, applies):
-    assert section_matches(section, node) == applies
-
-
-def test_shipped_files_apply_to_any_node_name():
-    for path in (ROOT / "config").glob("*.yaml"):
-        assert read_parameters(path, "/rov1/alloc") == read_parameters(path), path
-
-
-def test_empty_list_means_not_set(tmp_path):
-    # rcl reads [] as "not set": the required key is then missing.
-    with pytest.raises(ConfigError, match=r"actuators\.names: required"):
-        load_vehicle(write(tmp_path, """
-            n:
-              ros__parameters:
-                actuators:
-                  names: []
-            """))
-
-
 def test_rotation_limits_and_initial_angle():
     vehicle = vehicle_from_parameters(with_changes(actuators__azi__azimuth_min=-1.0, actuators__azi__azimuth_max=1.0,
                                                    actuators__azi__forbidden_sectors=None,
@@ -271,8 +197,6 @@ def test_each_invalid_voltage_key_is_named_with_its_reason(changes, key, reason)
         ({"priorities": [0, -1]}, "priorities", "must be >= 0, got -1"),
         ({"priorities": [0.5, 1.0]}, "priorities", "expected a list of integers"),
         ({"priorities": ["yaw", "surge"]}, "priorities", "expected a list of integers"),
-        ({"priorities": [1, 0], "method": "nonlinear"}, "priorities",
-         "method 'nonlinear' does not implement DOF priorities; methods that do: qp, pseudoinverse"),
         ({"priorities": [1, 0], "saturation": "preserve_direction"}, "priorities", "use one or the other"),
         ({"actuators__port__command_deadband": -1.0}, "actuators.port.command_deadband", "must be >= 0"),
         ({"actuators__port__command_max": 2.0, "actuators__port__command_deadband": 2.0},
@@ -291,3 +215,16 @@ def test_priorities_are_given_in_dofs_order_and_kept_in_dof_order():
     assert vehicle.priority_levels == ((1,), (0,))
     same = vehicle_from_parameters(with_changes(priorities=[3, 3]))
     assert same.priority_levels == ()                       # one level: nothing to order
+
+
+def test_reading_a_configuration_loads_no_solver():
+    """The configuration sits below the solvers and the methods: importing it (with the package)
+    loads none of OSQP, DAQP and HiGHS; the allocator does."""
+    code = ("import sys\n"
+            "import allocator_pkg.configuration.parameters\n"
+            "solvers = ('osqp', 'daqp', 'highspy')\n"
+            "print([name for name in solvers if name in sys.modules])\n"
+            "from allocator_pkg import Allocator\n"
+            "print([name for name in solvers if name in sys.modules])\n")
+    lines = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.splitlines()
+    assert lines == ["[]", "['osqp', 'daqp', 'highspy']"]

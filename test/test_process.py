@@ -240,15 +240,14 @@ def test_the_input_trigger_answers_a_wrench_without_waiting_for_the_timer(ros_co
 
 def test_the_geometry_comes_from_the_robot_description_topic(ros_context, tmp_path):
     """robot_state_publisher's way: a transient-local robot_description, here from this process."""
-    import yaml
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from std_msgs.msg import String
-    from test_urdf import BLUEROV, nested, urdf_of, without_geometry
+    from test_urdf import BLUEROV, urdf_of, without_geometry
 
     from allocator_msgs.msg import ThrusterCommands
     from allocator_pkg import read_parameters
-    params = tmp_path / "bluerov2.yaml"
-    params.write_text(yaml.safe_dump({"/**": {"ros__parameters": nested(without_geometry(BLUEROV, frame="flu"))}}))
+    from allocator_pkg.configuration.params_file import write_parameters
+    params = write_parameters(tmp_path / "bluerov2.yaml", without_geometry(BLUEROV, frame="flu"))
     listener = Listener(ros_context)
     latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
     description = listener.node.create_publisher(String, "/urdf/robot_description", latched)

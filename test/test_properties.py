@@ -79,7 +79,7 @@ def test_outputs_respect_every_limit_and_are_deterministic(method, data):
     if METHODS[method].problems(vehicle):      # a vehicle of the actuators and saturation the method takes
         vehicle = data.draw(vehicles(FIXED_DIRECTIONS if method == "explicit" else TYPES,
                                      METHODS[method].saturation_modes))
-    assume(not METHODS[method].problems(vehicle))           # refused when parsed, with its reason
+    assume(not METHODS[method].problems(vehicle))           # the allocator refuses it, with its reason
     fault_set = data.draw(faults(vehicle))
     sequence = data.draw(requests)
     speed = data.draw(st.floats(min_value=0.0, max_value=5.0))

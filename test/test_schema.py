@@ -2,7 +2,9 @@
 
 from conftest import ROOT
 
+from allocator_pkg import METHODS
 from allocator_pkg.configuration import schema
+from allocator_pkg.vehicle.config import METHOD_NAMES
 
 
 def test_configuration_doc_is_generated_from_the_schema():
@@ -31,3 +33,17 @@ def test_every_key_says_what_it_accepts():
         assert key.documented_range(), key.name
     assert "each at most once" in schema.VEHICLE_KEY_BY_NAME["dofs"].documented_range()
     assert "[start, end] pairs" in schema.ACTUATOR_KEY_BY_NAME["forbidden_sectors"].documented_range()
+
+
+def test_the_method_names_are_the_registered_methods():
+    """The schema offers METHOD_NAMES without loading a method; they name the registry's entries."""
+    assert schema.VEHICLE_KEY_BY_NAME["method"].choices == METHOD_NAMES
+    assert tuple(METHODS) == METHOD_NAMES
+
+
+def test_a_default_by_type_is_for_a_type_the_key_applies_to():
+    keyed = [key for key in schema.ACTUATOR_KEYS if key.type_defaults]
+    assert {key.name for key in keyed} == {"direction", "weight", "power_coefficient"}
+    for key in keyed:
+        assert set(key.type_defaults) <= set(key.applies_to), key.name
+        assert key.default_for("no such type") is key.default is None

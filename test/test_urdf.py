@@ -6,11 +6,11 @@ import math
 
 import numpy as np
 import pytest
-import yaml
 from conftest import ROOT
 from scipy.spatial.transform import Rotation
 
 from allocator_pkg import ConfigError, read_parameters, vehicle_from_parameters
+from allocator_pkg.configuration.params_file import write_parameters
 from allocator_pkg.configuration.urdf import geometry_parameters
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 
@@ -130,9 +130,8 @@ def test_the_node_reads_a_urdf_file_and_keeps_its_geometry(tmp_path, ros_context
     full = read_parameters(BLUEROV)
     description = tmp_path / "bluerov2.urdf"
     description.write_text(urdf_of(full, "flu"))
-    params = tmp_path / "bluerov2.yaml"
-    params.write_text(yaml.safe_dump({"/**": {"ros__parameters": nested(without_geometry(
-        BLUEROV, frame="flu", robot_description_file=str(description)))}}))
+    params = write_parameters(tmp_path / "bluerov2.yaml", without_geometry(
+        BLUEROV, frame="flu", robot_description_file=str(description)))
     node = AllocatorNode(context=ros_context, cli_args=["--ros-args", "--params-file", str(params)])
     try:
         position = node.allocator.vehicle.actuator("thruster_1").position
@@ -142,15 +141,3 @@ def test_the_node_reads_a_urdf_file_and_keeps_its_geometry(tmp_path, ros_context
     finally:
         node.release()
         node.destroy_node()
-
-
-def nested(flat):
-    """Flat parameter names to the nested dictionaries of a params file."""
-    result: dict = {}
-    for name, value in flat.items():
-        *path, last = name.split(".")
-        level = result
-        for part in path:
-            level = level.setdefault(part, {})
-        level[last] = value
-    return result

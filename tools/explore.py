@@ -16,8 +16,6 @@ import time
 import traceback
 from pathlib import Path
 
-import yaml
-
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "test"))
 
@@ -25,17 +23,7 @@ from hypothesis import HealthCheck, Phase, given, seed, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 from test_generated import CASES  # noqa: E402
 
-
-def params_file(parameters: dict) -> str:
-    """Flat parameters as a ROS 2 params file (``/**: ros__parameters:``)."""
-    nested: dict = {}
-    for name, value in parameters.items():
-        node = nested
-        *parents, leaf = name.split(".")
-        for parent in parents:
-            node = node.setdefault(parent, {})
-        node[leaf] = value
-    return yaml.safe_dump({"/**": {"ros__parameters": nested}}, sort_keys=False)
+from allocator_pkg.configuration.params_file import params_text  # noqa: E402
 
 
 def explore(case, method: str, examples: int, run_seed: int) -> str | None:
@@ -72,7 +60,7 @@ def explore(case, method: str, examples: int, run_seed: int) -> str | None:
         comments.append(f"# faults: {last.get('faults', {})}")
         kind, requests = last.get("requests", ("none", []))
         comments.append(f"# requests ({kind}): {[list(map(float, tau)) for tau in requests[:3]]}")
-        return "\n".join(comments) + "\n" + params_file(last.get("parameters", {}))
+        return "\n".join(comments) + "\n" + params_text(last.get("parameters", {}))
     return None
 
 

@@ -19,7 +19,8 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.explicit_regions import precompute
-from ..configuration.parameters import read_parameters, vehicle_from_parameters
+from ..configuration.parameters import vehicle_from_parameters
+from ..configuration.params_file import read_parameters
 from ..vehicle.config import ConfigError
 
 

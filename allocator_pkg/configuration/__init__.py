@@ -3,5 +3,6 @@ or dict to a validated :class:`~allocator_pkg.vehicle.config.Vehicle` and
 :class:`~allocator_pkg.vehicle.node_settings.NodeSettings` (``parameters``), and actuator
 positions and directions read from a URDF (``urdf``).
 
-It sits above the methods: the method a file names is checked against the registry
-(:data:`allocator_pkg.methods.METHODS`), its reasons included, when the file is read."""
+It sits below the solvers and the methods: a file names its method from
+:data:`~allocator_pkg.vehicle.config.METHOD_NAMES`, and whether that method can serve the vehicle
+is the allocator's check (:func:`allocator_pkg.allocation.solve.check_method`)."""

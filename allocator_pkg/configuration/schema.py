@@ -1,10 +1,11 @@
 """The configuration schema: every parameter the allocator reads, in one table.
 
-The same table drives the params-file loader (:func:`allocator_pkg.vehicle.config.load_vehicle`),
-the node's parameter declarations (descriptions, ranges, read-only flags) and the
-reference page ``docs/configuration.md``. Parameter names are the ROS ones: dotted,
-vehicle-wide keys such as ``weights.slack``, and per-actuator keys under
-``actuators.<name>.``.
+The same table drives the params-file loader
+(:func:`allocator_pkg.configuration.parameters.load_vehicle`), the fields of the configuration
+types it fills (:mod:`allocator_pkg.configuration.fields`), the node's parameter declarations
+(descriptions, ranges, read-only flags) and the reference page ``docs/configuration.md``: no
+default or range is written anywhere else. Parameter names are the ROS ones: dotted,
+vehicle-wide keys such as ``weights.slack``, and per-actuator keys under ``actuators.<name>.``.
 
 Values are typed the way a ROS 2 params file types them: an integer is accepted where a
 float is expected, a list holds one element type, and an empty list means "not set".
@@ -14,10 +15,10 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
-from ..methods import METHODS
 from ..vehicle.config import (
     ACTUATOR_TYPES,
     COMMAND_MAPS,
@@ -25,6 +26,7 @@ from ..vehicle.config import (
     FIN,
     FIXED,
     FLOW_MODELS,
+    METHOD_NAMES,
     ROTATABLE_TYPES,
     RUDDER,
     SATURATION_MODES,
@@ -50,8 +52,10 @@ class Key:
 
     ``default`` is the value used when the parameter is absent; ``None`` means the key is
     optional with a default that depends on other keys (``default_doc`` says which), and
-    ``required`` means it must be given. ``constraint`` says in words what the checks of
-    :mod:`allocator_pkg.configuration.parameters` want beyond type, choices, range and length.
+    ``required`` means it must be given. A per-actuator key whose default differs by actuator
+    type has it in ``type_defaults`` (type: default). ``constraint`` says in words what the
+    checks of :mod:`allocator_pkg.configuration.parameters` and
+    :mod:`allocator_pkg.configuration.actuators` want beyond type, choices, range and length.
     """
 
     name: str
@@ -69,6 +73,11 @@ class Key:
     read_only: bool = False
     unit: str = ""
     constraint: str = ""
+    type_defaults: Mapping[str, Any] = field(default_factory=dict)
+
+    def default_for(self, actuator_type: str | None) -> Any:
+        """The default of this key for an actuator of ``actuator_type`` (None: not per actuator)."""
+        return self.type_defaults.get(actuator_type, self.default)
 
     def documented_default(self) -> str:
         if self.required:
@@ -105,7 +114,7 @@ class Key:
 VEHICLE_KEYS: tuple[Key, ...] = (
     Key("rate_hz", FLOAT, "Allocation rate: one sample per period, also the dt of rate limits.",
         default=50.0, minimum=0.0, exclusive_minimum=True, maximum=10000.0, unit="Hz"),
-    Key("method", STR, "Allocation method (see docs/theory.md).", default="qp", choices=tuple(METHODS)),
+    Key("method", STR, "Allocation method (see docs/theory.md).", default="qp", choices=METHOD_NAMES),
     Key("dofs", STR_LIST, "Controlled degrees of freedom; the others of the requested wrench are ignored.",
         default=list(DOF_NAMES), default_doc="all six",
         constraint=f"at least one of {', '.join(DOF_NAMES)}, each at most once"),
@@ -185,7 +194,7 @@ NODE_KEYS: tuple[Key, ...] = (
         "each valid wrench at once, at most rate_hz times per second (earlier ones coalesced to the latest), "
         "the timer kept as the watchdog.", default="timer", choices=TRIGGERS),
     Key("executor", STR, "The rclpy executor of the node's process: `events` (rclpy's EventsExecutor: callbacks "
-        "run on events, about 0.3 ms less CPU per sample than `single_threaded` on this package's benchmark) or "
+        "run on events, with less CPU per sample than `single_threaded`; docs/performance.md) or "
         "`single_threaded` (rclpy's SingleThreadedExecutor, which rebuilds its wait set at every wake-up). Read "
         "when the process starts.", default="events", choices=EXECUTORS, read_only=True),
     Key("status_rate_hz", FLOAT, "How often at most allocation_status goes out: 0, every sample; above 0, at most "
@@ -245,16 +254,19 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
     Key("direction", FLOAT_LIST, "Force direction of a fixed thruster, lift direction per positive deflection "
         "of a control surface (FRD); normalised. A fixed thruster's comes from the URDF with geometry_source "
         "robot_description and must not be set then.", length=3, applies_to=_DIRECTED,
-        default_doc="required for fixed; [0, 1, 0] rudder, [0, 0, 1] fin", constraint="not the zero vector"),
+        default_doc="required for fixed; [0, 1, 0] rudder, [0, 0, 1] fin", constraint="not the zero vector",
+        type_defaults={RUDDER: [0.0, 1.0, 0.0], FIN: [0.0, 0.0, 1.0]}),
     Key("link", STR, "URDF link of this actuator (geometry_source robot_description): the child link of a "
         "revolute or continuous joint at the point where the force acts. A fixed thruster's force is along "
         "that joint's axis (Gazebo's Thruster system); a rotatable thruster's joint turns it, about z "
         "(azimuth) or y (azimuth_vertical).", applies_to=_ALL, default_doc="the actuator's name",
         read_only=True, constraint="a link below base_frame through fixed joints"),
     Key("weight", FLOAT, "W_ii: weight of this actuator's squared force (1.24), (1.35).",
-        minimum=0.0, exclusive_minimum=True, applies_to=_ALL, default_doc="1.0 thrusters, 0.1 control surfaces"),
+        minimum=0.0, exclusive_minimum=True, applies_to=_ALL, default_doc="1.0 thrusters, 0.1 control surfaces",
+        type_defaults={**dict.fromkeys(_THR, 1.0), **dict.fromkeys(_SURF, 0.1)}),
     Key("power_coefficient", FLOAT, "P_i in the power estimate sum P_i |f_i|^(3/2) (1.44).",
-        minimum=0.0, applies_to=_ALL, default_doc="1.0 thrusters, 0.0 control surfaces"),
+        minimum=0.0, applies_to=_ALL, default_doc="1.0 thrusters, 0.0 control surfaces",
+        type_defaults={**dict.fromkeys(_THR, 1.0), **dict.fromkeys(_SURF, 0.0)}),
     Key("thrust_max", FLOAT, "Largest force along the actuator axis.", required=True, minimum=0.0,
         exclusive_minimum=True, applies_to=_THR, unit="N"),
     Key("thrust_min", FLOAT, "Most negative force along the axis (<= 0).", maximum=0.0, applies_to=_THR,

@@ -123,8 +123,8 @@ def geometry_parameters(text: str, parameters: Mapping[str, Any]) -> dict[str, l
     """The positions (and fixed thrusters' directions) of the actuators named in ``parameters``
     (flat ROS parameters), from the URDF ``text``, as flat parameters in FRD. Raises ConfigError
     naming each actuator's problem; keys the params file sets that the URDF supplies are one."""
-    base_frame = parameters.get("base_frame", "base_link")
-    frame = parameters.get("frame", "frd")
+    base_frame = parameters.get("base_frame", schema.NODE_KEY_BY_NAME["base_frame"].default)
+    frame = parameters.get("frame", schema.NODE_KEY_BY_NAME["frame"].default)
     try:
         by_child = joints(text)
     except ValueError as error:

@@ -3,10 +3,11 @@
 from.
 
 ``METHODS`` maps each configuration name to its :class:`~.base.AllocationMethod`: the
-schema's choices for ``method``, the allocator's construction, ``allocator-capability
---method``, the benchmarks and the tests' parameter lists all read it. A new method is one
-module with a subclass of :class:`~.base.AllocationMethod`, one line here, its tests and a
-section in docs/theory.md.
+allocator's construction, ``allocator-capability --method``, the benchmarks and the tests'
+parameter lists all read it; the schema offers its names from
+:data:`~allocator_pkg.vehicle.config.METHOD_NAMES` (test/test_schema.py holds the two equal). A
+new method is one module with a subclass of :class:`~.base.AllocationMethod`, one line here,
+its name in METHOD_NAMES, its tests and a section in docs/theory.md.
 
 - ``qp``: the constrained QP (1.35) on one warm-started solver problem;
 - ``pseudoinverse``: the weighted generalised inverse (1.29)/(1.33) with clipping or scaling;

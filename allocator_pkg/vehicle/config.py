@@ -1,7 +1,9 @@
 """Vehicle configuration types: frozen, validated dataclasses and the names they use.
 
 Nothing here reads files or checks values: :mod:`allocator_pkg.configuration.parameters` builds these
-from ROS parameters (and says what is wrong), and every other module only reads them.
+from ROS parameters (and says what is wrong), and every other module only reads them. A field
+holds the parameter of its name (:mod:`allocator_pkg.configuration.fields`), whose default and
+range only the schema gives (:mod:`allocator_pkg.configuration.schema`).
 """
 
 from __future__ import annotations
@@ -23,6 +25,9 @@ ROTATABLE_TYPES = (AZIMUTH, AZIMUTH_VERTICAL)
 SURFACE_TYPES = (RUDDER, FIN)
 THRUSTER_TYPES = (FIXED, AZIMUTH, AZIMUTH_VERTICAL)
 
+METHOD_NAMES = ("qp", "pseudoinverse", "nonlinear", "lp", "dynamic", "svd_filter", "explicit")
+"""The allocation methods a configuration may name, in the order of the registry
+:data:`allocator_pkg.methods.METHODS` (which holds their implementations)."""
 SATURATION_MODES = ("weighted", "preserve_direction", "direct")
 COMMAND_MAPS = ("linear", "quadratic", "table")
 FLOW_MODELS = ("free", "propeller_wake")
@@ -44,18 +49,19 @@ class CommandMapConfig:
     ``table_voltage`` (strictly increasing), flattened into ``table_thrust`` row after row;
     without voltages it has one row. ``deadband`` is the smallest command magnitude that
     turns the propeller of a linear or quadratic map (0: none); ``reversed`` flips the sign of
-    the command about the set-point of zero force (a thruster wired or propped backwards)."""
+    the command about the set-point of zero force (a thruster wired or propped backwards). A
+    linear or quadratic map has no table."""
 
     kind: str
     gain: float
     gain_reverse: float
     command_min: float
     command_max: float
+    deadband: float
+    reversed: bool
     table_command: tuple[float, ...] = ()
     table_thrust: tuple[float, ...] = ()
     table_voltage: tuple[float, ...] = ()
-    deadband: float = 0.0
-    reversed: bool = False
 
     @property
     def thrust_rows(self) -> tuple[tuple[float, ...], ...]:
@@ -98,7 +104,9 @@ class SurfaceConfig:
 @dataclass(frozen=True)
 class ActuatorConfig:
     """One actuator. ``direction`` is the unit force (or lift) direction of fixed
-    thrusters and control surfaces; rotatable thrusters take theirs from the angle."""
+    thrusters and control surfaces; rotatable thrusters take theirs from the angle. The thrust
+    range and ``command`` are a thruster's (a control surface has none: zero), ``rotation`` a
+    rotatable thruster's and ``surface`` a control surface's."""
 
     name: str
     type: str
@@ -157,12 +165,12 @@ class Vehicle:
     nonlinear_max_iterations: int
     solver: SolverSettings
     water_density: float
-    dynamic_gain: float = 0.5
-    svd_filter_time_constant: float = 0.2
-    svd_filter_damping_threshold: float = 0.05
-    priorities: tuple[int, ...] = ()
-    nominal_voltage: float | None = None
-    explicit_regions: str = ""
+    dynamic_gain: float
+    svd_filter_time_constant: float
+    svd_filter_damping_threshold: float
+    priorities: tuple[int, ...]
+    nominal_voltage: float | None
+    explicit_regions: str
 
     @property
     def priority_levels(self) -> tuple[tuple[int, ...], ...]:

@@ -3,7 +3,7 @@ reads them. Parsed and checked with the vehicle (:func:`allocator_pkg.configurat
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 NODE_NAME = "thrust_allocator"
 """The allocator node's default name."""
@@ -40,33 +40,32 @@ class NodeSettings:
     Float64 topic per actuator; the body frame convention ``frame`` of the wrenches in and out
     and the name ``base_frame`` stamped on the outputs; the wrench message type; what starts a
     sample (``timer`` or ``input``); how often at most the status goes out (0: every sample);
-    the rate of the thrust markers (0: none); where positions and directions come from, the
-    URDF file (empty: the ``robot_description`` topic) and each actuator's link in it; how long
-    [s] the thrust limits follow the last battery voltage before they fall back to the nominal
-    voltage; the ros2_control topics of thrust and of azimuth angles (empty: none) and the
-    actuators they carry, in the controller's joint order (empty: every actuator in
-    configuration order); whether ``~/hold_actuator`` may hold one actuator at a time, at most
-    what share of its largest thrust and for how long. A dotted key fills the field of its name
-    with '_' for '.' (``ros2_control.thrust_topic``:
-    ``ros2_control_thrust_topic``).
+    the rate of the thrust markers (0: none); where positions and directions come from and the
+    URDF file (empty: the ``robot_description`` topic); how long [s] the thrust limits follow
+    the last battery voltage before they fall back to the nominal voltage; the ros2_control
+    topics of thrust and of azimuth angles (empty: none) and the actuators they carry, in the
+    controller's joint order (every actuator in configuration order unless the key gives
+    them); whether ``~/hold_actuator`` may hold one actuator at a time, at most what share of
+    its largest thrust and for how long. A dotted key fills the field of its name with '_' for
+    '.' (``ros2_control.thrust_topic``: ``ros2_control_thrust_topic``;
+    :mod:`allocator_pkg.configuration.fields`).
     """
 
     wrench_timeout: float
-    per_actuator_topics: bool = False
-    frame: str = FRD
-    base_frame: str = "base_link"
-    wrench_type: str = WRENCH
-    trigger: str = TIMER
-    status_rate_hz: float = 0.0
-    markers_rate_hz: float = 10.0
-    geometry_source: str = PARAMS
-    robot_description_file: str = ""
-    battery_timeout: float = 5.0
-    ros2_control_thrust_topic: str = ""
-    ros2_control_angle_topic: str = ""
-    ros2_control_actuators: tuple[str, ...] | None = None
-    step_test_enabled: bool = False
-    executor: str = EVENTS
-    step_test_thrust_share: float = 0.2
-    step_test_duration_max: float = 5.0
-    links: dict[str, str] = field(default_factory=dict)
+    per_actuator_topics: bool
+    frame: str
+    base_frame: str
+    wrench_type: str
+    trigger: str
+    status_rate_hz: float
+    markers_rate_hz: float
+    geometry_source: str
+    robot_description_file: str
+    battery_timeout: float
+    ros2_control_thrust_topic: str
+    ros2_control_angle_topic: str
+    ros2_control_actuators: tuple[str, ...]
+    step_test_enabled: bool
+    executor: str
+    step_test_thrust_share: float
+    step_test_duration_max: float

@@ -1,0 +1,111 @@
+"""The configuration types are filled from the schema by name: every field is one key's and
+every key fills one field, but for the few the builder reads or derives by hand."""
+
+from dataclasses import fields
+
+import pytest
+
+from allocator_pkg import parse_parameters
+from allocator_pkg.configuration import schema
+from allocator_pkg.configuration.fields import Field, actuator_field, filled, node_field, vehicle_field
+from allocator_pkg.vehicle.config import (
+    ActuatorConfig,
+    CommandMapConfig,
+    RotationConfig,
+    SolverSettings,
+    SurfaceConfig,
+    Vehicle,
+    Weights,
+)
+from allocator_pkg.vehicle.node_settings import NodeSettings
+
+TABLES = ((schema.VEHICLE_KEYS, vehicle_field), (schema.NODE_KEYS, node_field), (schema.ACTUATOR_KEYS, actuator_field))
+STRUCTS = (Vehicle, Weights, SolverSettings, NodeSettings, ActuatorConfig, CommandMapConfig, RotationConfig,
+           SurfaceConfig)
+
+NO_FIELD = {"actuators.names", "link"}
+"""Keys read by hand: the names make Vehicle.actuators, a link is configuration.urdf's."""
+
+NO_KEY = {Vehicle: {"actuators", "weights", "solver"}, ActuatorConfig: {"name", "command", "rotation", "surface"}}
+"""Fields of no key: built from other keys."""
+
+DERIVED = {"dofs", "weights.slack", "priorities", "nominal_voltage", "ros2_control.actuators", "position", "direction",
+           "thrust_min", "gain_reverse", "command_min", "command_max", "table_command", "table_thrust", "table_voltage",
+           "forbidden_sectors"}
+"""Keys whose field the builder derives by hand (an order, a default that depends on other keys,
+a normalised vector, sector pairs); every other key's value is its field's as it stands."""
+
+
+def test_every_key_fills_one_field_and_every_field_is_one_key():
+    keys_of: dict[Field, list[str]] = {}
+    for keys, field_of in TABLES:
+        for key in keys:
+            field = field_of(key.name)
+            assert (field is None) == (key.name in NO_FIELD), key.name
+            if field is not None:
+                keys_of.setdefault(field, []).append(key.name)
+    assert all(len(names) == 1 for names in keys_of.values()), keys_of
+    for struct in STRUCTS:
+        for field in fields(struct):
+            has_key = Field(struct, field.name) in keys_of
+            assert has_key != (field.name in NO_KEY.get(struct, ())), f"{struct.__name__}.{field.name}"
+
+
+VEHICLE_VALUES = {
+    "rate_hz": 20.0, "method": "pseudoinverse", "saturation": "preserve_direction", "weights.minimax": 0.5,
+    "weights.azimuth_change": 3.0, "singularity.rho": 0.1, "singularity.epsilon": 2e-3, "azimuth_polygon_sides": 12,
+    "nonlinear.max_iterations": 3, "dynamic.gain": 0.25, "svd_filter.time_constant": 0.7,
+    "svd_filter.damping_threshold": 0.1, "explicit.regions": "regions.npz", "solver.eps_abs": 1e-4,
+    "solver.eps_rel": 2e-4, "solver.max_iter": 500, "solver.time_limit": 0.01, "water_density": 1000.0,
+}
+NODE_VALUES = {
+    "wrench_timeout": 1.5, "per_actuator_topics": True, "frame": "flu", "base_frame": "hull",
+    "wrench_type": "wrench_stamped", "trigger": "input", "executor": "single_threaded", "status_rate_hz": 5.0,
+    "markers_rate_hz": 2.0, "geometry_source": "robot_description", "battery_timeout": 2.0,
+    "robot_description_file": "r.urdf", "ros2_control.thrust_topic": "/thrust", "ros2_control.angle_topic": "/angle",
+    "step_test.enabled": True, "step_test.thrust_share": 0.3, "step_test.duration_max": 10.0,
+}
+THRUSTER_VALUES = {
+    "type": "azimuth", "weight": 2.0, "power_coefficient": 0.5, "thrust_max": 20.0, "thrust_rate_max": 5.0,
+    "command_map": "quadratic", "gain": 2.0, "command_deadband": 0.1, "reversed": True, "azimuth_min": -1.0,
+    "azimuth_max": 2.0, "azimuth_rate_max": 0.5, "reversible": True, "azimuth_initial": 0.3,
+}
+SURFACE_VALUES = {
+    "type": "fin", "weight": 0.3, "power_coefficient": 0.2, "area": 0.2, "lift_coefficient": 2.5,
+    "drag_coefficient": 0.3, "deflection_max": 0.6, "deflection_rate_max": 0.4, "flow": "propeller_wake",
+    "wake_speed_factor": 1.3, "min_control_speed": 0.8,
+}
+
+
+def test_every_other_key_is_the_value_of_its_field():
+    """Every key but the derived and the hand-read ones, each at a value unlike its default."""
+    parameters = {**VEHICLE_VALUES, **NODE_VALUES, "dofs": ["surge", "heave", "yaw"], "actuators.names": ["azi", "fin"],
+                  "actuators.azi.position": [1.0, 0.0, 0.0], "actuators.fin.position": [-1.0, 0.0, 0.0]}
+    parameters.update({f"actuators.azi.{key}": value for key, value in THRUSTER_VALUES.items()})
+    parameters.update({f"actuators.fin.{key}": value for key, value in SURFACE_VALUES.items()})
+    vehicle, settings = parse_parameters(parameters)
+    azi, fin = vehicle.actuators
+    owners = {Vehicle: vehicle, Weights: vehicle.weights, SolverSettings: vehicle.solver, NodeSettings: settings}
+    per_actuator = schema.ACTUATOR_KEY_BY_NAME.get
+    given = [(VEHICLE_VALUES, vehicle_field, schema.key_for, owners), (NODE_VALUES, node_field, schema.key_for, owners),
+             (THRUSTER_VALUES, actuator_field, per_actuator, {ActuatorConfig: azi, CommandMapConfig: azi.command,
+                                                              RotationConfig: azi.rotation}),
+             (SURFACE_VALUES, actuator_field, per_actuator, {ActuatorConfig: fin, SurfaceConfig: fin.surface})]
+    checked = set()
+    for values, field_of, key_of, objects in given:
+        for name, value in values.items():
+            assert value != key_of(name).default, name
+            field = field_of(name)
+            assert getattr(objects[field.struct], field.name) == value, name
+            checked.add(name)
+    for keys, _ in TABLES:
+        for key in keys:
+            assert (key.name in checked) != (key.name in DERIVED | NO_FIELD), key.name
+
+
+def test_filled_takes_the_fields_of_its_struct_and_the_derived_ones_given():
+    values = {"weights.minimax": 1.0, "weights.azimuth_change": 2.0, "weights.slack": [9.0], "solver.eps_abs": 3.0}
+    assert filled(Weights, values, vehicle_field, slack=(1.0,)) == Weights(slack=(1.0,), minimax=1.0,
+                                                                          azimuth_change=2.0)
+    with pytest.raises(TypeError, match="slack"):
+        filled(Weights, {"weights.minimax": 1.0, "weights.azimuth_change": 2.0}, vehicle_field)
