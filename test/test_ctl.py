@@ -49,3 +49,11 @@ def test_unknown_parameters_are_named_with_the_nearest_declared_one():
     assert unknown_parameters(["weights.minmax", "nosuch.param"], declared, "/rov1/thrust_allocator") == [
         "'weights.minmax' is not a parameter of /rov1/thrust_allocator; did you mean weights.minimax?",
         "'nosuch.param' is not a parameter of /rov1/thrust_allocator"]
+
+
+def test_command_line_values_are_typed_as_a_params_file_types_them():
+    from allocator_pkg.cli.ctl import parse_value
+    assert parse_value("1.0e6") == 1.0e6 and isinstance(parse_value("1.0e6"), float)
+    assert parse_value("[1.0e6, 1.0e6]") == [1.0e6, 1.0e6]
+    assert parse_value("[surge, yaw]") == ["surge", "yaw"]
+    assert parse_value("[1, 2.5]") == [1.0, 2.5] and parse_value("3") == 3 and parse_value("true") is True

@@ -24,7 +24,6 @@ import time
 from typing import TextIO
 
 import rclpy
-import yaml
 from geometry_msgs.msg import Wrench, WrenchStamped
 from rcl_interfaces.srv import GetParameters, ListParameters, SetParametersAtomically
 from rclpy.executors import SingleThreadedExecutor
@@ -36,6 +35,7 @@ from std_srvs.srv import Trigger
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
 from allocator_msgs.srv import GetCapability, SetActuatorFault
 
+from ..configuration import params_file
 from ..ros.conversions import OUTCOME_NAMES, array_to_wrench, wrench_to_array
 from ..vehicle.node_settings import NODE_NAME
 from .direction_check import DirectionCheck
@@ -121,8 +121,9 @@ def unknown_parameters(names: list[str], declared: list[str], node: str) -> list
 
 
 def parse_value(text: str) -> object:
-    """A parameter value from the command line, typed as YAML types it (1.5, true, [a, b])."""
-    value = yaml.safe_load(text)
+    """A parameter value from the command line, typed as a params file types it (1.5, 1.0e6,
+    true, [a, b]); a list of numbers with one float in it is a list of floats."""
+    value = params_file.parse_value(text)
     if isinstance(value, list) and value and all(isinstance(v, (int, float)) for v in value) \
             and any(isinstance(v, float) for v in value):
         value = [float(v) for v in value]

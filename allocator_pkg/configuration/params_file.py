@@ -76,6 +76,12 @@ def read_parameters(path: str | Path, node_name: str | None = None) -> dict[str,
     return flat
 
 
+def parse_value(text: str) -> Any:
+    """One value written as in a params file, typed as rcl types it (``1.0e6`` a double,
+    ``[a, b]`` a list of strings, ``true`` a bool)."""
+    return yaml.load(text, Loader=_ParamsLoader)
+
+
 def params_text(parameters: Mapping[str, Any]) -> str:
     """Flat parameters as the text of a ROS 2 params file whose one section applies to any node
     (``/**``), in their order: what :func:`read_parameters` reads back."""

@@ -17,7 +17,8 @@ import yaml
 
 from ..analysis.dp_capability import load_particulars
 from ..analysis.environment_loads import VesselParticulars
-from ..configuration.parameters import read_parameters, vehicle_from_parameters
+from ..configuration.parameters import vehicle_from_parameters
+from ..configuration.params_file import read_parameters
 from ..effectiveness.faults import FaultMode, FaultSet
 from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
