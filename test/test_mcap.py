@@ -256,7 +256,9 @@ def test_a_mapping_of_the_fields_records_as_the_message_itself(tmp_path, samples
 
 def test_a_topic_is_declared_once_and_keeps_its_type(tmp_path, samples):
     recording = Recording(tmp_path / "run.mcap")
+    assert "/wrench" not in recording
     recording.write("/wrench", samples["/wrench"][0], 1)
+    assert "/wrench" in recording
     with pytest.raises(ValueError, match="geometry_msgs/msg/Wrench, not geometry_msgs/msg/WrenchStamped"):
         recording.write("/wrench", samples["/wrenchstamped"][0], 2)
     with pytest.raises(ValueError, match="/wrench is declared already"):

@@ -181,6 +181,10 @@ class Recording:
         self._first = NEVER
         self._last = 0
 
+    def __contains__(self, topic: str) -> bool:
+        """Whether ``topic`` is declared (by :meth:`add_topic` or a first :meth:`write`)."""
+        return topic in self._topics
+
     def add_topic(self, topic: str, message_type: type, offered_qos: Sequence[QoSProfile] = ()) -> None:
         """Declare ``topic``, of ``message_type``, offered by publishers with ``offered_qos``
         (rosbag2 records every publisher's profile; ``ros2 bag play`` offers them again). A topic
