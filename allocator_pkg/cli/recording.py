@@ -1,97 +1,244 @@
-"""Recordings that ``ros2 bag`` and Foxglove open: ROS 2 messages into an MCAP file with the
-``mcap-ros2-support`` writer (profile ``ros2``, CDR messages, ``ros2msg`` schemas).
+"""Recordings as ``ros2 bag record -s mcap`` writes them (rosbag2_storage_mcap, Jazzy), which
+``ros2 bag``, Foxglove and ``rosbags`` open and decode.
 
-A ``ros2msg`` schema is what ``ros2 bag`` stores: the type's own ``.msg`` text, then the text
-of every type it uses, directly or not, each once, after a line of 80 ``=`` and a line
-``MSG: package/Type``. The texts come from the ``.msg`` files the message packages install
-(``share/<package>/msg/<Type>.msg`` under a prefix of ``AMENT_PREFIX_PATH`` or the prefix
-the package's Python module was installed into).
+A path ending in ``.mcap`` becomes one MCAP file, complete in itself: ``ros2 bag`` and
+``rosbags`` open the file alone. Any other path becomes a bag directory, as
+``ros2 bag record -o <path>`` makes it: ``<path>/<name>_0.mcap`` and ``<path>/metadata.yaml``.
+
+In the file: the profile ``ros2``; per message type a schema named ``package/msg/Type``,
+encoding ``ros2msg`` (:func:`ros2msg_schema`); per topic a channel, message encoding ``cdr``,
+metadata ``offered_qos_profiles`` (the publishers' QoS profiles, YAML) and ``topic_type_hash``
+(the type's RIHS01 hash); the messages in CDR; and, at close, the metadata record
+``rosbag2`` whose ``serialized_metadata`` is the bag's metadata (rosbag2's BagMetadata,
+version 9), the same document metadata.yaml holds under ``rosbag2_bagfile_information``.
+
+The ``.msg`` texts and hashes come from the files the message packages install
+(``share/<package>/msg/<Type>.msg`` and ``.json``) under a prefix of ``AMENT_PREFIX_PATH`` or the
+prefix the package's Python module was installed into.
 """
 
 from __future__ import annotations
 
 import contextlib
 import importlib
+import json
 import os
 import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from mcap.records import Schema
-from mcap_ros2.writer import Writer
+import numpy as np
+import yaml
+from mcap.writer import Writer
+from mcap_ros2._dynamic import serialize_dynamic
+from rclpy.duration import Duration
+from rclpy.qos import QoSProfile
 
 PRIMITIVES = {"bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16", "int32", "uint32",
               "int64", "uint64", "string", "wstring"}
 SEPARATOR = "=" * 80
+FIELD_TYPE = re.compile(r"(?:^|\n)\s*([a-zA-Z0-9_/]+)(?:\[[^\]]*\])?\s+")
+"""The type of a field (or constant) of a ``.msg`` text, as rosbag2 finds it (comments never match)."""
+TYPE_NAME = re.compile(r"^([a-zA-Z0-9_]+)/(?:msg/)?([a-zA-Z0-9_]+)$")
+METADATA_VERSION = 9
+ROS_DISTRO = "jazzy"
+"""The ROS 2 distribution of the message definitions (the ros-jazzy-* wheels of requirements.lock)."""
+NEVER = 2**63 - 1
+"""rosbag2's starting time of a bag without messages."""
 
 
 def type_name(message_type: type) -> str:
-    """``package/Type`` of a generated message class (``std_msgs/Float64MultiArray``)."""
+    """``package/msg/Type`` of a generated message class (``std_msgs/msg/Float64MultiArray``), or of
+    a class named and placed like one."""
     package = message_type.__module__.split(".")[0]
-    return f"{package}/{message_type.__name__}"
+    return f"{package}/msg/{message_type.__name__}"
 
 
-def msg_file(name: str) -> Path:
-    """The installed ``.msg`` file of ``package/Type``. FileNotFoundError if there is none."""
-    package, _, message = name.partition("/")
+def interface_file(name: str, suffix: str) -> Path:
+    """The installed ``share/<package>/msg/<Type><suffix>`` of ``package/Type`` or
+    ``package/msg/Type``. FileNotFoundError if there is none."""
+    match = TYPE_NAME.match(name)
+    if match is None:
+        raise ValueError(f"{name!r} is not a message type name (package/msg/Type)")
+    package, message = match.groups()
     prefixes = [Path(p) for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
     with contextlib.suppress(ImportError, TypeError, IndexError):      # not installed, or not in a prefix
         prefixes.append(Path(importlib.import_module(package).__file__).resolve().parents[4])
     for prefix in prefixes:
-        path = prefix / "share" / package / "msg" / f"{message}.msg"
+        path = prefix / "share" / package / "msg" / f"{message}{suffix}"
         if path.is_file():
             return path
-    raise FileNotFoundError(f"no {package}/msg/{message}.msg under {', '.join(map(str, prefixes)) or 'any prefix'}")
+    raise FileNotFoundError(f"no {package}/msg/{message}{suffix} under {', '.join(map(str, prefixes)) or 'any prefix'}")
 
 
 def field_types(text: str, package: str) -> list[str]:
-    """The ``package/Type`` of every field of a ``.msg`` text that is a message (primitives and
-    constants left out; a bare ``Type`` is of the same package)."""
-    found = []
-    for line in text.splitlines():
-        line = line.split("#", 1)[0].strip()
-        if not line:
-            continue
-        base = re.sub(r"<=\d+$", "", re.sub(r"\[.*\]$", "", line.split()[0]))
-        if base in PRIMITIVES:                            # constants are primitives too
-            continue
-        found.append(base if "/" in base else f"{package}/{base}")
-    return found
+    """The message types the fields of a ``.msg`` text use, sorted, each once (primitives and
+    constants left out; a bare ``Type`` is of ``package``)."""
+    found = {base if "/" in base else f"{package}/{base}"
+             for base in FIELD_TYPE.findall(text) if base not in PRIMITIVES}
+    return sorted(found)
 
 
 def ros2msg_schema(name: str) -> str:
-    """The ``ros2msg`` schema text of ``package/Type``: its ``.msg`` text, then its dependencies'."""
-    text = msg_file(name).read_text().rstrip("\n")
-    parts, seen, queue = [text], {name}, field_types(text, name.split("/")[0])
-    while queue:
-        dependency = queue.pop(0)
-        if dependency in seen:
-            continue
-        seen.add(dependency)
-        dependency_text = msg_file(dependency).read_text().rstrip("\n")
-        parts.append(f"{SEPARATOR}\nMSG: {dependency}\n{dependency_text}")
-        queue.extend(field_types(dependency_text, dependency.split("/")[0]))
-    return "\n".join(parts) + "\n"
+    """The ``ros2msg`` schema of a type, as rosbag2 writes it: the type's ``.msg`` text, then,
+    depth first, each type it uses (sorted by name, each once) after a line of 80 ``=`` and a
+    line ``MSG: package/Type``, each followed in turn by the types it uses first."""
+    seen: set[str] = set()
+
+    def text_and_dependencies(type_: str) -> str:
+        text = interface_file(type_, ".msg").read_text()
+        for dependency in field_types(text, TYPE_NAME.match(type_).group(1)):
+            if dependency not in seen:
+                seen.add(dependency)
+                text += f"\n{SEPARATOR}\nMSG: {dependency}\n" + text_and_dependencies(dependency)
+        return text
+
+    return text_and_dependencies(name)
+
+
+def type_hash(name: str) -> str:
+    """The RIHS01 hash of ``package/msg/Type`` (what ROS 2 checks publishers and subscriptions
+    against), from the type description the package installs."""
+    hashes = json.loads(interface_file(name, ".json").read_text())["type_hashes"]
+    return next(entry["hash_string"] for entry in hashes if entry["type_name"] == name)
+
+
+def fields(message: Any) -> Any:
+    """A message as mcap-ros2-support's encoder takes it: a generated message as the mapping of
+    its fields, nested alike, with arrays (numpy's, for fixed sizes) as lists and a ``byte``
+    (rclpy's one-byte ``bytes``) as its number; a mapping of fields as it is."""
+    if hasattr(message, "get_fields_and_field_types"):
+        return {name: fields(getattr(message, name)) for name in message.get_fields_and_field_types()}
+    if isinstance(message, np.ndarray):
+        return message.tolist()
+    if isinstance(message, (list, tuple)):
+        return [fields(item) for item in message]
+    if isinstance(message, bytes) and len(message) == 1:
+        return message[0]
+    return message
+
+
+def _time(duration: Duration) -> dict[str, int]:
+    seconds, nanoseconds = divmod(duration.nanoseconds, 1_000_000_000)
+    return {"sec": seconds, "nsec": nanoseconds}
+
+
+def qos_dict(profile: QoSProfile) -> dict[str, Any]:
+    """A QoS profile as rosbag2 (metadata version 9) writes one."""
+    return {"history": profile.history.name.lower(), "depth": profile.depth,
+            "reliability": profile.reliability.name.lower(), "durability": profile.durability.name.lower(),
+            "deadline": _time(profile.deadline), "lifespan": _time(profile.lifespan),
+            "liveliness": profile.liveliness.name.lower(),
+            "liveliness_lease_duration": _time(profile.liveliness_lease_duration),
+            "avoid_ros_namespace_conventions": profile.avoid_ros_namespace_conventions}
+
+
+class _Dumper(yaml.SafeDumper):
+    """YAML as rosbag2 writes it: a mapping used twice is written twice (no anchors, no aliases)."""
+
+    def ignore_aliases(self, data: Any) -> bool:
+        return True
+
+
+def _yaml(document: Any) -> str:
+    return yaml.dump(document, Dumper=_Dumper, sort_keys=False, default_flow_style=False)
+
+
+@dataclass
+class _Topic:
+    """One topic of a recording: its channel, metadata, and what has been written on it."""
+
+    channel: int
+    type: str
+    offered_qos: list[dict[str, Any]]
+    hash: str
+    messages: int = 0
+
+    def metadata(self, name: str) -> dict[str, Any]:
+        return {"topic_metadata": {"name": name, "type": self.type, "serialization_format": "cdr",
+                                   "offered_qos_profiles": self.offered_qos, "type_description_hash": self.hash},
+                "message_count": self.messages}
 
 
 class Recording:
-    """ROS 2 messages into an MCAP file, one channel per topic; :meth:`close` finishes the file."""
+    """ROS 2 messages into a recording (a ``.mcap`` file, or a bag directory for any other path),
+    one channel per topic; :meth:`close` finishes it and writes its metadata."""
 
     def __init__(self, path: str | Path):
-        self._file = open(path, "wb")                  # noqa: SIM115 (closed in close())
+        path = Path(path)
+        self.directory = None if path.suffix == ".mcap" else path
+        if self.directory is not None:
+            self.directory.mkdir(parents=True, exist_ok=True)
+        self.path = path if self.directory is None else path / f"{path.name}_0.mcap"
+        self._file = open(self.path, "wb")                  # noqa: SIM115 (closed in close())
         self._writer = Writer(self._file)
-        self._schemas: dict[type, Schema] = {}
+        self._writer.start(profile="ros2")
+        self._types: dict[str, tuple[int, Callable[[Any], bytes]]] = {}
+        """Per type: its schema's id and its CDR encoder (see :meth:`write`)."""
+        self._topics: dict[str, _Topic] = {}
+        self._first = NEVER
+        self._last = 0
+
+    def __contains__(self, topic: str) -> bool:
+        """Whether ``topic`` is declared (by :meth:`add_topic` or a first :meth:`write`)."""
+        return topic in self._topics
+
+    def add_topic(self, topic: str, message_type: type, offered_qos: Sequence[QoSProfile] = ()) -> None:
+        """Declare ``topic``, of ``message_type``, offered by publishers with ``offered_qos``
+        (rosbag2 records every publisher's profile; ``ros2 bag play`` offers them again). A topic
+        first written without being declared is declared with no profile."""
+        if topic in self._topics:
+            raise ValueError(f"{topic} is declared already")
+        name = type_name(message_type)
+        if name not in self._types:
+            schema = ros2msg_schema(name)
+            self._types[name] = (self._writer.register_schema(name, "ros2msg", schema.encode()),
+                                 serialize_dynamic(name, schema)[name])
+        qos = [qos_dict(profile) for profile in offered_qos]
+        digest = type_hash(name)
+        channel = self._writer.register_channel(topic, "cdr", self._types[name][0],
+                                                {"offered_qos_profiles": _yaml(qos), "topic_type_hash": digest})
+        self._topics[topic] = _Topic(channel, name, qos, digest)
 
     def write(self, topic: str, message: Any, log_time: int, publish_time: int | None = None) -> None:
-        """One message on ``topic``, logged at ``log_time`` [ns] (published at ``publish_time``,
-        default the log time)."""
-        kind = type(message)
-        schema = self._schemas.get(kind)
-        if schema is None:
-            name = type_name(kind)
-            schema = self._schemas[kind] = self._writer.register_msgdef(name, ros2msg_schema(name))
-        self._writer.write_message(topic, schema, message, log_time=log_time, publish_time=publish_time)
+        """One message on ``topic``, logged (received) at ``log_time`` [ns] and published at
+        ``publish_time`` (default the log time). ``message`` is a generated message, or a mapping
+        of its fields whose class has the message class's name and module.
+
+        The CDR comes from mcap-ros2-support's encoder, made from the type's schema: rclpy's
+        ``serialize_message`` (rmw_fastrtps, Jazzy) returns as many bytes as its size estimate,
+        which exceeds the message after an empty float64 sequence, and ``rosbags`` refuses a
+        message with trailing bytes."""
+        if topic not in self._topics:
+            self.add_topic(topic, type(message))
+        entry = self._topics[topic]
+        if type_name(type(message)) != entry.type:
+            raise ValueError(f"{topic} carries {entry.type}, not {type_name(type(message))}")
+        self._writer.add_message(entry.channel, log_time, self._types[entry.type][1](fields(message)),
+                                 log_time if publish_time is None else publish_time)
+        entry.messages += 1
+        self._first, self._last = min(self._first, log_time), max(self._last, log_time)
+
+    def metadata(self) -> dict[str, Any]:
+        """The bag's metadata as rosbag2 writes it (BagMetadata, version 9) for what has been written."""
+        count = sum(entry.messages for entry in self._topics.values())
+        duration = {"nanoseconds": self._last - self._first if count else 0}
+        start = {"nanoseconds_since_epoch": self._first if count else NEVER}
+        return {"version": METADATA_VERSION, "storage_identifier": "mcap", "duration": duration,
+                "starting_time": start, "message_count": count,
+                "topics_with_message_count": [entry.metadata(name) for name, entry in self._topics.items()],
+                "compression_format": "", "compression_mode": "", "relative_file_paths": [self.path.name],
+                "files": [{"path": self.path.name, "starting_time": start, "duration": duration,
+                           "message_count": count}],
+                "custom_data": None, "ros_distro": ROS_DISTRO}
 
     def close(self) -> None:
+        """Finish the file with its ``rosbag2`` metadata record; in a bag directory, write metadata.yaml."""
+        metadata = self.metadata()
+        self._writer.add_metadata("rosbag2", {"serialized_metadata": _yaml(metadata)})
         self._writer.finish()
         self._file.close()
+        if self.directory is not None:
+            (self.directory / "metadata.yaml").write_text(_yaml({"rosbag2_bagfile_information": metadata}))
