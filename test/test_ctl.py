@@ -1,34 +1,5 @@
-"""allocator-ctl's live table line (the command-line round trips are in test_process)."""
-
-import math
-
-from allocator_msgs.msg import AllocationStatus, ThrusterCommands
-from allocator_pkg.cli.ctl import format_sample
-
-
-def test_a_sample_line_shows_thrust_command_azimuth_and_the_solver():
-    commands = ThrusterCommands(name=["azimuth_fwd", "main_port"], thrust=[120.0, -35.25],
-                                command=[219.09, -0.5], azimuth=[math.radians(30.0), 0.0], mode=[0, 0])
-    status = AllocationStatus(saturated=True, solve_time=80e-6, iterations=25, solver_status="solved")
-    line = format_sample(commands, status)
-    assert "azimuth_fwd     120.0 N cmd   219.09 @  30.0" in line
-    assert "main_port     -35.2 N cmd    -0.50" in line and "@" not in line.split("main_port")[1]
-    assert "|| sat YES      80 us    25 it solved | unallocated 0.0 0.0 0.0 0.0 0.0 0.0" in line
-    assert "at limit" not in line and " V" not in line           # no flags; voltage not set
-
-
-def test_a_sample_line_shows_the_unallocated_wrench_the_actuators_at_a_limit_and_the_voltage():
-    from allocator_pkg.ros.conversions import array_to_wrench
-    commands = ThrusterCommands(name=["a", "b", "c"], thrust=[10.0, 20.0, 30.0], command=[1.0, 2.0, 3.0],
-                                azimuth=[0.0, 0.0, 0.0], mode=[0, 0, 0])
-    status = AllocationStatus(saturated=True, solver_status="solved",
-                              unallocated=array_to_wrench([12.5, 0, 0, 0, 0, -3]),
-                              at_thrust_limit=[True, False, True], at_rate_limit=[False, False, True], voltage=14.8)
-    line = format_sample(commands, status)
-    assert line.endswith("| unallocated 12.5 0.0 0.0 0.0 0.0 -3.0 | at limit (! thrust, ~ rate): a! c!~ | 14.80 V")
-    status.voltage = math.nan
-    assert not format_sample(commands, status).endswith(" V")
-
+"""allocator-ctl: its words for the node's answers and the values it sends (the command-line round
+trips are in test_process)."""
 
 def test_a_capability_answer_in_words():
     from allocator_msgs.srv import GetCapability

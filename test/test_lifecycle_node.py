@@ -34,7 +34,7 @@ class Manager:
 
         from allocator_msgs.msg import ThrusterCommands
         from allocator_msgs.srv import SetActuatorFault
-        from allocator_pkg.cli.ctl import Controller
+        from allocator_pkg.cli.controller import Controller
         self.node = rclpy.create_node("manager", context=context)
         self.executor = SingleThreadedExecutor(context=context)
         self.executor.add_node(self.node)

@@ -267,7 +267,8 @@ def test_a_topic_is_declared_once_and_keeps_its_type(tmp_path, samples):
 
 
 def test_echo_records_wrench_commands_and_status_that_rosbags_reads_back(harness, tmp_path):
-    from allocator_pkg.cli.ctl import Controller, Echo
+    from allocator_pkg.cli.controller import Controller
+    from allocator_pkg.cli.echo import Echo
 
     class Counted(Recording):
         def write(self, topic, message, log_time, publish_time=None):
@@ -279,7 +280,7 @@ def test_echo_records_wrench_commands_and_status_that_rosbags_reads_back(harness
     recording.written = {}
     echo = Echo(Controller(harness.probe), io.StringIO(), rate=0.0, recording=recording)
     harness.spin_until(lambda: all(s.get_publisher_count() for s in (echo._status, echo._commands))
-                       and echo._wrench.get_publisher_count() > 0)
+                       and echo._wrench is not None and echo._wrench.get_publisher_count() > 0)
     before = len(harness.commands)
     harness.send_wrench([100.0, 20.0, 0.0, 0.0, 0.0, 10.0])
     harness.tick(3)

@@ -41,7 +41,7 @@ class Listener:
         from rclpy.qos import QoSProfile, ReliabilityPolicy
 
         from allocator_msgs.msg import ThrusterCommands
-        from allocator_pkg.cli.ctl import Controller
+        from allocator_pkg.cli.controller import Controller
         self.node = rclpy.create_node("listener", context=context)
         self.controller = Controller(self.node)
         self.commands = []

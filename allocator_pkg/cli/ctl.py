@@ -3,7 +3,7 @@
     allocator-ctl wrench 100 0 0 0 0 20 --rate 20 --duration 5
     allocator-ctl fault main_port failed | degraded 0.5 | stuck 0.3 | nominal
     allocator-ctl clear
-    allocator-ctl echo [--csv FILE] [--mcap FILE]             (--mcap: wrench, commands, status for ros2 bag, Foxglove)
+    allocator-ctl echo [--csv FILE] [--mcap PATH]             (--mcap: wrench, commands, status as ros2 bag records)
     allocator-ctl capability 1 0 0 0 0 0                      (~/get_capability along a wrench)
     allocator-ctl step-test [--share 0.1] [--hold 3] [--rest 2] [--actuators]   (direction check on the bench)
     allocator-ctl params get [NAME ...]
@@ -16,97 +16,22 @@ namespace; the same options work with ``ros2 run allocator_pkg allocator-ctl``.
 from __future__ import annotations
 
 import argparse
-import csv
 import difflib
-import math
 import sys
 import time
-from typing import TextIO
 
 import rclpy
-from geometry_msgs.msg import Wrench, WrenchStamped
-from rcl_interfaces.srv import GetParameters, ListParameters, SetParametersAtomically
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
-from rclpy.parameter import Parameter, parameter_value_to_python
-from rclpy.qos import QoSProfile, ReliabilityPolicy
-from std_srvs.srv import Trigger
 
-from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
-from allocator_msgs.srv import GetCapability, SetActuatorFault
+from allocator_msgs.srv import GetCapability
 
 from ..configuration import params_file
-from ..ros.conversions import OUTCOME_NAMES, array_to_wrench, wrench_to_array
+from ..ros.conversions import array_to_wrench, wrench_to_array
 from ..vehicle.node_settings import NODE_NAME
+from .controller import FAULT_MODES, Controller, ServiceTimeout
 from .direction_check import DirectionCheck
+from .echo import Echo
 from .recording import Recording
-
-FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
-               "failed": ActuatorFault.FAILED, "stuck": ActuatorFault.STUCK}
-
-
-class ServiceTimeout(RuntimeError):
-    pass
-
-
-class Controller:
-    """A client node for one allocator: publishes wrenches, calls its services, listens."""
-
-    def __init__(self, node: Node, target: str = NODE_NAME, namespace: str = ""):
-        self.node = node
-        self.namespace = f"/{namespace.strip('/')}" if namespace.strip("/") else ""
-        self.service_prefix = f"{self.namespace}/{target}"
-        self.wrench = node.create_publisher(Wrench, self.topic("wrench_command"), 10)
-
-    def topic(self, name: str) -> str:
-        """The allocator's topic ``name`` in its namespace."""
-        return f"{self.namespace}/{name}" if self.namespace else name
-
-    def call(self, kind, name: str, request, timeout: float = 5.0):
-        client = self.node.create_client(kind, f"{self.service_prefix}/{name}")
-        try:
-            if not client.wait_for_service(timeout_sec=timeout):
-                raise ServiceTimeout(f"service {self.service_prefix}/{name} not available (is the node running, "
-                                     "with the same ROS_DOMAIN_ID and ROS_AUTOMATIC_DISCOVERY_RANGE?)")
-            future = client.call_async(request)
-            executor = self.node.executor
-            if executor is None:
-                executor = SingleThreadedExecutor(context=self.node.context)
-                executor.add_node(self.node)
-            executor.spin_until_future_complete(future, timeout_sec=timeout)
-            if not future.done():
-                raise ServiceTimeout(f"service {self.service_prefix}/{name} did not answer within {timeout:g} s")
-            return future.result()
-        finally:
-            self.node.destroy_client(client)
-
-    def set_fault(self, actuator: str, mode: str, value: float = 0.0) -> SetActuatorFault.Response:
-        fault = ActuatorFault(actuator=actuator, mode=FAULT_MODES[mode])
-        if mode == "degraded":
-            fault.efficiency = value
-        elif mode == "stuck":
-            fault.azimuth = value
-        return self.call(SetActuatorFault, "set_actuator_fault", SetActuatorFault.Request(fault=fault))
-
-    def clear_faults(self) -> Trigger.Response:
-        return self.call(Trigger, "clear_faults", Trigger.Request())
-
-    def capability(self, direction: list[float]) -> GetCapability.Response:
-        return self.call(GetCapability, "get_capability", GetCapability.Request(direction=array_to_wrench(direction)))
-
-    def parameter_names(self) -> list[str]:
-        """Every parameter the node has declared, sorted."""
-        return sorted(self.call(ListParameters, "list_parameters", ListParameters.Request()).result.names)
-
-    def get_parameters(self, names: list[str]) -> dict[str, object]:
-        names = names or self.parameter_names()
-        response = self.call(GetParameters, "get_parameters", GetParameters.Request(names=names))
-        return {name: parameter_value_to_python(value) for name, value in zip(names, response.values)}
-
-    def set_parameters(self, values: dict[str, object]):
-        request = SetParametersAtomically.Request(
-            parameters=[Parameter(name, value=value).to_parameter_msg() for name, value in values.items()])
-        return self.call(SetParametersAtomically, "set_parameters_atomically", request).result
 
 
 def unknown_parameters(names: list[str], declared: list[str], node: str) -> list[str]:
@@ -130,29 +55,6 @@ def parse_value(text: str) -> object:
     return value
 
 
-def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -> str:
-    """One compact line: every actuator's thrust [N], command (set-point) and azimuth [deg] if it
-    has one, then the solver figures; when saturated the unallocated wrench, the actuators at a
-    thrust (!) or rate (~) limit, and the supply voltage in use."""
-    parts = []
-    for name, thrust, command, azimuth in zip(commands.name, commands.thrust, commands.command, commands.azimuth):
-        angle = f" @{math.degrees(azimuth):6.1f}" if azimuth != 0.0 else " " * 8
-        parts.append(f"{name} {thrust:9.1f} N cmd {command:8.2f}{angle}")
-    line = " | ".join(parts)
-    if status is not None:
-        line += (f" || sat {'YES' if status.saturated else 'no '} {status.solve_time * 1e6:7.0f} us "
-                 f"{status.iterations:5d} it {status.solver_status}")
-        if status.saturated:
-            line += " | unallocated " + " ".join(f"{v:.1f}" for v in wrench_to_array(status.unallocated))
-        flagged = [f"{name}{'!' if thrust else ''}{'~' if rate else ''}" for name, thrust, rate
-                   in zip(commands.name, status.at_thrust_limit, status.at_rate_limit) if thrust or rate]
-        if flagged:
-            line += f" | at limit (! thrust, ~ rate): {' '.join(flagged)}"
-        if status.voltage > 0.0:                     # NaN: no voltage tables
-            line += f" | {status.voltage:.2f} V"
-    return line
-
-
 def format_capability(direction: list[float], response: GetCapability.Response) -> str:
     """The answer of ~/get_capability in words."""
     if not response.success:
@@ -160,91 +62,6 @@ def format_capability(direction: list[float], response: GetCapability.Response) 
     achieved = " ".join(f"{v:.2f}" for v in wrench_to_array(response.achieved))
     return (f"scale {response.scale:.4g} along [{' '.join(f'{v:g}' for v in direction)}]; achieved there "
             f"[{achieved}] ({response.message})")
-
-
-WRENCH_TYPES = {"geometry_msgs/msg/Wrench": Wrench, "geometry_msgs/msg/WrenchStamped": WrenchStamped}
-
-
-def wrench_type_on(node: Node, topic: str, wait: float = 2.0) -> type:
-    """The wrench type on ``topic`` in the ROS graph (the allocator's ``wrench_type``), waiting up
-    to ``wait`` seconds for it to be discovered; Wrench if none is seen."""
-    end = time.monotonic() + wait
-    while True:
-        for name, types in node.get_topic_names_and_types():
-            found = [WRENCH_TYPES[kind] for kind in types if kind in WRENCH_TYPES]
-            if name == topic and found:
-                return found[0]
-        if time.monotonic() >= end:
-            return Wrench
-        time.sleep(0.05)
-
-
-class Echo:
-    """Prints a compact live table of commands and status; optionally writes every sample to CSV,
-    and records the wrenches (Wrench or WrenchStamped), commands and status to an MCAP file."""
-
-    def __init__(self, controller: Controller, out: TextIO, csv_file: TextIO | None = None, rate: float = 2.0,
-                 recording: Recording | None = None):
-        self.out = out
-        self.recording = recording
-        self.period = 1.0 / rate if rate > 0 else 0.0
-        self.last_print = 0.0
-        self.status: AllocationStatus | None = None
-        self.writer = csv.writer(csv_file) if csv_file else None
-        self.header_done = False
-        node = self.node = controller.node
-        self._status = node.create_subscription(AllocationStatus, controller.topic("allocation_status"),
-                                                self._on_status, 10)
-        self._commands = node.create_subscription(ThrusterCommands, controller.topic("thruster_commands"),
-                                                  self._on_commands, 10)
-        if recording is not None:
-            topic = node.resolve_topic_name(controller.topic("wrench_command"))
-            self._wrench = node.create_subscription(wrench_type_on(node, topic), topic, self._on_wrench,
-                                                    QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
-
-    def _on_wrench(self, message: Wrench | WrenchStamped) -> None:
-        self._record(self._wrench.topic_name, message)
-
-    def _record(self, topic: str, message) -> None:
-        self.recording.write(topic, message, self.node.get_clock().now().nanoseconds)
-
-    def _on_status(self, message: AllocationStatus) -> None:
-        self.status = message
-        if self.recording is not None:
-            self._record(self._status.topic_name, message)
-
-    def _on_commands(self, message: ThrusterCommands) -> None:
-        if self.recording is not None:
-            self._record(self._commands.topic_name, message)
-        if self.writer is not None:
-            self._write_csv(message)
-        now = time.monotonic()
-        if now - self.last_print >= self.period:
-            self.last_print = now
-            print(format_sample(message, self.status), file=self.out, flush=True)
-
-    def _write_csv(self, message: ThrusterCommands) -> None:
-        if not self.header_done:
-            header = ["stamp"]
-            for name in message.name:
-                header += [f"{name}.thrust", f"{name}.command", f"{name}.azimuth", f"{name}.mode"]
-            header += [f"{name}.at_{kind}_limit" for kind in ("thrust", "rate") for name in message.name]
-            header += ["saturated", "solve_time", "iterations", "solver_status", "outcome", "voltage"]
-            header += [f"unallocated.{axis}" for axis in ("x", "y", "z", "k", "m", "n")]
-            self.writer.writerow(header)
-            self.header_done = True
-        row = [message.header.stamp.sec + message.header.stamp.nanosec * 1e-9]
-        for values in zip(message.thrust, message.command, message.azimuth, message.mode):
-            row += list(values)
-        status = self.status
-        if status is None:
-            row += [""] * (2 * len(message.name) + 12)
-        else:
-            row += list(status.at_thrust_limit) + list(status.at_rate_limit)
-            row += [status.saturated, status.solve_time, status.iterations, status.solver_status,
-                    OUTCOME_NAMES.get(status.outcome, str(status.outcome)), status.voltage]
-            row += wrench_to_array(status.unallocated).tolist()
-        self.writer.writerow(row)
 
 
 def _share(text: str) -> float:
@@ -283,8 +100,9 @@ def _parser() -> argparse.ArgumentParser:
         capability.add_argument(name, type=float)
     echo = commands.add_parser("echo", help="print a live table of thrust, command, azimuth and status")
     echo.add_argument("--csv", type=argparse.FileType("w"), help="also write every sample to this CSV file")
-    echo.add_argument("--mcap", metavar="FILE", help="also record wrench_command, thruster_commands and "
-                      "allocation_status to this MCAP file (ros2 bag, Foxglove)")
+    echo.add_argument("--mcap", metavar="PATH", help="also record wrench_command, thruster_commands and "
+                      "allocation_status as ros2 bag does: into PATH if it ends in .mcap, else into the bag "
+                      "directory PATH (ros2 bag, Foxglove, rosbags)")
     echo.add_argument("--rate", type=float, default=2.0, help="printed lines per second (default %(default)s)")
     echo.add_argument("--duration", type=float, default=None, help="seconds (default: until Ctrl-C)")
     step = commands.add_parser("step-test", help="step each controlled DOF +/- (or, with --actuators, each "
@@ -355,8 +173,9 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
     if arguments.command == "echo":
         recording = Recording(arguments.mcap) if arguments.mcap else None
         try:
-            Echo(controller, sys.stdout, arguments.csv, arguments.rate, recording)
+            echo = Echo(controller, sys.stdout, arguments.csv, arguments.rate, recording)
             _spin_for(node, arguments.duration)
+            echo.close()
         finally:
             if recording is not None:
                 recording.close()
