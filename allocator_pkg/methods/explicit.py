@@ -51,8 +51,8 @@ from numpy.lib.npyio import NpzFile
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput, Outcome
-from ..solvers.problem import Rows, ScaledProblem, Solution
+from ..solvers.outcome import MethodOutput, Outcome, Solution
+from ..solvers.problem import Rows, ScaledProblem
 from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
 

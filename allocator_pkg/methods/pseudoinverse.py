@@ -31,11 +31,11 @@ import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.direct import DirectSolution, direct_sides
 from ..solvers.outcome import MethodOutput
 from ..vehicle.angles import wrap
 from ..vehicle.config import Vehicle
 from .base import AllocationMethod
+from .direct import DirectSolution, direct_sides
 
 _CACHE_SIZE = 64
 STEP_MARGIN = 1e-9

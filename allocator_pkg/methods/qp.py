@@ -75,11 +75,11 @@ import scipy.sparse as sp
 from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
 from ..solvers import BACKENDS, BackendFactory
 from ..solvers.backend import NO_BOUND
-from ..solvers.direct import DirectSolution
 from ..solvers.outcome import MethodOutput
 from ..solvers.problem import Entries, Rows, ScaledProblem, block_index, entry_index
 from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod
+from .direct import DirectSolution
 
 PINNED = 1e-12
 """[rad] A window of angles narrower than this is a single direction."""
