@@ -19,7 +19,8 @@ import numpy as np
 from ..effectiveness.actuators import CommandMaps, command_map, deadband_forces, drag_gain
 from ..effectiveness.faults import FaultSet, lift_gains
 from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
-from ..solvers.outcome import MethodOutput, Outcome
+from ..methods.base import MethodOutput
+from ..solvers.outcome import Outcome
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import DOF_NAMES
 from .azimuth import resolve

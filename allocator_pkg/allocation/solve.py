@@ -7,9 +7,10 @@ import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..methods import METHODS, AllocationMethod
+from ..methods.base import MethodOutput
 from ..methods.pseudoinverse import PseudoInverseAllocation, PseudoInverseGains
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput, Outcome
+from ..solvers.outcome import Outcome
 from ..vehicle.config import Vehicle
 
 

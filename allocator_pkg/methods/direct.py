@@ -29,7 +29,7 @@ import math
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
-from ..solvers.outcome import MethodOutput
+from .base import MethodOutput
 from .sample_lp import SampleLP
 
 SIDES_FACTOR = 4

@@ -55,10 +55,10 @@ import numpy as np
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
 from ..effectiveness.sectors import surroundings
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput, Outcome
+from ..solvers.outcome import Outcome
 from ..vehicle.angles import wrap
 from ..vehicle.config import RotationConfig, Vehicle
-from .base import CIRCLE_SIDES, AllocationMethod
+from .base import CIRCLE_SIDES, AllocationMethod, MethodOutput
 
 HALVINGS = 4
 """Times a step that would raise the Lyapunov function is halved before the law stays put."""
@@ -144,9 +144,11 @@ class DynamicAllocation(AllocationMethod):
                 full, step = self._newton(x, gradient, drive, static, limits, held)
         new, tries = self._move(x, step, request, static, limits, low, high)
         if not np.isfinite(new).all():
-            return MethodOutput(np.zeros(self.model.m), "not finite", tries, outcome=Outcome.FAILED)
+            return MethodOutput(force=np.zeros(self.model.m), status="not finite", iterations=tries,
+                                outcome=Outcome.FAILED)
         self._x, self._request = new, request
-        return MethodOutput(self._commanded(new, request, limits) * self._column_force, "solved", tries)
+        return MethodOutput(force=self._commanded(new, request, limits) * self._column_force, status="solved",
+                            iterations=tries)
 
     def _scalar_bounds(self, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray]:
         """The static thrust range of each scalar column, normalised."""

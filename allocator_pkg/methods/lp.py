@@ -28,9 +28,8 @@ import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput
 from ..vehicle.config import Vehicle
-from .base import AllocationMethod
+from .base import AllocationMethod, MethodOutput
 from .direct import DirectSolution
 from .sample_lp import SampleLP, survey_apothem
 
@@ -76,4 +75,4 @@ class LPAllocation(AllocationMethod):
             return output
         boundary = self._direct.solve(tau, limits)
         boundary.iterations += output.iterations
-        return boundary if boundary.solved else output
+        return boundary if boundary.usable else output

@@ -31,10 +31,9 @@ import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput
 from ..vehicle.angles import wrap
 from ..vehicle.config import Vehicle
-from .base import AllocationMethod
+from .base import AllocationMethod, MethodOutput
 from .direct import DirectSolution, direct_sides
 
 _CACHE_SIZE = 64
@@ -179,7 +178,7 @@ class PseudoInverseAllocation(AllocationMethod):
                 force += step_to_limits(model, limits, force, step, self._fixed) * step
             if self._pinned is not None:
                 force += self._pinned
-            return MethodOutput(force, "solved")
+            return MethodOutput(force=force, status="solved")
         force = self._gain @ wanted
         if self._preserve_direction:
             force *= scale_to_limits(model, limits, force, self._fixed)
@@ -187,9 +186,9 @@ class PseudoInverseAllocation(AllocationMethod):
             force += self._pinned
         if self._direct is not None and not within_limits(model, limits, force, self._fixed):
             boundary = self._direct.solve(tau, limits)
-            if boundary.solved:
+            if boundary.usable:
                 return boundary
-        return MethodOutput(force, "solved")
+        return MethodOutput(force=force, status="solved")
 
 
 def fixed_forces(model: Model, limits: SampleLimits, fixed: np.ndarray) -> np.ndarray:

@@ -35,10 +35,9 @@ import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput
 from ..vehicle.angles import wrap
 from ..vehicle.config import Vehicle
-from .base import AllocationMethod
+from .base import AllocationMethod, MethodOutput
 from .pseudoinverse import PseudoInverseGains, fixed_forces, scale_to_limits
 
 
@@ -122,7 +121,7 @@ class SVDFilterAllocation(AllocationMethod):
         force[model.rot_columns[:, 1]] = thrust[model.rot] * np.sin(angle[model.rot])
         if self._preserve_direction:
             force *= scale_to_limits(model, limits, force, self._fixed)
-        return MethodOutput(force + self._pinned, "solved", angle=angle)
+        return MethodOutput(force=force + self._pinned, status="solved", angle=angle)
 
     @staticmethod
     def _steer(lim, alpha0: float, filtered: np.ndarray, hold: float) -> float:

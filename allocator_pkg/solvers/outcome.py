@@ -1,5 +1,4 @@
-"""How a solve ended: the :class:`Outcome`, the :class:`Solution` every solver gives back, and
-what a method's solve gives back.
+"""How a solve ended: the :class:`Outcome`, and the :class:`Solution` every solver gives back.
 
 :class:`Outcome` is the one vocabulary for it, from a solver's answer up to the
 :class:`~allocator_pkg.allocation.result.AllocationResult` that diagnostics, counters and
@@ -65,28 +64,3 @@ class Solution:
         if callable(self.duals):
             self.duals = np.asarray(self.duals())
         return self.duals
-
-
-@dataclass(slots=True)
-class MethodOutput:
-    """A method's answer: the extended force vector (1.16), and how the solve went.
-    ``residual`` is the solver's primal residual where it reports one; ``reason`` why a
-    fallback answered (the failed method's status). ``angle`` optionally proposes the angle of
-    each actuator (nonlinear method); ``turn`` the angle toward which an idle rotatable thruster
-    (by actuator index) turns instead of its limits' goal (the nonlinear method's descent
-    direction)."""
-
-    force: np.ndarray
-    status: str
-    iterations: int = 0
-    solve_time: float = 0.0
-    outcome: Outcome = Outcome.SOLVED
-    angle: np.ndarray | None = None
-    turn: dict[int, float] | None = None
-    residual: float | None = None
-    reason: str = ""
-
-    @property
-    def solved(self) -> bool:
-        """Whether the forces can be used (the outcome is usable)."""
-        return self.outcome is not Outcome.FAILED
