@@ -13,7 +13,7 @@ import numpy as np
 from ..effectiveness.faults import FaultSet, static_ranges
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
 from ..effectiveness.sectors import surroundings
-from ..methods.pseudoinverse import PseudoInverseGains
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from .azimuth import piece_in_question, plan
 from .pieces import PiecePlanner
 from .state import ActuatorState

@@ -6,9 +6,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS, AllocationMethod
 from ..methods.base import MethodOutput
-from ..methods.pseudoinverse import PseudoInverseAllocation, PseudoInverseGains
+from ..methods.pseudoinverse import PseudoInverseAllocation
 from ..solvers import BackendFactory
 from ..solvers.outcome import Outcome
 from ..vehicle.config import Vehicle

@@ -34,11 +34,12 @@ import math
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..solvers import BackendFactory
 from ..vehicle.angles import wrap
 from ..vehicle.config import Vehicle
 from .base import AllocationMethod, MethodOutput
-from .pseudoinverse import PseudoInverseGains, fixed_forces, scale_to_limits
+from .pseudoinverse import fixed_forces, scale_to_limits
 
 
 class SVDFilterAllocation(AllocationMethod):
