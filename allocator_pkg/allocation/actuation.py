@@ -2,7 +2,7 @@
 commanded, and what that gives.
 
 Thrust and angle of every actuator inside every limit whatever the solver returned
-(``azimuth.resolve`` and a clip); the drag of deflected control surfaces fed forward
+(:func:`~allocator_pkg.effectiveness.resolve.resolve` and a clip); the drag of deflected control surfaces fed forward
 (1.56)-(1.58): the surge request grows by that drag and is solved again until it settles; a
 force inside a dead band snapped to zero or the band's edge; command maps to set-points (a
 reversed thruster's mirrored); the achieved wrench from T_e of what is commanded, the
@@ -19,11 +19,11 @@ import numpy as np
 from ..effectiveness.actuators import CommandMaps, command_map, deadband_forces, drag_gain
 from ..effectiveness.faults import FaultSet, lift_gains
 from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
+from ..effectiveness.resolve import resolve
 from ..methods.base import MethodOutput
 from ..solvers.outcome import Outcome
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import DOF_NAMES
-from .azimuth import resolve
 from .result import AllocationResult
 from .state import ActuatorState
 
