@@ -16,7 +16,7 @@ from ..methods.base import MethodOutput
 from ..methods.pseudoinverse import PseudoInverseAllocation
 from ..solvers import BackendFactory
 from ..solvers.outcome import Outcome
-from ..vehicle.config import DOF_NAMES, Vehicle
+from ..vehicle.config import DOF_NAMES, ConfigError, Vehicle
 from .conditions import Conditions
 
 SURGE = DOF_NAMES.index("surge")
@@ -27,14 +27,15 @@ last pass's deflections, until the drag stops changing (two or three passes in p
 
 
 def check_method(method: str, vehicle: Vehicle) -> None:
-    """Raise ValueError when ``method`` cannot serve ``vehicle`` (its reasons) or the vehicle
+    """Raise ConfigError when ``method`` cannot serve ``vehicle`` (its reasons) or the vehicle
     orders its DOFs and the method does not implement it."""
     unfit = METHODS[method].problems(vehicle)
     if unfit:
-        raise ValueError(f"method '{method}' cannot serve this vehicle: {'; '.join(unfit)}")
+        raise ConfigError([("method", f"'{method}' cannot serve this vehicle: {'; '.join(unfit)}")])
     if vehicle.priority_levels and not METHODS[method].implements_priorities:
         able = ", ".join(name for name, kind in METHODS.items() if kind.implements_priorities)
-        raise ValueError(f"priorities: method '{method}' does not implement DOF priorities; methods that do: {able}")
+        raise ConfigError([("priorities", f"method '{method}' does not implement DOF priorities; methods that do: "
+                                          f"{able}")])
 
 
 class MethodStage:
