@@ -120,19 +120,23 @@ class ActuationStage:
         command = self.maps.commands(thrust, self._command_efficiency, self._lift)
         at_thrust, at_rate = self._limit_flags(thrust, angle, state)
         power = sum(p * abs(t) ** 1.5 for p, t in zip(self._power, thrust.tolist()))
-        return AllocationResult(thrust, angle, command, achieved, requested, bool(short), output.status,
-                                output.iterations, time.perf_counter() - start, power, method, self.modes,
-                                self.available, unallocated, at_thrust, at_rate, drag, output.outcome, short,
-                                output.residual, output.reason)
+        return AllocationResult(thrust=thrust, azimuth=angle, command=command, achieved=achieved, requested=requested,
+                                saturated=bool(short), status=output.status, iterations=output.iterations,
+                                solve_time=time.perf_counter() - start, power=power, method=method, mode=self.modes,
+                                available=self.available, unallocated=unallocated, at_thrust_limit=at_thrust,
+                                at_rate_limit=at_rate, drag=drag, outcome=output.outcome, short=short,
+                                residual=output.residual, reason=output.reason)
 
     def stop(self, state: ActuatorState, method: str) -> AllocationResult:
         """Zero thrust, the angles held."""
         r = self.model.r
         thrust = np.zeros(r)
         command = self.maps.commands(thrust, self._command_efficiency, self._lift)
-        return AllocationResult(thrust, state.angle, command, np.zeros(6), np.zeros(6), False, "stopped", 0, 0.0, 0.0,
-                                method, self.modes, self.available, np.zeros(6), np.zeros(r, dtype=bool),
-                                np.zeros(r, dtype=bool), outcome=Outcome.STOPPED)
+        return AllocationResult(thrust=thrust, azimuth=state.angle, command=command, achieved=np.zeros(6),
+                                requested=np.zeros(6), saturated=False, status="stopped", iterations=0, solve_time=0.0,
+                                power=0.0, method=method, mode=self.modes, available=self.available,
+                                unallocated=np.zeros(6), at_thrust_limit=np.zeros(r, dtype=bool),
+                                at_rate_limit=np.zeros(r, dtype=bool), outcome=Outcome.STOPPED)
 
     def resolve(self, output: MethodOutput, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Per-actuator thrust and angle from the extended force, inside every limit, and the
