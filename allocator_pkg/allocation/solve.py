@@ -83,7 +83,9 @@ class MethodStage:
         """The control surfaces' lift and drag gains at the speed in force, for the drag
         feed-forward."""
         self._lift = conditions.lift[self._surfaces]
+        self._lifting = self._lift > 0.0
         self._drag = conditions.drag[self._surfaces]
+        self._deflection = np.zeros(self._surfaces.size)
 
     @property
     def setups(self) -> int:
@@ -102,10 +104,10 @@ class MethodStage:
         surge = self._drag_row
         if surge is None:
             return output, 0.0
-        drag = 0.0
+        low, high = limits.low[self._surfaces], limits.high[self._surfaces]
+        drag, new_drag = 0.0, self._surface_drag(output.force, low, high)
         iterations = output.iterations
         for _ in range(DRAG_PASSES):
-            new_drag = self._surface_drag(output.force, limits)
             if abs(new_drag - drag) <= 1e-9 * max(1.0, abs(tau[surge])):
                 break
             drag = new_drag
@@ -115,9 +117,10 @@ class MethodStage:
             if output.outcome is Outcome.FAILED:
                 output = self._fallback(compensated, limits, output)
             iterations += output.iterations
+            new_drag = self._surface_drag(output.force, low, high)
         if iterations != output.iterations:
             output = replace(output, iterations=iterations)
-        return output, self._surface_drag(output.force, limits)
+        return output, new_drag
 
     def _fallback(self, tau: np.ndarray, limits: SampleLimits, failed: MethodOutput) -> MethodOutput:
         """The pseudo-inverse's extended force for ``tau``, as the answer of a method that
@@ -127,10 +130,10 @@ class MethodStage:
         return replace(fallback, status=f"fallback: pseudoinverse ({failed.status})", iterations=failed.iterations,
                        outcome=Outcome.FALLBACK, reason=failed.status)
 
-    def _surface_drag(self, force: np.ndarray, limits: SampleLimits) -> float:
+    def _surface_drag(self, force: np.ndarray, low: np.ndarray, high: np.ndarray) -> float:
         """X_cs of (1.57): the added resistance of all control surfaces at the deflections
-        ``force`` gives them, clipped to this sample's limits as actuation clips it."""
-        surfaces = self._surfaces
-        thrust = np.minimum(np.maximum(force[self._surface_columns], limits.low[surfaces]), limits.high[surfaces])
-        deflection = np.divide(thrust, self._lift, out=np.zeros(surfaces.size), where=self._lift > 0.0)
+        ``force`` gives them, clipped to this sample's limits (``low``, ``high`` of the
+        surfaces) as actuation clips it."""
+        thrust = np.minimum(np.maximum(force[self._surface_columns], low), high)
+        deflection = np.divide(thrust, self._lift, out=self._deflection, where=self._lifting)
         return float(np.sum(self._drag * deflection * deflection))
