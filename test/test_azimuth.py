@@ -9,8 +9,9 @@ import pytest
 from conftest import ROOT, vehicle_from
 
 from allocator_pkg import METHODS, Allocator, FaultMode, vehicle_from_parameters
-from allocator_pkg.allocation.azimuth import AzimuthState, piece_in_question, plan, resolve
+from allocator_pkg.allocation.azimuth import AzimuthState, piece_in_question, plan
 from allocator_pkg.effectiveness.model import AzimuthLimits
+from allocator_pkg.effectiveness.resolve import resolve
 from allocator_pkg.effectiveness.sectors import in_feasible_sector, in_forbidden_sector
 from allocator_pkg.vehicle.angles import wrap
 
@@ -225,19 +226,6 @@ def test_plan_and_resolve_units():
     assert thrust == 15.0          # the projection, 50 sin(0.1), is below what the rate limit allows
     held = resolve(AzimuthLimits(-0.1, 0.1, 1, 0.0, 25.0), 0.05, (1e-3, 0.0), 0.01, continuous=True)
     assert held[1] == 0.05
-
-
-def test_an_idle_thruster_turns_toward_a_methods_turn_instead_of_its_goal():
-    """`turn` (a method's direction for an idle thruster) wins over the limits' goal, the short
-    way round and within the sample's window; a thruster that pushes, or may not push, ignores it."""
-    window = AzimuthLimits(3.0 - 0.2, 3.0 + 0.2, 1, 0.0, 25.0, goal=2.9)
-    assert resolve(window, 3.0, (0.0, 0.0), 0.01, continuous=True, turn=-2.9) == (0.0, pytest.approx(wrap(3.2)))
-    assert resolve(window, 3.0, (0.0, 0.0), 0.01, continuous=True, turn=3.05) == (0.0, pytest.approx(3.05))
-    assert resolve(window, 3.0, (0.0, 0.0), 0.01, continuous=True)[1] == pytest.approx(2.9)
-    pushing = resolve(window, 3.0, (-10.0, 0.0), 0.01, continuous=True, turn=2.0)
-    assert pushing[1] == pytest.approx(math.pi)
-    failed = dataclasses.replace(window, thrust_high=0.0)
-    assert resolve(failed, 3.0, (0.0, 0.0), 0.01, continuous=True, turn=3.1)[1] == pytest.approx(2.9)
 
 
 @pytest.mark.parametrize("reversible", [False, True])

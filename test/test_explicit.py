@@ -85,7 +85,7 @@ def test_the_objective_equals_bounded_least_squares_with_the_bounds_as_parameter
             lo, hi = low, high
         output = method.solve(tau, limits(lo, hi))
         expected = bvls(t, w, q, lo, hi, tau)
-        assert output.solved and "no exact region" not in output.status
+        assert output.usable and "no exact region" not in output.status
         slack = 1e-8 * np.maximum(high, -low)
         assert np.all(output.force >= lo - slack) and np.all(output.force <= hi + slack)
         reference = objective(t, w, q, expected, tau)

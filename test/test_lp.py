@@ -12,8 +12,8 @@ from reference import largest_attainable_scale, weighted_l1_allocation
 from allocator_pkg import Allocator, FaultMode
 from allocator_pkg.effectiveness.model import AzimuthLimits, Model, SampleLimits
 from allocator_pkg.methods.lp import LPAllocation
+from allocator_pkg.methods.sample_lp import polygon_error, survey_apothem
 from allocator_pkg.solvers import BACKENDS
-from allocator_pkg.solvers.sample_lp import polygon_error, survey_apothem
 
 sys.path.insert(0, str(ROOT / "bench"))
 

@@ -18,9 +18,8 @@ from allocator_pkg import (
 )
 from allocator_pkg.analysis.capability import Capability
 from allocator_pkg.configuration import schema
-from allocator_pkg.methods.base import AllocationMethod
+from allocator_pkg.methods.base import AllocationMethod, MethodOutput
 from allocator_pkg.methods.pseudoinverse import PseudoInverseAllocation
-from allocator_pkg.solvers.outcome import MethodOutput
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 

@@ -10,7 +10,7 @@ from reference import weighted_pseudo_inverse
 from allocator_pkg import Allocator, FaultMode
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix, extended_configuration_matrix
 from allocator_pkg.effectiveness.model import Model
-from allocator_pkg.methods.pseudoinverse import PseudoInverseGains
+from allocator_pkg.effectiveness.weighted_inverse import PseudoInverseGains
 
 EIGHT = DATA / "eight_thrusters.yaml"
 

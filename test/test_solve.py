@@ -5,7 +5,7 @@ import pytest
 from conftest import ROOT, matrices, vehicle_from
 from reference import weighted_pseudo_inverse
 
-from allocator_pkg import Allocator, Outcome
+from allocator_pkg import Allocator, ConfigError, Outcome
 from allocator_pkg.allocation.solve import check_method
 
 EIGHT = ROOT / "test" / "data" / "eight_thrusters.yaml"
@@ -34,6 +34,6 @@ def test_a_method_that_converges_says_so_with_its_residual():
 
 
 def test_a_method_is_refused_with_the_reason_it_cannot_serve_the_vehicle():
-    with pytest.raises(ValueError, match="method 'explicit' cannot serve this vehicle: it needs actuators of fixed"):
+    with pytest.raises(ConfigError, match="method: 'explicit' cannot serve this vehicle: it needs actuators of fixed"):
         check_method("explicit", vehicle_from(DP))
     check_method("qp", vehicle_from(DP))

@@ -1,36 +1,32 @@
-"""The actuation stage of a sample: from the method's extended force to what each actuator is
-commanded, and what that gives.
+"""The actuation stage of a sample: from the method stage's extended force to what each
+actuator is commanded, and what that gives: the sample's :class:`~.result.AllocationResult`.
 
 Thrust and angle of every actuator inside every limit whatever the solver returned
-(``azimuth.resolve`` and a clip); the drag of deflected control surfaces fed forward
-(1.56)-(1.58): the surge request grows by that drag and is solved again until it settles; a
-force inside a dead band snapped to zero or the band's edge; command maps to set-points (a
-reversed thruster's mirrored); the achieved wrench from T_e of what is commanded, the
-unallocated rest, the DOFs short, the limit flags and the power estimate (1.44)."""
+(:func:`~allocator_pkg.effectiveness.resolve.resolve` and a clip); a force inside a dead band
+snapped to zero or the band's edge; command maps to set-points (a reversed thruster's
+mirrored); the achieved wrench from T_e of what is commanded, less the surge drag of the
+control surfaces the method stage fed forward (1.56)-(1.58); the unallocated rest, the DOFs
+short, the limit flags and the power estimate (1.44)."""
 
 from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
 
 import numpy as np
 
-from ..effectiveness.actuators import CommandMaps, command_map, deadband_forces, drag_gain
-from ..effectiveness.faults import FaultSet, lift_gains
+from ..effectiveness.actuators import CommandMaps, command_map, deadband_forces
 from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
-from ..solvers.outcome import MethodOutput, Outcome
+from ..effectiveness.resolve import resolve
+from ..methods.base import MethodOutput
+from ..solvers.outcome import Outcome
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import DOF_NAMES
-from .azimuth import resolve
+from .conditions import Conditions
 from .result import AllocationResult
 from .state import ActuatorState
 
 SURGE = DOF_NAMES.index("surge")
-
-DRAG_PASSES = 4
-"""Solves per sample for the drag feed-forward (1.56)-(1.58): the request plus the drag of the
-last pass's deflections, until the drag stops changing (two or three passes in practice)."""
 
 DEADBAND_EDGE = 1e-12
 """[N] Rounding allowed when a dead band's edge is checked against this sample's limits."""
@@ -61,8 +57,6 @@ class ActuationStage:
         self._any_rated = bool(self._thrust_rated or self._surface_rated or self._angle_rated)
         self._never = np.zeros(model.r, dtype=bool)
         self._never.flags.writeable = False
-        rows = np.flatnonzero(model.dof_index == SURGE)
-        self._drag_row = int(rows[0]) if rows.size and model.surfaces.size else None
         self._dof_index = model.dof_index
         self._all_dofs = model.n == len(DOF_NAMES)
         self._dofs = vehicle.dofs
@@ -81,25 +75,20 @@ class ActuationStage:
         self.maps = CommandMaps([None if a.is_surface else maps.setdefault(a.command, command_map(a.command, voltage))
                                  for a in actuators], [not a.is_surface and a.command.reversed for a in actuators])
 
-    def set_speed(self, speed: float) -> None:
-        """Lift and drag gains of the control surfaces at surge ``speed`` (1.48), (1.57)."""
-        vehicle = self.model.vehicle
-        self.lift = lift_gains(vehicle, speed)
-        self._lift_list = self.lift.tolist()
-        self._drag = np.array([drag_gain(a.surface, vehicle.water_density, speed) if a.is_surface else 0.0
-                               for a in vehicle.actuators])
-
-    def refresh(self, low: np.ndarray, high: np.ndarray, fault_set: FaultSet) -> None:
-        """What the static ranges and faults decide: dead bands, where a thrust counts as at its
-        limit, availability, the command efficiency."""
+    def refresh(self, conditions: Conditions) -> None:
+        """What faults, speed and voltage decide: dead bands, where a thrust counts as at its
+        limit, availability, the command efficiency, the control surfaces' lift gains."""
         model = self.model
+        fault_set, low, high = conditions.faults, conditions.low, conditions.high
+        self._lift = conditions.lift
+        self._lift_list = self._lift.tolist()
         if self._deadband_index.size:
             self._deadband = self._deadband_edges * fault_set.command_efficiency[self._deadband_index, None]
         # Where a thrust counts as at its limit (an end of zero is no limit to report).
         self._at_high = np.where(high > 0.0, high * (1.0 - AT_LIMIT), np.inf)
         self._at_low = np.where(low < 0.0, low * (1.0 - AT_LIMIT), -np.inf)
         available = fault_set.efficiency > 0.0
-        available[model.surfaces] &= self.lift[model.surfaces] > 0.0
+        available[model.surfaces] &= self._lift[model.surfaces] > 0.0
         available.flags.writeable = False
         self.available = available
         fault_set.modes.flags.writeable = False
@@ -108,16 +97,11 @@ class ActuationStage:
         self._command_efficiency = None if np.all(efficiency == 1.0) else efficiency
 
     def actuate(self, requested: np.ndarray, tau: np.ndarray, limits: SampleLimits, output: MethodOutput,
-                state: ActuatorState, solve: Callable[[np.ndarray, SampleLimits], MethodOutput], method: str,
-                start: float) -> AllocationResult:
-        """The sample's result from the method's ``output`` for the controlled request ``tau``
-        (``solve`` answers the drag feed-forward's passes); ``state`` is the one the sample
-        started from."""
+                drag: float, state: ActuatorState, method: str, start: float) -> AllocationResult:
+        """The sample's result from the method stage's ``output`` for the controlled request
+        ``tau`` and the surge ``drag`` it fed forward; ``state`` is the one the sample started
+        from."""
         thrust, angle, extended = self.resolve(output, limits)
-        drag = 0.0
-        if self._drag_row is not None:
-            output, thrust, angle, extended, drag = self._compensate_drag(tau, limits, output, thrust, angle,
-                                                                          extended, solve)
         if self._deadband_index.size:
             self._snap_deadband(thrust, extended, limits)
         achieved = self._t_e @ extended
@@ -133,22 +117,26 @@ class ActuationStage:
         else:
             unallocated = np.zeros(6)
             unallocated[self._dof_index] = -miss
-        command = self.maps.commands(thrust, self._command_efficiency, self.lift)
+        command = self.maps.commands(thrust, self._command_efficiency, self._lift)
         at_thrust, at_rate = self._limit_flags(thrust, angle, state)
         power = sum(p * abs(t) ** 1.5 for p, t in zip(self._power, thrust.tolist()))
-        return AllocationResult(thrust, angle, command, achieved, requested, bool(short), output.status,
-                                output.iterations, time.perf_counter() - start, power, method, self.modes,
-                                self.available, unallocated, at_thrust, at_rate, drag, output.outcome, short,
-                                output.residual, output.reason)
+        return AllocationResult(thrust=thrust, azimuth=angle, command=command, achieved=achieved, requested=requested,
+                                saturated=bool(short), status=output.status, iterations=output.iterations,
+                                solve_time=time.perf_counter() - start, power=power, method=method, mode=self.modes,
+                                available=self.available, unallocated=unallocated, at_thrust_limit=at_thrust,
+                                at_rate_limit=at_rate, drag=drag, outcome=output.outcome, short=short,
+                                residual=output.residual, reason=output.reason)
 
     def stop(self, state: ActuatorState, method: str) -> AllocationResult:
         """Zero thrust, the angles held."""
         r = self.model.r
         thrust = np.zeros(r)
-        command = self.maps.commands(thrust, self._command_efficiency, self.lift)
-        return AllocationResult(thrust, state.angle, command, np.zeros(6), np.zeros(6), False, "stopped", 0, 0.0, 0.0,
-                                method, self.modes, self.available, np.zeros(6), np.zeros(r, dtype=bool),
-                                np.zeros(r, dtype=bool), outcome=Outcome.STOPPED)
+        command = self.maps.commands(thrust, self._command_efficiency, self._lift)
+        return AllocationResult(thrust=thrust, azimuth=state.angle, command=command, achieved=np.zeros(6),
+                                requested=np.zeros(6), saturated=False, status="stopped", iterations=0, solve_time=0.0,
+                                power=0.0, method=method, mode=self.modes, available=self.available,
+                                unallocated=np.zeros(6), at_thrust_limit=np.zeros(r, dtype=bool),
+                                at_rate_limit=np.zeros(r, dtype=bool), outcome=Outcome.STOPPED)
 
     def resolve(self, output: MethodOutput, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Per-actuator thrust and angle from the extended force, inside every limit, and the
@@ -169,26 +157,6 @@ class ActuationStage:
             thrust[i], angle[i] = thrust_i, angle_i
             extended[c1], extended[c2] = thrust_i * math.cos(angle_i), thrust_i * math.sin(angle_i)
         return thrust, angle, extended
-
-    def _compensate_drag(self, tau: np.ndarray, limits: SampleLimits, output: MethodOutput, thrust: np.ndarray,
-                         angle: np.ndarray, extended: np.ndarray,
-                         solve: Callable[[np.ndarray, SampleLimits], MethodOutput]):
-        """The drag feed-forward (1.56)-(1.58): solve again with the surge request grown by the
-        drag of the last pass's deflections until the drag settles."""
-        drag = 0.0
-        surge = self._drag_row
-        for _ in range(DRAG_PASSES):
-            new_drag = self._surface_drag(thrust)
-            if abs(new_drag - drag) <= 1e-9 * max(1.0, abs(tau[surge])):
-                break
-            drag = new_drag
-            compensated = tau.copy()
-            compensated[surge] += drag
-            again = solve(compensated, limits)
-            again.iterations += output.iterations
-            output = again
-            thrust, angle, extended = self.resolve(output, limits)
-        return output, thrust, angle, extended, self._surface_drag(thrust)
 
     def _snap_deadband(self, thrust: np.ndarray, extended: np.ndarray, limits: SampleLimits) -> None:
         """A force inside a dead band (between zero and the force at the band's edge) cannot
@@ -235,10 +203,3 @@ class ActuationStage:
             for i, step in self._angle_rated:
                 at_rate[i] = at_rate[i] or abs(math.remainder(turned_to[i] - turned_from[i], TWO_PI)) >= step
         return at_thrust, np.array(at_rate)
-
-    def _surface_drag(self, thrust: np.ndarray) -> float:
-        """X_cs of (1.57): the added resistance of all deflected control surfaces."""
-        surfaces = self.model.surfaces
-        lift = self.lift[surfaces]
-        deflection = np.divide(thrust[surfaces], lift, out=np.zeros(surfaces.size), where=lift > 0.0)
-        return float(np.sum(self._drag[surfaces] * deflection * deflection))

@@ -7,14 +7,18 @@ Each sample :meth:`Allocator.allocate` runs the pipeline
    limits, control-surface ranges from the speed (1.48), the allowed angles of every rotatable
    thruster (:func:`~.azimuth.plan`);
 3. solve (:class:`~.solve.MethodStage`): the extended force vector from the configured method
-   (a key of ``METHODS``), or from the pseudo-inverse if the method fails;
+   (a key of ``METHODS``), or from the pseudo-inverse if the method fails, with the drag of
+   the control surfaces fed forward (1.56)-(1.58);
 4. actuation (:class:`~.actuation.ActuationStage`): thrust, angle and command of every
-   actuator inside every limit, the drag feed-forward, dead bands, the achieved wrench, the
-   unallocated rest, the limit flags and the power estimate;
+   actuator inside every limit, dead bands, the achieved wrench, the unallocated rest, the
+   limit flags and the power estimate;
 5. commit: the thrust and angles become the state the next sample starts from.
 
-Speed, voltage and faults change values only (new bounds for the running solver); the
-command maps and the static ranges follow them when they change, never per sample.
+Each stage is given what it needs once per configuration (the
+:class:`~allocator_pkg.effectiveness.weighted_inverse.PseudoInverseGains` that the fallback and
+the azimuth planning share) and once per change of speed, voltage or faults (the
+:class:`~.conditions.Conditions`: static ranges, lift and drag gains), never per sample. Those
+changes are values only: new bounds for the running solver.
 """
 
 from __future__ import annotations
@@ -31,10 +35,12 @@ from ..effectiveness.faults import Fault, FaultMode, FaultSet
 from ..effectiveness.model import Model
 from ..effectiveness.reach import actuation_notes, reachability_warnings
 from ..effectiveness.sectors import in_feasible_sector
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..solvers import BACKENDS, DEFAULT_BACKEND, BackendFactory
 from ..vehicle.config import DOF_NAMES, Vehicle
 from .actuation import ActuationStage
+from .conditions import Conditions
 from .limits import LimitsStage
 from .result import AllocationResult, AllocatorStats
 from .solve import MethodStage, check_method
@@ -148,11 +154,12 @@ class Allocator:
     def _configure(self, vehicle: Vehicle) -> None:
         previous = getattr(self, "_model", None)
         model = Model.build(vehicle, self._dt if self._dt is not None else 1.0 / vehicle.rate_hz)
-        self._solver.configure(model, self._method_override or vehicle.method)
+        inverse = PseudoInverseGains(model)
+        self._solver.configure(model, self._method_override or vehicle.method, inverse)
         if previous is None:
-            self._limits, self._actuation = LimitsStage(model), ActuationStage(model)
+            self._limits, self._actuation = LimitsStage(model, inverse), ActuationStage(model)
         else:
-            self._limits.configure(model)
+            self._limits.configure(model, inverse)
             self._actuation.configure(model)
         self._model, self._vehicle = model, vehicle
         voltages = vehicle.voltage_range
@@ -162,7 +169,6 @@ class Allocator:
         if previous is None or previous.vehicle.dofs != vehicle.dofs or not np.array_equal(previous.t_e, model.t_e):
             self._warnings = reachability_warnings(model)      # rank tests: only the geometry decides
             self._notes = actuation_notes(model)
-        self._actuation.set_speed(self._speed)
         self._refresh()
 
     @property
@@ -195,7 +201,6 @@ class Allocator:
         if not math.isfinite(speed):
             raise ValueError(f"speed must be finite, got {speed}")
         self._speed = speed
-        self._actuation.set_speed(speed)
         self._refresh()
 
     @property
@@ -250,16 +255,17 @@ class Allocator:
         return self._fault_set.modes.copy()
 
     def _refresh(self) -> None:
-        """What faults, speed and voltage decide, for the limits and the actuation stages."""
-        limits = self._limits
-        limits.refresh(self._fault_set, self._speed, self._voltage, self._actuation.lift, self._solver.inverse)
-        self._actuation.refresh(limits.low, limits.high, self._fault_set)
+        """What faults, speed and voltage decide, computed once and given to every stage."""
+        conditions = self._conditions = Conditions.of(self._model.vehicle, self._fault_set, self._speed, self._voltage)
+        self._limits.refresh(conditions)
+        self._solver.refresh(conditions)
+        self._actuation.refresh(conditions)
 
     @property
     def ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Signed force range [low, high] of every actuator in force (faults, speed and voltage;
         before rate limits)."""
-        return self._limits.low.copy(), self._limits.high.copy()
+        return self._conditions.low.copy(), self._conditions.high.copy()
 
     def configuration_matrix(self, azimuth: Sequence[float] | None = None) -> np.ndarray:
         """T(alpha), 6 x r, at the given angles or the current ones."""
@@ -277,17 +283,17 @@ class Allocator:
         model, state = self._model, self._state
         controlled = requested if model.n == len(DOF_NAMES) else requested[model.dof_index]
         limits = self._limits.sample(controlled, state)
-        output = self._solver.solve(controlled, limits)
-        result = self._actuation.actuate(requested, controlled, limits, output, state, self._solver.solve,
-                                         self._solver.method.name, start)
-        state.commit(model, result.thrust, result.azimuth, self._actuation.lift)
+        output, drag = self._solver.solve(controlled, limits)
+        result = self._actuation.actuate(requested, controlled, limits, output, drag, state, self._solver.method.name,
+                                         start)
+        state.commit(model, result.thrust, result.azimuth, self._conditions.lift)
         self._samples += 1
         return result
 
     def stop(self) -> AllocationResult:
         """Zero thrust at once, angles held (watchdog and shutdown); bypasses rate limits."""
         result = self._actuation.stop(self._state, self._solver.method.name)
-        self._state.commit(self._model, result.thrust, result.azimuth, self._actuation.lift)
+        self._state.commit(self._model, result.thrust, result.azimuth, self._conditions.lift)
         return result
 
 

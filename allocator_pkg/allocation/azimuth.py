@@ -1,17 +1,13 @@
-"""Per-sample limits of a rotatable thruster, and the force-to-(thrust, angle) step.
+"""Per-sample limits of a rotatable thruster.
 
-Every method treats a rotatable thruster through :func:`plan` and :func:`resolve`:
-
-- :func:`plan` turns the thruster's state (angle alpha0, signed thrust F0), its rate limits,
-  feasible and forbidden sectors, faults and the direction the unconstrained extended
-  solution (1.33) wants, into the set of angles and thrusts allowed this sample.
-- :func:`resolve` turns a wanted force vector (extended components, (1.18)) into the
-  thrust and angle actually commanded: the angle is atan2 of the force (1.23), clamped to the
-  allowed angles; when the force is too small to define an angle the thruster holds, or turns
-  toward the direction the unconstrained solution wants (so that an idle thruster is ready,
-  and a thruster that must turn the long way round gets there). The thrust is the projection
-  of the force on the angle reached (never pointing the wrong way while turning) clipped to
-  the allowed thrusts. Outputs are inside every limit whatever the solver returned.
+Every method treats a rotatable thruster through :func:`plan`, which turns the thruster's
+state (angle alpha0, signed thrust F0), its rate limits, feasible and forbidden sectors,
+faults and the direction the unconstrained extended solution (1.33) wants, into the set of
+angles and thrusts allowed this sample (:class:`~allocator_pkg.effectiveness.model.AzimuthLimits`).
+The limits' ``goal`` is that direction, toward which an idle thruster turns (so that it is
+ready, and a thruster that must turn the long way round gets there) when
+:func:`~allocator_pkg.effectiveness.resolve.resolve` turns the method's force into the thrust
+and angle commanded, inside every limit whatever the solver returned.
 
 Crossing to another piece. Thrust is not allowed inside a forbidden sector, so the set of
 usable angles splits into pieces, and the rate limit means the thruster only reaches nearby
@@ -235,35 +231,6 @@ def _exit_offset(rotation: RotationConfig, alpha0: float) -> float:
         if lo < 0.0 < hi:
             return hi if hi <= -lo else lo
     return 0.0
-
-
-def resolve(limits: AzimuthLimits, alpha0: float, force: tuple[float, float], hold: float,
-            continuous: bool, proposal: float | None = None, turn: float | None = None) -> tuple[float, float]:
-    """(thrust, angle) that produce as much of ``force`` as this sample's limits allow.
-
-    The angle is atan2 of the force (1.23), or ``proposal`` if a method chose one; for a force
-    below ``hold`` or a thruster that may not push this sample (an idle or failed one) it turns
-    toward ``turn`` if a method chose where an idle thruster should go (and it may push), else
-    toward the limits' goal, or holds. Either way it is clamped to the allowed angles.
-    """
-    f1, f2 = force
-    if limits.line:
-        angle = alpha0
-    elif turn is not None and limits.magnitude_max > 0.0 and math.hypot(f1, f2) < hold:
-        angle = alpha0 + wrap(turn - alpha0)
-    elif math.hypot(f1, f2) < hold or limits.magnitude_max == 0.0:
-        angle = alpha0 if limits.goal is None else limits.goal
-    elif proposal is not None:
-        angle = alpha0 + wrap(proposal - alpha0)
-    else:
-        direction = math.atan2(f2, f1) if limits.sigma > 0 else math.atan2(-f2, -f1)
-        angle = alpha0 + wrap(direction - alpha0)
-    angle = min(max(angle, limits.low), limits.high)
-    if continuous:
-        angle = wrap(angle)
-    thrust = f1 * math.cos(angle) + f2 * math.sin(angle)
-    thrust = min(max(thrust, limits.thrust_low), limits.thrust_high)
-    return thrust, angle
 
 
 def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float, desired: tuple[float, float],

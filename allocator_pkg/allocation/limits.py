@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..effectiveness.faults import FaultSet, static_ranges
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
 from ..effectiveness.sectors import surroundings
-from ..methods.pseudoinverse import PseudoInverseGains
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from .azimuth import piece_in_question, plan
+from .conditions import Conditions
 from .pieces import PiecePlanner
 from .state import ActuatorState
 
@@ -23,16 +23,18 @@ class LimitsStage:
     """This sample's :class:`SampleLimits` from the configuration, the faults, speed and
     voltage in force, and the state the sample starts from."""
 
-    def __init__(self, model: Model):
+    def __init__(self, model: Model, inverse: PseudoInverseGains):
         self.planner = PiecePlanner(model)
         self.version = 0
-        self.configure(model)
+        self.configure(model, inverse)
 
-    def configure(self, model: Model) -> None:
-        """Per-configuration constants, as the types the per-sample path reads fastest."""
+    def configure(self, model: Model, inverse: PseudoInverseGains) -> None:
+        """Per-configuration constants, as the types the per-sample path reads fastest;
+        ``inverse``, the configuration's pseudo-inverse gains, plans the rotatable thrusters."""
         if self.planner.model is not model:
             self.planner.update_model(model)
         self.model = model
+        self._inverse = inverse
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._rot_pairs = [(int(i), (int(c1), int(c2))) for i, (c1, c2) in zip(model.rot, model.rot_columns)]
         self._rotations = [model.vehicle.actuators[i].rotation for i in model.rot]
@@ -41,22 +43,21 @@ class LimitsStage:
         self._thrust_step = model.thrust_step.tolist()
         self._hold = model.hold.tolist()
 
-    def refresh(self, fault_set: FaultSet, speed: float, voltage: float | None, lift: np.ndarray,
-                inverse: PseudoInverseGains) -> None:
-        """What faults, speed and voltage decide, computed when they change (never per sample):
+    def refresh(self, conditions: Conditions) -> None:
+        """What faults, speed and voltage decide, taken when they change (never per sample):
         the static force ranges, the pseudo-inverse gain that plans rotatable thrusters, and
         the limits of a vehicle whose limits never change between samples."""
         model = self.model
-        self.fault_set = fault_set
-        self.low, self.high = static_ranges(model.vehicle, fault_set, speed, voltage)
+        self.fault_set = conditions.faults
+        self.low, self.high = conditions.low, conditions.high
         self._low_list, self._high_list = self.low.tolist(), self.high.tolist()
-        self._lift = lift
+        self._lift = conditions.lift
         self.version += 1
         if model.rot.size:
             excluded = (self.low == 0.0) & (self.high == 0.0)
-            self._desired_gain = inverse.gain(excluded, {})
+            self._desired_gain = self._inverse.gain(excluded, {})
         if model.surfaces.size:
-            gain = lift[model.surfaces]
+            gain = self._lift[model.surfaces]
             self._surface_step = np.multiply(gain, model.thrust_step[model.surfaces], out=np.zeros(gain.size),
                                              where=gain > 0.0)
         self._static = None if (model.rot.size or model.surfaces.size or self._rate_limited) else SampleLimits(

@@ -9,7 +9,7 @@ import numpy as np
 from ..solvers.outcome import Outcome
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, kw_only=True)
 class AllocationResult:
     """One sample's answer; arrays are per actuator in configuration order. ``thrust``,
     ``azimuth``, ``mode``, ``available`` (and ``at_rate_limit`` of a vehicle without rate

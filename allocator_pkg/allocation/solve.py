@@ -1,27 +1,41 @@
 """The method stage of a sample: the configured method, with the weighted pseudo-inverse
-answering whenever it fails, and the cache of methods set up for this configuration."""
+answering whenever it fails, fed forward the drag of the control surfaces (1.56)-(1.58); the
+cache of methods set up for this configuration; and the check that a method can serve a
+vehicle."""
 
 from __future__ import annotations
+
+from dataclasses import replace
 
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS, AllocationMethod
-from ..methods.pseudoinverse import PseudoInverseAllocation, PseudoInverseGains
+from ..methods.base import MethodOutput
+from ..methods.pseudoinverse import PseudoInverseAllocation
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput, Outcome
-from ..vehicle.config import Vehicle
+from ..solvers.outcome import Outcome
+from ..vehicle.config import DOF_NAMES, ConfigError, Vehicle
+from .conditions import Conditions
+
+SURGE = DOF_NAMES.index("surge")
+
+DRAG_PASSES = 4
+"""Solves per sample for the drag feed-forward (1.56)-(1.58): the request plus the drag of the
+last pass's deflections, until the drag stops changing (two or three passes in practice)."""
 
 
 def check_method(method: str, vehicle: Vehicle) -> None:
-    """Raise ValueError when ``method`` cannot serve ``vehicle`` (its reasons) or the vehicle
+    """Raise ConfigError when ``method`` cannot serve ``vehicle`` (its reasons) or the vehicle
     orders its DOFs and the method does not implement it."""
     unfit = METHODS[method].problems(vehicle)
     if unfit:
-        raise ValueError(f"method '{method}' cannot serve this vehicle: {'; '.join(unfit)}")
+        raise ConfigError([("method", f"'{method}' cannot serve this vehicle: {'; '.join(unfit)}")])
     if vehicle.priority_levels and not METHODS[method].implements_priorities:
         able = ", ".join(name for name, kind in METHODS.items() if kind.implements_priorities)
-        raise ValueError(f"priorities: method '{method}' does not implement DOF priorities; methods that do: {able}")
+        raise ConfigError([("priorities", f"method '{method}' does not implement DOF priorities; methods that do: "
+                                          f"{able}")])
 
 
 class MethodStage:
@@ -39,17 +53,21 @@ class MethodStage:
         self.fallbacks = 0
         self._retired_setups = 0
 
-    def configure(self, model: Model, name: str) -> None:
-        """Take a new configuration and use the method ``name``. A cached method goes with a new
+    def configure(self, model: Model, name: str, inverse: PseudoInverseGains) -> None:
+        """Take a new configuration and use the method ``name``; ``inverse`` is the
+        configuration's pseudo-inverse gains, for the fallback. A cached method goes with a new
         structure, or when it cannot serve the new vehicle (it is set up again, with its reason
         checked, if chosen later)."""
         stale = [key for key, method in self.methods.items()
                  if method.structure != model.structure or METHODS[key].problems(model.vehicle)]
         for key in stale:
             self._retired_setups += self.methods.pop(key).setups
-        self.inverse = PseudoInverseGains(model)
-        self.fallback = PseudoInverseAllocation(model, self.backend, self.inverse)
+        self.fallback = PseudoInverseAllocation(model, self.backend, inverse)
         self.model = model
+        rows = np.flatnonzero(model.dof_index == SURGE)
+        self._drag_row = int(rows[0]) if rows.size and model.surfaces.size else None
+        self._surfaces = model.surfaces
+        self._surface_columns = model.starts[model.surfaces]
         self.choose(name)
 
     def choose(self, name: str) -> None:
@@ -61,20 +79,61 @@ class MethodStage:
             method.update_model(self.model)
         self.method = method
 
+    def refresh(self, conditions: Conditions) -> None:
+        """The control surfaces' lift and drag gains at the speed in force, for the drag
+        feed-forward."""
+        self._lift = conditions.lift[self._surfaces]
+        self._lifting = self._lift > 0.0
+        self._drag = conditions.drag[self._surfaces]
+        self._deflection = np.zeros(self._surfaces.size)
+
     @property
     def setups(self) -> int:
         """Solver set-ups of every method this stage has made."""
         return self._retired_setups + sum(method.setups for method in self.methods.values())
 
-    def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
-        """The method's extended force for ``tau``, or the pseudo-inverse's when it fails
-        (``Outcome.FALLBACK``, the failed status as its ``reason``)."""
+    def solve(self, tau: np.ndarray, limits: SampleLimits) -> tuple[MethodOutput, float]:
+        """The method's extended force for ``tau`` (the pseudo-inverse's when it fails) and the
+        surge drag X_cs (1.57) of the control surfaces it deflects. With control surfaces and
+        surge controlled, the drag is fed forward (1.56)-(1.58): solved again with the surge
+        request grown by the drag of the last pass's deflections until the drag settles; the
+        output counts every pass's iterations."""
         output = self.method.solve(tau, limits)
-        if output.outcome is not Outcome.FAILED:
-            return output
+        if output.outcome is Outcome.FAILED:
+            output = self._fallback(tau, limits, output)
+        surge = self._drag_row
+        if surge is None:
+            return output, 0.0
+        low, high = limits.low[self._surfaces], limits.high[self._surfaces]
+        drag, new_drag = 0.0, self._surface_drag(output.force, low, high)
+        iterations = output.iterations
+        for _ in range(DRAG_PASSES):
+            if abs(new_drag - drag) <= 1e-9 * max(1.0, abs(tau[surge])):
+                break
+            drag = new_drag
+            compensated = tau.copy()
+            compensated[surge] += drag
+            output = self.method.solve(compensated, limits)
+            if output.outcome is Outcome.FAILED:
+                output = self._fallback(compensated, limits, output)
+            iterations += output.iterations
+            new_drag = self._surface_drag(output.force, low, high)
+        if iterations != output.iterations:
+            output = replace(output, iterations=iterations)
+        return output, new_drag
+
+    def _fallback(self, tau: np.ndarray, limits: SampleLimits, failed: MethodOutput) -> MethodOutput:
+        """The pseudo-inverse's extended force for ``tau``, as the answer of a method that
+        ``failed`` (``Outcome.FALLBACK``, the failed status as its ``reason``)."""
         self.fallbacks += 1
         fallback = self.fallback.solve(tau, limits)
-        fallback.status = f"fallback: pseudoinverse ({output.status})"
-        fallback.outcome, fallback.reason = Outcome.FALLBACK, output.status
-        fallback.iterations = output.iterations
-        return fallback
+        return replace(fallback, status=f"fallback: pseudoinverse ({failed.status})", iterations=failed.iterations,
+                       outcome=Outcome.FALLBACK, reason=failed.status)
+
+    def _surface_drag(self, force: np.ndarray, low: np.ndarray, high: np.ndarray) -> float:
+        """X_cs of (1.57): the added resistance of all control surfaces at the deflections
+        ``force`` gives them, clipped to this sample's limits (``low``, ``high`` of the
+        surfaces) as actuation clips it."""
+        thrust = np.minimum(np.maximum(force[self._surface_columns], low), high)
+        deflection = np.divide(thrust, self._lift, out=self._deflection, where=self._lifting)
+        return float(np.sum(self._drag * deflection * deflection))

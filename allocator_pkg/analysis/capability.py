@@ -36,9 +36,9 @@ from scipy.optimize import linprog
 from ..effectiveness.faults import Fault, FaultMode, FaultSet, static_ranges
 from ..effectiveness.model import Model
 from ..effectiveness.sectors import allowed_arcs, can_push_along, in_forbidden_sector
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
-from ..methods.pseudoinverse import PseudoInverseGains
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import ActuatorConfig, Vehicle
 

@@ -12,18 +12,42 @@ from __future__ import annotations
 
 import math
 from abc import ABC, abstractmethod
+from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput
+from ..solvers.outcome import Outcome
 from ..vehicle.config import Vehicle
 
 CIRCLE_SIDES = 256
 """The thrust circle |f| <= f_max as a polygon for the capability analysis of a method that
 keeps the circle itself at rest (within 1 - cos(pi/256) = 0.008 %)."""
+
+
+@dataclass(slots=True, kw_only=True)
+class MethodOutput:
+    """A method's answer: the extended force vector (1.16), and how the solve went (its
+    ``outcome``, ``usable`` unless that is FAILED). ``residual`` is the solver's primal
+    residual where it reports one; ``reason`` why a fallback answered (the failed method's
+    status). ``angle`` optionally proposes the angle of each actuator (nonlinear method);
+    ``turn`` the angle toward which an idle rotatable thruster (by actuator index) turns instead
+    of its limits' goal (the nonlinear method's descent direction)."""
+
+    force: np.ndarray
+    status: str
+    iterations: int = 0
+    outcome: Outcome = Outcome.SOLVED
+    angle: np.ndarray | None = None
+    turn: dict[int, float] | None = None
+    residual: float | None = None
+    reason: str = ""
+
+    @property
+    def usable(self) -> bool:
+        return self.outcome is not Outcome.FAILED
 
 
 class AllocationMethod(ABC):

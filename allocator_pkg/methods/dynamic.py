@@ -18,12 +18,13 @@ from dataclasses import replace
 import numpy as np
 
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
+from ..effectiveness.resolve import pointing
 from ..effectiveness.sectors import surroundings
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput, Outcome
+from ..solvers.outcome import Outcome
 from ..vehicle.angles import wrap
 from ..vehicle.config import RotationConfig, Vehicle
-from .base import CIRCLE_SIDES, AllocationMethod
+from .base import CIRCLE_SIDES, AllocationMethod, MethodOutput
 
 HALVINGS = 4
 """Times a step that would raise the Lyapunov function is halved before the law stays put."""
@@ -109,9 +110,11 @@ class DynamicAllocation(AllocationMethod):
                 full, step = self._newton(x, gradient, drive, static, limits, held)
         new, tries = self._move(x, step, request, static, limits, low, high)
         if not np.isfinite(new).all():
-            return MethodOutput(np.zeros(self.model.m), "not finite", tries, outcome=Outcome.FAILED)
+            return MethodOutput(force=np.zeros(self.model.m), status="not finite", iterations=tries,
+                                outcome=Outcome.FAILED)
         self._x, self._request = new, request
-        return MethodOutput(self._commanded(new, request, limits) * self._column_force, "solved", tries)
+        return MethodOutput(force=self._commanded(new, request, limits) * self._column_force, status="solved",
+                            iterations=tries)
 
     def _scalar_bounds(self, limits: SampleLimits) -> tuple[np.ndarray, np.ndarray]:
         """The static thrust range of each scalar column, normalised."""
@@ -314,24 +317,20 @@ def _pinned(lim: AzimuthLimits) -> bool:
     return lim.line or lim.high - lim.low < PINNED or lim.magnitude_max == 0.0
 
 
-def _angle(lim: AzimuthLimits, alpha0: float, z1: float, z2: float, hold: float) -> tuple[float, bool]:
-    """The thruster angle nearest to pushing along (z1, z2) within the window, and whether the
-    window's edge stopped it."""
+def _angle(lim: AzimuthLimits, alpha0: float, z1: float, z2: float, hold: float) -> float:
+    """The thruster angle nearest to pushing along (z1, z2) within the window: a pinned
+    thruster's one direction, else the angle the allocator resolves the force to."""
     if _pinned(lim):
-        return (lim.low if math.isfinite(lim.low) else alpha0), True
-    if math.hypot(z1, z2) <= hold:
-        return min(max(alpha0 if lim.goal is None else lim.goal, lim.low), lim.high), False
-    direction = math.atan2(z2, z1) if lim.sigma > 0 else math.atan2(-z2, -z1)
-    angle = alpha0 + wrap(direction - alpha0)
-    return min(max(angle, lim.low), lim.high), not lim.low <= angle <= lim.high
+        return lim.low if math.isfinite(lim.low) else alpha0
+    return pointing(lim, alpha0, z1, z2, hold)
 
 
 def _sector_projection(lim: AzimuthLimits, alpha0: float, z1: float, z2: float, scale: float,
                        hold: float) -> tuple[float, float]:
     """The point of a rotatable thruster's allowed set nearest to (z1, z2) (forces in units of
     ``scale``): thrust F in [thrust_low, thrust_high] along an angle in [low, high], the point
-    the allocator's azimuth.resolve also picks."""
-    angle, _ = _angle(lim, alpha0, z1, z2, hold)
+    the allocator's resolve also picks."""
+    angle = _angle(lim, alpha0, z1, z2, hold)
     cos, sin = math.cos(angle), math.sin(angle)
     thrust = min(max(z1 * cos + z2 * sin, lim.thrust_low / scale), lim.thrust_high / scale)
     return thrust * cos, thrust * sin
@@ -382,7 +381,7 @@ def _free_along(lim: AzimuthLimits, alpha0: float, x1: float, x2: float, g1: flo
                 hold: float) -> list[tuple[tuple[float, float], float]]:
     """Within this sample: a rotatable thruster's force may change along the angle the state
     gives it, unless its thrust window holds it there."""
-    angle, _ = _angle(lim, alpha0, x1, x2, hold)
+    angle = _angle(lim, alpha0, x1, x2, hold)
     cos, sin = math.cos(angle), math.sin(angle)
     along, push = x1 * cos + x2 * sin, -(g1 * cos + g2 * sin)
     low, high = lim.thrust_low / scale, lim.thrust_high / scale

@@ -20,10 +20,10 @@ import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput, Outcome
-from ..solvers.problem import Rows, ScaledProblem, Solution
+from ..solvers.outcome import Outcome, Solution
+from ..solvers.problem import Rows, ScaledProblem
 from ..vehicle.config import Vehicle
-from .base import CIRCLE_SIDES, AllocationMethod
+from .base import CIRCLE_SIDES, AllocationMethod, MethodOutput
 from .explicit_law import Law, Region, read_regions
 
 CAPACITY = 512
@@ -163,11 +163,12 @@ class ExplicitAllocation(AllocationMethod):
             checks = out[r:].tolist()
             if max(checks) <= 0.0:
                 self.hits += 1
-                return MethodOutput(out[:r], f"hit; regions {self._known}, hits {self.hits}/{self.calls}")
+                return MethodOutput(force=out[:r], status=f"hit; regions {self._known}, hits {self.hits}/{self.calls}")
             found = self._moves(region, checks, p)
             if found is not None:
                 self.moved += 1
-                return MethodOutput(found, f"neighbour; regions {self.regions}, hits {self.hits}/{self.calls}")
+                return MethodOutput(force=found,
+                                    status=f"neighbour; regions {self.regions}, hits {self.hits}/{self.calls}")
         return self._solve(p, limits)
 
     def _moves(self, region: Region, checks: list[float], p: np.ndarray, moves: int = MOVES) -> np.ndarray | None:
@@ -222,8 +223,9 @@ class ExplicitAllocation(AllocationMethod):
             qp.up[index["last"]] = max(float(np.max(np.abs(limits.low))), float(np.max(np.abs(limits.high))))
         solution = qp.solve(qp.low, qp.up)
         if not solution.usable:
-            return MethodOutput(np.zeros(r), f"OSQP: {solution.status}; regions {self.regions}, "
-                                f"hits {self.hits}/{self.calls}", solution.iterations, outcome=solution.outcome)
+            return MethodOutput(force=np.zeros(r), status=f"OSQP: {solution.status}; regions {self.regions}, "
+                                f"hits {self.hits}/{self.calls}", iterations=solution.iterations,
+                                outcome=solution.outcome)
         iterations = solution.iterations
         found = self._polish(solution, p)
         if found is None:
@@ -238,11 +240,11 @@ class ExplicitAllocation(AllocationMethod):
                 solution = tight
                 found = self._polish(solution, p)
         if found is not None:
-            return MethodOutput(found, f"new region by OSQP; regions {self.regions}, hits {self.hits}/{self.calls}",
-                                iterations)
+            return MethodOutput(force=found, status=f"new region by OSQP; regions {self.regions}, "
+                                f"hits {self.hits}/{self.calls}", iterations=iterations)
         self.inexact += 1
-        return MethodOutput(solution.x[:r].copy(), f"OSQP, no exact region ({solution.status}); "
-                            f"regions {self.regions}, hits {self.hits}/{self.calls}", iterations,
+        return MethodOutput(force=solution.x[:r].copy(), status=f"OSQP, no exact region ({solution.status}); "
+                            f"regions {self.regions}, hits {self.hits}/{self.calls}", iterations=iterations,
                             outcome=solution.outcome, residual=solution.residual)
 
     def _polish(self, solution: Solution, p: np.ndarray) -> np.ndarray | None:

@@ -15,11 +15,10 @@ import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.direct import DirectSolution
-from ..solvers.outcome import MethodOutput
-from ..solvers.sample_lp import SampleLP, survey_apothem
 from ..vehicle.config import Vehicle
-from .base import AllocationMethod
+from .base import AllocationMethod, MethodOutput
+from .direct import DirectSolution
+from .sample_lp import SampleLP, survey_apothem
 
 SATURATION_SLACK = 1e-6
 """Slack, as a fraction of its DOF's authority, above which a request counts as unattainable."""
@@ -55,11 +54,12 @@ class LPAllocation(AllocationMethod):
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         solution = self._lp.solve(tau, limits)
-        output = MethodOutput(solution.force, solution.status, solution.iterations, outcome=solution.outcome)
-        if self._direct is None or not solution.solved:
+        output = MethodOutput(force=self._lp.force(solution), status=solution.status, iterations=solution.iterations,
+                              outcome=solution.outcome)
+        if self._direct is None or not solution.usable:
             return output
-        if np.all(np.abs(solution.slack) <= SATURATION_SLACK * self.model.dof_scale):
+        if np.all(np.abs(self._lp.slack(solution)) <= SATURATION_SLACK * self.model.dof_scale):
             return output
         boundary = self._direct.solve(tau, limits)
         boundary.iterations += output.iterations
-        return boundary if boundary.solved else output
+        return boundary if boundary.usable else output

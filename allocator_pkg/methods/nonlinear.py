@@ -18,10 +18,9 @@ import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput
 from ..solvers.problem import Rows, ScaledProblem, entry_index
 from ..vehicle.config import SolverSettings, Vehicle
-from .base import CIRCLE_SIDES, AllocationMethod
+from .base import CIRCLE_SIDES, AllocationMethod, MethodOutput
 
 POWER_CURVATURE = 1.25
 """The power's curvature in each linearised QP, as a multiple of its true curvature at f0,
@@ -190,7 +189,8 @@ class NonlinearAllocation(AllocationMethod):
             iterations += solution.iterations
             status = solution.status
             if not solution.usable:
-                return MethodOutput(np.zeros(model.m), status, iterations, outcome=solution.outcome)
+                return MethodOutput(force=np.zeros(model.m), status=status, iterations=iterations,
+                                    outcome=solution.outcome)
             self._multipliers = solution.y[:n]
             x = solution.x
             new_force = np.minimum(np.maximum(force + x[:r] / root, low), high)
@@ -217,7 +217,7 @@ class NonlinearAllocation(AllocationMethod):
                 idle = [k for k, (f, hold) in enumerate(zip(force[rot].tolist(), self._hold)) if abs(f) <= hold]
                 if idle:
                     turn = self._idle_turns(tau, extended, limits, idle)
-        return MethodOutput(extended, status, iterations, angle=angle, turn=turn)
+        return MethodOutput(force=extended, status=status, iterations=iterations, angle=angle, turn=turn)
 
     def _idle_turning(self, limits: SampleLimits) -> bool:
         """Whether idle thrusters may be sent turning this sample: when every rotatable

@@ -16,99 +16,16 @@ import math
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..solvers import BackendFactory
-from ..solvers.direct import DirectSolution, direct_sides
-from ..solvers.outcome import MethodOutput
 from ..vehicle.angles import wrap
 from ..vehicle.config import Vehicle
-from .base import AllocationMethod
+from .base import AllocationMethod, MethodOutput
+from .direct import DirectSolution, direct_sides
 
-_CACHE_SIZE = 64
 STEP_MARGIN = 1e-9
 """A level's step may pass a limit by this fraction of the actuator's range without being
 scaled (rounding in the null space of the levels above; the final clip takes it)."""
-
-
-class PseudoInverseGains:
-    """Cached gain matrices of the weighted pseudo-inverse (1.29) of T_e, one per subset of
-    usable actuators (a configuration's cache: never computed per sample)."""
-
-    def __init__(self, model: Model):
-        self.model = model
-        self._cache: dict[tuple, np.ndarray] = {}
-
-    def gain(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray:
-        """G (m x n) with f_e = G tau for the actuators not ``excluded``; a rotatable
-        thruster in ``lines`` may only push along its given angle."""
-        return self._cached(("gain", excluded.tobytes(), tuple(sorted(lines.items()))),
-                            lambda: self._compute(excluded, lines))
-
-    def cascade(self, excluded: np.ndarray, lines: dict[int, float],
-                levels: tuple[tuple[int, ...], ...]) -> list[tuple[np.ndarray, np.ndarray]]:
-        """Per priority level, highest first, (its rows of tau, G_k): the force a level adds
-        for a residual r_k of its rows is G_k r_k, in the weighted null space of every level
-        above it."""
-        return self._cached(("cascade", excluded.tobytes(), tuple(sorted(lines.items())), levels),
-                            lambda: self._compute_cascade(excluded, lines, levels))
-
-    def _cached(self, key: tuple, compute):
-        value = self._cache.get(key)
-        if value is None:
-            if len(self._cache) >= _CACHE_SIZE:
-                self._cache.clear()
-            value = compute()
-            self._cache[key] = value
-        return value
-
-    def _compute(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray:
-        basis = self._basis(excluded, lines)
-        if basis is None:
-            return np.zeros((self.model.m, self.model.n))
-        return basis @ np.linalg.pinv(self.model.t_ec @ basis, rcond=1e-10)
-
-    def _compute_cascade(self, excluded: np.ndarray, lines: dict[int, float],
-                         levels: tuple[tuple[int, ...], ...]) -> list[tuple[np.ndarray, np.ndarray]]:
-        basis = self._basis(excluded, lines)
-        result = []
-        projector = None if basis is None else np.eye(basis.shape[1])
-        for level in levels:
-            rows = np.array(level, dtype=int)
-            if basis is None:
-                result.append((rows, np.zeros((self.model.m, rows.size))))
-                continue
-            restricted = self.model.t_ec[rows] @ basis @ projector
-            inverse = np.linalg.pinv(restricted, rcond=1e-10)
-            result.append((rows, basis @ inverse))
-            projector = projector - inverse @ restricted
-        return result
-
-    def _basis(self, excluded: np.ndarray, lines: dict[int, float]) -> np.ndarray | None:
-        """The usable extended directions scaled by W^-1/2 (m x b), or None when none is."""
-        model = self.model
-        basis_columns: list[np.ndarray] = []
-        weights: list[float] = []
-        for i, start in enumerate(model.starts):
-            if excluded[i]:
-                continue
-            if model.rotatable[i]:
-                pairs = [(math.cos(lines[i]), math.sin(lines[i]))] if i in lines else [(1.0, 0.0), (0.0, 1.0)]
-                for c1, c2 in pairs:
-                    column = np.zeros(model.m)
-                    column[start], column[start + 1] = c1, c2
-                    basis_columns.append(column)
-                    weights.append(model.weight[i])
-            else:
-                column = np.zeros(model.m)
-                column[start] = 1.0
-                basis_columns.append(column)
-                weights.append(model.weight[i])
-        if not basis_columns:
-            return None
-        return np.column_stack(basis_columns) / np.sqrt(np.asarray(weights))
-
-    def desired(self, tau: np.ndarray, excluded: np.ndarray) -> np.ndarray:
-        """The unconstrained extended solution (1.33) with the usable actuators."""
-        return self.gain(excluded, {}) @ tau
 
 
 class PseudoInverseAllocation(AllocationMethod):
@@ -165,7 +82,7 @@ class PseudoInverseAllocation(AllocationMethod):
                 force += step_to_limits(model, limits, force, step, self._fixed) * step
             if self._pinned is not None:
                 force += self._pinned
-            return MethodOutput(force, "solved")
+            return MethodOutput(force=force, status="solved")
         force = self._gain @ wanted
         if self._preserve_direction:
             force *= scale_to_limits(model, limits, force, self._fixed)
@@ -173,9 +90,9 @@ class PseudoInverseAllocation(AllocationMethod):
             force += self._pinned
         if self._direct is not None and not within_limits(model, limits, force, self._fixed):
             boundary = self._direct.solve(tau, limits)
-            if boundary.solved:
+            if boundary.usable:
                 return boundary
-        return MethodOutput(force, "solved")
+        return MethodOutput(force=force, status="solved")
 
 
 def fixed_forces(model: Model, limits: SampleLimits, fixed: np.ndarray) -> np.ndarray:

@@ -19,10 +19,9 @@ import numpy as np
 from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
 from ..solvers import BACKENDS, BackendFactory
 from ..solvers.backend import NO_BOUND
-from ..solvers.direct import DirectSolution
-from ..solvers.outcome import MethodOutput
 from ..vehicle.config import Vehicle
-from .base import CIRCLE_SIDES, AllocationMethod
+from .base import CIRCLE_SIDES, AllocationMethod, MethodOutput
+from .direct import DirectSolution
 from .qp_problem import QPProblem, build, constant_bounds, objective
 
 PINNED = 1e-12
@@ -106,7 +105,7 @@ class QPAllocation(AllocationMethod):
 
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:
         output, x = self._solve(self._main, tau, limits)
-        if (self._scale is None and self._direct is None and not self._levels) or not output.solved:
+        if (self._scale is None and self._direct is None and not self._levels) or not output.usable:
             return output
         slack = x[self.model.m:self.model.m + self.model.n]
         if np.all(np.abs(slack) <= SATURATION_SLACK * self.model.authority):
@@ -116,10 +115,10 @@ class QPAllocation(AllocationMethod):
         if self._direct is not None:
             boundary = self._direct.solve(tau, limits)
             boundary.iterations += output.iterations
-            return boundary if boundary.solved else output
+            return boundary if boundary.usable else output
         scaled, _ = self._solve(self._scale, tau, limits)
         scaled.iterations += output.iterations
-        return scaled if scaled.solved else output
+        return scaled if scaled.usable else output
 
     def _cascade(self, tau: np.ndarray, limits: SampleLimits, output: MethodOutput) -> MethodOutput:
         """The lexicographic solve of DOF priorities, by values only (docs/theory.md, DOF
@@ -140,7 +139,7 @@ class QPAllocation(AllocationMethod):
             if not solution.usable:
                 break
             x = solution.x
-            output = MethodOutput(self._forces(problem, x), solution.status, outcome=solution.outcome,
+            output = MethodOutput(force=self._forces(problem, x), status=solution.status, outcome=solution.outcome,
                                   residual=solution.residual)
             missed = x[model.m + level]
             low[equality[level]] = tau[level] + np.minimum(missed, 0.0) - self._hold[level]
@@ -183,8 +182,8 @@ class QPAllocation(AllocationMethod):
                     if at_limit else [0.0] * len(self._rot)
         else:
             force = x[:model.m].copy()
-        output = MethodOutput(force if solution.usable else np.zeros(model.m), solution.status,
-                              solution.iterations, outcome=solution.outcome, residual=solution.residual)
+        output = MethodOutput(force=force if solution.usable else np.zeros(model.m), status=solution.status,
+                              iterations=solution.iterations, outcome=solution.outcome, residual=solution.residual)
         return output, x
 
     def _prepare(self, problem: QPProblem, tau: np.ndarray, limits: SampleLimits) -> None:

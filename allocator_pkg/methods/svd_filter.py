@@ -16,12 +16,12 @@ import math
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..solvers import BackendFactory
-from ..solvers.outcome import MethodOutput
 from ..vehicle.angles import wrap
 from ..vehicle.config import Vehicle
-from .base import AllocationMethod
-from .pseudoinverse import PseudoInverseGains, fixed_forces, scale_to_limits
+from .base import AllocationMethod, MethodOutput
+from .pseudoinverse import fixed_forces, scale_to_limits
 
 
 class SVDFilterAllocation(AllocationMethod):
@@ -104,7 +104,7 @@ class SVDFilterAllocation(AllocationMethod):
         force[model.rot_columns[:, 1]] = thrust[model.rot] * np.sin(angle[model.rot])
         if self._preserve_direction:
             force *= scale_to_limits(model, limits, force, self._fixed)
-        return MethodOutput(force + self._pinned, "solved", angle=angle)
+        return MethodOutput(force=force + self._pinned, status="solved", angle=angle)
 
     @staticmethod
     def _steer(lim, alpha0: float, filtered: np.ndarray, hold: float) -> float:

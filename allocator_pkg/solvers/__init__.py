@@ -1,5 +1,7 @@
-"""QP solvers behind one seam: :class:`~.problem.ScaledProblem` owns the rows and their
-scaling, a :class:`~.backend.Backend` solves the normalised problem.
+"""The solvers, knowing matrices only: QP solvers behind one seam
+(:class:`~.problem.ScaledProblem` owns the rows and their scaling, a :class:`~.backend.Backend`
+solves the normalised problem), the HiGHS linear programme (:class:`~.linear_program.LinearProgram`),
+and what every solve gives back (:class:`~.outcome.Solution` with its :class:`~.outcome.Outcome`).
 
 ``BACKENDS`` names every backend installed here: ``osqp`` (the package's solver: set up
 once, updated and warm-started), ``osqp_fresh`` (a new OSQP every solve, a benchmark
@@ -10,9 +12,10 @@ when installed, ``quadprog`` (dense active set, an exact reference). A new backe
 
 from __future__ import annotations
 
-from .backend import Backend, BackendFactory, BackendResult
+from .backend import Backend, BackendFactory
 from .daqp_backend import DAQPBackend
 from .osqp_backend import FreshOSQPBackend, OSQPBackend
+from .outcome import Solution
 
 BACKENDS: dict[str, BackendFactory] = {"osqp": OSQPBackend, "osqp_fresh": FreshOSQPBackend, "daqp": DAQPBackend}
 
@@ -24,4 +27,4 @@ except ImportError:             # quadprog is a development dependency
 
 DEFAULT_BACKEND = "osqp"
 
-__all__ = ["BACKENDS", "DEFAULT_BACKEND", "Backend", "BackendFactory", "BackendResult"]
+__all__ = ["BACKENDS", "DEFAULT_BACKEND", "Backend", "BackendFactory", "Solution"]

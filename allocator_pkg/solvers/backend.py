@@ -16,32 +16,11 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
-from .outcome import Outcome
+from .outcome import Solution
 
 NO_BOUND = math.inf
 """The bound of a row or variable that has none, in every problem of the package; a backend
 that needs a finite stand-in (OSQP's ``OSQP_INFTY``) clips to its own."""
-
-
-class BackendResult:
-    """A backend's answer in normalised units: its ``outcome`` (``usable`` when that gives a
-    solution), the status text, and the primal ``residual`` where the solver reports one.
-    ``y`` holds the row multipliers in OSQP's convention: P x + q + A' y = 0, y >= 0 where a
-    row's upper bound holds it, y <= 0 where its lower bound does; ``duals`` is the array, or a
-    function that returns it (fetched only when read: most samples never need them)."""
-
-    __slots__ = ("_duals", "iterations", "outcome", "residual", "status", "usable", "x")
-
-    def __init__(self, x: np.ndarray, duals: np.ndarray | Callable[[], np.ndarray], status: str, iterations: int,
-                 outcome: Outcome, residual: float | None = None):
-        self.x, self._duals, self.status, self.iterations = x, duals, status, iterations
-        self.outcome, self.residual, self.usable = outcome, residual, outcome is not Outcome.FAILED
-
-    @property
-    def y(self) -> np.ndarray:
-        if callable(self._duals):
-            self._duals = np.asarray(self._duals())
-        return self._duals
 
 
 class Backend(Protocol):
@@ -60,9 +39,10 @@ class Backend(Protocol):
     def update_settings(self, settings: SolverSettings) -> None:
         """Tolerances and limits changed by a reconfiguration."""
 
-    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> Solution:
         """Solve with these row bounds (the backend may change the arrays: they are scratch)
-        and, if given, this q (sent with the bounds)."""
+        and, if given, this q (sent with the bounds); the solution in normalised units, its
+        multipliers in OSQP's convention (:class:`~.outcome.Solution`)."""
 
 
 BackendFactory = Callable[[], Backend]

@@ -11,8 +11,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
-from .backend import BackendResult, DenseObjective
-from .outcome import Outcome
+from .backend import DenseObjective
+from .outcome import Outcome, Solution
 
 BOUND = 1e30
 """DAQP's infinity."""
@@ -45,7 +45,7 @@ class DAQPBackend(DenseObjective):
     def update_settings(self, settings: SolverSettings) -> None:
         self.iter_limit = settings.max_iter
 
-    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> Solution:
         if q is not None:
             self.q = q.copy()
         sense = np.where(low == up, EQUALITY, np.where(self.active, ACTIVE, 0)).astype(np.int32)
@@ -55,5 +55,6 @@ class DAQPBackend(DenseObjective):
         multipliers = np.asarray(info["lam"], dtype=float)
         if usable:
             self.active = multipliers != 0.0
-        return BackendResult(np.asarray(x, dtype=float), multipliers, "solved" if usable else f"daqp exit flag {flag}",
-                             int(info["iterations"]), Outcome.SOLVED if usable else Outcome.FAILED)
+        return Solution(x=np.asarray(x, dtype=float), status="solved" if usable else f"daqp exit flag {flag}",
+                        iterations=int(info["iterations"]), outcome=Outcome.SOLVED if usable else Outcome.FAILED,
+                        duals=multipliers)

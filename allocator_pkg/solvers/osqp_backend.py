@@ -12,8 +12,7 @@ import osqp
 import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
-from .backend import BackendResult
-from .outcome import Outcome
+from .outcome import Outcome, Solution
 
 ACCEPTED = {int(osqp.SolverStatus.OSQP_SOLVED): Outcome.SOLVED,
             int(osqp.SolverStatus.OSQP_SOLVED_INACCURATE): Outcome.INACCURATE}
@@ -65,7 +64,7 @@ _STATUS: dict[int, str] = {}
 """OSQP's status texts by value, read from OSQP once each."""
 
 
-def _result(info, solution, settings: SolverSettings) -> BackendResult:
+def _result(info, solution, settings: SolverSettings) -> Solution:
     value = info.status_val
     if value == INTERRUPTED:
         signal.raise_signal(signal.SIGINT)      # Ctrl-C or a SIGINT stop meant for the process
@@ -76,7 +75,8 @@ def _result(info, solution, settings: SolverSettings) -> BackendResult:
     if value in STOPPED and info.prim_res <= ITERATE_TOLERANCE * settings.eps_abs:
         outcome = Outcome.ITERATION_LIMIT
         status = f"{status}: iterate used (primal residual {info.prim_res:.1e})"
-    return BackendResult(solution.x, lambda: solution.y, status, info.iter, outcome, info.prim_res)
+    return Solution(x=solution.x, status=status, iterations=info.iter, outcome=outcome, residual=info.prim_res,
+                    duals=lambda: solution.y)
 
 
 class OSQPBackend:
@@ -128,7 +128,7 @@ class OSQPBackend:
         self.solver.update_settings(**osqp_settings(settings))
         self.settings = settings
 
-    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> Solution:
         """Solve from the previous solve's iterates, or from zero after a solve whose answer
         could not be used or that stopped with multipliers out of range (DUAL_RANGE). Such
         iterates are no guide to the next problem: after a request far past the vehicle's
@@ -187,7 +187,7 @@ class FreshOSQPBackend:
     def update_settings(self, settings: SolverSettings) -> None:
         self.settings = settings
 
-    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> Solution:
         if q is not None:
             self.q = q.copy()
         solver = osqp.OSQP()

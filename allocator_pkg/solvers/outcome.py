@@ -1,11 +1,12 @@
-"""How a solve ended, and what a method's solve gives back.
+"""How a solve ended: the :class:`Outcome`, and the :class:`Solution` every solver gives back.
 
-:class:`Outcome` is the one vocabulary for it, from a backend's answer up to the
+:class:`Outcome` is the one vocabulary for it, from a solver's answer up to the
 :class:`~allocator_pkg.allocation.result.AllocationResult` that diagnostics, counters and
 ``AllocationStatus.outcome`` read; the status texts stay for people."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
 
@@ -34,26 +35,32 @@ class Outcome(Enum):
         return self is not Outcome.FAILED
 
 
-@dataclass(slots=True)
-class MethodOutput:
-    """A method's answer: the extended force vector (1.16), and how the solve went.
-    ``residual`` is the solver's primal residual where it reports one; ``reason`` why a
-    fallback answered (the failed method's status). ``angle`` optionally proposes the angle of
-    each actuator (nonlinear method); ``turn`` the angle toward which an idle rotatable thruster
-    (by actuator index) turns instead of its limits' goal (the nonlinear method's descent
-    direction)."""
+@dataclass(slots=True, kw_only=True)
+class Solution:
+    """A solver's answer: the primal solution ``x`` (normalised units from a QP backend,
+    physical units from :class:`~.problem.ScaledProblem`, the columns of a
+    :class:`~.linear_program.LinearProgram`), its ``outcome`` (``usable`` when that gives a
+    solution), the status text, the iterations and the primal ``residual`` where the solver
+    reports one.
 
-    force: np.ndarray
+    ``y`` holds the row multipliers of a QP in OSQP's convention: P x + q + A' y = 0, y >= 0
+    where a row's upper bound holds it, y <= 0 where its lower bound does. ``duals`` is that
+    array, or a function that returns it (called only when ``y`` is read: most samples never
+    need the multipliers)."""
+
+    x: np.ndarray
     status: str
-    iterations: int = 0
-    solve_time: float = 0.0
-    outcome: Outcome = Outcome.SOLVED
-    angle: np.ndarray | None = None
-    turn: dict[int, float] | None = None
+    iterations: int
+    outcome: Outcome
     residual: float | None = None
-    reason: str = ""
+    duals: np.ndarray | Callable[[], np.ndarray] | None = None
 
     @property
-    def solved(self) -> bool:
-        """Whether the forces can be used (the outcome is usable)."""
+    def usable(self) -> bool:
         return self.outcome is not Outcome.FAILED
+
+    @property
+    def y(self) -> np.ndarray:
+        if callable(self.duals):
+            self.duals = np.asarray(self.duals())
+        return self.duals

@@ -17,13 +17,14 @@ its own, and its tolerances read as fractions of those ranges.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
-from .backend import Backend, BackendResult
-from .outcome import Outcome
+from .backend import Backend
+from .outcome import Outcome, Solution
 
 
 class Rows:
@@ -62,35 +63,13 @@ def block_index(matrix: sp.csc_matrix, rows: np.ndarray, columns: int) -> np.nda
     return np.array([entry_index(matrix, int(row), c) for row in rows for c in range(columns)], dtype=np.int64)
 
 
-class Solution:
-    """The primal solution in physical units and how the solve went; ``y``, the row
-    multipliers in physical units (OSQP's sign convention, see
-    :class:`~.backend.BackendResult`), is computed when first read."""
-
-    __slots__ = ("_problem", "_y", "iterations", "outcome", "residual", "status", "usable", "x")
-
-    def __init__(self, x: np.ndarray, status: str, iterations: int, outcome: Outcome, result: BackendResult,
-                 problem: ScaledProblem):
-        self.x, self.status, self.iterations, self.outcome = x, status, iterations, outcome
-        self.residual, self.usable = result.residual, outcome is not Outcome.FAILED
-        self._y, self._problem = result, problem
-
-    @property
-    def y(self) -> np.ndarray:
-        if self._problem is not None:
-            self._y = self._y.y * self._problem.row_scale / self._problem.cost_scale
-            self._problem = None
-        return self._y
-
-
+@dataclass(slots=True)
 class Entries:
     """Stored entries of A updated together: their CSC positions and scales (see
     :meth:`ScaledProblem.entries`)."""
 
-    __slots__ = ("index", "scale")
-
-    def __init__(self, index: np.ndarray, scale: np.ndarray):
-        self.index, self.scale = index, scale
+    index: np.ndarray
+    scale: np.ndarray
 
 
 class ScaledProblem:
@@ -161,10 +140,11 @@ class ScaledProblem:
         self.backend.update_settings(settings)
 
     def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> Solution:
-        """Solve for physical bounds (and a new q, if given); the solution comes back in
-        physical units."""
+        """Solve for physical bounds (and a new q, if given); the solution, and its multipliers
+        when read, come back in physical units."""
         result = self.backend.solve(np.multiply(low, self.row_scale, out=self._low),
                                     np.multiply(up, self.row_scale, out=self._up), None if q is None else self._q(q))
         x = result.x * self.column_scale
         outcome = result.outcome if math.isfinite(x.sum()) else Outcome.FAILED
-        return Solution(x, result.status, result.iterations, outcome, result, self)
+        return Solution(x=x, status=result.status, iterations=result.iterations, outcome=outcome,
+                        residual=result.residual, duals=lambda: result.y * self.row_scale / self.cost_scale)

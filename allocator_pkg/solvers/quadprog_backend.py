@@ -11,8 +11,8 @@ import quadprog
 import scipy.sparse as sp
 
 from ..vehicle.config import SolverSettings
-from .backend import BackendResult, DenseObjective
-from .outcome import Outcome
+from .backend import DenseObjective
+from .outcome import Outcome, Solution
 
 
 class QuadprogBackend(DenseObjective):
@@ -34,7 +34,7 @@ class QuadprogBackend(DenseObjective):
     def update_settings(self, settings: SolverSettings) -> None:
         """quadprog has no tolerances to set."""
 
-    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> BackendResult:
+    def solve(self, low: np.ndarray, up: np.ndarray, q: np.ndarray | None = None) -> Solution:
         if q is not None:
             self.q = q.copy()
         equal = low == up
@@ -47,11 +47,12 @@ class QuadprogBackend(DenseObjective):
             x, _, _, iterations, multipliers, _ = quadprog.solve_qp(self.p, -self.q, constraints, bounds,
                                                                     meq=int(equal.sum()))
         except ValueError as error:
-            return BackendResult(np.zeros(len(self.q)), np.zeros(len(low)), f"quadprog: {error}", 0, Outcome.FAILED)
+            return Solution(x=np.zeros(len(self.q)), status=f"quadprog: {error}", iterations=0, outcome=Outcome.FAILED,
+                            duals=np.zeros(len(low)))
         # quadprog: P x + q = C lambda, lambda >= 0 on inequalities; OSQP's y is minus that per row.
         y = np.zeros(len(low))
         counts = np.cumsum([equal.sum(), lower.sum(), upper.sum()])
         y[equal] = -multipliers[:counts[0]]
         y[lower] -= multipliers[counts[0]:counts[1]]
         y[upper] += multipliers[counts[1]:]
-        return BackendResult(x, y, "solved", int(iterations[0]), Outcome.SOLVED)
+        return Solution(x=x, status="solved", iterations=int(iterations[0]), outcome=Outcome.SOLVED, duals=y)

@@ -29,7 +29,7 @@ import math
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
-from .outcome import MethodOutput
+from .base import MethodOutput
 from .sample_lp import SampleLP
 
 SIDES_FACTOR = 4
@@ -55,5 +55,6 @@ class DirectSolution:
         """The boundary solution for ``tau`` (the request itself when attainable); ``status``
         names lambda*."""
         solution = self._lp.solve(tau, limits)
-        status = f"direct: lambda {solution.scale:.6g}" if solution.solved else f"direct: {solution.status}"
-        return MethodOutput(solution.force, status, solution.iterations, outcome=solution.outcome)
+        status = f"direct: lambda {self._lp.scale(solution):.6g}" if solution.usable else f"direct: {solution.status}"
+        return MethodOutput(force=self._lp.force(solution), status=status, iterations=solution.iterations,
+                            outcome=solution.outcome)

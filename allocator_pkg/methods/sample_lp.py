@@ -1,5 +1,6 @@
-"""One sample's allocation limits as a linear programme on HiGHS (section 5.3), kept between
-samples so that each solve starts from the last basis (the survey's iterative LP).
+"""One sample's allocation limits as a linear programme (section 5.3) on HiGHS
+(:class:`~allocator_pkg.solvers.linear_program.LinearProgram`), kept between samples so that
+each solve starts from the last basis (the survey's iterative LP).
 
 Variables, in units of each actuator's force range F (and of each DOF's authority D for the
 slack): one signed force per non-rotating actuator, split f = p - m with p, m >= 0, so that
@@ -31,15 +32,14 @@ of the along-row of each rotatable thruster (sent when they differ from the last
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
-import highspy
 import numpy as np
-import scipy.sparse as sp
 
-from ..effectiveness.model import Model, SampleLimits
-from .backend import NO_BOUND
-from .outcome import Outcome
+from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
+from ..solvers.backend import NO_BOUND
+from ..solvers.linear_program import LinearProgram
+from ..solvers.outcome import Solution
+from ..solvers.problem import Rows
 
 PINNED = 1e-12
 """[rad] A window of angles narrower than this is a single direction."""
@@ -65,23 +65,6 @@ def polygon_error(sides: int, apothem: float) -> tuple[float, float]:
     return apothem - 1.0, apothem / math.cos(math.pi / sides) - 1.0
 
 
-@dataclass
-class LPSolution:
-    """The extended force vector (1.16) in newtons, the slack (effort) or lambda (scale), and
-    how the solve went."""
-
-    force: np.ndarray
-    slack: np.ndarray
-    scale: float
-    status: str
-    iterations: int
-    outcome: Outcome
-
-    @property
-    def solved(self) -> bool:
-        return self.outcome.usable
-
-
 class SampleLP:
     """One HiGHS LP per configuration: the sample's limits as rows and bounds (see module)."""
 
@@ -89,14 +72,12 @@ class SampleLP:
         if objective not in ("effort", "scale"):
             raise ValueError(f"objective is effort or scale, got {objective!r}")
         self.sides, self.apothem, self.objective, self.scale_max = sides, apothem, objective, scale_max
-        self._highs = highspy.Highs()
-        self._highs.setOptionValue("output_flag", False)
-        self._highs.setOptionValue("presolve", "off")
+        self._lp = LinearProgram()
         self._build(model)
 
     # -- set-up ---------------------------------------------------------------------------
 
-    def _build(self, model: Model) -> None:
+    def _build(self, model: Model, keep_basis: bool = False) -> None:
         """Columns, rows and the constant coefficients; bounds are filled per sample."""
         self.model = model
         n, m = model.n, model.m
@@ -127,18 +108,7 @@ class SampleLP:
         self._scalar_p = np.array([scalar_p[int(i)] for i in model.scalar], dtype=np.int32)
         self._scalar_m = np.array([scalar_m[int(i)] for i in model.scalar], dtype=np.int32)
         self._rot_columns = rotatable
-        rows, cols, vals = [], [], []
-        row_count = 0
-
-        def add(entries: list[tuple[int, float]]) -> int:
-            nonlocal row_count
-            for col, val in entries:
-                rows.append(row_count)
-                cols.append(col)
-                vals.append(val)
-            row_count += 1
-            return row_count - 1
-
+        rows = Rows()
         # Equality rows, each divided by its DOF's authority.
         t = model.t_ec / self._dof[:, None]
         owner = model.extended_owner
@@ -156,45 +126,31 @@ class SampleLP:
                 entries += [(self._slack + 2 * k, -1.0), (self._slack + 2 * k + 1, 1.0)]
             else:
                 entries.append((self._lambda, 0.0))
-            self._equality.append(add(entries))
+            self._equality.append(rows.add(entries))
         # Rotatable thrusters: magnitudes, polygon, along-row, the cone's two edges.
         normals = [(math.cos(2.0 * math.pi * k / self.sides), math.sin(2.0 * math.pi * k / self.sides))
                    for k in range(self.sides)]
         self._polygon, self._along, self._edges = [], [], []
         magnitude_rows = []
         for fx, fy, ax, ay in rotatable:
-            magnitude_rows += [add([(ax, 1.0), (fx, -1.0)]), add([(ax, 1.0), (fx, 1.0)]),
-                               add([(ay, 1.0), (fy, -1.0)]), add([(ay, 1.0), (fy, 1.0)])]
-            self._polygon.append([add([(fx, x), (fy, y)]) for x, y in normals])
-            self._along.append(add([(fx, 1.0), (fy, 0.0)]))
-            self._edges.append((add([(fx, 0.0), (fy, 1.0)]), add([(fx, 0.0), (fy, 1.0)])))
-        matrix = sp.coo_matrix((vals, (rows, cols)), shape=(row_count, len(costs))).tocsc()
-        lp = highspy.HighsLp()
-        lp.num_col_, lp.num_row_ = len(costs), row_count
-        lp.col_cost_ = costs
+            magnitude_rows += [rows.add([(ax, 1.0), (fx, -1.0)]), rows.add([(ax, 1.0), (fx, 1.0)]),
+                               rows.add([(ay, 1.0), (fy, -1.0)]), rows.add([(ay, 1.0), (fy, 1.0)])]
+            self._polygon.append([rows.add([(fx, x), (fy, y)]) for x, y in normals])
+            self._along.append(rows.add([(fx, 1.0), (fy, 0.0)]))
+            self._edges.append((rows.add([(fx, 0.0), (fy, 1.0)]), rows.add([(fx, 0.0), (fy, 1.0)])))
         lower = np.zeros(len(costs))
         upper = np.full(len(costs), NO_BOUND)
         for fx, fy, _, _ in rotatable:
             lower[[fx, fy]] = -NO_BOUND
         if self.objective == "scale":
             upper[self._lambda] = self.scale_max
-        lp.col_lower_, lp.col_upper_ = lower, upper
-        self._row_low = np.full(row_count, -NO_BOUND)
-        self._row_up = np.full(row_count, NO_BOUND)
-        self._row_low[magnitude_rows] = 0.0
-        self._row_low[self._equality] = self._row_up[self._equality] = 0.0
-        lp.row_lower_, lp.row_upper_ = self._row_low, self._row_up
-        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-        lp.a_matrix_.start_ = matrix.indptr
-        lp.a_matrix_.index_ = matrix.indices
-        lp.a_matrix_.value_ = matrix.data
-        self._highs.passModel(lp)
-        time_limit = model.vehicle.solver.time_limit
-        self._highs.setOptionValue("time_limit", time_limit if time_limit > 0.0 else NO_BOUND)
-        self._columns = len(costs)
-        self._coefficients: dict[tuple[int, int], float] = {}
+        row_low = np.full(rows.count, -NO_BOUND)
+        row_up = np.full(rows.count, NO_BOUND)
+        row_low[magnitude_rows] = 0.0
+        row_low[self._equality] = row_up[self._equality] = 0.0
+        self._lp.setup(costs, lower, upper, rows.matrix(len(costs)), row_low, row_up, model.vehicle.solver.time_limit,
+                       keep_basis)
         self._version = -1
-        self._request = np.zeros(n)
 
     @staticmethod
     def _slack_weights(model: Model, effort: float) -> list[float]:
@@ -209,59 +165,60 @@ class SampleLP:
     def update_model(self, model: Model) -> None:
         """A configuration of the same structure: the model is built again with the new values
         (a few hundred coefficients; the basis of the last solve is kept as the start)."""
-        basis = self._highs.getBasis()
-        self._build(model)
-        if basis.valid:
-            self._highs.setBasis(basis)
+        self._build(model, keep_basis=True)
 
     # -- per sample -----------------------------------------------------------------------
 
-    def solve(self, tau: np.ndarray, limits: SampleLimits) -> LPSolution:
+    def solve(self, tau: np.ndarray, limits: SampleLimits) -> Solution:
+        """The LP of ``tau`` within ``limits``; read its answer with :meth:`force`,
+        :meth:`slack` (objective ``effort``) and :meth:`scale` (objective ``scale``)."""
         model = self.model
-        highs = self._highs
+        lp = self._lp
         request = tau / self._dof
         if self.objective == "effort":
-            self._row_low[self._equality] = self._row_up[self._equality] = request
+            lp.low[self._equality] = lp.up[self._equality] = request
         else:
             for row, value in zip(self._equality, request.tolist()):
-                self._coefficient(row, self._lambda, -value)
+                lp.coefficient(row, self._lambda, -value)
         if limits.version < 0 or limits.version != self._version:
             force = self._force[model.scalar]
             low, high = limits.low[model.scalar] / force, limits.high[model.scalar] / force
             if model.scalar.size:
-                highs.changeColsBounds(model.scalar.size, self._scalar_p, np.maximum(low, 0.0), np.maximum(high, 0.0))
-                highs.changeColsBounds(model.scalar.size, self._scalar_m, np.maximum(-high, 0.0),
-                                       np.maximum(-low, 0.0))
+                lp.column_bounds(self._scalar_p, np.maximum(low, 0.0), np.maximum(high, 0.0))
+                lp.column_bounds(self._scalar_m, np.maximum(-high, 0.0), np.maximum(-low, 0.0))
             self._version = limits.version
         for k, lim in enumerate(limits.azimuth):
             self._azimuth_rows(k, lim, float(limits.angle[model.rot[k]]))
-        highs.changeRowsBounds(len(self._row_low), np.arange(len(self._row_low), dtype=np.int32), self._row_low,
-                               self._row_up)
-        highs.run()
-        status = highs.getModelStatus()
-        iterations = int(highs.getInfo().simplex_iteration_count)
-        solved = status == highspy.HighsModelStatus.kOptimal
-        if not solved:
-            return LPSolution(np.zeros(model.m), np.zeros(model.n), 0.0, highs.modelStatusToString(status),
-                              iterations, Outcome.FAILED)
-        x = np.asarray(highs.getSolution().col_value)
+        return lp.solve()
+
+    def force(self, solution: Solution) -> np.ndarray:
+        """The extended force vector (1.16) of a solution, in newtons (zero when it failed)."""
+        model = self.model
         force = np.zeros(model.m)
-        scale = self._force
+        if not solution.usable:
+            return force
+        x, scale = solution.x, self._force
         force[model.scalar_columns] = (x[self._scalar_p] - x[self._scalar_m]) * scale[model.scalar]
         for (fx, fy, _, _), (c1, c2), j in zip(self._rot_columns, model.rot_columns, model.rot):
             force[c1], force[c2] = x[fx] * scale[j], x[fy] * scale[j]
-        if self.objective == "effort":
-            slack = (x[self._slack::2][:model.n] - x[self._slack + 1::2][:model.n]) * self._dof
-            return LPSolution(force, slack, 1.0, "solved", iterations, Outcome.SOLVED)
-        return LPSolution(force, np.zeros(model.n), float(x[self._lambda]), "solved", iterations, Outcome.SOLVED)
+        return force
 
-    def _azimuth_rows(self, k: int, lim, alpha0: float) -> None:
+    def slack(self, solution: Solution) -> np.ndarray:
+        """The wrench error s of each controlled DOF (objective ``effort``)."""
+        x, n = solution.x, self.model.n
+        return (x[self._slack::2][:n] - x[self._slack + 1::2][:n]) * self._dof
+
+    def scale(self, solution: Solution) -> float:
+        """lambda, the scale of the request reached (objective ``scale``)."""
+        return float(solution.x[self._lambda])
+
+    def _azimuth_rows(self, k: int, lim: AzimuthLimits, alpha0: float) -> None:
         """Bounds and coefficients of rotatable thruster k for this sample (see the module)."""
         fx, fy, _, _ = self._rot_columns[k]
         scale = float(self._force[self.model.rot[k]])
         polygon, along = self._polygon[k], self._along[k]
         edge_low, edge_high = self._edges[k]
-        low, up = self._row_low, self._row_up
+        low, up = self._lp.low, self._lp.up
         if lim.line or lim.high - lim.low < PINNED or lim.magnitude_max == 0.0:
             direction = lim.low if math.isfinite(lim.low) else alpha0
             up[polygon] = NO_BOUND
@@ -293,13 +250,6 @@ class SampleLP:
             low[edge_high], up[edge_high] = -NO_BOUND, NO_BOUND
 
     def _row(self, row: int, fx: int, fy: int, cx: float, cy: float, low: float, up: float) -> None:
-        self._coefficient(row, fx, cx)
-        self._coefficient(row, fy, cy)
-        self._row_low[row], self._row_up[row] = low, up
-
-    def _coefficient(self, row: int, col: int, value: float) -> None:
-        """Change one coefficient, only when it differs from the value HiGHS has."""
-        key = (row, col)
-        if self._coefficients.get(key) != value:
-            self._coefficients[key] = value
-            self._highs.changeCoeff(row, col, value)
+        self._lp.coefficient(row, fx, cx)
+        self._lp.coefficient(row, fy, cy)
+        self._lp.low[row], self._lp.up[row] = low, up
