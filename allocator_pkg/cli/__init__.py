@@ -1,4 +1,5 @@
 """Command-line tools: ``allocator-ctl`` (``ctl``, with its MCAP ``recording`` and the
 direction check ``step_test``), ``allocator-capability`` (``capability``, with DNV-ST-0111
 Level 1 in ``dp_capability``), ``allocator-explicit`` (``explicit``), ``allocator-sim``
-(``sim``, ``sim_plots``) and the closed-loop demo (``demo``)."""
+(``sim``, with its loop ``sim_loop``, ROS side ``sim_link``, ``sim_setup``, ``sim_metrics`` and
+``sim_plots``) and the closed-loop demo (``demo``)."""
