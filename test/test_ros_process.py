@@ -56,6 +56,18 @@ def test_dds_stays_on_this_machine_unless_the_caller_chose():
     assert dds_environment({"ROS_DOMAIN_ID": "7"})["ROS_AUTOMATIC_DISCOVERY_RANGE"] == "LOCALHOST"
 
 
+def test_a_child_runs_in_the_dds_environment_whatever_its_parents(monkeypatch):
+    monkeypatch.delenv("ROS_AUTOMATIC_DISCOVERY_RANGE", raising=False)
+    monkeypatch.setenv("ROS_DOMAIN_ID", "7")
+    monkeypatch.setenv("SOMETHING_ELSE", "kept")
+    printed = "import os; print(*(os.environ.get(name) for name in ('ROS_AUTOMATIC_DISCOVERY_RANGE', "
+    printed += "'ROS_DOMAIN_ID', 'SOMETHING_ELSE')))"
+    with child_process(python(printed)) as process:
+        process.wait(timeout=20)
+    assert process.output() == "LOCALHOST 7 kept\n"
+    assert "ROS_AUTOMATIC_DISCOVERY_RANGE" not in os.environ            # the parent's own is left alone
+
+
 def test_the_node_command_gives_the_params_file_then_parameters_then_ros_arguments():
     assert node_command("v.yaml", "-r", "__ns:=/rov1", parameters=["rate_hz:=100.0", "trigger:=input"]) == [
         str(executable("allocator_node")), "--ros-args", "--params-file", "v.yaml", "-p", "rate_hz:=100.0",

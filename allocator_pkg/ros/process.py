@@ -7,9 +7,10 @@ test suite set them. A script applies them before rclpy loads::
 
     os.environ.update(dds_environment())
 
-A child process writes its output (stdout and stderr) to a file, not to a pipe that nobody
-reads and that would block it once full; it is stopped with SIGINT, as Ctrl-C would, killed if
-it does not end, and reaped. An error raised while it runs carries that output as a note.
+A child process runs in that DDS environment too, whatever its parent's, and writes its output
+(stdout and stderr) to a file, not to a pipe that nobody reads and that would block it once
+full; it is stopped with SIGINT, as Ctrl-C would, killed if it does not end, and reaped. An
+error raised while it runs carries that output as a note.
 
 Nothing here imports rclpy: this is process machinery, used before ROS loads.
 """
@@ -64,10 +65,12 @@ def _ends_with_parent() -> None:
 
 
 class ChildProcess(subprocess.Popen):
-    """A child process whose output (stdout and stderr) goes to the file ``log``."""
+    """A child process in this process's environment with the DDS defaults (``dds_environment``),
+    its output (stdout and stderr) into the file ``log``."""
 
     def __init__(self, command: Sequence[str], log: IO[str], dies_with_parent: bool = False) -> None:
-        super().__init__(list(command), stdout=log, stderr=subprocess.STDOUT, text=True, env=os.environ,
+        super().__init__(list(command), stdout=log, stderr=subprocess.STDOUT, text=True,
+                         env={**os.environ, **dds_environment()},
                          preexec_fn=_ends_with_parent if dies_with_parent else None)
         self.log = log
         self._kept: str | None = None
