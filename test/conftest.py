@@ -4,10 +4,11 @@ keeps DDS on this machine, on loopback and in a domain of its own unless the cal
 
 import os
 
+from allocator_pkg.ros.process import dds_environment
+
 # DDS discovery stays on loopback, in the suite's own domain (as the Makefile sets them), before
 # anything here or in the plugin loads rclpy.
-os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-os.environ.setdefault("ROS_DOMAIN_ID", "42")
+os.environ.update(dds_environment())
 
 import importlib
 import sys
