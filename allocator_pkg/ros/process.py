@@ -58,8 +58,9 @@ def node_command(params_file: str | Path, *ros_arguments: str, parameters: Itera
 
 def _ends_with_parent() -> None:
     """In the child, before its program starts: SIGTERM when the parent ends (Linux's
-    PR_SET_PDEATHSIG), so that a parent killed mid-run leaves no node behind answering in its
-    domain, where it would take the next run's messages for its own."""
+    PR_SET_PDEATHSIG; strictly, when the parent's thread that started it ends), so that a parent
+    killed mid-run leaves no node behind answering in its domain, where it would take the next
+    run's messages for its own."""
     if sys.platform.startswith("linux"):
         ctypes.CDLL(None).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
 
@@ -105,8 +106,8 @@ def child_process(command: Sequence[str], output: Path | None = None,
                   dies_with_parent: bool = False) -> Iterator[ChildProcess]:
     """``command`` as a child process, its output in the file ``output`` (a temporary one by
     default), stopped (``ChildProcess.stop``) and reaped on exit. An exception raised inside
-    gets the process's output as a note. ``dies_with_parent``: it ends when this process does,
-    however this process ends."""
+    gets the process's output as a note. ``dies_with_parent``: it ends when this process (this
+    thread) does, however it ends."""
     with contextlib.ExitStack() as stack:
         if output is None:
             log = stack.enter_context(tempfile.TemporaryFile("a+"))
