@@ -5,13 +5,12 @@ input) and publishes it back at once on ``echo``: one subscription, one publishe
 per sample, nothing else in its wait set. ``timer RATE``: one timer publishing one
 WrenchStamped on ``echo`` at RATE Hz. Both spin a SingleThreadedExecutor until SIGINT.
 
+Started by ``bench/overhead.py`` as a child process, in the DDS environment of every process of
+the package (``allocator_pkg.ros.process``); it imports nothing of ``allocator_pkg`` itself, so
+that it carries nothing but rclpy.
+
     .venv/bin/python bench/bare.py echo | timer RATE_HZ
 """
-
-import os
-
-os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-os.environ.setdefault("ROS_DOMAIN_ID", "42")
 
 import contextlib
 import sys

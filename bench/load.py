@@ -12,8 +12,9 @@ vehicle's reach), so that the status of every sample tells how old the wrench it
 
 import os
 
-os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-os.environ.setdefault("ROS_DOMAIN_ID", "42")
+from allocator_pkg.ros.process import dds_environment
+
+os.environ.update(dds_environment())
 
 import argparse
 import json
@@ -24,15 +25,16 @@ from pathlib import Path
 
 import numpy as np
 import rclpy
+from figures import memory_mb, percentiles, process_cpu_seconds
 from geometry_msgs.msg import Wrench
-from node import ROOT, node_process, percentiles, process_cpu_seconds, ros_context, stamp_seconds
+from probe import node_process, ros_context, stamp_seconds
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
-from soak import memory_mb
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 from allocator_pkg import read_parameters
 
+ROOT = Path(__file__).resolve().parents[1]
 FLOOD_HZ = 10000.0
 WARM_UP = 10.0               # s excluded from every figure
 RSS_PERIOD = 5.0             # s between samples of the node's memory
@@ -103,9 +105,8 @@ def case(config: Path, trigger: str, rate_hz: float, seconds: float, log: Path) 
     period = 1.0 / rate_hz
     total = WARM_UP + seconds
     memory: list[tuple[float, float]] = []
-    with log.open("w") as output, node_process(config, rate_hz, output=output,
-                                               parameters=("wrench_timeout:=0.5", f"trigger:={trigger}")) as process, \
-            ros_context() as context:
+    with node_process(config, rate_hz, output=log, parameters=("wrench_timeout:=0.5", f"trigger:={trigger}")) \
+            as process, ros_context() as context:
         listener = Listener(context)
         busy = subprocess.Popen([sys.executable, "-c", "while True: pass"])
         flooder = subprocess.Popen([sys.executable, __file__, "--flood", str(FLOOD_HZ), "--seconds", str(total + 2.0)],

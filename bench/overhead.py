@@ -27,31 +27,29 @@ the same rate. Prints a table and writes JSON.
 
 import os
 
-os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-os.environ.setdefault("ROS_DOMAIN_ID", "42")
+from allocator_pkg.ros.process import dds_environment
+
+os.environ.update(dds_environment())
 
 import argparse
-import contextlib
 import json
 import math
-import subprocess
 import sys
-import tempfile
 import time
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 import rclpy
+from figures import process_cpu_seconds
 from geometry_msgs.msg import WrenchStamped
-from node import process_cpu_seconds, ros_context, stop_process
+from probe import reported_process, ros_context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
+from allocator_pkg.ros.process import node_command
 
 ROOT = Path(__file__).resolve().parents[1]
-NODE_BINARY = Path(sys.executable).parent / "allocator_node"
 VEHICLES = {"bluerov2_heavy": ROOT / "config" / "bluerov2_heavy.yaml", "dp_vessel": ROOT / "config" / "dp_vessel.yaml"}
 AMPLITUDE = {"bluerov2_heavy": 40.0, "dp_vessel": 2.0e5}
 """[N] The horizontal force the probe asks of each vehicle: about 40 % of its authority."""
@@ -62,23 +60,11 @@ STATUS_RATE = 50.0
 WARM_UP = 2.0             # s of input before the window (discovery settles, caches fill)
 START_TIMEOUT = 30.0      # s for a node to answer
 TARGET = 1.2
-"""The issue's target: CPU per sample and publish -> commands p50 at most this many times the bare node's."""
-
-
-@contextlib.contextmanager
-def process(command: list[str]) -> Iterator[subprocess.Popen]:
-    """A node process, its output in a temporary file, stopped with SIGINT on exit."""
-    with tempfile.TemporaryFile("w+") as log:
-        child = subprocess.Popen(command, env=os.environ, stdout=log, stderr=subprocess.STDOUT, text=True)
-        try:
-            yield child
-        finally:
-            stop_process(child)
+"""The target: CPU per sample and publish -> commands p50 at most this many times the bare node's."""
 
 
 def allocator_command(config: Path, *parameters: str) -> list[str]:
-    return [str(NODE_BINARY), "--ros-args", "--params-file", str(config), "-p", "wrench_timeout:=0.0",
-            *(argument for parameter in parameters for argument in ("-p", parameter))]
+    return node_command(config, parameters=("wrench_timeout:=0.0", *parameters))
 
 
 def bare_command(*arguments: str) -> list[str]:
@@ -181,7 +167,7 @@ class Probe:
 def measure(command: list[str], allocator: bool, rate_hz: float, seconds: float, input_driven: bool,
             amplitude: float = 0.0) -> dict:
     """One node process: CPU per answer and latency over one window after the warm-up."""
-    with process(command) as child, ros_context() as context:
+    with reported_process(command) as child, ros_context() as context:
         probe = Probe(context, allocator, amplitude)
         try:
             probe.wait(input_driven)

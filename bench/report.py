@@ -7,8 +7,6 @@ from pathlib import Path
 
 TARGET_VEHICLE = "bluerov2_heavy"
 INPUT_RATES = (100.0, 1000.0)
-SETTLING_BEFORE = Path(__file__).resolve().parent / "results" / "settling_before.json"
-"""The settling sweep on commit aee693f, measured once, for comparison (see bench/settling.py)."""
 SETTLING_OFF_GRID = Path(__file__).resolve().parent / "results" / "settling_offgrid.json"
 """The settling sweep between the full sweep's directions (``--off-grid``), its last run."""
 NOT_IN_THIS_RUN = "not in this run (the next `make bench` measures it)"
@@ -140,7 +138,7 @@ SPEED_TARGETS = (("bluerov2_heavy", "pseudoinverse", 8.0), ("bluerov2_heavy", "q
 targets, median and p99, are ``_explicit_targets``)."""
 
 SETTLING = {"fallback_share": 0.005, "worst_deviation": 2e-3, "p99_us": 1000.0, "dp_median_us": 150.0}
-"""Issue 12's limits on the settling sweep."""
+"""The settling sweep's limits: share of fallbacks, worst deviation, p99 and the DP vessel's median [us]."""
 
 
 def _speed_targets(result: dict) -> list[str]:
@@ -389,7 +387,7 @@ def _allocate_share(row: dict) -> str:
     return f"{_fmt(row['allocate_ms_p50'], 3)} ({100 * row['allocate_share']:.0f} %)"
 
 
-def _settling_section(result: dict, before: dict | None, off_grid: dict | None = None) -> list[str]:
+def _settling_section(result: dict, off_grid: dict | None = None) -> list[str]:
     lines = ["## Rotatable thrusters near their capability", "",
              "`bench/settling.py --full`: a constant request held from rest for {samples} samples and judged over "
              "the last {judged}, in every direction of the surge/sway plane (every {step:g} deg) at {magnitudes} "
@@ -407,20 +405,15 @@ def _settling_section(result: dict, before: dict | None, off_grid: dict | None =
                                step=directions[1] - directions[0] if len(directions) > 1 else 360.0,
                                magnitudes=f"{magnitudes[0]:g} to {magnitudes[-1]:g}", settled=0.1)
     runs = [("this run", settling)]
-    if before is not None:
-        runs.insert(0, (f"commit {before['commit']} ({before['date']})", before))
-        lines += ["", f"\"Commit {before['commit']}\" is the same sweep run on the code of that commit, for "
-                  "comparison; it is kept in `bench/results/settling_before.json`, not re-measured by "
-                  "`make bench`."]
     if off_grid is not None:
         grid = off_grid["directions_deg"]
-        runs.append((f"off the grid (commit {off_grid['commit']}, {off_grid['date']})", off_grid))
-        lines += ["", f"\"Off the grid\" is `bench/settling.py --off-grid` run on commit {off_grid['commit']}: the "
+        runs.append((f"off the grid ({off_grid['date']})", off_grid))
+        lines += ["", f"\"Off the grid\" is `bench/settling.py --off-grid`, run on {off_grid['date']}: the "
                   f"directions between the full sweep's (every {grid[1] - grid[0]:g} deg from {grid[0]:g}) at "
                   f"{off_grid['magnitudes'][0]:g} to {off_grid['magnitudes'][-1]:g} times the capability; it is "
                   "kept in `bench/results/settling_offgrid.json`, not re-measured by `make bench` (about 20 "
                   "minutes on one core)."]
-    lines += ["", "| code | vessel | method | not at rest | largest spread deg | fallbacks, all samples | "
+    lines += ["", "| run | vessel | method | not at rest | largest spread deg | fallbacks, all samples | "
               "worst deviation | violations | median us | p99 us | max us |",
               "|---|---|---|---|---|---|---|---|---|---|---|"]
     for label, run in runs:
@@ -445,9 +438,8 @@ def write(result: dict, path: Path) -> None:
     lines += ["", "## Targets", "", *_targets(result), "", TARGETS_NOTE]
     lines += ["", "## Solver level", "", *_solver_tables(result)]
     lines += _convergence_tables(result)
-    before = json.loads(SETTLING_BEFORE.read_text()) if SETTLING_BEFORE.exists() else None
     off_grid = json.loads(SETTLING_OFF_GRID.read_text()) if SETTLING_OFF_GRID.exists() else None
-    lines += [*_settling_section(result, before, off_grid), ""]
+    lines += [*_settling_section(result, off_grid), ""]
     lines += ["## Node level", "", *_node_table(result)]
     if "overhead" in result:
         lines += ["", *_overhead_section(result["overhead"])]

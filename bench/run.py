@@ -4,25 +4,26 @@ this one run, on this machine."""
 
 from __future__ import annotations
 
+import os
+
+from allocator_pkg.ros.process import dds_environment
+
+os.environ.update(dds_environment())
+
 import argparse
 import datetime
 import json
-import os
 import platform
 import subprocess
 import sys
 from importlib import metadata
 from pathlib import Path
 
-os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-os.environ.setdefault("ROS_DOMAIN_ID", "42")
+import report
+import solver
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "bench" / "results"
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-import report  # noqa: E402
-import solver  # noqa: E402
 
 
 def machine() -> dict[str, str]:

@@ -11,7 +11,7 @@ hold the request for 400 samples from rest and judge the last 100:
 - no fallback once settled; fallbacks over the whole sweep as a share of its samples;
 - the settled wrench against an independent optimum of the same static problem (the closest
   wrench the actuators can give, SLSQP over every combination of convex pieces,
-  ``test/reference.py``), per DOF as a fraction of its authority;
+  ``bench/optimum.py``), per DOF as a fraction of its authority;
 - every limit kept in every sample (turning and thrust rates, thrust limits, sectors),
   checked here with arithmetic of its own;
 - time per sample (median, p99).
@@ -19,9 +19,8 @@ hold the request for 400 samples from rest and judge the last 100:
 ``make bench`` runs the full sweep (``--full``); ``test/test_settling.py`` a small one;
 ``--off-grid`` the directions between the full sweep's (every 5 deg from 2.5, at the same
 magnitudes; about 20 minutes on one core, ``--vessels`` splits it). The
-output names the commit of the ``allocator_pkg`` it ran, so the sweep can measure older code:
-``PYTHONPATH=<checkout> python bench/settling.py --full --note "..."`` (how
-``bench/results/settling_before.json`` was made).
+output names the commit of the ``allocator_pkg`` it ran, so the sweep can measure any checkout:
+``PYTHONPATH=<checkout> python bench/settling.py --full --note "..."``.
 """
 
 from __future__ import annotations
@@ -37,17 +36,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from optimum import best_attainable_wrench
+
+import allocator_pkg
+from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters
+from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.effectiveness.faults import FaultSet, static_ranges
+from allocator_pkg.effectiveness.model import Model
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "test"))
-
-from reference import best_attainable_wrench  # noqa: E402
-
-import allocator_pkg  # noqa: E402
-from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters  # noqa: E402
-from allocator_pkg.analysis.capability import Capability  # noqa: E402
-from allocator_pkg.effectiveness.faults import FaultSet, static_ranges  # noqa: E402
-from allocator_pkg.effectiveness.model import Model  # noqa: E402
 
 SAMPLES = 400
 JUDGED = 100

@@ -17,7 +17,7 @@ Fails (exit 1) on a crash, a non-zero exit, a silence of the node, a violation, 
 refused or an invalid one accepted, or RSS growth of 5 MB or more after the warm-up (not
 measured in runs shorter than two minutes). Writes bench/results/soak.json.
 
-Missed periods are counted as bench/node.py counts them, and each late tick is put down to
+Missed periods are counted as bench/probe.py counts them, and each late tick is put down to
 what came right before it: a disturbance sent within ``DISTURBED`` (a fault, a parameter
 change, a NaN or 1e12 wrench), else a sample on either side of it that took longer than
 ``SLOW_SAMPLE`` to allocate (a sample that long is as often the process held up, by the
@@ -31,8 +31,9 @@ whole run: the share of periods the machine itself costs a deadline loop.
 
 import os
 
-os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-os.environ.setdefault("ROS_DOMAIN_ID", "42")
+from allocator_pkg.ros.process import dds_environment
+
+os.environ.update(dds_environment())
 
 import argparse
 import itertools
@@ -46,18 +47,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from figures import MISSED_FACTOR, memory_mb, percentiles, process_cpu_seconds
 from geometry_msgs.msg import Wrench
-from node import (
-    MISSED_FACTOR,
-    ROOT,
-    Probe,
-    node_process,
-    percentiles,
-    process_cpu_seconds,
-    ros_context,
-    stamp_seconds,
-    summarise,
-)
+from probe import Probe, node_process, ros_context, stamp_seconds, summarise
 from rcl_interfaces.srv import SetParametersAtomically
 from rclpy.context import Context
 from rclpy.parameter import Parameter
@@ -71,6 +63,7 @@ from allocator_pkg.effectiveness.model import Model
 from allocator_pkg.effectiveness.sectors import in_feasible_sector, in_forbidden_sector
 from allocator_pkg.vehicle.angles import wrap
 
+ROOT = Path(__file__).resolve().parents[1]
 RATE_HZ = 500.0
 WRENCH_HZ = 1000.0
 WARM_UP = 60.0               # s before the RSS baseline
@@ -372,18 +365,6 @@ class Disturber:
         future.add_done_callback(answered)
 
 
-def memory_mb(pid: int) -> dict[str, float]:
-    """VmRSS and RssAnon of process ``pid`` [MB], from /proc/<pid>/status."""
-    figures = {}
-    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
-        key, _, value = line.partition(":")
-        if key in ("VmRSS", "RssAnon"):
-            figures[key] = int(value.split()[0]) / 1024.0
-    if "VmRSS" not in figures:
-        raise ProcessLookupError(f"process {pid} has no resident memory (exited)")
-    return figures
-
-
 def memory_summary(samples: list[tuple[float, dict[str, float]]]) -> dict:
     """Growth of VmRSS after the warm-up (None if the run was too short to tell)."""
     after = [(t, mb) for t, mb in samples if t >= WARM_UP]
@@ -399,7 +380,7 @@ def memory_summary(samples: list[tuple[float, dict[str, float]]]) -> dict:
 
 
 def late_ticks(stamps: list[float], solve_at: dict[float, float], disturbances: list[float]) -> dict[str, int]:
-    """Missed periods (as bench/node.py counts them) by what came right before each late
+    """Missed periods (as bench/probe.py counts them) by what came right before each late
     tick: a disturbance, a slow sample, or neither (see the module docstring)."""
     period = 1.0 / RATE_HZ
     sent = np.sort(np.array(disturbances))
@@ -428,54 +409,53 @@ def soak(config: Path, minutes: float, seed: int, log: Path) -> dict:
     memory: list[tuple[float, dict[str, float]]] = []
     crash = None
     log.parent.mkdir(parents=True, exist_ok=True)
-    with log.open("w") as output:
-        with node_process(config, RATE_HZ, output=output) as process, ros_context() as context:
-            probe = SoakProbe(context, history, seed, tally)
-            disturber = Disturber(probe, parameters, seed + 1, tally)
-            ticker = None
-            try:
-                probe.wait_for_node()
-                disturber.wait_for_services()
-                probe.start_publishing()
-                ticker = subprocess.Popen([sys.executable, str(TICKER), str(seconds), str(RATE_HZ)],
-                                          stdout=subprocess.PIPE, text=True, env=os.environ)
-                begin = time.monotonic()
-                start, cpu_start = time.time(), process_cpu_seconds(process.pid)
-                next_action, next_memory = begin + 1.0, begin
-                while (now := time.monotonic()) < begin + seconds:
-                    if process.poll() is not None:
-                        crash = f"allocator_node exited with {process.returncode} after {now - begin:.0f} s"
-                        break
-                    if now >= next_memory:
-                        try:
-                            memory.append((round(now - begin, 1), memory_mb(process.pid)))
-                        except (OSError, ProcessLookupError):
-                            continue
-                        next_memory += RSS_PERIOD
-                    if now >= next_action:
-                        disturber.act()
-                        next_action += 1.0
-                    probe.executor.spin_once(timeout_sec=0.01)
-                end = time.time()
-                cpu_end = process_cpu_seconds(process.pid) if process.poll() is None else cpu_start
-                probe.stop_publishing()
-                probe.spin_for(1.0)
-                unanswered = len(disturber.pending)
-                figures = summarise(probe, RATE_HZ, (start, end), 100.0 * (cpu_end - cpu_start) / (end - start))
-                receipts = np.array([receipt for receipt, _ in probe.commands if start <= receipt < end])
-                longest_silence = float(np.max(np.diff(np.concatenate(([start], receipts, [end])))))
-                by_method = {method: {"samples": len(times),
-                                      **percentiles([t * 1e3 for t in times], 50, 99, maximum=True)}
-                             for method, times in probe.solve_by_method.items()}
-                stamps = [stamp for receipt, stamp in probe.commands if start <= receipt < end]
-                causes = late_ticks(stamps, probe.solve_at, tally.times)
-                reference = json.loads(ticker.communicate(timeout=60.0)[0]) if crash is None else None
-            finally:
-                if ticker is not None and ticker.poll() is None:
-                    ticker.kill()
-                    ticker.wait()
-                probe.close()
-        exit_code = process.returncode
+    with node_process(config, RATE_HZ, output=log) as process, ros_context() as context:
+        probe = SoakProbe(context, history, seed, tally)
+        disturber = Disturber(probe, parameters, seed + 1, tally)
+        ticker = None
+        try:
+            probe.wait_for_node()
+            disturber.wait_for_services()
+            probe.start_publishing()
+            ticker = subprocess.Popen([sys.executable, str(TICKER), str(seconds), str(RATE_HZ)],
+                                      stdout=subprocess.PIPE, text=True, env=os.environ)
+            begin = time.monotonic()
+            start, cpu_start = time.time(), process_cpu_seconds(process.pid)
+            next_action, next_memory = begin + 1.0, begin
+            while (now := time.monotonic()) < begin + seconds:
+                if process.poll() is not None:
+                    crash = f"allocator_node exited with {process.returncode} after {now - begin:.0f} s"
+                    break
+                if now >= next_memory:
+                    try:
+                        memory.append((round(now - begin, 1), memory_mb(process.pid)))
+                    except (OSError, ProcessLookupError):
+                        continue
+                    next_memory += RSS_PERIOD
+                if now >= next_action:
+                    disturber.act()
+                    next_action += 1.0
+                probe.executor.spin_once(timeout_sec=0.01)
+            end = time.time()
+            cpu_end = process_cpu_seconds(process.pid) if process.poll() is None else cpu_start
+            probe.stop_publishing()
+            probe.spin_for(1.0)
+            unanswered = len(disturber.pending)
+            figures = summarise(probe, RATE_HZ, (start, end), 100.0 * (cpu_end - cpu_start) / (end - start))
+            receipts = np.array([receipt for receipt, _ in probe.commands if start <= receipt < end])
+            longest_silence = float(np.max(np.diff(np.concatenate(([start], receipts, [end])))))
+            by_method = {method: {"samples": len(times),
+                                  **percentiles([t * 1e3 for t in times], 50, 99, maximum=True)}
+                         for method, times in probe.solve_by_method.items()}
+            stamps = [stamp for receipt, stamp in probe.commands if start <= receipt < end]
+            causes = late_ticks(stamps, probe.solve_at, tally.times)
+            reference = json.loads(ticker.communicate(timeout=60.0)[0]) if crash is None else None
+        finally:
+            if ticker is not None and ticker.poll() is None:
+                ticker.kill()
+                ticker.wait()
+            probe.close()
+    exit_code = process.returncode
     figures.pop("publish_to_commands_ms", None)
     return {
         "config": str(config.relative_to(ROOT)) if config.is_relative_to(ROOT) else str(config),

@@ -2,7 +2,7 @@
 
 It sleeps to deadlines every 1/rate seconds, skips the deadlines it has passed (as an ROS
 timer does), records when it woke, and counts missed periods exactly as the benchmarks count
-the node's (``node.MISSED_FACTOR``): no ROS node, no allocation, nothing in its way, so what
+the node's (``figures.MISSED_FACTOR``): no ROS node, no allocation, nothing in its way, so what
 it misses is what the machine's scheduling costs any process with a deadline. Prints one JSON
 object.
 
@@ -15,7 +15,7 @@ import sys
 import time
 
 import numpy as np
-from node import MISSED_FACTOR
+from figures import MISSED_FACTOR
 
 
 def tick(seconds: float, rate_hz: float) -> list[float]:

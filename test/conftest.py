@@ -4,12 +4,16 @@ keeps DDS on this machine, on loopback and in a domain of its own unless the cal
 
 import os
 
+from allocator_pkg.ros.process import dds_environment
+
 # DDS discovery stays on loopback, in the suite's own domain (as the Makefile sets them), before
 # anything here or in the plugin loads rclpy.
-os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-os.environ.setdefault("ROS_DOMAIN_ID", "42")
+os.environ.update(dds_environment())
 
+import importlib
+import sys
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 import pytest
@@ -26,6 +30,17 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / "data"
+BENCH = ROOT / "bench"
+
+
+def bench_module(name: str) -> ModuleType:
+    """The module ``bench/<name>.py``, for the tests of the benchmarks' own logic and those that
+    share the settling sweep's optimum. The bench scripts import each other by name, as they
+    find each other when one runs as a script, so ``bench/`` goes on the path; nothing in
+    ``bench/`` imports from ``test/``."""
+    if str(BENCH) not in sys.path:
+        sys.path.insert(0, str(BENCH))
+    return importlib.import_module(name)
 
 
 def matrices(vehicle: Vehicle) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

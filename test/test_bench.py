@@ -2,22 +2,21 @@
 
 import itertools
 import json
-import sys
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
-from conftest import ROOT
-
-sys.path.insert(0, str(ROOT / "bench"))
-
-import idle_core
-import report
-import soak
-import solver
-import ticker
+from conftest import ROOT, bench_module
 
 from allocator_pkg import load_vehicle
 from allocator_pkg.solvers import BACKENDS
+
+idle_core = bench_module("idle_core")
+overhead = bench_module("overhead")
+report = bench_module("report")
+soak = bench_module("soak")
+solver = bench_module("solver")
+ticker = bench_module("ticker")
 
 
 def test_the_report_is_rebuilt_from_the_committed_results(tmp_path):
@@ -115,8 +114,6 @@ def test_the_report_gives_the_explicit_rows_and_its_regions_when_measured():
 
 
 def test_the_overhead_bench_takes_medians_over_rounds_and_ratios_to_the_bare_node_of_the_same_rate():
-    import overhead
-
     def case(cpu, p50, allocate=None):
         return {"cpu_ms_per_sample": cpu, "cpu_percent": 10.0 * cpu, "latency_ms_p50": p50, "latency_ms_p99": 2 * p50,
                 "allocate_ms_p50": allocate, "beyond_allocate_ms": None if allocate is None else cpu - 1.5 * allocate}
@@ -140,8 +137,6 @@ def test_the_overhead_bench_takes_medians_over_rounds_and_ratios_to_the_bare_nod
 
 
 def test_a_window_of_the_overhead_bench_gives_cpu_per_sample_and_what_is_spent_beyond_allocate():
-    import overhead
-
     # 0.5 s of CPU over 10 s of wall time and 1000 samples; allocate took 0.1 ms in 3 samples of 4 and 0.5 ms in 1.
     figures = overhead.window_figures(0.5, 10.0, 1000, 1000, [1e-3, 2e-3, 3e-3], [1e-4, 1e-4, 1e-4, 5e-4])
     assert figures["cpu_ms_per_sample"] == pytest.approx(0.5) and figures["cpu_percent"] == pytest.approx(5.0)
@@ -153,8 +148,6 @@ def test_a_window_of_the_overhead_bench_gives_cpu_per_sample_and_what_is_spent_b
 
 
 def test_the_idle_core_bench_asks_the_node_cost_probes_request_and_times_every_sample():
-    import overhead
-
     turn = idle_core.requests(overhead.AMPLITUDE["dp_vessel"], round(idle_core.RATE_HZ * overhead.PERIOD) + 1)
     assert np.allclose(turn[0], [2.0e5, 0, 0, 0, 0, 0]) and np.allclose(turn[-1], [2.0e5, 0, 0, 0, 0, 0], atol=1e-6)
     quarter = turn[round(idle_core.RATE_HZ * overhead.PERIOD / 4)]
@@ -184,3 +177,16 @@ def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator(
     assert set(results["methods"]) == set(solver.allocators(vehicle))
     assert results["samples"] == 3 and all(method["saturated_flags"] == 0 and method["fallbacks"] == 0
                                             for method in results["methods"].values())
+
+
+def test_the_node_probe_counts_missed_and_lost_periods_from_the_stamps():
+    """Stamps 10 ms apart with one interval of 2 periods and one of 3: 1 + 2 missed periods, and
+    3 periods of the span without a message."""
+    probe = bench_module("probe")
+    stamps = [0.01 * k for k in (0, 1, 2, 3, 5, 6, 7, 8, 9, 12)]
+    recorded = SimpleNamespace(commands=[(stamp + 0.001, stamp) for stamp in stamps], latencies=[], solves=[],
+                               published=[])
+    figures = probe.summarise(recorded, 100.0, (0.0, 0.2), 12.0)
+    assert (figures["missed"], figures["lost"], figures["missed_percent"]) == (3, 3, 25.0)
+    assert figures["achieved_hz"] == 50.0 and figures["tick_to_receipt_ms"]["p50"] == pytest.approx(1.0)
+    assert figures["publish_to_commands_ms"] == {"p50": None, "p99": None, "matched": 0, "published": 0}

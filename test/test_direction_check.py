@@ -1,14 +1,13 @@
 """allocator-ctl step-test, the direction check: the words of each direction, and the tool
 against a node process."""
 
-import os
 import subprocess
-import sys
 
 import numpy as np
 from conftest import ROOT
 
 from allocator_pkg.cli.direction_check import MOTIONS, describe, motion
+from allocator_pkg.ros.process import child_process, executable, node_command
 from allocator_pkg.vehicle.config import DOF_NAMES
 from allocator_pkg.vehicle.frames import wrench_between
 from allocator_pkg.vehicle.node_settings import FLU, FRD
@@ -36,20 +35,11 @@ def test_frd_words_follow_the_axes_and_the_right_hand_rule():
         "surge +40.0 N (move forward), yaw +18.0 N m (turn nose to starboard)"
 
 
-BIN = os.path.dirname(sys.executable)
-
-
 def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node():
-    node = subprocess.Popen([os.path.join(BIN, "allocator_node"), "--ros-args", "--params-file", str(EXAMPLE),
-                             "-p", "step_test.enabled:=true"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
-        ctl = [os.path.join(BIN, "allocator-ctl"), "step-test", "--share", "0.1", "--hold", "0.6", "--rest", "0.2"]
+    with child_process(node_command(EXAMPLE, parameters=["step_test.enabled:=true"])):
+        ctl = [str(executable("allocator-ctl")), "step-test", "--share", "0.1", "--hold", "0.6", "--rest", "0.2"]
         steps = subprocess.run(ctl, capture_output=True, text=True, timeout=60)
         held = subprocess.run([*ctl, "--actuators"], capture_output=True, text=True, timeout=60)
-    finally:
-        node.terminate()
-        node.wait(timeout=20)
     assert steps.returncode == 0, steps.stderr
     lines = steps.stdout.splitlines()
     assert lines[0].startswith("step test: 3 DOFs (surge, sway, yaw)")

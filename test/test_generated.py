@@ -5,8 +5,8 @@ reference, never itself; every sample also within every thrust, rate, sector and
   against the bounded least-squares optimum of (1.35) with beta = 0 (scipy's BVLS), relative
   objective within RELATIVE (``qp``: QP_RELATIVE);
 - ``qp`` and ``nonlinear`` on azimuth vessels: the settled wrench against a multi-start SLSQP
-  over the convex sector pieces (reference.best_attainable_wrench), within WRENCH of each DOF's
-  authority;
+  over the convex sector pieces (``bench/optimum.py``, the settling sweep's judge too), within
+  WRENCH of each DOF's authority;
 - ``lp``: its own criterion (5.3) by scipy's linprog (HiGHS), cost within LP_RELATIVE;
 - ``pseudoinverse``, ``svd_filter``: their closed forms (the weighted pseudo-inverse of T, of
   T_e for rotatable thrusters) where no limit binds.
@@ -22,16 +22,18 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from conftest import DATA
+from conftest import DATA, bench_module
 from generators import azimuth_vessels, faults, fixed_vehicles, request_sequences, surface_vehicles
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from reference import best_attainable_wrench, weighted_l1_allocation, weighted_pseudo_inverse
+from reference import weighted_l1_allocation, weighted_pseudo_inverse
 from scipy.optimize import lsq_linear
 from test_properties import check
 
 from allocator_pkg import Allocator, FaultMode, load_vehicle
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
+
+optimum = bench_module("optimum")
 
 RELATIVE = 1e-6
 """The objective of (1.35) within this fraction of the BVLS optimum's (explicit, dynamic)."""
@@ -172,7 +174,7 @@ def judge_azimuths(vehicle, method, fault_set, tau):
     rows = list(vehicle.dof_indices)
     low, high = allocator.ranges
     q = model.slack_weights(model.weight)
-    best = best_attainable_wrench(vehicle, tau, q, low, high, starts=3)
+    best = optimum.best_attainable_wrench(vehicle, tau, q, low, high, starts=3)
     authority = model.dof_scale
     ours = (result.achieved[rows] - tau[rows]) / authority
     reference = (best - tau[rows]) / authority

@@ -2,25 +2,22 @@
 configure checks the vehicle, activate starts commands, deactivate commands zero thrust and
 stops, cleanup frees everything, shutdown from any state ends the process cleanly."""
 
-import os
 import signal
-import subprocess
-import sys
 import time
 
 import pytest
 from conftest import ROOT
 
+from allocator_pkg.ros.process import child_process, node_command
+
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
-BIN = os.path.dirname(sys.executable)
 
 pytestmark = pytest.mark.slow
 
 
 def start(*extra):
-    return subprocess.Popen([os.path.join(BIN, "allocator_lifecycle_node"), "--ros-args", "--params-file",
-                             str(EXAMPLE), "-p", "wrench_timeout:=0.0", *extra],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    return child_process(node_command(EXAMPLE, *extra, parameters=["wrench_timeout:=0.0"],
+                                      node="allocator_lifecycle_node"))
 
 
 class Manager:
@@ -86,13 +83,6 @@ class Manager:
         raise AssertionError("get_state never answered")
 
 
-def finish(process):
-    if process.poll() is None:
-        process.send_signal(signal.SIGINT)
-    output, _ = process.communicate(timeout=20)
-    return output
-
-
 def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_context):
     from lifecycle_msgs.msg import Transition
     from rcl_interfaces.srv import SetParameters
@@ -101,8 +91,7 @@ def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_cont
     from allocator_msgs.msg import ActuatorFault
     from allocator_msgs.srv import SetActuatorFault
     from allocator_pkg.ros.conversions import array_to_wrench
-    process = start("-r", "__ns:=/managed")
-    try:
+    with start("-r", "__ns:=/managed") as process:
         manager = Manager(ros_context, "/managed")
         assert manager.state() == "unconfigured"
         refused = manager.call(manager.fault, SetActuatorFault.Request(fault=ActuatorFault(actuator="main_port",
@@ -142,8 +131,7 @@ def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_cont
         assert manager.transition(Transition.TRANSITION_ACTIVE_SHUTDOWN)
         manager.spin_until(lambda: len(manager.commands) > count and all(t == 0.0 for t in manager.commands[-1].thrust))
         assert process.wait(timeout=10) == 0
-    finally:
-        output = finish(process)
+    output = process.output()
     assert "/managed/thrust_allocator: invalid configuration:\n  method: 'magic' is not one of" in output
     assert "Traceback" not in output
 
@@ -151,23 +139,19 @@ def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_cont
 @pytest.mark.parametrize("transitions", [[], ["configure"]], ids=["unconfigured", "inactive"])
 def test_shutdown_from_any_state_ends_the_process(ros_context, transitions):
     from lifecycle_msgs.msg import Transition
-    process = start("-r", "__ns:=/ending")
-    try:
+    with start("-r", "__ns:=/ending") as process:
         manager = Manager(ros_context, "/ending")
         for _ in transitions:
             assert manager.transition(Transition.TRANSITION_CONFIGURE)
         assert manager.transition(Transition.TRANSITION_INACTIVE_SHUTDOWN if transitions
                                   else Transition.TRANSITION_UNCONFIGURED_SHUTDOWN)
         assert process.wait(timeout=10) == 0
-    finally:
-        output = finish(process)
-    assert "Traceback" not in output and manager.commands == []
+    assert "Traceback" not in process.output() and manager.commands == []
 
 
 def test_sigint_while_active_commands_zero_thrust(ros_context):
     from lifecycle_msgs.msg import Transition
-    process = start("-r", "__ns:=/signalled")
-    try:
+    with start("-r", "__ns:=/signalled") as process:
         manager = Manager(ros_context, "/signalled")
         assert manager.transition(Transition.TRANSITION_CONFIGURE)
         assert manager.transition(Transition.TRANSITION_ACTIVATE)
@@ -177,6 +161,4 @@ def test_sigint_while_active_commands_zero_thrust(ros_context):
         manager.spin_until(lambda: process.poll() is not None and len(manager.commands) > count)
         assert process.wait(timeout=10) == 0
         assert all(t == 0.0 for t in manager.commands[-1].thrust)
-    finally:
-        output = finish(process)
-    assert "stopped: published zero thrust" in output
+    assert "stopped: published zero thrust" in process.output()

@@ -2,11 +2,10 @@
 survey's polygon error measured, and its sparsity against qp on every shipped vehicle."""
 
 import math
-import sys
 
 import numpy as np
 import pytest
-from conftest import DATA, ROOT, matrices, vehicle_from
+from conftest import DATA, ROOT, bench_module, matrices, vehicle_from
 from reference import largest_attainable_scale, weighted_l1_allocation
 
 from allocator_pkg import Allocator, FaultMode
@@ -15,10 +14,7 @@ from allocator_pkg.methods.lp import LPAllocation
 from allocator_pkg.methods.sample_lp import polygon_error, survey_apothem
 from allocator_pkg.solvers import BACKENDS
 
-sys.path.insert(0, str(ROOT / "bench"))
-
-import sparsity
-
+sparsity = bench_module("sparsity")
 EIGHT = DATA / "eight_thrusters.yaml"
 Q = [1e5] * 6
 DIRECTIONS = [np.array(d, dtype=float) for d in (

@@ -1,38 +1,30 @@
 """allocator_node and allocator-ctl as separate processes, over real DDS on loopback."""
 
+import contextlib
 import math
-import os
 import signal
 import subprocess
-import sys
 import time
 
 import pytest
 from conftest import ROOT
 
+from allocator_pkg.ros.process import child_process, executable, node_command
+
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
-BIN = os.path.dirname(sys.executable)
 
 pytestmark = pytest.mark.slow
 
 
-def start_node(params_file, *extra):
-    return subprocess.Popen([os.path.join(BIN, "allocator_node"), "--ros-args", "--params-file", str(params_file),
-                             *extra], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-
-
 def ctl(*arguments, timeout=30):
-    return subprocess.run([os.path.join(BIN, "allocator-ctl"), *arguments], capture_output=True, text=True,
+    return subprocess.run([str(executable("allocator-ctl")), *arguments], capture_output=True, text=True,
                           timeout=timeout)
 
 
 @pytest.fixture
 def node_process():
-    process = start_node(EXAMPLE)
-    yield process
-    if process.poll() is None:
-        process.kill()
-        process.wait()
+    with child_process(node_command(EXAMPLE)) as process:
+        yield process
 
 
 class Listener:
@@ -85,7 +77,7 @@ def test_node_process_runs_takes_faults_and_stops_cleanly_on_sigterm(ros_context
     listener.spin_until(lambda: node_process.poll() is not None and len(listener.commands) > count, timeout=20.0)
     listener.spin_until(lambda: all(t == 0.0 for t in listener.commands[-1].thrust), timeout=5.0)
     assert node_process.wait(timeout=10) == 0
-    assert "stopped: published zero thrust" in node_process.stdout.read()
+    assert "stopped: published zero thrust" in node_process.output()
 
 
 def test_node_process_stops_cleanly_on_sigint(ros_context, node_process):
@@ -97,14 +89,15 @@ def test_node_process_stops_cleanly_on_sigint(ros_context, node_process):
     listener.spin_until(lambda: node_process.poll() is not None and len(listener.commands) > count, timeout=20.0)
     assert node_process.wait(timeout=10) == 0
     assert all(t == 0.0 for t in listener.commands[-1].thrust)
-    assert "stopped: published zero thrust" in node_process.stdout.read()
+    assert "stopped: published zero thrust" in node_process.output()
 
 
 def test_invalid_configuration_exits_with_a_clear_message(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text(EXAMPLE.read_text().replace("thrust_max: 300.0", "thrust_max: -300.0", 1))
-    process = start_node(bad, "-r", "__ns:=/rov1")
-    output, _ = process.communicate(timeout=30)
+    with child_process(node_command(bad, "-r", "__ns:=/rov1")) as process:
+        process.wait(timeout=30)
+    output = process.output()
     assert process.returncode == 1
     assert "/rov1/thrust_allocator: invalid configuration" in output
     assert "actuators.main_port.thrust_max: must be > 0" in output
@@ -114,43 +107,33 @@ def test_invalid_configuration_exits_with_a_clear_message(tmp_path):
 
 
 def test_a_section_that_does_not_apply_is_named_with_the_node_full_name(tmp_path):
-    """Issue 14: a file keyed 'thrust_allocator:' does not apply to /rov1/thrust_allocator."""
-    old_style = tmp_path / "old.yaml"
-    old_style.write_text(EXAMPLE.read_text().replace("/**:", "thrust_allocator:", 1))
-    process = start_node(old_style, "-r", "__ns:=/rov1")
-    output, _ = process.communicate(timeout=30)
+    """A file keyed 'thrust_allocator:' does not apply to /rov1/thrust_allocator."""
+    keyed_by_name = tmp_path / "keyed_by_name.yaml"
+    keyed_by_name.write_text(EXAMPLE.read_text().replace("/**:", "thrust_allocator:", 1))
+    with child_process(node_command(keyed_by_name, "-r", "__ns:=/rov1")) as process:
+        process.wait(timeout=30)
+    output = process.output()
     assert process.returncode == 1
     assert "/rov1/thrust_allocator: invalid configuration:\n  actuators.names: required key is missing" in output
     assert ("no allocator parameters found for /rov1/thrust_allocator: a params file section applies only to the "
             "nodes its key matches; key it '/**:' (any node) or '/**/thrust_allocator:'") in output
 
 
-def stop(process):
-    """SIGINT, and the process's output."""
-    if process.poll() is None:
-        process.send_signal(signal.SIGINT)
-    try:
-        output, _ = process.communicate(timeout=20)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        output, _ = process.communicate()
-    return output
-
-
 def test_every_shipped_file_runs_namespaced_and_renamed(ros_context):
     from allocator_msgs.msg import ThrusterCommands
     from allocator_pkg import read_parameters
     files = sorted((ROOT / "config").glob("*.yaml"))
-    processes = {path: start_node(path, "-r", f"__ns:=/{path.stem}", "-r", "__node:=alloc") for path in files}
-    try:
+    with contextlib.ExitStack() as stack:
+        processes = {path: stack.enter_context(child_process(node_command(path, "-r", f"__ns:=/{path.stem}", "-r",
+                                                                          "__node:=alloc")))
+                     for path in files}
         listener = Listener(ros_context)
         received = {path: [] for path in files}
         for path in files:
             listener.node.create_subscription(ThrusterCommands, f"/{path.stem}/thruster_commands",
                                               received[path].append, 10)
         listener.spin_until(lambda: all(received.values()), timeout=60.0)
-    finally:
-        outputs = {path: stop(process) for path, process in processes.items()}
+    outputs = {path: process.output() for path, process in processes.items()}
     for path in files:
         assert list(received[path][-1].name) == read_parameters(path)["actuators.names"], path
         assert (f"[{path.stem}.alloc]: wrench from /{path.stem}/wrench_command "
@@ -163,10 +146,9 @@ def test_wrench_command_is_best_effort_and_qos_overrides_change_it(ros_context):
     """The default takes reliable and best-effort controllers; the standard qos_overrides parameters work."""
     from geometry_msgs.msg import Wrench
     from rclpy.qos import QoSProfile, ReliabilityPolicy
-    default = start_node(EXAMPLE, "-r", "__ns:=/qa")
-    overridden = start_node(EXAMPLE, "-r", "__ns:=/qb",
-                            "-p", "qos_overrides./qb/wrench_command.subscription.reliability:=reliable")
-    try:
+    with child_process(node_command(EXAMPLE, "-r", "__ns:=/qa")), \
+            child_process(node_command(EXAMPLE, "-r", "__ns:=/qb", parameters=[
+                "qos_overrides./qb/wrench_command.subscription.reliability:=reliable"])) as overridden:
         listener = Listener(ros_context)
         node = listener.node
 
@@ -180,17 +162,13 @@ def test_wrench_command_is_best_effort_and_qos_overrides_change_it(ros_context):
         sensor_data = node.create_publisher(Wrench, "/qa/wrench_command",
                                             QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
         listener.spin_until(lambda: sensor_data.get_subscription_count() == 1)
-    finally:
-        stop(default)
-        output = stop(overridden)
-    assert "Traceback" not in output
+    assert "Traceback" not in overridden.output()
 
 
 def test_a_publisher_of_the_other_wrench_type_is_reported_once(ros_context):
     from diagnostic_msgs.msg import DiagnosticArray
     from geometry_msgs.msg import WrenchStamped
-    process = start_node(EXAMPLE, "-r", "__ns:=/typed")
-    try:
+    with child_process(node_command(EXAMPLE, "-r", "__ns:=/typed")) as process:
         listener = Listener(ros_context)
         import rclpy
         controller = rclpy.create_node("controller", namespace="/typed", context=ros_context)
@@ -206,11 +184,9 @@ def test_a_publisher_of_the_other_wrench_type_is_reported_once(ros_context):
         listener.node.create_subscription(DiagnosticArray, "/diagnostics", reported, 10)
         listener.spin_until(lambda: reports.count("/typed/controller (geometry_msgs/msg/WrenchStamped)") >= 3,
                             timeout=30.0)
-    finally:
-        output = stop(process)
-    assert output.count("a publisher of another type on /typed/wrench_command never connects: /typed/controller "
-                        "(geometry_msgs/msg/WrenchStamped); this node takes geometry_msgs/msg/Wrench "
-                        "(wrench_type: wrench)") == 1
+    assert process.output().count("a publisher of another type on /typed/wrench_command never connects: "
+                                  "/typed/controller (geometry_msgs/msg/WrenchStamped); this node takes "
+                                  "geometry_msgs/msg/Wrench (wrench_type: wrench)") == 1
 
 
 def test_the_input_trigger_answers_a_wrench_without_waiting_for_the_timer(ros_context):
@@ -218,9 +194,8 @@ def test_the_input_trigger_answers_a_wrench_without_waiting_for_the_timer(ros_co
     The bound is loose on purpose (a shared machine): bench/node.py measures the latency."""
     from allocator_msgs.msg import AllocationStatus
     from allocator_pkg.ros.conversions import array_to_wrench
-    process = start_node(EXAMPLE, "-r", "__ns:=/fast", "-p", "trigger:=input", "-p", "rate_hz:=0.2",
-                         "-p", "wrench_timeout:=0.0")
-    try:
+    with child_process(node_command(EXAMPLE, "-r", "__ns:=/fast",
+                                    parameters=["trigger:=input", "rate_hz:=0.2", "wrench_timeout:=0.0"])):
         listener = Listener(ros_context)
         answers = []
         listener.node.create_subscription(AllocationStatus, "/fast/allocation_status", answers.append, 10)
@@ -234,8 +209,6 @@ def test_the_input_trigger_answers_a_wrench_without_waiting_for_the_timer(ros_co
         listener.spin_until(lambda: answers and answers[-1].requested.force.x == 33.0, timeout=10.0)
         answered = answers[-1].header.stamp.sec + answers[-1].header.stamp.nanosec * 1e-9
         assert answered - sent < 2.0
-    finally:
-        stop(process)
 
 
 def test_the_geometry_comes_from_the_robot_description_topic(ros_context, tmp_path):
@@ -252,13 +225,11 @@ def test_the_geometry_comes_from_the_robot_description_topic(ros_context, tmp_pa
     latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
     description = listener.node.create_publisher(String, "/urdf/robot_description", latched)
     description.publish(String(data=urdf_of(read_parameters(BLUEROV), "flu")))
-    process = start_node(params, "-r", "__ns:=/urdf")
-    try:
+    with child_process(node_command(params, "-r", "__ns:=/urdf")) as process:
         commands = []
         listener.node.create_subscription(ThrusterCommands, "/urdf/thruster_commands", commands.append, 10)
         listener.spin_until(lambda: commands, timeout=30.0)
-    finally:
-        output = stop(process)
+    output = process.output()
     assert list(commands[-1].name) == [f"thruster_{i}" for i in range(1, 9)]
     assert "waiting for /urdf/robot_description" in output
     assert "over 8 actuators (geometry from /urdf/robot_description)" in output
@@ -279,7 +250,7 @@ def test_allocator_ctl_commands(node_process, tmp_path):
     values = ctl("params", "get", "rate_hz", "weights.minimax").stdout
     assert "rate_hz: 20" in values and "weights.minimax: 0.5" in values
     table = tmp_path / "samples.csv"
-    wrench = subprocess.Popen([os.path.join(BIN, "allocator-ctl"), "wrench", "80", "0", "0", "0", "0", "5",
+    wrench = subprocess.Popen([str(executable("allocator-ctl")), "wrench", "80", "0", "0", "0", "0", "5",
                                "--rate", "20", "--duration", "6"], stdout=subprocess.DEVNULL)
     recording = tmp_path / "samples.mcap"
     echo = ctl("echo", "--duration", "4", "--csv", str(table), "--mcap", str(recording))

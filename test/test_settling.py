@@ -5,17 +5,13 @@ A smaller sweep than ``make bench`` (bench/settling.py: every 15 deg, magnitudes
 direction, on every shipped vessel with rotatable thrusters and on the DP vessel without rate
 limits or sectors, for both methods that turn thrusters."""
 
-import sys
-
 import numpy as np
 import pytest
-from conftest import ROOT
-
-sys.path.insert(0, str(ROOT / "bench"))
-
-import settling
+from conftest import bench_module
 
 from allocator_pkg import Allocator
+
+settling = bench_module("settling")
 
 DIRECTIONS = np.arange(0.0, 360.0, 45.0)
 MAGNITUDES = (0.5, 1.0, 1.5)

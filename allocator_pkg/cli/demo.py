@@ -19,7 +19,8 @@ from pathlib import Path
 
 from ..simulation.scenario import ScenarioError, load_scenario
 from . import sim_plots
-from .sim import SimulationError, run
+from .sim import run
+from .sim_setup import SimulationError
 
 DEFAULT_SCENARIO = Path(__file__).resolve().parents[2] / "config" / "scenarios" / "dp_azimuth_failure.yaml"
 

@@ -1,0 +1,211 @@
+"""This process's ROS side of an ``allocator-sim`` run: ``/clock``, the vehicle's ``odometry``
+and ``battery_state`` and the controller's ``wrench_command`` out, the node's
+``allocation_status`` and ``thruster_commands`` in, its services, and the recording of every
+step into ``run.mcap``.
+
+The clock advances only when the node has answered the step's wrench: its status stamped with
+the step's time and echoing the wrench, and its commands of the same stamp."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import rclpy
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Odometry
+from rclpy.executors import SingleThreadedExecutor
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import BatteryState
+
+from allocator_msgs.msg import AllocationStatus, ThrusterCommands
+
+from ..ros.conversions import array_to_wrench, wrench_to_array
+from ..simulation.kinematics import quaternion
+from ..simulation.plant import Pose
+from ..simulation.scenario import Scenario
+from .ctl import Controller
+from .recording import Recording
+from .sim_setup import SimulationError
+
+START_TIMEOUT = 30.0
+"""[s] of wall time the node has to subscribe to the wrench and the clock."""
+WARM_UP_TIMEOUT = 60.0
+"""[s] of wall time the node has to come into step."""
+ANSWER_TIMEOUT = 30.0
+"""[s] of wall time to wait for the node's answer to a step before sending it again. Long: a
+node that did get the step and answers late (a busy machine) would take a second wrench of the
+same step as one waiting for the next period, and sample twice in one step; a lost message is
+rare on loopback."""
+RETRIES = 3
+TOPICS = {"clock": "/clock", "odometry": "/odometry", "setpoint": "/setpoint", "battery": "/battery_state",
+          "wrench": "/wrench_command", "commands": "/thruster_commands", "status": "/allocation_status"}
+
+_RECORDABLE: dict[type, type] = {}
+
+
+def _plain(value):
+    if hasattr(value, "get_fields_and_field_types"):
+        return {name: _plain(getattr(value, name)) for name in value.get_fields_and_field_types()}
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def recordable(message):
+    """``message`` as the MCAP writer takes every field of it (fixed-size arrays, which rclpy
+    holds as numpy arrays, as lists): a mapping of its fields whose type has the message's
+    name and package, so that the recording finds its schema."""
+    kind = type(message)
+    if kind not in _RECORDABLE:
+        _RECORDABLE[kind] = type(kind.__name__, (dict,), {"__module__": kind.__module__})
+    return _RECORDABLE[kind](_plain(message))
+
+
+def _clock(t_ns: int) -> Clock:
+    stamp = Clock()
+    stamp.clock.sec, stamp.clock.nanosec = divmod(t_ns, 1_000_000_000)
+    return stamp
+
+
+def _nanoseconds(message) -> int:
+    return message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec
+
+
+class NodeLink:
+    """The link to the node of one run, in a rclpy context of its own; ``close`` ends it."""
+
+    def __init__(self, scenario: Scenario, out: Path, node_log: Path) -> None:
+        self.scenario = scenario
+        self.node_log = node_log
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context)
+        self.node = rclpy.create_node("allocator_sim", context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.services = Controller(self.node)
+        self.clock = self.node.create_publisher(Clock, "/clock", 10)
+        self.odometry = self.node.create_publisher(Odometry, "odometry", 10)
+        self.battery = self.node.create_publisher(BatteryState, "battery_state", 10)
+        self.answers: dict[str, Any] = {}
+        self.node.create_subscription(AllocationStatus, "allocation_status",
+                                      lambda m: self.answers.__setitem__("status", m), 10)
+        self.node.create_subscription(ThrusterCommands, "thruster_commands",
+                                      lambda m: self.answers.__setitem__("commands", m), 10)
+        self.recording = Recording(out / "run.mcap")
+
+    def close(self) -> None:
+        self.recording.close()
+        self.executor.shutdown()
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+
+    def wait_for_node(self, running) -> None:
+        """Until the node subscribes to the wrench and the clock; ``running()`` says whether its
+        process still runs."""
+        started = time.monotonic()
+        while self.services.wrench.get_subscription_count() == 0 or self.clock.get_subscription_count() == 0:
+            self.executor.spin_once(timeout_sec=0.05)
+            if not running() or time.monotonic() - started > START_TIMEOUT:
+                raise SimulationError(f"allocator_node did not start (see {self.node_log})")
+
+    def warm_up(self, t_ns: int, period_ns: int, voltage: float | None) -> int:
+        """Zero requests, one clock step each from ``t_ns``, until the node has answered three
+        in a row each in its own step; the time of the run's first step. A wrench that reached
+        the node before its clock step waits for the next one; the node then answers on the
+        clock alone, and that step sends no wrench, so that nothing waits at the first real
+        step. The allocator stays at zero thrust."""
+        in_step, started = 0, time.monotonic()
+        while in_step < 3:
+            if time.monotonic() - started > WARM_UP_TIMEOUT:
+                raise SimulationError(f"allocator_node did not answer in lock-step (see {self.node_log})")
+            self.answers.clear()
+            self.publish_battery(t_ns, voltage)
+            self.clock.publish(_clock(t_ns))
+            deadline = time.monotonic() + 0.02
+            while time.monotonic() < deadline:
+                self.executor.spin_once(timeout_sec=0.005)
+            if self.stamped(t_ns):                       # a waiting wrench, answered on the clock
+                in_step = 0
+            else:
+                self.answers.clear()
+                self.services.wrench.publish(array_to_wrench(np.zeros(6)))
+                deadline = time.monotonic() + 1.0
+                while not self.stamped(t_ns) and time.monotonic() < deadline:
+                    self.executor.spin_once(timeout_sec=0.01)
+                in_step = in_step + 1 if self.stamped(t_ns) else 0
+            t_ns += period_ns
+        return t_ns
+
+    def stamped(self, t_ns: int) -> bool:
+        """Whether the node's latest answer is a sample (not a stop) at ``t_ns``."""
+        status = self.answers.get("status")
+        return status is not None and status.outcome != AllocationStatus.OUTCOME_STOPPED \
+            and _nanoseconds(status) == t_ns
+
+    def publish_battery(self, t_ns: int, value: float | None) -> BatteryState | None:
+        if value is None:
+            return None
+        message = BatteryState(voltage=float(value), present=True)
+        message.header.stamp.sec, message.header.stamp.nanosec = divmod(t_ns, 1_000_000_000)
+        self.battery.publish(message)
+        return message
+
+    def step(self, t_ns: int, pose: Pose, voltage: float | None,
+             wrench: np.ndarray) -> tuple[AllocationStatus, ThrusterCommands]:
+        """One step at ``t_ns``: battery_state (when there is a voltage), the odometry of
+        ``pose``, then the clock and the wrench until the node answers; every message of the
+        step recorded. The node's status and commands."""
+        battery = self.publish_battery(t_ns, voltage)
+        odometry = Odometry()
+        odometry.header.stamp.sec, odometry.header.stamp.nanosec = divmod(t_ns, 1_000_000_000)
+        odometry.header.frame_id, odometry.child_frame_id = "ned", "base_link"
+        p, o = odometry.pose.pose.position, odometry.pose.pose.orientation
+        p.x, p.y, p.z = (float(v) for v in pose.position)
+        o.x, o.y, o.z, o.w = quaternion(*pose.attitude)
+        v, w = odometry.twist.twist.linear, odometry.twist.twist.angular
+        v.x, v.y, v.z = (float(x) for x in pose.velocity)
+        w.x, w.y, w.z = (float(x) for x in pose.angular_velocity)
+        self.odometry.publish(odometry)
+        goal = PoseStamped()
+        goal.header = odometry.header
+        goal.pose.position.x, goal.pose.position.y, goal.pose.position.z = self.scenario.setpoint_position
+        g = goal.pose.orientation
+        g.x, g.y, g.z, g.w = quaternion(0.0, 0.0, self.scenario.setpoint_heading)
+        status, commands, clock, message = self.exchange(t_ns, wrench)
+        for topic, item in (("clock", clock), ("battery", battery), ("odometry", odometry),
+                            ("setpoint", goal), ("wrench", message), ("commands", commands),
+                            ("status", status)):
+            if item is not None:
+                self.recording.write(TOPICS[topic], recordable(item) if topic == "odometry" else item, t_ns)
+        return status, commands
+
+    def exchange(self, t_ns: int, wrench: np.ndarray) -> tuple:
+        """Publish the clock at ``t_ns`` and the wrench; (status, commands, clock, wrench) once the
+        node has answered that wrench at that time. Unanswered, the clock is sent again, then
+        the wrench; SimulationError after RETRIES."""
+        clock = _clock(t_ns)
+        message = array_to_wrench(wrench)
+        for attempt in range(RETRIES):
+            self.answers.clear()
+            self.clock.publish(clock)
+            if attempt == 0:
+                self.services.wrench.publish(message)
+            deadline = time.monotonic() + ANSWER_TIMEOUT
+            while time.monotonic() < deadline:
+                self.executor.spin_once(timeout_sec=0.05)
+                status, commands = self.answers.get("status"), self.answers.get("commands")
+                if status is None or commands is None:
+                    continue
+                if _nanoseconds(status) == t_ns == _nanoseconds(commands) \
+                        and status.outcome != AllocationStatus.OUTCOME_STOPPED \
+                        and np.allclose(wrench_to_array(status.requested), wrench, rtol=1e-9, atol=1e-9):
+                    return status, commands, clock, message
+            if attempt == 1:
+                self.services.wrench.publish(message)
+        raise SimulationError(f"allocator_node did not answer the wrench of t = {t_ns * 1e-9:.3f} s "
+                              f"(see {self.node_log})")
