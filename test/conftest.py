@@ -6,8 +6,9 @@ import os
 
 from allocator_pkg.ros.process import dds_environment
 
-# DDS discovery stays on loopback, in the suite's own domain (as the Makefile sets them), before
-# anything here or in the plugin loads rclpy.
+# DDS discovery stays on loopback (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST), in the suite's own
+# domain (ROS_DOMAIN_ID=42), unless the caller set them, as the Makefile does, before anything here
+# or in the plugin loads rclpy.
 os.environ.update(dds_environment())
 
 import importlib

@@ -28,3 +28,28 @@ def test_command_line_values_are_typed_as_a_params_file_types_them():
     assert parse_value("[1.0e6, 1.0e6]") == [1.0e6, 1.0e6]
     assert parse_value("[surge, yaw]") == ["surge", "yaw"]
     assert parse_value("[1, 2.5]") == [1.0, 2.5] and parse_value("3") == 3 and parse_value("true") is True
+
+
+def test_allocator_ctl_and_the_nodes_keep_dds_on_this_machine_unless_told_otherwise():
+    """Every entry point takes ROS_DOMAIN_ID and ROS_AUTOMATIC_DISCOVERY_RANGE from the
+    environment, LOCALHOST and 42 where they are not set, before rclpy starts (rclpy.init is
+    stopped there, so nothing reaches DDS)."""
+    import os
+    import subprocess
+    import sys
+
+    probe = ("import os, sys, rclpy\n"
+             "def init(*args, **kwargs):\n"
+             "    print(os.environ.get('ROS_DOMAIN_ID'), os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE'))\n"
+             "    sys.exit(0)\n"
+             "rclpy.init = init\n"
+             "from allocator_pkg.cli import ctl\n"
+             "from allocator_pkg.ros import main_loop\n"
+             "ctl.main(['clear']) if sys.argv[1] == 'ctl' else main_loop.spin(None)\n")
+    plain = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS_AUTOMATIC_DISCOVERY_RANGE")}
+    for entry in ("ctl", "node"):
+        default = subprocess.run([sys.executable, "-c", probe, entry], env=plain, capture_output=True, text=True)
+        assert default.stdout.split() == ["42", "LOCALHOST"], default.stderr
+        chosen = subprocess.run([sys.executable, "-c", probe, entry], capture_output=True, text=True,
+                                env={**plain, "ROS_DOMAIN_ID": "7", "ROS_AUTOMATIC_DISCOVERY_RANGE": "SUBNET"})
+        assert chosen.stdout.split() == ["7", "SUBNET"], chosen.stderr

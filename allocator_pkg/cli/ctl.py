@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import difflib
+import os
 import sys
 import time
 
@@ -27,6 +28,7 @@ from allocator_msgs.srv import GetCapability
 
 from ..configuration import params_file
 from ..ros.conversions import array_to_wrench, wrench_to_array
+from ..ros.process import dds_environment
 from ..vehicle.node_settings import NODE_NAME
 from .controller import FAULT_MODES, Controller, ServiceTimeout
 from .direction_check import DirectionCheck
@@ -129,6 +131,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"allocator-ctl: fault {arguments.mode} needs a value "
               f"({'efficiency in (0, 1]' if arguments.mode == 'degraded' else 'angle in rad'})", file=sys.stderr)
         return 2
+    os.environ.update(dds_environment())            # the nodes' rule: see ros.process.dds_environment
     rclpy.init(args=sys.argv if argv is None else None)
     node = rclpy.create_node("allocator_ctl")
     controller = Controller(node, arguments.node, arguments.namespace)

@@ -17,16 +17,18 @@ import rclpy
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry
 from rclpy.executors import SingleThreadedExecutor
+from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import BatteryState
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 
+from ..ros import qos
 from ..ros.conversions import array_to_wrench, wrench_to_array
 from ..simulation.kinematics import quaternion
 from ..simulation.plant import Pose
 from ..simulation.scenario import Scenario
-from .ctl import Controller
+from .controller import Controller
 from .recording import Recording
 from .sim_setup import SimulationError
 
@@ -42,29 +44,6 @@ rare on loopback."""
 RETRIES = 3
 TOPICS = {"clock": "/clock", "odometry": "/odometry", "setpoint": "/setpoint", "battery": "/battery_state",
           "wrench": "/wrench_command", "commands": "/thruster_commands", "status": "/allocation_status"}
-
-_RECORDABLE: dict[type, type] = {}
-
-
-def _plain(value):
-    if hasattr(value, "get_fields_and_field_types"):
-        return {name: _plain(getattr(value, name)) for name in value.get_fields_and_field_types()}
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    return value
-
-
-def recordable(message):
-    """``message`` as the MCAP writer takes every field of it (fixed-size arrays, which rclpy
-    holds as numpy arrays, as lists): a mapping of its fields whose type has the message's
-    name and package, so that the recording finds its schema."""
-    kind = type(message)
-    if kind not in _RECORDABLE:
-        _RECORDABLE[kind] = type(kind.__name__, (dict,), {"__module__": kind.__module__})
-    return _RECORDABLE[kind](_plain(message))
-
 
 def _clock(t_ns: int) -> Clock:
     stamp = Clock()
@@ -97,6 +76,11 @@ class NodeLink:
         self.node.create_subscription(ThrusterCommands, "thruster_commands",
                                       lambda m: self.answers.__setitem__("commands", m), 10)
         self.recording = Recording(out / "run.mcap")
+        own, node_output = [QoSProfile(depth=10)], [qos.output()]
+        self.offered = {"clock": own, "battery": own, "odometry": own, "setpoint": [], "wrench": own,
+                        "commands": node_output, "status": node_output}
+        """What each recorded topic's publishers offer: this process's profile, the node's outputs';
+        nothing for the set-point, recorded but not published."""
 
     def close(self) -> None:
         self.recording.close()
@@ -181,7 +165,9 @@ class NodeLink:
                             ("setpoint", goal), ("wrench", message), ("commands", commands),
                             ("status", status)):
             if item is not None:
-                self.recording.write(TOPICS[topic], recordable(item) if topic == "odometry" else item, t_ns)
+                if TOPICS[topic] not in self.recording:
+                    self.recording.add_topic(TOPICS[topic], type(item), self.offered[topic])
+                self.recording.write(TOPICS[topic], item, t_ns)
         return status, commands
 
     def exchange(self, t_ns: int, wrench: np.ndarray) -> tuple:

@@ -22,7 +22,7 @@ from ..simulation.controller import StationKeeping
 from ..simulation.plant import PLANAR
 from ..simulation.scenario import Event, Scenario
 from ..simulation.trace import Trace
-from .ctl import format_sample
+from .echo import format_sample
 from .sim_link import NodeLink
 from .sim_setup import RunResult, SimulationError, Voltage, build_plant, scenario_command, setpoint_vector
 

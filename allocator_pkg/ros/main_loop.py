@@ -5,6 +5,7 @@ SIGINT/SIGTERM (or the node's end), then stopped and freed."""
 from __future__ import annotations
 
 import gc
+import os
 import signal
 import sys
 import threading
@@ -19,6 +20,7 @@ from rclpy.signals import SignalHandlerOptions
 
 from ..vehicle.node_settings import EVENTS, SINGLE_THREADED
 from .node_base import AllocatorBase, NodeConfigError
+from .process import dds_environment
 
 SPIN_TIMEOUT = 0.1           # s: the longest the main loop waits before it looks for the end again
 
@@ -39,7 +41,10 @@ def spin(make_node: Callable[[], AllocatorBase | Node], args: list[str] | None =
     collection then scans only what came since rather than the whole heap, a pause that would
     hold up samples. docs/performance.md gives what the process spends per sample against a
     bare rclpy node (``bench/overhead.py``) and the periods it misses over a long run
-    (``bench/soak.py``)."""
+    (``bench/soak.py``). DDS runs in the environment's domain and discovery range, on this
+    machine in domain 42 when they are not set (:func:`~.process.dds_environment`), as every
+    entry point of the package does."""
+    os.environ.update(dds_environment())
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     stop = threading.Event()
     for signal_number in (signal.SIGINT, signal.SIGTERM):
