@@ -32,7 +32,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
-from allocator_pkg import read_parameters
+from allocator_pkg import load_vehicle
 
 ROOT = Path(__file__).resolve().parents[1]
 FLOOD_HZ = 10000.0
@@ -166,7 +166,7 @@ def main(argv: list[str] | None = None) -> int:
     if arguments.flood:
         return flood(arguments.flood, arguments.seconds)
     config = arguments.config.resolve()
-    rate_hz = float(read_parameters(config).get("rate_hz", 50.0))
+    rate_hz = load_vehicle(config).rate_hz
     cases = []
     for trigger in arguments.triggers:
         cases.append(case(config, trigger, rate_hz, arguments.seconds, ROOT / "build" / f"load_{trigger}.log"))

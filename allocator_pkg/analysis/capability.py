@@ -33,6 +33,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import linprog
 
+from ..allocation.solve import check_method
 from ..effectiveness.faults import Fault, FaultMode, FaultSet, static_ranges
 from ..effectiveness.model import Model
 from ..effectiveness.sectors import allowed_arcs, can_push_along, in_forbidden_sector
@@ -66,9 +67,7 @@ class Capability:
         self.method = method or vehicle.method
         if self.method not in METHODS:
             raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
-        unfit = unmodelled(self.method, vehicle)
-        if unfit:
-            raise ValueError(f"method '{self.method}' cannot serve this vehicle: {'; '.join(unfit)}")
+        check_method(self.method, reachable(vehicle))
         self.sides = METHODS[self.method].thrust_region_sides(vehicle)
         self.apothem = METHODS[self.method].thrust_region_apothem(vehicle)
         self.speed = speed
@@ -273,13 +272,18 @@ def region(vehicle: Vehicle, method: str) -> tuple:
     return (sides, round(METHODS[method].thrust_region_apothem(vehicle), 12))
 
 
+def reachable(vehicle: Vehicle) -> Vehicle:
+    """``vehicle`` as far as what it can attain goes: the saturation mode and DOF priorities
+    decide how an unattainable request is answered, not what can be attained, so they are not
+    held against a method here (a pseudo-inverse's reach with ``saturation: direct`` is
+    :func:`region`'s)."""
+    return replace(vehicle, saturation="weighted", priorities=())
+
+
 def unmodelled(method: str, vehicle: Vehicle) -> list[str]:
     """Why ``method``'s constraints cannot describe ``vehicle`` (its actuators, a file it
-    needs); empty when they can. The saturation mode and DOF priorities decide how an
-    unattainable request is answered, not what can be attained, so they are not held against
-    a method here (a pseudo-inverse's reach with ``saturation: direct`` is
-    :func:`region`'s)."""
-    return METHODS[method].problems(replace(vehicle, saturation="weighted", priorities=()))
+    needs); empty when they can (:func:`reachable`)."""
+    return METHODS[method].problems(reachable(vehicle))
 
 
 def differing_methods(vehicle: Vehicle, method: str) -> list[list[str]]:
