@@ -271,3 +271,27 @@ def test_allocator_ctl_commands(node_process, tmp_path):
     assert {"/wrench_command", "/thruster_commands", "/allocation_status"} == set(topics)
     assert topics["/wrench_command"][-1].force.x == 80.0 and topics["/wrench_command"][-1].torque.z == 5.0
     assert len(topics["/thruster_commands"]) == len(rows) - 1
+
+
+def test_the_readme_allocator_ctl_lines_run_against_a_node_as_written():
+    """Every allocator-ctl line of the README that ends by itself (the wrench line with its
+    --duration, fault, clear, capability, params set), split as a shell splits it, against
+    the node of config/default.yaml; then params get and unknown names."""
+    import re
+    import shlex
+
+    readme = (ROOT / "README.md").read_text()
+    lines = [line.split("#")[0].strip() for line in re.findall(r"^\.venv/bin/allocator-ctl .*$", readme, re.M)]
+    runnable = [line for line in lines if line.split()[1] != "echo"]
+    assert {line.split()[1] for line in runnable} == {"wrench", "fault", "clear", "capability", "params"}
+    with child_process(node_command(ROOT / "config" / "default.yaml")):
+        for line in runnable:
+            arguments = shlex.split(line)[1:]
+            result = ctl(*arguments)
+            assert result.returncode == 0, f"{line}: {result.stdout}{result.stderr}"
+        values = ctl("params", "get", "dofs", "weights.slack").stdout
+        assert "dofs: ['surge', 'yaw']" in values and "weights.slack: [1000000.0, 1000000.0]" in values
+        unknown = ctl("params", "set", "weights.minmax=1.0")
+        assert unknown.returncode == 1
+        assert ("'weights.minmax' is not a parameter of /thrust_allocator; did you mean weights.minimax?"
+                in unknown.stderr)
