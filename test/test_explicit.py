@@ -227,10 +227,12 @@ def test_a_new_battery_voltage_changes_values_only_and_stays_exact():
 
 
 def test_rate_limits_are_parameters_every_sample():
-    """The Otter's thrust rate limit moves both bounds every sample; a ramp held at the rate
-    limit stays in one region (a hit each sample) and each answer is the optimum within that
-    sample's bounds, computed here from the previous thrust."""
-    vehicle = load_vehicle(OTTER)
+    """The Otter's thrust rate limit (slowed to 120 N/s, so that the ramp below is held at it)
+    moves both bounds every sample; a ramp held at the rate limit stays in one region (a hit each
+    sample) and each answer is the optimum within that sample's bounds, computed here from the
+    previous thrust."""
+    vehicle = vehicle_from(OTTER, actuators__propeller_port__thrust_rate_max=120.0,
+                           actuators__propeller_stbd__thrust_rate_max=120.0)
     t, w, q, low, high = problem(vehicle)
     allocator = Allocator(vehicle, method="explicit")
     step = np.array([a.thrust_rate_max for a in vehicle.actuators]) * allocator.dt
@@ -291,7 +293,7 @@ def test_rotatable_thrusters_and_saturations_other_than_weighted_are_refused_by_
         with pytest.raises(ConfigError, match=f"it does not implement saturation '{saturation}' "
                                               r"\(it takes weighted\)"):
             Allocator(vehicle_from(BLUEROV, method="explicit", saturation=saturation))
-    with pytest.raises(ValueError, match=r"method 'explicit' cannot serve this vehicle: .* rotate"):
+    with pytest.raises(ConfigError, match=r"method: 'explicit' cannot serve this vehicle: .* rotate"):
         Capability(load_vehicle(ROOT / "config" / "example1_rov.yaml"), method="explicit")
 
 
