@@ -52,7 +52,11 @@ PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nomina
                 "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters")
 NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], power per "
            "switchboard [3.12], Tables A-1, A-6, A-7, A-8")
-SCOPE = f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Not verified by DNV."
+READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); the second range of B in [3.9.4] read as the union of "
+            "[-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] in N")
+"""Where the text cannot be read as it stands, and how it is read here."""
+SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
+         f"unclear: {READINGS}. Not verified by DNV.")
 """What every output says about itself."""
 
 

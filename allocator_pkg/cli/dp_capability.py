@@ -90,8 +90,10 @@ def plot(path: Path, result: Level1Result, title: str, wind: bool) -> None:
         quantity = "DP capability number"
     axes.set_title(f"{title}\n{result.summary_line()}: {quantity}\nenvironment from heading (0 = head on)", pad=20)
     axes.legend(loc="upper left", bbox_to_anchor=(0.92, 1.08), fontsize=9)
-    figure.tight_layout(rect=(0.0, 0.06, 1.0, 1.0))
-    figure.text(0.5, 0.01, f"DNV-ST-0111 Level 1 loads, thrust, ventilation and [3.11.3] zones; not yet: {NOT_YET}.\n"
-                "Not verified by DNV.", ha="center", va="bottom", fontsize=7, wrap=True)
+    figure.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
+    figure.text(0.5, 0.01, "Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones.\n"
+                f"Not yet: {NOT_YET}.\n"
+                "Unclear clauses read as the .txt says. Not verified by DNV.",
+                ha="center", va="bottom", fontsize=7, wrap=True)
     figure.savefig(path, dpi=100)
     plt.close(figure)
