@@ -14,8 +14,8 @@ Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's 
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
 beta_vent [3.9.4] of the condition and heading (:mod:`.dnv_thrust`); the forbidden zones of
 [3.11.3] among the thrusters working in the case (:mod:`.dnv_zones`), in place of the vehicle
-file's forbidden sectors. Per (condition, heading, case) a variant of the vehicle with those
-thrust ranges and zones is balanced by :meth:`Capability.reach
+file's forbidden sectors. Per (condition, heading, case) a variant of the vehicle, its working
+thrusters with those thrust ranges and zones, is balanced by :meth:`Capability.reach
 <allocator_pkg.analysis.capability.Capability.reach>` (a linear programme with the configured
 method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
 """
@@ -30,7 +30,6 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from ..effectiveness.faults import FaultMode
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability import Capability
 from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, level1_loads
@@ -205,10 +204,13 @@ class Level1:
         return self._zones[failed]
 
     def variant(self, condition: Condition, direction: float, failed: tuple[str, ...] = ()) -> Vehicle:
-        """The vehicle with Level 1's thrust ranges and zones for the condition, heading and case."""
+        """The vehicle's working thrusters (the failed ones left out) with Level 1's thrust ranges and
+        zones for the condition, heading and case."""
         zones = self.zones(failed)
         actuators = []
         for actuator in self.vehicle.actuators:
+            if actuator.name in failed:
+                continue
             unit = self.actuators[actuator.name]
             low, high = self.thrust_range(actuator.name, condition, direction)
             own = [zone for zone in zones if zone.thruster == actuator.name]
@@ -225,7 +227,7 @@ class Level1:
 
     def capability(self, variant: Vehicle) -> Capability:
         """The capability analysis of a variant, kept by its thrust ranges and zones."""
-        key = tuple((a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else ())
+        key = tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else ())
                     for a in variant.actuators)
         if key not in self._capabilities:
             self._capabilities[key] = Capability(variant, self.method, speed=0.0)
@@ -240,11 +242,12 @@ class Level1:
             return True
         if np.any(np.abs(tau[self.uncontrolled]) > 1e-9 * np.max(np.abs(tau))):
             return False                        # a load where no actuator is asked to push
-        capability = self.capability(self.variant(condition, direction, failed))
-        model = capability.model
+        variant = self.variant(condition, direction, failed)
+        if not variant.actuators:
+            return False
+        model = self.capability(variant).model
         scale = float(np.max(np.abs(tau[model.dof_index]) / np.maximum(model.authority, 1e-12)))
-        faults = dict.fromkeys(failed, FaultMode.FAILED)
-        return capability.reach(tau / scale, faults)[0] >= scale * (1.0 - 1e-9)   # asked in units of authority
+        return self.capability(variant).reach(tau / scale)[0] >= scale * (1.0 - 1e-9)   # in units of authority
 
     def heading(self, direction: float, failed: tuple[str, ...] = ()) -> tuple[int, float]:
         """(capability number, limiting wind speed [m/s]) of one heading."""
