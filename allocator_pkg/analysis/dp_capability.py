@@ -192,7 +192,7 @@ class Level1:
             return nominal * BETA_MISC * ventilation_factor(data, unit.x, unit.submergence, self.particulars.hull.lpp,
                                                             condition.hs, condition.tp, direction, reverse)
 
-        return -effective(unit.reverse, True), effective(unit.forward, False)
+        return 0.0 - effective(unit.reverse, True), effective(unit.forward, False)
 
     def zones(self, failed: tuple[str, ...] = ()) -> list[Zone]:
         """The [3.11.3] zones among the thrusters that work when ``failed`` are lost."""
