@@ -4,7 +4,7 @@
 :func:`~allocator_pkg.analysis.dp_capability.level1` and writes, in the output folder,
 ``<vehicle>_dp_l1_number.png`` (capability number per heading, intact and worst single
 failure), ``<vehicle>_dp_l1_wind.png`` (the same in limiting wind speed),
-``<vehicle>_dp_l1.csv`` (after ``#`` comment lines saying what is per the standard and what
+``<vehicle>_dp_l1.csv`` (after a ``#`` comment line saying what is per the standard and what
 not, columns ``case``, ``heading_deg``, ``capability_number``, ``wind_speed_limit``) and
 ``<vehicle>_dp_l1.txt`` (the DP capability-L1(A, B, C, D) line and what the numbers rest on).
 Every one of them says what is per DNV-ST-0111 Level 1 and what is not yet, and that it is not
