@@ -1,49 +1,44 @@
-"""DP capability Level 1 after DNV-ST-0111: the highest environmental condition held per heading.
+"""DP capability Level 1 of DNV-ST-0111 (edition December 2021): the highest environmental
+condition held per heading.
 
-The standard's Level 1 is a quasi-static balance: for each heading of the environment (wind,
-waves and current from the same direction), the loads of the condition of each DP capability
-number (0-11, the Beaufort scale with a sea state and a current: :data:`CONDITIONS`), times
-the dynamic allowance :data:`DYNAMIC_ALLOWANCE`, must be balanced by the thrusters. The
-number of a heading is the highest condition balanced with every lower one balanced too; the
-limiting wind speed the highest wind balanced when the conditions between two numbers are
-interpolated linearly (:func:`condition_at`). This is done intact and for each failure group
-(actuators lost together); the worst single failure is, per heading, the lowest over the
-groups. :meth:`Level1Result.summary` gives DP capability-L1(A, B, C, D).
+Level 1 is a quasi-static balance: for each heading of the environment (wind, waves and current
+from the same direction [3.3.1]), the loads of the condition of each DP capability number (0-11,
+Table 2-1: :data:`CONDITIONS`) times the dynamic factor :data:`DYNAMIC_FACTOR` [3.2.2] must be
+balanced by the thrusters. The number of a heading is the highest condition balanced with every
+lower one balanced too; the limiting wind speed the highest wind balanced when the conditions
+between two numbers are interpolated linearly (:func:`condition_at`). This is done intact and
+for each failure group (actuators lost together); the worst single failure is, per heading, the
+lowest over the groups. :meth:`Level1Result.summary` gives DP capability-L1(A, B, C, D).
 
-The loads are :mod:`.environment_loads`; whether the thrusters hold them is
-:meth:`Capability.reach <allocator_pkg.analysis.capability.Capability.reach>` (a linear
-programme over the configured thrust ranges, forbidden sectors and failed actuators, with the
-configured method's constraints), the required wrench divided by the thrust loss factor.
+Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's thrust from its
+type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
+beta_vent [3.9.4] of the condition and heading (:mod:`.dnv_thrust`); the forbidden zones of
+[3.11.3] among the thrusters working in the case (:mod:`.dnv_zones`), in place of the vehicle
+file's forbidden sectors. Per (condition, heading, case) a variant of the vehicle, its working
+thrusters with those thrust ranges and zones, is balanced by :meth:`Capability.reach
+<allocator_pkg.analysis.capability.Capability.reach>` (a linear programme with the configured
+method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field, fields
+from collections.abc import Callable
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import yaml
 
-from ..effectiveness.faults import FaultMode
-from ..vehicle.config import DOF_NAMES, Vehicle
+from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability import Capability
-from .environment_loads import (
-    RHO_AIR,
-    RHO_WATER,
-    LoadCoefficients,
-    VesselParticulars,
-    current_load,
-    wave_drift_load,
-    wind_load,
-)
+from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, level1_loads
+from .dnv_thrust import BETA_MISC, ThrusterData, nominal_thrust, ventilation_factor
+from .dnv_zones import Unit, Zone, flushing_zones
+from .dp_particulars import Particulars, particulars_from_mapping
 
-DYNAMIC_ALLOWANCE = 1.25
-"""Factor on the sum of the environmental loads."""
-THRUST_LOSS_FACTOR = 0.9
-"""General thrust loss factor on the available thrust (the particulars file may set another)."""
+DYNAMIC_FACTOR = 1.25
+"""[3.2.2]: on the sum of the environmental loads."""
 BOW_SECTOR_DEG = 30.0
 """A and C are the minima within this many degrees of the bow."""
 MAX_STEP_DEG = 10.0
@@ -52,6 +47,16 @@ BISECTION_STEPS = 14
 """Halvings of the interval between two capability numbers for the limiting wind speed."""
 INTACT = "intact"
 WORST = "worst single failure"
+PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
+                "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters")
+NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], power per "
+           "switchboard [3.12], Tables A-1, A-6, A-7, A-8")
+READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); the second range of B in [3.9.4] read as the union of "
+            "[-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] in N")
+"""Where the text cannot be read as it stands, and how it is read here."""
+SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
+         f"unclear: {READINGS}. Not verified by DNV.")
+"""What every output says about itself."""
 
 
 @dataclass(frozen=True)
@@ -91,71 +96,6 @@ def condition_at(level: float) -> Condition:
     t = level - low
     a, b = CONDITIONS[low], CONDITIONS[low + 1]
     return Condition(*((1.0 - t) * getattr(a, f.name) + t * getattr(b, f.name) for f in fields(Condition)))
-
-
-def environment_load(vessel: VesselParticulars, condition: Condition, direction: float) -> np.ndarray:
-    """[X, Y, N] of the condition's wind, waves and current, all from ``direction`` [rad],
-    times :data:`DYNAMIC_ALLOWANCE`."""
-    return DYNAMIC_ALLOWANCE * (wind_load(vessel, condition.wind, direction)
-                                + current_load(vessel, condition.current, direction)
-                                + wave_drift_load(vessel, condition.hs, condition.tp, direction))
-
-
-@dataclass(frozen=True)
-class Particulars:
-    """A particulars file: the hull, the failure groups (name: actuators lost together; empty:
-    each actuator alone) and the thrust loss factor."""
-
-    vessel: VesselParticulars
-    failure_groups: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
-    thrust_loss_factor: float = THRUST_LOSS_FACTOR
-    name: str = ""
-
-    def __post_init__(self) -> None:
-        if not (math.isfinite(self.thrust_loss_factor) and 0.0 < self.thrust_loss_factor <= 1.0):
-            raise ValueError(f"thrust_loss_factor: a number in (0, 1], not {self.thrust_loss_factor!r}")
-
-
-_HULL_KEYS = ("lpp", "beam", "draught", "wind_area_frontal", "wind_area_lateral", "wind_centre_x",
-              "underwater_centre_x")
-
-
-def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particulars:
-    """The particulars of a mapping with the keys of a particulars file (``docs/dp_capability.md``)."""
-    if not isinstance(data, Mapping):
-        raise ValueError("a particulars file is a mapping of keys to values")
-    known = {*_HULL_KEYS, "coefficients", "failure_groups", "thrust_loss_factor", "name"}
-    unknown = sorted(set(data) - known)
-    if unknown:
-        raise ValueError(f"unknown key(s): {', '.join(unknown)}; known: {', '.join(sorted(known))}")
-    missing = [key for key in _HULL_KEYS[:5] if key not in data]
-    if missing:
-        raise ValueError(f"missing key(s): {', '.join(missing)}")
-    coefficients = data.get("coefficients") or {}
-    if not isinstance(coefficients, Mapping):
-        raise ValueError("coefficients: a mapping of coefficient names to numbers")
-    names = {f.name for f in fields(LoadCoefficients)}
-    bad = sorted(set(coefficients) - names)
-    if bad:
-        raise ValueError(f"coefficients: unknown key(s) {', '.join(bad)}; known: {', '.join(sorted(names))}")
-    hull = {key: _number(data, key) for key in _HULL_KEYS if key in data}
-    vessel = VesselParticulars(**hull, coefficients=LoadCoefficients(
-        **{key: _number(coefficients, key, "coefficients.") for key in coefficients}))
-    groups = data.get("failure_groups") or {}
-    if not isinstance(groups, Mapping) or not all(
-            isinstance(members, list) and members and all(isinstance(m, str) for m in members)
-            for members in groups.values()):
-        raise ValueError("failure_groups: a mapping of group names to non-empty lists of actuator names")
-    return Particulars(vessel=vessel, failure_groups={str(k): tuple(v) for k, v in groups.items()},
-                       thrust_loss_factor=_number(data, "thrust_loss_factor") if "thrust_loss_factor" in data
-                       else THRUST_LOSS_FACTOR, name=str(data.get("name", name)))
-
-
-def _number(data: Mapping[str, Any], key: str, prefix: str = "") -> float:
-    value = data[key]
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"{prefix}{key}: a number, not {value!r}")
-    return float(value)
 
 
 def load_particulars(path: str | Path) -> Particulars:
@@ -202,6 +142,20 @@ def level1_summary(headings_deg: np.ndarray, intact: np.ndarray, worst: np.ndarr
     return (int(np.min(intact[bow])), int(np.min(intact)), int(np.min(worst[bow])), int(np.min(worst)))
 
 
+@dataclass(frozen=True)
+class _Actuator:
+    """What Level 1 needs of one thruster: its data, x [m forward of Lpp/2], submergence [m],
+    the horizontal angle [rad] its positive thrust pushes along (fixed thrusters) and the nominal
+    thrust [N] either way (reverse 0 when the vehicle file does not reverse it)."""
+
+    config: ActuatorConfig
+    x: float
+    submergence: float
+    angle: float
+    forward: float
+    reverse: float
+
+
 class Level1:
     """The Level 1 balance of one vehicle and its particulars."""
 
@@ -215,22 +169,85 @@ class Level1:
                 raise ValueError(f"failure_groups.{group}: no actuator named {', '.join(unknown)}; "
                                  f"the vehicle has {', '.join(vehicle.names)}")
         self.groups = dict(particulars.failure_groups) or {name: (name,) for name in vehicle.names}
-        self.capability = Capability(vehicle, method, speed=0.0)
+        self.actuators = _actuators(vehicle, particulars)
+        self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
+        self._zones: dict[tuple[str, ...], list[Zone]] = {}
+        self._capabilities: dict[tuple, Capability] = {}
+        self.capability(vehicle)                               # the method can serve the vehicle
+
+    def loads(self, condition: Condition, direction: float) -> LoadComponents:
+        """The unfactored wind, current and wave loads [X, Y, N] (body frame) from ``direction``."""
+        return level1_loads(self.particulars.hull, self.particulars.frame, condition.wind, condition.current,
+                            condition.hs, condition.tp, direction)
+
+    def thrust_range(self, name: str, condition: Condition, direction: float) -> tuple[float, float]:
+        """[low, high] [N] of one thruster: nominal thrust times beta_misc and beta_vent, each way."""
+        unit = self.actuators[name]
+        data = self.particulars.thrusters[name]
+
+        def effective(nominal: float, reverse: bool) -> float:
+            if nominal == 0.0:
+                return 0.0
+            return nominal * BETA_MISC * ventilation_factor(data, unit.x, unit.submergence, self.particulars.hull.lpp,
+                                                            condition.hs, condition.tp, direction, reverse)
+
+        return 0.0 - effective(unit.reverse, True), effective(unit.forward, False)
+
+    def zones(self, failed: tuple[str, ...] = ()) -> list[Zone]:
+        """The [3.11.3] zones among the thrusters that work when ``failed`` are lost."""
+        if failed not in self._zones:
+            self._zones[failed] = flushing_zones([
+                Unit(name, unit.config.position[0], unit.config.position[1],
+                     self.particulars.thrusters[name].diameter, self.particulars.thrusters[name].kind == "tunnel")
+                for name, unit in self.actuators.items() if name not in failed])
+        return self._zones[failed]
+
+    def variant(self, condition: Condition, direction: float, failed: tuple[str, ...] = ()) -> Vehicle:
+        """The vehicle's working thrusters (the failed ones left out) with Level 1's thrust ranges and
+        zones for the condition, heading and case."""
+        zones = self.zones(failed)
+        actuators = []
+        for actuator in self.vehicle.actuators:
+            if actuator.name in failed:
+                continue
+            unit = self.actuators[actuator.name]
+            low, high = self.thrust_range(actuator.name, condition, direction)
+            own = [zone for zone in zones if zone.thruster == actuator.name]
+            if actuator.rotatable:
+                rotation = replace(actuator.rotation, forbidden_sectors=tuple(zone.sector for zone in own))
+                actuators.append(replace(actuator, thrust_min=low, thrust_max=high, rotation=rotation))
+                continue
+            if any(zone.forbids(unit.angle) for zone in own):
+                high = 0.0
+            if any(zone.forbids(unit.angle + math.pi) for zone in own):
+                low = 0.0
+            actuators.append(replace(actuator, thrust_min=low, thrust_max=high))
+        return replace(self.vehicle, actuators=tuple(actuators))
+
+    def capability(self, variant: Vehicle) -> Capability:
+        """The capability analysis of a variant, kept by its thrust ranges and zones."""
+        key = tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else ())
+                    for a in variant.actuators)
+        if key not in self._capabilities:
+            self._capabilities[key] = Capability(variant, self.method, speed=0.0)
+        return self._capabilities[key]
 
     def balanced(self, level: float, direction: float, failed: tuple[str, ...] = ()) -> bool:
         """Whether the thrusters hold the condition at ``level`` from ``direction`` [rad]."""
-        load = environment_load(self.particulars.vessel, condition_at(level), direction)
+        condition = condition_at(level)
         tau = np.zeros(6)
-        tau[[0, 1, 5]] = -load / self.particulars.thrust_loss_factor
+        tau[[0, 1, 5]] = -DYNAMIC_FACTOR * self.loads(condition, direction).total
         if not np.any(tau):
             return True
         if np.any(np.abs(tau[self.uncontrolled]) > 1e-9 * np.max(np.abs(tau))):
             return False                        # a load where no actuator is asked to push
-        faults = dict.fromkeys(failed, FaultMode.FAILED)
-        model = self.capability.model
+        variant = self.variant(condition, direction, failed)
+        if not variant.actuators:
+            return False
+        model = self.capability(variant).model
         scale = float(np.max(np.abs(tau[model.dof_index]) / np.maximum(model.authority, 1e-12)))
-        return self.capability.reach(tau / scale, faults)[0] >= scale * (1.0 - 1e-9)   # asked in units of authority
+        return self.capability(variant).reach(tau / scale)[0] >= scale * (1.0 - 1e-9)   # in units of authority
 
     def heading(self, direction: float, failed: tuple[str, ...] = ()) -> tuple[int, float]:
         """(capability number, limiting wind speed [m/s]) of one heading."""
@@ -254,20 +271,20 @@ class Level1:
         return Level1Result(headings, numbers, winds, tuple(notes))
 
     def notes(self) -> list[str]:
-        """What the numbers assume, for the output."""
-        v = self.particulars.vessel
-        c = v.coefficients
+        """What the numbers rest on, for the output."""
         notes = [
-            f"Thrust: the configured thrust ranges, forbidden sectors and failed actuators of the params file "
-            f"(method {self.capability.method}), times a thrust loss factor {self.particulars.thrust_loss_factor:g}; "
-            "not the standard's nominal thrust from power and propeller diameter, and no ventilation, "
-            "thruster-thruster (beyond the forbidden sectors) or current flushing losses.",
-            f"Loads times the dynamic allowance {DYNAMIC_ALLOWANCE:g}; "
-            f"air {RHO_AIR:g} kg/m^3, water {RHO_WATER:g} kg/m^3.",
-            f"Hull: Lpp {v.lpp:g} m, B {v.beam:g} m, T {v.draught:g} m, wind areas {v.wind_area_frontal:g} m^2 "
-            f"frontal and {v.wind_area_lateral:g} m^2 lateral (centre x {v.wind_centre_x:g} m), "
-            f"underwater centre x {v.underwater_centre_x:g} m.",
-            "Coefficients: " + ", ".join(f"{f.name} {getattr(c, f.name):g}" for f in fields(LoadCoefficients)) + ".",
+            SCOPE,
+            f"Method {self.method}. The vehicle file gives each thruster's position, type and azimuth range; its "
+            "thrust limits and forbidden sectors are replaced by the standard's thrust and [3.11.3] zones (a zone "
+            "lifts when the thruster it protects has failed).",
+            _hull_note(self.particulars),
+            "Thrusters (nominal thrust forward / reversed [kN], x [m] from Lpp/2, submergence [m]): "
+            + "; ".join(_thruster_note(self.particulars.thrusters[name], unit) for name, unit in self.actuators.items())
+            + ".",
+            "Zones intact: " + ("; ".join(f"{z.thruster} {math.degrees(z.sector[0]):.1f} to "
+                                          f"{math.degrees(z.sector[1]):.1f} deg (flushing {z.flushed})"
+                                          for z in self.zones()) or "none")
+            + " (thrust angle in the body frame, 0 forward, 90 to starboard).",
             "Failure groups: " + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ".",
             "Limiting wind speed: conditions between two numbers interpolated linearly; "
             f"at number {TOP} the table's {CONDITIONS[TOP].wind:g} m/s (held at least that).",
@@ -277,6 +294,52 @@ class Level1:
             notes.append(f"Not controlled: {lost}; a load there is not held.")
         return notes
 
+
+def _hull_note(particulars: Particulars) -> str:
+    hull, frame = particulars.hull, particulars.frame
+    c_wl = hull.waterplane_coefficient_aft
+    clipped = not C_WL_AFT_RANGE[0] <= c_wl <= C_WL_AFT_RANGE[1]
+    return (f"Hull (standard's frame, x from Lpp/2): Lpp {hull.lpp:g} m, B {hull.beam:g} m, T {hull.draught:g} m, "
+            f"Los {hull.los:g} m at x {hull.los_centre_x:g} m, bow angle {math.degrees(hull.bow_angle):g} deg, "
+            f"A_WLaft {hull.waterplane_area_aft:g} m^2 (C_WLaft {c_wl:.3f}"
+            + (f", clipped to [{C_WL_AFT_RANGE[0]:g}, {C_WL_AFT_RANGE[1]:g}] by [3.7]" if clipped else "")
+            + f"), wind areas {hull.wind_area_frontal:g} and {hull.wind_area_lateral:g} m^2 "
+            f"(centre x {hull.wind_centre_x:g} m), A_L,current {hull.current_area_lateral:g} m^2 "
+            f"(centre x {hull.current_centre_x:g} m); the vehicle file's body origin at x {frame.origin_x:g} m, "
+            f"{frame.origin_height:g} m above the keel; Tz = Tp / {TZ_FROM_TP}.")
+
+
+def _thruster_note(data: ThrusterData, unit: _Actuator) -> str:
+    return (f"{data.name} {data.kind} D {data.diameter:g} m P_B {data.power:g} kW: {unit.forward / 1e3:.1f} / "
+            f"{unit.reverse / 1e3:.1f}, x {unit.x:g}, {unit.submergence:g}")
+
+
+def _actuators(vehicle: Vehicle, particulars: Particulars) -> dict[str, _Actuator]:
+    """Each thruster's Level 1 data joined to the vehicle file's geometry; refused naming the key
+    when an actuator has no data, data names no actuator, or the two disagree on the type."""
+    known = set(vehicle.names)
+    for name in particulars.thrusters:
+        if name not in known:
+            raise ValueError(f"thrusters.{name}: no actuator of that name; the vehicle has {', '.join(vehicle.names)}")
+    result = {}
+    for actuator in vehicle.actuators:
+        if actuator.is_surface:
+            raise ValueError(f"{actuator.name}: a control surface; rudders [3.10] are not in this Level 1")
+        data = particulars.thrusters.get(actuator.name)
+        if data is None:
+            raise ValueError(f"thrusters.{actuator.name}: missing; Level 1 needs every thruster's Table A-3 data")
+        if data.kind == "tunnel" and actuator.rotatable:
+            raise ValueError(f"thrusters.{actuator.name}.kind: tunnel, but the vehicle file's actuator rotates")
+        if data.kind == "azimuth" and not actuator.rotatable:
+            raise ValueError(f"thrusters.{actuator.name}.kind: azimuth, but the vehicle file's actuator is fixed")
+        x, _, z = actuator.position
+        reversible = actuator.thrust_min < 0.0
+        result[actuator.name] = _Actuator(
+            config=actuator, x=particulars.frame.standard_x(x),
+            submergence=particulars.hull.draught - particulars.frame.height(z),
+            angle=math.atan2(actuator.direction[1], actuator.direction[0]),
+            forward=nominal_thrust(data), reverse=nominal_thrust(data, reverse=True) if reversible else 0.0)
+    return result
 
 def limit(balanced: Callable[[float], bool]) -> tuple[int, float]:
     """(capability number, limiting wind speed) from a test of a fractional number: the highest

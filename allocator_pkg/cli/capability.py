@@ -23,6 +23,7 @@ import numpy as np
 
 from ..allocation.allocator import Allocator
 from ..analysis.capability import FORCE_DOFS, Capability, Envelope, differing_methods
+from ..analysis.dp_capability import SCOPE
 from ..configuration.parameters import load_vehicle
 from ..effectiveness.faults import FaultMode
 from ..methods import METHODS
@@ -151,6 +152,7 @@ def _dnv_level1(arguments: argparse.Namespace) -> int:
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2
     print(result.summary_line())
+    print(SCOPE)
     for path in paths:
         print(path)
     return 0

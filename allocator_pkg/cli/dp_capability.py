@@ -4,9 +4,11 @@
 :func:`~allocator_pkg.analysis.dp_capability.level1` and writes, in the output folder,
 ``<vehicle>_dp_l1_number.png`` (capability number per heading, intact and worst single
 failure), ``<vehicle>_dp_l1_wind.png`` (the same in limiting wind speed),
-``<vehicle>_dp_l1.csv`` (columns ``case``, ``heading_deg``, ``capability_number``,
-``wind_speed_limit``) and ``<vehicle>_dp_l1.txt`` (the DP capability-L1(A, B, C, D) line and
-what the numbers assume).
+``<vehicle>_dp_l1.csv`` (after a ``#`` comment line saying what is per the standard and what
+not, columns ``case``, ``heading_deg``, ``capability_number``, ``wind_speed_limit``) and
+``<vehicle>_dp_l1.txt`` (the DP capability-L1(A, B, C, D) line and what the numbers rest on).
+Every one of them says what is per DNV-ST-0111 Level 1 and what is not yet, and that it is not
+verified by DNV (:data:`~allocator_pkg.analysis.dp_capability.SCOPE`).
 """
 
 from __future__ import annotations
@@ -16,7 +18,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.dp_capability import CONDITIONS, INTACT, TOP, WORST, Level1Result, level1, load_particulars
+from ..analysis.dp_capability import (
+    CONDITIONS,
+    INTACT,
+    NOT_YET,
+    SCOPE,
+    TOP,
+    WORST,
+    Level1Result,
+    level1,
+    load_particulars,
+)
 from ..configuration.parameters import load_vehicle
 
 CSV_COLUMNS = ("case", "heading_deg", "capability_number", "wind_speed_limit")
@@ -43,6 +55,7 @@ def write_level1(vehicle_path: str | Path, particulars_path: str | Path, out: st
 
 def write_csv(path: Path, result: Level1Result) -> None:
     with path.open("w", newline="") as handle:
+        handle.write(f"# {SCOPE}\n")
         writer = csv.writer(handle)
         writer.writerow(CSV_COLUMNS)
         for case, heading, number, wind in result.rows():
@@ -77,6 +90,10 @@ def plot(path: Path, result: Level1Result, title: str, wind: bool) -> None:
         quantity = "DP capability number"
     axes.set_title(f"{title}\n{result.summary_line()}: {quantity}\nenvironment from heading (0 = head on)", pad=20)
     axes.legend(loc="upper left", bbox_to_anchor=(0.92, 1.08), fontsize=9)
-    figure.tight_layout()
+    figure.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
+    figure.text(0.5, 0.01, "Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones.\n"
+                f"Not yet: {NOT_YET}.\n"
+                "Unclear clauses read as the .txt says. Not verified by DNV.",
+                ha="center", va="bottom", fontsize=7, wrap=True)
     figure.savefig(path, dpi=100)
     plt.close(figure)

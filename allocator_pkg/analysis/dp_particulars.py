@@ -1,0 +1,120 @@
+"""A vessel's particulars file (YAML, not a ROS params file): the hull for the simulation's load
+model and for DNV-ST-0111 Level 1, the actuators' Level 1 data and the failure groups.
+
+Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, forward positive):
+
+- ``lpp``, ``beam``, ``draught``, ``wind_area_frontal``, ``wind_area_lateral`` (> 0), ``wind_centre_x``
+  (centre of the lateral wind area), ``underwater_centre_x`` (centre of the lateral underwater
+  area, the standard's x_L,current), ``coefficients`` (the simulation's load model only,
+  :class:`~allocator_pkg.analysis.environment_loads.LoadCoefficients`): shared by both models;
+- ``body_origin_x`` (the body origin's x forward of Lpp/2), ``body_origin_height`` (its height
+  above the keel), ``los`` and ``los_centre_x`` (the length under water and the x of its middle),
+  ``bow_angle`` [deg, 0-90] (Figure 3-2), ``waterplane_area_aft`` (A_WLaft, aft of Lpp/2),
+  ``current_area_lateral`` (A_L,current): Level 1's hull (:class:`~.dnv_loads.DnvHull`);
+- ``thrusters``: per actuator of the vehicle file, by its name, its Table A-3 row
+  (:class:`~.dnv_thrust.ThrusterData`: ``kind``, ``diameter`` [m], ``power`` P_B [kW], ``pitch``,
+  ``ducted``, ``contra_rotating``, ``permanent_magnet``, ``tunnel_inlet``);
+- ``failure_groups``: name: actuators lost together (none: each actuator alone); ``name``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields
+from typing import Any
+
+from .dnv_loads import BodyFrame, DnvHull
+from .dnv_thrust import ThrusterData
+from .environment_loads import LoadCoefficients, VesselParticulars
+
+SHARED_KEYS = ("lpp", "beam", "draught", "wind_area_frontal", "wind_area_lateral", "wind_centre_x",
+               "underwater_centre_x")
+LEVEL1_KEYS = ("body_origin_x", "body_origin_height", "los", "los_centre_x", "bow_angle", "waterplane_area_aft",
+               "current_area_lateral")
+THRUSTER_KEYS = tuple(f.name for f in fields(ThrusterData) if f.name != "name")
+
+
+@dataclass(frozen=True)
+class Particulars:
+    """A particulars file: ``vessel`` for the simulation's loads, ``hull`` and ``frame`` for
+    Level 1 (the hull in the standard's frame), the actuators' Level 1 data by name, the failure
+    groups."""
+
+    vessel: VesselParticulars
+    hull: DnvHull
+    frame: BodyFrame
+    thrusters: Mapping[str, ThrusterData]
+    failure_groups: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    name: str = ""
+
+
+def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particulars:
+    """The particulars of a mapping with the keys of a particulars file."""
+    if not isinstance(data, Mapping):
+        raise ValueError("a particulars file is a mapping of keys to values")
+    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "failure_groups", "name"}
+    unknown = sorted(set(data) - known)
+    if unknown:
+        raise ValueError(f"unknown key(s): {', '.join(unknown)}; known: {', '.join(sorted(known))}")
+    missing = [key for key in (*SHARED_KEYS[:5], *LEVEL1_KEYS, "thrusters") if key not in data]
+    if missing:
+        raise ValueError(f"missing key(s): {', '.join(missing)}")
+    numbers = {key: _number(data, key) for key in (*SHARED_KEYS, *LEVEL1_KEYS) if key in data}
+    vessel = VesselParticulars(**{key: numbers[key] for key in SHARED_KEYS if key in numbers},
+                               coefficients=_coefficients(data.get("coefficients") or {}))
+    frame = BodyFrame(numbers["body_origin_x"], numbers["body_origin_height"])
+    if not 0.0 < numbers["bow_angle"] < 90.0:
+        raise ValueError(f"bow_angle: between 0 and 90 deg, not {numbers['bow_angle']:g}")
+    hull = DnvHull(lpp=vessel.lpp, beam=vessel.beam, draught=vessel.draught, los=numbers["los"],
+                   los_centre_x=frame.standard_x(numbers["los_centre_x"]),
+                   bow_angle=math.radians(numbers["bow_angle"]), waterplane_area_aft=numbers["waterplane_area_aft"],
+                   wind_area_frontal=vessel.wind_area_frontal, wind_area_lateral=vessel.wind_area_lateral,
+                   wind_centre_x=frame.standard_x(vessel.wind_centre_x),
+                   current_area_lateral=numbers["current_area_lateral"],
+                   current_centre_x=frame.standard_x(vessel.underwater_centre_x))
+    return Particulars(vessel=vessel, hull=hull, frame=frame, thrusters=_thrusters(data["thrusters"]),
+                       failure_groups=_groups(data.get("failure_groups") or {}), name=str(data.get("name", name)))
+
+
+def _number(data: Mapping[str, Any], key: str, prefix: str = "") -> float:
+    value = data[key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{prefix}{key}: a finite number, not {value!r}")
+    return float(value)
+
+
+def _coefficients(coefficients: Any) -> LoadCoefficients:
+    if not isinstance(coefficients, Mapping):
+        raise ValueError("coefficients: a mapping of coefficient names to numbers")
+    names = {f.name for f in fields(LoadCoefficients)}
+    bad = sorted(set(coefficients) - names)
+    if bad:
+        raise ValueError(f"coefficients: unknown key(s) {', '.join(bad)}; known: {', '.join(sorted(names))}")
+    return LoadCoefficients(**{key: _number(coefficients, key, "coefficients.") for key in coefficients})
+
+
+def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
+    if not isinstance(thrusters, Mapping) or not thrusters:
+        raise ValueError("thrusters: a mapping of the vehicle file's actuator names to their Level 1 data")
+    result = {}
+    for name, row in thrusters.items():
+        if not isinstance(row, Mapping):
+            raise ValueError(f"thrusters.{name}: a mapping with keys {', '.join(THRUSTER_KEYS)}")
+        unknown = sorted(set(row) - set(THRUSTER_KEYS))
+        if unknown:
+            raise ValueError(f"thrusters.{name}: unknown key(s) {', '.join(unknown)}; "
+                             f"known: {', '.join(THRUSTER_KEYS)}")
+        missing = [key for key in ("kind", "diameter", "power") if key not in row]
+        if missing:
+            raise ValueError(f"thrusters.{name}: missing key(s) {', '.join(missing)}")
+        result[str(name)] = ThrusterData(name=str(name), **row)
+    return result
+
+
+def _groups(groups: Any) -> dict[str, tuple[str, ...]]:
+    if not isinstance(groups, Mapping) or not all(
+            isinstance(members, list) and members and all(isinstance(m, str) for m in members)
+            for members in groups.values()):
+        raise ValueError("failure_groups: a mapping of group names to non-empty lists of actuator names")
+    return {str(k): tuple(v) for k, v in groups.items()}
