@@ -11,13 +11,14 @@ import numpy as np
 
 from ..simulation.scenario import Event
 
-PALETTE = ("tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan")
-"""Actuator colours: tab10 without red (faults) and grey (limits), eight that tell apart."""
+PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf")
+"""Actuator colours: matplotlib's tab10 without red (faults) and grey (limits), eight that tell
+apart (the Foxglove layouts use them too)."""
 STYLES = ("-", "-.", ":", (0, (3, 1, 1, 1, 1, 1)))
 OVERLAID = (0, (5, 4))
 """The dashes of a trace drawn over an equal one."""
 FAULT_COLOUR = "tab:red"
-LIMIT_COLOUR = "0.35"
+LIMIT_COLOUR = "#595959"
 NOMINAL = {"color": "0.6", "linestyle": (0, (4, 2)), "linewidth": 3.0, "zorder": 1.5}
 """The nominal run (same seed, nothing going wrong): wide light dashes under the run's line,
 seen beside it where the two agree."""
