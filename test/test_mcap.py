@@ -26,7 +26,10 @@ from rosidl_parser.definition import AbstractNestedType, AbstractString, Array, 
 from allocator_pkg.cli.recording import (
     NEVER,
     SEPARATOR,
+    TF_MESSAGE,
+    MessageDefinition,
     Recording,
+    definition_hash,
     field_types,
     fields,
     interface_file,
@@ -263,6 +266,65 @@ def test_a_topic_is_declared_once_and_keeps_its_type(tmp_path, samples):
         recording.write("/wrench", samples["/wrenchstamped"][0], 2)
     with pytest.raises(ValueError, match="/wrench is declared already"):
         recording.add_topic("/wrench", type(samples["/wrench"][0]))
+    recording.close()
+
+
+def tf_message(seed: int) -> dict:
+    """The fields of a tf2_msgs/msg/TFMessage of two transforms, every field drawn from ``seed``."""
+    def transform(k: int) -> dict:
+        value = seed + 10 * k
+        return {"header": {"stamp": {"sec": value, "nanosec": value + 1}, "frame_id": f"parent {value}"},
+                "child_frame_id": f"child {value}",
+                "transform": {"translation": {"x": value + 0.25, "y": value + 0.5, "z": value + 0.75},
+                              "rotation": {"x": 0.5, "y": -0.5, "z": 0.5, "w": value + 0.125}}}
+    return {"transforms": [transform(0), transform(1)]}
+
+
+def test_a_defined_type_hashes_as_ros_2_hashes_it():
+    """TFMessage from its definition: the hash and schema rosbags computes for Jazzy's own
+    tf2_msgs (a definition of its own) and from the stored schema; a changed field changes it."""
+    jazzy = get_typestore(Stores.ROS2_JAZZY)
+    assert definition_hash(TF_MESSAGE) == jazzy.hash_rihs01("tf2_msgs/msg/TFMessage")
+    store = get_typestore(Stores.EMPTY)
+    store.register(get_types_from_msg(ros2msg_schema(TF_MESSAGE.name, TF_MESSAGE.text), TF_MESSAGE.name))
+    assert store.hash_rihs01(TF_MESSAGE.name) == definition_hash(TF_MESSAGE)
+    bounded = dict(TF_MESSAGE.fields[0], type={**TF_MESSAGE.fields[0]["type"], "type_id": 97, "capacity": 4})
+    assert definition_hash(MessageDefinition(TF_MESSAGE.name, TF_MESSAGE.text, (bounded,))) != \
+        definition_hash(TF_MESSAGE)
+
+
+@pytest.mark.parametrize("name", ["run.mcap", "bag"])
+def test_a_defined_type_records_from_mappings_and_rosbags_decodes_it(tmp_path, name):
+    recording = Recording(tmp_path / name)
+    recording.add_topic("/tf", TF_MESSAGE)
+    written = [tf_message(3), tf_message(20), {"transforms": []}]
+    for k, message in enumerate(written):
+        recording.write("/tf", message, 1000 + k)
+    recording.close()
+    decoded = rosbags_messages(tmp_path / name)["/tf"]
+    assert [m.__msgtype__ for m in decoded] == ["tf2_msgs/msg/TFMessage"] * 3
+    for message, read in zip(written, decoded):
+        assert len(read.transforms) == len(message["transforms"])
+        for fields_, transform in zip(message["transforms"], read.transforms):
+            assert (transform.header.stamp.sec, transform.header.stamp.nanosec, transform.header.frame_id,
+                    transform.child_frame_id) == (fields_["header"]["stamp"]["sec"],
+                                                  fields_["header"]["stamp"]["nanosec"],
+                                                  fields_["header"]["frame_id"], fields_["child_frame_id"])
+            assert (transform.transform.translation.y, transform.transform.rotation.w) == (
+                fields_["transform"]["translation"]["y"], fields_["transform"]["rotation"]["w"])
+    path = tmp_path / name if name.endswith(".mcap") else tmp_path / name / f"{name}_0.mcap"
+    with open(path, "rb") as stream:
+        summary = make_reader(stream).get_summary()
+    channel = next(iter(summary.channels.values()))
+    assert channel.metadata["topic_type_hash"] == definition_hash(TF_MESSAGE)
+    assert summary.schemas[channel.schema_id].data.decode() == ros2msg_schema(TF_MESSAGE.name, TF_MESSAGE.text)
+    assert recording.metadata()["topics_with_message_count"][0]["topic_metadata"]["type"] == TF_MESSAGE.name
+
+
+def test_a_mapping_goes_on_a_declared_topic_only(tmp_path):
+    recording = Recording(tmp_path / "run.mcap")
+    with pytest.raises(ValueError, match="declare the topic"):
+        recording.write("/tf", tf_message(1), 1)
     recording.close()
 
 

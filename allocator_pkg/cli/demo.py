@@ -32,6 +32,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="simulated seconds (the scenario's events scaled with it; default: the scenario's)")
     parser.add_argument("--every", type=float, default=5.0, help="simulated seconds between lines of the table")
     parser.add_argument("--out", default="build/demo", help="output folder")
+    parser.add_argument("--no-baseline", action="store_true",
+                        help="skip the nominal run (same seed, no failure) drawn dashed for comparison")
     arguments = parser.parse_args(argv)
     try:
         scenario = load_scenario(arguments.scenario)
@@ -40,10 +42,11 @@ def main(argv: list[str] | None = None) -> int:
         out = Path(arguments.out)
         print(f"demo: {scenario.description} ({scenario.duration:g} s simulated, {scenario.method})", flush=True)
         result = run(scenario, out, live=arguments.every, log=lambda text: print(text, flush=True))
+        nominal = None if arguments.no_baseline else sim_plots.nominal_run(scenario, out / "nominal", run)
     except (ScenarioError, SimulationError, ValueError) as error:
         print(f"demo: {error}", file=sys.stderr)
         return 1
-    sim_plots.plot_run(out, result, scenario)
+    sim_plots.plot_run(out, result, scenario, nominal)
     m = result.metrics
     print(f"demo: position error rms {m['position_error_rms']:.2f} m, max {m['position_error_max']:.2f} m; heading "
           f"error rms {m['heading_error_rms']:.2f} deg; energy {m['energy'] / 1e6:.1f} MJ; "

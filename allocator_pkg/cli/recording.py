@@ -14,12 +14,16 @@ version 9), the same document metadata.yaml holds under ``rosbag2_bagfile_inform
 
 The ``.msg`` texts and hashes come from the files the message packages install
 (``share/<package>/msg/<Type>.msg`` and ``.json``) under a prefix of ``AMENT_PREFIX_PATH`` or the
-prefix the package's Python module was installed into.
+prefix the package's Python module was installed into. A type no installed package provides
+(``tf2_msgs/msg/TFMessage``: no wheel of it for Jazzy) is written from a
+:class:`MessageDefinition`, its messages given as mappings of their fields; its hash is computed
+as rosidl computes one (:func:`definition_hash`).
 """
 
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import importlib
 import json
 import os
@@ -47,6 +51,25 @@ ROS_DISTRO = "jazzy"
 """The ROS 2 distribution of the message definitions (the ros-jazzy-* wheels of requirements.lock)."""
 NEVER = 2**63 - 1
 """rosbag2's starting time of a bag without messages."""
+
+
+@dataclass(frozen=True)
+class MessageDefinition:
+    """A message type that no installed package provides: its name (``package/msg/Type``), its
+    ``.msg`` text and its fields as rosidl describes them in the type description
+    (type_description_interfaces/Field: ``name`` and ``type``, without ``default_value``). Every
+    type its fields use must be installed."""
+
+    name: str
+    text: str
+    fields: tuple[dict[str, Any], ...]
+
+
+TF_MESSAGE = MessageDefinition(
+    "tf2_msgs/msg/TFMessage", "geometry_msgs/TransformStamped[] transforms\n",
+    ({"name": "transforms", "type": {"type_id": 145, "capacity": 0, "string_capacity": 0,     # unbounded sequence
+                                     "nested_type_name": "geometry_msgs/msg/TransformStamped"}},))
+"""``/tf`` and ``/tf_static`` (tf2_msgs, geometry2 for Jazzy), which Foxglove's 3-D panel reads."""
 
 
 def type_name(message_type: type) -> str:
@@ -81,21 +104,22 @@ def field_types(text: str, package: str) -> list[str]:
     return sorted(found)
 
 
-def ros2msg_schema(name: str) -> str:
-    """The ``ros2msg`` schema of a type, as rosbag2 writes it: the type's ``.msg`` text, then,
-    depth first, each type it uses (sorted by name, each once) after a line of 80 ``=`` and a
-    line ``MSG: package/Type``, each followed in turn by the types it uses first."""
+def ros2msg_schema(name: str, text: str | None = None) -> str:
+    """The ``ros2msg`` schema of a type, as rosbag2 writes it: the type's ``.msg`` text (the
+    installed one, or ``text``), then, depth first, each type it uses (sorted by name, each once)
+    after a line of 80 ``=`` and a line ``MSG: package/Type``, each followed in turn by the types
+    it uses first."""
     seen: set[str] = set()
 
-    def text_and_dependencies(type_: str) -> str:
-        text = interface_file(type_, ".msg").read_text()
+    def text_and_dependencies(type_: str, own: str | None = None) -> str:
+        text = interface_file(type_, ".msg").read_text() if own is None else own
         for dependency in field_types(text, TYPE_NAME.match(type_).group(1)):
             if dependency not in seen:
                 seen.add(dependency)
                 text += f"\n{SEPARATOR}\nMSG: {dependency}\n" + text_and_dependencies(dependency)
         return text
 
-    return text_and_dependencies(name)
+    return text_and_dependencies(name, text)
 
 
 def type_hash(name: str) -> str:
@@ -103,6 +127,30 @@ def type_hash(name: str) -> str:
     against), from the type description the package installs."""
     hashes = json.loads(interface_file(name, ".json").read_text())["type_hashes"]
     return next(entry["hash_string"] for entry in hashes if entry["type_name"] == name)
+
+
+def _hashable(description: dict[str, Any]) -> dict[str, Any]:
+    """An individual type description without its fields' default values (they are not hashed)."""
+    return {"type_name": description["type_name"],
+            "fields": [{key: value for key, value in field.items() if key != "default_value"}
+                       for field in description["fields"]]}
+
+
+def definition_hash(definition: MessageDefinition) -> str:
+    """The RIHS01 hash (REP-2011) of a type given by its fields, as rosidl_generator_type_description
+    computes it: SHA-256 of the JSON (separators ``, `` and ``: ``, ASCII) of the type's
+    description and of every type it uses, sorted by name, each as its package installs it."""
+    used: dict[str, dict[str, Any]] = {}
+    for field in definition.fields:
+        nested = field["type"]["nested_type_name"]
+        if nested:
+            described = json.loads(interface_file(nested, ".json").read_text())["type_description_msg"]
+            for each in (described["type_description"], *described["referenced_type_descriptions"]):
+                used[each["type_name"]] = each
+    document = {"type_description": _hashable({"type_name": definition.name, "fields": definition.fields}),
+                "referenced_type_descriptions": [_hashable(used[name]) for name in sorted(used)]}
+    text = json.dumps(document, ensure_ascii=True, allow_nan=False, separators=(", ", ": "))
+    return "RIHS01_" + hashlib.sha256(text.encode()).hexdigest()
 
 
 def fields(message: Any) -> Any:
@@ -185,36 +233,43 @@ class Recording:
         """Whether ``topic`` is declared (by :meth:`add_topic` or a first :meth:`write`)."""
         return topic in self._topics
 
-    def add_topic(self, topic: str, message_type: type, offered_qos: Sequence[QoSProfile] = ()) -> None:
-        """Declare ``topic``, of ``message_type``, offered by publishers with ``offered_qos``
-        (rosbag2 records every publisher's profile; ``ros2 bag play`` offers them again). A topic
-        first written without being declared is declared with no profile."""
+    def add_topic(self, topic: str, message_type: type | MessageDefinition,
+                  offered_qos: Sequence[QoSProfile] = ()) -> None:
+        """Declare ``topic``, of ``message_type`` (a message class, or the definition of a type no
+        installed package provides), offered by publishers with ``offered_qos`` (rosbag2 records
+        every publisher's profile; ``ros2 bag play`` offers them again). A topic first written
+        without being declared is declared with no profile."""
         if topic in self._topics:
             raise ValueError(f"{topic} is declared already")
-        name = type_name(message_type)
+        defined = isinstance(message_type, MessageDefinition)
+        name = message_type.name if defined else type_name(message_type)
         if name not in self._types:
-            schema = ros2msg_schema(name)
+            schema = ros2msg_schema(name, message_type.text if defined else None)
             self._types[name] = (self._writer.register_schema(name, "ros2msg", schema.encode()),
                                  serialize_dynamic(name, schema)[name])
         qos = [qos_dict(profile) for profile in offered_qos]
-        digest = type_hash(name)
+        digest = definition_hash(message_type) if defined else type_hash(name)
         channel = self._writer.register_channel(topic, "cdr", self._types[name][0],
                                                 {"offered_qos_profiles": _yaml(qos), "topic_type_hash": digest})
         self._topics[topic] = _Topic(channel, name, qos, digest)
 
     def write(self, topic: str, message: Any, log_time: int, publish_time: int | None = None) -> None:
         """One message on ``topic``, logged (received) at ``log_time`` [ns] and published at
-        ``publish_time`` (default the log time). ``message`` is a generated message, or a mapping
-        of its fields whose class has the message class's name and module.
+        ``publish_time`` (default the log time). ``message`` is a generated message, a mapping
+        of its fields whose class has the message class's name and module, or, on a declared
+        topic, a plain ``dict`` of the fields of the topic's type.
 
         The CDR comes from mcap-ros2-support's encoder, made from the type's schema: rclpy's
         ``serialize_message`` (rmw_fastrtps, Jazzy) returns as many bytes as its size estimate,
         which exceeds the message after an empty float64 sequence, and ``rosbags`` refuses a
         message with trailing bytes."""
+        plain = type(message) is dict
         if topic not in self._topics:
+            if plain:
+                raise ValueError(f"{topic}: declare the topic (add_topic) before writing a dict on it")
             self.add_topic(topic, type(message))
         entry = self._topics[topic]
-        if type_name(type(message)) != entry.type:
+        if not plain and type_name(type(message)) != entry.type:
             raise ValueError(f"{topic} carries {entry.type}, not {type_name(type(message))}")
         self._writer.add_message(entry.channel, log_time, self._types[entry.type][1](fields(message)),
                                  log_time if publish_time is None else publish_time)

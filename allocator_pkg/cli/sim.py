@@ -2,7 +2,7 @@
 lock-step on ROS 2 sim time.
 
     allocator-sim SCENARIO --out DIR [--seed N] [--method M] [--duration-scale S] [--live [SECONDS]]
-    allocator-sim compare SCENARIO --methods qp lp ... --out DIR [--duration-scale S]
+    allocator-sim compare SCENARIO --methods qp lp ... --out DIR [--duration-scale S] [--no-baseline]
 
 The node runs as its own process, unchanged, with ``use_sim_time`` and ``trigger: input``.
 This process publishes ``/clock``, the vehicle's ``odometry``, its ``battery_state`` and the
@@ -66,11 +66,13 @@ def main(argv: list[str] | None = None) -> int:
         parser.add_argument("--out", required=True)
         parser.add_argument("--seed", type=int, default=None)
         parser.add_argument("--duration-scale", type=float, default=1.0)
+        parser.add_argument("--no-baseline", action="store_true",
+                            help="skip each method's nominal run (same seed, no failure; doubles the run time)")
         arguments = parser.parse_args(argv[1:])
         try:
             scenario = _scenario(arguments)
             out = Path(arguments.out)
-            results = {}
+            results, nominals = {}, {}
             vehicle = load_vehicle(scenario.vehicle)
             for method in arguments.methods:
                 if method not in METHODS:
@@ -81,14 +83,19 @@ def main(argv: list[str] | None = None) -> int:
                     continue
                 print(f"sim: {scenario.name} with {method}", flush=True)
                 result = run(scenario.with_method(method), out / method)
-                sim_plots.plot_run(out / method, result, scenario.with_method(method))
+                nominal = None if arguments.no_baseline else \
+                    sim_plots.nominal_run(scenario.with_method(method), out / method / "nominal", run)
+                sim_plots.plot_run(out / method, result, scenario.with_method(method), nominal)
                 results[method] = result
+                if nominal is not None:
+                    nominals[method] = nominal
         except (ScenarioError, SimulationError, ValueError) as error:
             print(f"allocator-sim: {error}", file=sys.stderr)
             return 1
-        table = sim_plots.compare_table(scenario, {m: r.metrics for m, r in results.items()})
+        table = sim_plots.compare_table(scenario, {m: r.metrics for m, r in results.items()},
+                                        {m: r.metrics for m, r in nominals.items()})
         (out / "compare.md").write_text(table)
-        sim_plots.plot_compare(out / "compare.png", scenario, results)
+        sim_plots.plot_compare(out / "compare.png", scenario, results, nominals)
         print(table)
         print(f"sim: comparison written to {out.resolve()}")
         return 0

@@ -29,7 +29,7 @@ from ..simulation.kinematics import quaternion
 from ..simulation.plant import Pose
 from ..simulation.scenario import Scenario
 from .controller import Controller
-from .recording import Recording
+from .sim_recording import RunRecording
 from .sim_setup import SimulationError
 
 START_TIMEOUT = 30.0
@@ -75,7 +75,7 @@ class NodeLink:
                                       lambda m: self.answers.__setitem__("status", m), 10)
         self.node.create_subscription(ThrusterCommands, "thruster_commands",
                                       lambda m: self.answers.__setitem__("commands", m), 10)
-        self.recording = Recording(out / "run.mcap")
+        self.recording = RunRecording(out / "run.mcap", self.node)
         own, node_output = [QoSProfile(depth=10)], [qos.output()]
         self.offered = {"clock": own, "battery": own, "odometry": own, "setpoint": [], "wrench": own,
                         "commands": node_output, "status": node_output}

@@ -1,12 +1,19 @@
-"""Figures and tables of allocator-sim: the XY footprint around the set-point with the fault
-interval marked, timelines of position error, thrust, azimuth and power, and the comparison
-of methods (a markdown table of metrics and one figure)."""
+"""Figures and tables of allocator-sim: a run's ``footprint.png`` (:mod:`.sim_footprint`) and
+``timeline.png`` (:mod:`.sim_timeline`), the comparison of methods (a markdown table of metrics
+and one figure), and the nominal run a failure is read against: the same scenario and seed
+without its faults, battery ramps and parameter changes."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
+from ..simulation.scenario import Scenario
+from .sim_footprint import footprint_figure
+from .sim_setup import RunResult
+from .sim_style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, pyplot, shade_faults
+from .sim_timeline import timeline_figure
 
 METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),
                ("position_error_max", "position error max [m]", "{:.3f}"),
@@ -18,123 +25,111 @@ METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),
                ("thrust_reversals", "thrust reversals", "{:.0f}"),
                ("saturated_fraction", "saturated fraction", "{:.3f}"),
                ("realtime_factor", "real-time factor", "{:.1f}"))
+FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter")
+"""The kinds of event the nominal run leaves out: what goes wrong, not what is asked."""
 
 
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+def nominal(scenario: Scenario) -> Scenario | None:
+    """The same scenario and seed without its faults, battery ramps and parameter changes (other
+    events kept): what the run is without the failure. None when it has none of them."""
+    kept = tuple(event for event in scenario.events if event.kind not in FAILURES)
+    return None if len(kept) == len(scenario.events) else replace(scenario, events=kept)
 
 
-def _shade(axes, faults) -> None:
-    for start, end in faults:
-        axes.axvspan(start, end, color="tab:red", alpha=0.12)
+def nominal_run(scenario: Scenario, out: Path, run: Callable[[Scenario, Path], RunResult]) -> RunResult | None:
+    """``run`` of the :func:`nominal` scenario into ``out`` (a run as long as the scenario's
+    own); None when the scenario has nothing to leave out."""
+    quiet = nominal(scenario)
+    return None if quiet is None else run(quiet, out)
 
 
-def plot_run(out: Path, result, scenario) -> None:
-    """``footprint.png`` and ``timeline.png`` of one run."""
-    plt = _pyplot()
-    a = result.trace.arrays()
-    t = a["time"]
-    offset = a["position"] - a["setpoint"]
-    faulted = a["faulted"].astype(bool)
-    scale = 1e3 if np.max(np.abs(a["thrust"]), initial=0.0) > 1e4 else 1.0
-    unit = "kN" if scale == 1e3 else "N"
-
-    figure, axes = plt.subplots(figsize=(6, 6))
-    axes.plot(offset[:, 1], offset[:, 0], color="tab:blue", linewidth=0.8, label="track")
-    if faulted.any():
-        axes.plot(offset[faulted, 1], offset[faulted, 0], ".", color="tab:red", markersize=2,
-                  label="during the fault")
-    axes.plot(0.0, 0.0, "k+", markersize=14, label="set-point")
-    limit = max(0.1, float(np.max(np.abs(offset[:, :2]), initial=0.0)) * 1.2)
-    axes.set_xlim(-limit, limit)
-    axes.set_ylim(-limit, limit)
-    axes.set_aspect("equal")
-    axes.grid(True)
-    axes.set_xlabel("east of the set-point [m]")
-    axes.set_ylabel("north of the set-point [m]")
-    metrics = result.metrics
-    axes.set_title(f"{scenario.name} ({scenario.method}): footprint\n"
-                   f"rms {metrics['position_error_rms']:.2f} m, max {metrics['position_error_max']:.2f} m")
-    axes.legend(loc="upper right", fontsize=8)
-    figure.tight_layout()
-    figure.savefig(out / "footprint.png", dpi=100)
-    plt.close(figure)
-
-    figure, (error, thrust, azimuth, power) = plt.subplots(4, 1, figsize=(10, 10), sharex=True)
-    error.plot(t, result.trace.position_errors(), color="black", label="position error [m]")
-    heading = np.degrees((a["attitude"][:, 2] - a["setpoint_heading"] + np.pi) % (2 * np.pi) - np.pi)
-    error.plot(t, heading, color="tab:purple", linewidth=0.8, label="heading error [deg]")
-    if not scenario.horizontal:
-        error.plot(t, offset[:, 2], color="tab:cyan", linewidth=0.8, label="depth error [m]")
-    rotating = [i for i, actuator in enumerate(result.vehicle.actuators) if actuator.rotatable]
-    for i, name in enumerate(result.trace.names):
-        thrust.plot(t, a["thrust"][:, i] / scale, linewidth=0.8, label=name)
-        if i in rotating:
-            azimuth.plot(t, np.degrees(np.unwrap(a["azimuth"][:, i])), linewidth=0.8, label=name)
-    if not rotating:
-        azimuth.plot(t, a["voltage"], color="tab:brown", label="supply voltage the limits follow")
-    power.plot(t, a["power"] / 1e3, color="tab:green", label="power (1.44) [kW]")
-    power.fill_between(t, 0, np.max(a["power"] / 1e3, initial=0.0) * a["saturated"], step="mid", color="tab:orange",
-                       alpha=0.3, label="saturated")
-    for axes in (error, thrust, azimuth, power):
-        _shade(axes, result.fault_intervals)
-        axes.grid(True)
-        if axes.get_legend_handles_labels()[0]:
-            axes.legend(loc="upper right", fontsize=7)
-    shaded = "; a fault is in force in the shaded interval" if result.fault_intervals else ""
-    error.set_title(f"{scenario.name} ({scenario.method}){shaded}")
-    thrust.set_ylabel(f"thrust [{unit}]")
-    azimuth.set_ylabel("azimuth [deg]" if rotating else "voltage [V]")
-    power.set_ylabel("power [kW]")
-    power.set_xlabel("time [s]")
-    figure.tight_layout()
-    figure.savefig(out / "timeline.png", dpi=100)
-    plt.close(figure)
+def plot_run(out: Path, result: RunResult, scenario: Scenario, nominal_result: RunResult | None = None) -> None:
+    """``footprint.png`` and ``timeline.png`` of one run, the nominal run's dashed."""
+    plt = pyplot()
+    for name, figure in (("footprint", footprint_figure(result, scenario, nominal_result)),
+                         ("timeline", timeline_figure(result, scenario, nominal_result))):
+        figure.savefig(out / f"{name}.png", dpi=100)
+        plt.close(figure)
 
 
-def compare_table(scenario, metrics: dict[str, dict[str, float]]) -> str:
-    """A markdown table: one row per metric, one column per method."""
+def compare_table(scenario: Scenario, metrics: dict[str, dict[str, float]],
+                  nominal_metrics: dict[str, dict[str, float]] | None = None) -> str:
+    """A markdown table: one row per metric, one column per method; then, given the nominal
+    runs' metrics, the same table of those."""
+    lines = [f"{scenario.name}: {scenario.duration:g} s, seed {scenario.seed}", "", *_table(scenario, metrics)]
+    if nominal_metrics:
+        lines += ["", "The same seed without the faults, battery ramps and parameter changes (nominal runs):", "",
+                  *_table(scenario, nominal_metrics)]
+    return "\n".join(lines) + "\n"
+
+
+def _table(scenario: Scenario, metrics: dict[str, dict[str, float]]) -> list[str]:
     methods = list(metrics)
-    lines = [f"{scenario.name}: {scenario.duration:g} s, seed {scenario.seed}", "",
-             "| metric | " + " | ".join(methods) + " |", "|---|" + "---:|" * len(methods)]
+    lines = ["| metric | " + " | ".join(methods) + " |", "|---|" + "---:|" * len(methods)]
     for key, label, form in METRIC_ROWS:
         if key == "depth_error_max" and scenario.horizontal:
             continue
         if all(key in m for m in metrics.values()):
             lines.append(f"| {label} | " + " | ".join(form.format(metrics[m][key]) for m in methods) + " |")
-    return "\n".join(lines) + "\n"
+    return lines
 
 
-def plot_compare(path: Path, scenario, results: dict) -> None:
-    """Position error against time for every method, and each method's footprint."""
-    plt = _pyplot()
-    figure, (timeline, footprint) = plt.subplots(1, 2, figsize=(13, 5), gridspec_kw={"width_ratios": [2, 1]})
-    for method, result in results.items():
+def _energy(joules: float) -> str:
+    return f"{joules / 1e6:.3g} MJ" if joules > 1e6 else f"{joules:.3g} J"
+
+
+def plot_compare(path: Path, scenario: Scenario, results: dict[str, RunResult],
+                 nominal_results: dict[str, RunResult] | None = None) -> None:
+    """``compare.png``: :func:`compare_figure`."""
+    figure = compare_figure(scenario, results, nominal_results)
+    figure.savefig(path, dpi=100)
+    pyplot().close(figure)
+
+
+def compare_figure(scenario: Scenario, results: dict[str, RunResult],
+                   nominal_results: dict[str, RunResult] | None = None):
+    """Position error against time for every method, its nominal run dashed in the same colour,
+    and each method's footprint."""
+    plt = pyplot()
+    nominal_results = nominal_results or {}
+    figure, (timeline, footprint) = plt.subplots(1, 2, figsize=(15, 6), gridspec_kw={"width_ratios": [2, 1]},
+                                                 layout="constrained")
+    for k, (method, result) in enumerate(results.items()):
+        colour = PALETTE[k % len(PALETTE)]
         a = result.trace.arrays()
         offset = a["position"] - a["setpoint"]
-        timeline.plot(a["time"], result.trace.position_errors(), linewidth=0.9,
-                      label=f"{method}: {result.metrics['energy'] / 1e6:.3g} MJ" if result.metrics["energy"] > 1e6
-                      else f"{method}: {result.metrics['energy']:.3g} J")
-        footprint.plot(offset[:, 1], offset[:, 0], linewidth=0.8, label=method)
+        timeline.plot(a["time"], result.trace.position_errors(), color=colour, linewidth=1.1,
+                      label=f"{method}: {_energy(result.metrics['energy'])}")
+        footprint.plot(offset[:, 1], offset[:, 0], color=colour, linewidth=0.9, label=method)
+        if method in nominal_results:
+            quiet = nominal_results[method]
+            b = quiet.trace.arrays()
+            timeline.plot(b["time"], quiet.trace.position_errors(), color=colour, linestyle="--", linewidth=0.9,
+                          label=f"{method}, nominal: {_energy(quiet.metrics['energy'])}")
+            footprint.plot((b["position"] - b["setpoint"])[:, 1], (b["position"] - b["setpoint"])[:, 0],
+                           color=colour, linestyle="--", linewidth=0.8)
     first = next(iter(results.values()))
-    _shade(timeline, first.fault_intervals)
+    timeline.set_xlim(first.trace.time[0], first.trace.time[-1])
+    shade_faults(timeline, first.fault_intervals)
+    rows = mark_events([timeline], scenario.events)
+    if first.fault_intervals:
+        timeline.axvspan(0.0, 0.0, color=FAULT_COLOUR, alpha=0.1, label="a fault in force")
     timeline.set_xlabel("time [s]")
     timeline.set_ylabel("position error [m]")
-    timeline.set_title(f"{scenario.name}: position error (legend: energy)")
-    timeline.grid(True)
-    timeline.legend(fontsize=8)
+    nominal_note = f"; dashed: {NOMINAL_LABEL}" if nominal_results else ""
+    timeline.set_title(f"{scenario.name} (seed {scenario.seed}): position error, legend: energy{nominal_note}",
+                       loc="left", fontsize=10, pad=6 + rows * 12)
+    timeline.grid(True, alpha=0.5)
+    timeline.legend(fontsize=8, loc="upper left", ncol=2 if nominal_results else 1)
     footprint.plot(0.0, 0.0, "k+", markersize=14)
+    bound = scenario.bounds.get("position_error_max")
+    if bound is not None:
+        footprint.add_patch(plt.Circle((0.0, 0.0), bound, fill=False, color=FAULT_COLOUR, linestyle="--",
+                                       linewidth=1.0, label=f"bound {bound:g} m"))
     footprint.set_aspect("equal", adjustable="datalim")
-    footprint.set_xlabel("east [m]")
-    footprint.set_ylabel("north [m]")
-    footprint.set_title("footprint")
-    footprint.grid(True)
-    footprint.legend(fontsize=8)
-    figure.tight_layout()
-    figure.savefig(path, dpi=100)
-    plt.close(figure)
+    footprint.set_xlabel("east of the set-point [m]")
+    footprint.set_ylabel("north of the set-point [m]")
+    footprint.set_title("footprint", loc="left", fontsize=10)
+    footprint.grid(True, alpha=0.5)
+    legend_beside(footprint)
+    return figure
