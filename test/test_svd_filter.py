@@ -107,3 +107,25 @@ def test_at_rest_the_answer_is_the_extended_pseudo_inverse():
                              result.thrust[1] * math.sin(result.azimuth[1]), result.thrust[2], result.thrust[3]])
         assert extended == pytest.approx(expected, abs=1e-6 * 150.0)
         assert result.achieved[[0, 1, 5]] == pytest.approx(tau[[0, 1, 5]], abs=1e-6)
+
+
+def test_an_azimuth_pinned_at_zero_thrust_with_a_free_angle_gives_zero():
+    """A reversible azimuth whose rate limit brings its thrust to exactly zero in a sample, its
+    angle free (no turning-rate limit): its bounds meet at zero, so the methods hold it there
+    whatever the angle (a counter-example hypothesis found: the angle window's -inf reached cos)."""
+    parameters = {"rate_hz": 10.0, "actuators.names": [f"a{i}" for i in range(8)]}
+    for i, (position, direction) in enumerate([((0.0, 0.0, 0.0), (0.0, 0.0, 1.0))] * 5 + [
+            ((0.0, 0.0, 1.0), (0.0, 1.0, 0.0)), ((1.0, 0.0, 0.0), (0.0, 0.0, 1.0))]):
+        parameters.update({f"actuators.a{i}.type": "fixed", f"actuators.a{i}.position": list(position),
+                           f"actuators.a{i}.direction": list(direction), f"actuators.a{i}.thrust_max": 1.0,
+                           f"actuators.a{i}.thrust_min": 0.0})
+    parameters.update({"actuators.a7.type": "azimuth", "actuators.a7.position": [0.0, 1.0, 0.0],
+                       "actuators.a7.thrust_max": 1000.0, "actuators.a7.reversible": True,
+                       "actuators.a7.thrust_rate_max": 1.0})
+    vehicle = vehicle_from_parameters(parameters)
+    for method in ("svd_filter", "pseudoinverse"):
+        allocator = Allocator(vehicle, method=method)
+        first = allocator.allocate([0.0, 0.0, 0.0, 0.0, 0.0, 1.0])
+        assert first.thrust[7] == pytest.approx(-0.1)                   # one rate step, 1 N/s at 10 Hz
+        second = allocator.allocate([0.0, 0.0, 0.0, 0.0, 0.0, -1.0])
+        assert second.thrust[7] == 0.0 and np.all(np.isfinite(second.command))

@@ -96,11 +96,15 @@ class PseudoInverseAllocation(AllocationMethod):
 
 
 def fixed_forces(model: Model, limits: SampleLimits, fixed: np.ndarray) -> np.ndarray:
-    """Extended forces of the actuators the limits pin down (zero elsewhere)."""
+    """Extended forces of the actuators the limits pin down (zero elsewhere). A rotatable
+    thruster pinned at zero thrust gives zero whatever its angle, which may still be free (an
+    unbounded window)."""
     force = np.zeros(model.m)
     for i in np.flatnonzero(fixed):
         start = model.starts[i]
         if model.rotatable[i]:
+            if limits.low[i] == 0.0:
+                continue
             angle = limits.azimuth[int(np.searchsorted(model.rot, i))].low
             force[start] = limits.low[i] * math.cos(angle)
             force[start + 1] = limits.low[i] * math.sin(angle)
