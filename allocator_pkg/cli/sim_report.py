@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..simulation.report import report_checks
 from ..simulation.scenario import Scenario
-from ..simulation.verdict import broken, verdict_lines
+from ..simulation.verdict import broken, count, verdict_lines
 
 
 def _value(value) -> str:
@@ -54,7 +54,7 @@ def method_verdict(scenario: Scenario, method: str, report: dict) -> tuple[bool,
     checks = report_checks(scenario, report)
     failed = broken(checks)
     if not failed:
-        return True, f"{method}: PASS, {len(checks)} bounds held"
+        return True, f"{method}: PASS, {count(checks)} held"
     units = report["units"]
     return False, f"{method}: FAIL, " + "; ".join(
         f"{c.scope} {c.metric} {c.value:.4g} {units[c.metric]} > {c.bound:g}" for c in failed)

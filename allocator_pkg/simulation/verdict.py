@@ -50,6 +50,11 @@ def verdict_lines(found: list[Check]) -> list[str]:
         lines.append(f"{'PASS' if check.passed else 'FAIL'}  {check.scope:14s} {label:30s} {check.value:12.4g} "
                      f"{check.bound:12.4g}")
     failed = broken(found)
-    lines.append(f"verdict: FAIL, {len(failed)} of {len(found)} bounds broken" if failed else
-                 f"verdict: PASS, {len(found)} bounds held" if found else "verdict: PASS, no bounds")
+    lines.append(f"verdict: FAIL, {len(failed)} of {count(found)} broken" if failed else
+                 f"verdict: PASS, {count(found)} held" if found else "verdict: PASS, no bounds")
     return lines
+
+
+def count(found: list[Check]) -> str:
+    """'1 bound', '3 bounds'."""
+    return f"{len(found)} bound" + ("" if len(found) == 1 else "s")
