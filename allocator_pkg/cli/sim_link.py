@@ -4,7 +4,10 @@ and ``battery_state`` and the controller's ``wrench_command`` out, the node's
 step into ``run.mcap``.
 
 The clock advances only when the node has answered the step's wrench: its status stamped with
-the step's time and echoing the wrench, and its commands of the same stamp."""
+the step's time and echoing the wrench, and its commands of the same stamp. Before the run,
+``synchronise`` brings the node onto this clock without a wrench (it allocates nothing) and
+``first_sample`` has it allocate the first one at a known step, so that the node allocates the
+same requests in every run."""
 
 from __future__ import annotations
 
