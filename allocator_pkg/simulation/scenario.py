@@ -1,6 +1,7 @@
 """Scenario files (``config/scenarios/*.yaml``): the vehicle, the method and node parameters,
 the duration and seed, the hull model, the environment, the set-point, the controller's
-gains, timed events and the bounds the run must stay within. Paths are relative to the
+gains, timed events (set-point steps and ramps among them), named windows and the bounds the
+run must stay within (over the run, or over a window). Paths are relative to the
 scenario file. Bad input raises ``ScenarioError`` naming the key, before anything runs: an
 unknown key at any depth (with the nearest known one), a vehicle file that does not fit the hull
 model or whose parameters the allocator refuses, a method that cannot serve it, an event the
@@ -69,8 +70,9 @@ class Scenario:
     seed: int
     thruster_time_constant: float
     setpoint_position: tuple[float, float, float]
+    """NED [m] at t = 0; the set-point events move it (:meth:`schedule`)"""
     setpoint_heading: float
-    """[rad]"""
+    """[rad] at t = 0"""
     initial_position: tuple[float, float, float]
     initial_heading: float
     gains: Gains
