@@ -79,10 +79,11 @@ demo: setup
 	$(PY) -m allocator_pkg.cli.demo --scenario $(DEMO_SCENARIO) --out build/demo
 
 SCENARIOS := $(wildcard config/scenarios/*.yaml)
-SIM_METHODS ?= qp lp pseudoinverse nonlinear dynamic svd_filter
+SIM_METHODS ?= qp lp pseudoinverse nonlinear dynamic svd_filter explicit
 sim: setup
-	@for scenario in $(SCENARIOS); do $(VENV)/bin/allocator-sim compare $$scenario --methods $(SIM_METHODS) \
-	  --out build/sim/$$(basename $$scenario .yaml) || exit 1; done
+	@broken=""; for scenario in $(SCENARIOS); do $(VENV)/bin/allocator-sim compare $$scenario --methods $(SIM_METHODS) \
+	  --out build/sim/$$(basename $$scenario .yaml) || broken="$$broken $$(basename $$scenario .yaml)"; done; \
+	  if [ -n "$$broken" ]; then echo "sim: a method broke the bounds (or a run failed) in:$$broken"; exit 1; fi
 
 lint: setup
 	@$(VENV)/bin/ruff check .

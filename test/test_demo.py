@@ -1,5 +1,5 @@
-"""make demo in a short run: the closed loop with the node as a process, the azimuth failing
-and recovering, the live table, the PNGs."""
+"""make demo in a short run: the closed loop with the node as a process, started loaded, the
+azimuth failing and recovering, the live table, the PNGs."""
 
 import subprocess
 import sys
@@ -17,6 +17,7 @@ def test_demo_short_run_writes_its_figures(tmp_path):
                "--out", str(out)]
     result = subprocess.run(command, capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stdout + result.stderr
+    assert "sim: warm-up: 200 steps of the equilibrium request; thrusters start at azimuth_stbd" in result.stdout
     assert "azimuth_port: FAILED" in result.stdout
     assert "cleared faults of azimuth_port" in result.stdout
     table = [line for line in result.stdout.splitlines() if " err " in line and "azimuth_stbd" in line]

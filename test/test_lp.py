@@ -11,7 +11,7 @@ from reference import largest_attainable_scale, weighted_l1_allocation
 from allocator_pkg import Allocator, FaultMode
 from allocator_pkg.effectiveness.model import AzimuthLimits, Model, SampleLimits
 from allocator_pkg.methods.lp import LPAllocation
-from allocator_pkg.methods.sample_lp import polygon_error, survey_apothem
+from allocator_pkg.methods.sample_lp import ORDER_SHARE, polygon_error, survey_apothem, tie_break
 from allocator_pkg.solvers import BACKENDS
 
 sparsity = bench_module("sparsity")
@@ -115,3 +115,28 @@ def test_solutions_are_sparser_than_the_qps_on_the_shipped_vehicles(stem):
     lp, qp = sparsity.working(vehicle, "lp", sequence), sparsity.working(vehicle, "qp", sequence)
     assert np.all(lp <= qp) and np.mean(lp) < np.mean(qp)
     assert np.all(lp >= 1)
+
+
+def test_a_tied_optimum_is_the_same_after_any_history():
+    """BlueROV2 Heavy with thruster_1 failed: the four vertical thrusters' effort is flat along
+    a null direction of T, so without the tie-break the answer depends on the starting basis."""
+    vehicle = vehicle_from(ROOT / "config" / "bluerov2_heavy.yaml")
+    rng = np.random.default_rng(0)
+    request = np.array([3.0, -2.0, -1.5, 0.1, 0.05, 0.2])
+    answers = []
+    for history in range(8):
+        alloc = Allocator(vehicle, method="lp")
+        alloc.set_fault("thruster_1", FaultMode.FAILED)
+        for _ in range(history):
+            alloc.allocate(rng.normal(size=6) * [20, 20, 20, 2, 2, 2])
+            alloc.stop()
+        answers.append(alloc.allocate(request).thrust)
+    assert np.ptp(np.array(answers), axis=0) == pytest.approx(np.zeros(8), abs=1e-9)
+    vertical = answers[0][4:]
+    assert np.count_nonzero(np.abs(vertical) > 1e-9) == 3            # still a vertex: one of the four idle
+
+
+def test_the_tie_break_weighs_each_actuator_by_its_squared_index():
+    weights = tie_break(4)
+    assert weights == pytest.approx(1.0 + ORDER_SHARE * np.array([1, 4, 9, 16]) / 16, rel=0, abs=1e-15)
+    assert weights[0] - 1.0 + weights[3] - 1.0 != pytest.approx(weights[1] - 1.0 + weights[2] - 1.0, rel=1e-3)

@@ -1,7 +1,9 @@
 """allocator-sim closed loop with the real allocator_node process, on the shipped
-scenarios shortened (--duration-scale): the loop holds each within its stated bounds for qp,
-also through its failure; the same seed gives the same metrics; the metrics agree with what
-the MCAP holds; every recorded command is within the limits in force."""
+scenarios (shortened with --duration-scale but the set-point change): the loop holds each
+within its stated bounds for qp, by the verdict allocator-sim gives, also through its failure;
+the run starts in equilibrium with the thrusters loaded; the same seed gives the same
+metrics; the metrics agree with what the MCAP holds; every recorded command is within the
+limits in force; the command line prints the verdict and its exit status follows it."""
 
 import json
 import math
@@ -16,14 +18,17 @@ from allocator_msgs.msg import ActuatorFault
 from allocator_pkg.cli.sim import main, run
 from allocator_pkg.cli.sim_metrics import metrics_from_recording
 from allocator_pkg.effectiveness.faults import thrust_limits
+from allocator_pkg.simulation.report import report_checks
 from allocator_pkg.simulation.scenario import load_scenario
+from allocator_pkg.simulation.verdict import broken, verdict_lines
 from allocator_pkg.vehicle.angles import wrap
 
 pytestmark = pytest.mark.slow
 
 SCENARIOS = {"dp_station_keeping": 0.1, "dp_azimuth_failure": 0.1, "rov_thruster_failure": 0.15,
-             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1}
-"""The shipped scenarios, each with the scale of its duration here."""
+             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0}
+"""The shipped scenarios, each with the scale of its duration here (the set-point change at
+full length: its windows' bounds are for the vessel's own pace)."""
 RESULTS = {}
 
 
@@ -46,15 +51,27 @@ def finished(request, tmp_path_factory):
 
 def test_the_loop_holds_the_scenario_within_its_bounds(finished):
     case, result, out = finished
-    metrics = json.loads((out / "metrics.json").read_text())["metrics"]
-    assert metrics == pytest.approx(result.metrics)
-    assert set(case.bounds) and all(metrics[key] <= bound for key, bound in case.bounds.items()), metrics
-    assert metrics["realtime_factor"] > 0.0
+    report = json.loads((out / "metrics.json").read_text())
+    assert report["metrics"] == pytest.approx(result.metrics)
+    assert report["units"]["energy"] == "J" and set(report["units"]) == set(report["metrics"])
+    checks = report_checks(case, report)
+    assert checks and not broken(checks), verdict_lines(checks)
+    assert report["metrics"]["realtime_factor"] > 0.0
     faulted = np.array(result.trace.faulted)
     if any(e.kind == "fault" for e in case.events):
         assert faulted.any()                                # the failure happened inside the run
-        errors = result.trace.position_errors()
-        assert errors[faulted].max() <= case.bounds["position_error_max"]
+        fault = report["windows"]["fault"]
+        assert fault["metrics"]["position_error_max"] == pytest.approx(result.trace.position_errors()[faulted].max())
+        assert fault["metrics"]["position_error_max"] <= case.bounds["position_error_max"]
+
+
+def test_the_run_starts_in_equilibrium_with_the_thrusters_loaded(finished):
+    case, result, _ = finished
+    a = result.trace.arrays()
+    first = a["time"] < 5.0 * case.duration / 100.0 + 2.0           # the first seconds, before any event
+    assert a["power"][0] > 0.0
+    assert a["power"][first].max() <= 1.5 * a["power"][0]        # no spike while the thrusters load
+    assert result.trace.position_errors()[first].max() <= 0.25 * case.bounds["position_error_max"]
 
 
 def test_the_metrics_agree_with_the_recording(finished):
@@ -110,6 +127,47 @@ def test_the_same_seed_gives_the_same_metrics(tmp_path_factory, tmp_path):
         if key != "realtime_factor":
             assert again.metrics[key] == value, key
     assert np.array_equal(np.array(again.trace.position), np.array(result.trace.position))
+
+
+def test_the_set_point_step_is_measured(tmp_path_factory):
+    _, result, out = finished_run("dp_setpoint_change", tmp_path_factory)
+    report = json.loads((out / "metrics.json").read_text())
+    (step,) = report["steps"]
+    assert (step["channel"], step["time"], step["size"]) == ("position", 60.0, 10.0)
+    assert 0.0 < step["rise_time"] < 60.0 and step["overshoot"] >= 0.0
+    assert step["settling_time"] is None or step["settling_time"] > step["rise_time"]
+    assert set(report["windows"]) == {"settled", "moved", "turned"}
+    position, heading = result.trace.setpoint[-1], result.trace.setpoint_heading[-1]
+    assert position == [10.0, 0.0, 0.0] and heading == pytest.approx(np.radians(15.0))
+
+
+def bounded_copy(tmp_path, bound: float):
+    """dp_station_keeping with its position bound set to ``bound``."""
+    text = (ROOT / "config" / "scenarios" / "dp_station_keeping.yaml").read_text().replace("../", f"{ROOT}/config/")
+    path = tmp_path / f"bound_{bound:g}.yaml"
+    path.write_text(text.replace("bounds: {position_error_max: 3.0", f"bounds: {{position_error_max: {bound}"))
+    return path
+
+
+def test_the_command_line_gives_the_verdict_and_fails_a_broken_bound(tmp_path, capsys):
+    path = bounded_copy(tmp_path, 1e-4)
+    assert main([str(path), "--out", str(tmp_path / "run"), "--duration-scale", "0.02"]) == 1
+    text = capsys.readouterr().out
+    assert "FAIL  run" in text and "verdict: FAIL, 1 of 2 bounds broken" in text
+    assert "sim: position_error_rms [m]" in text and "sim: thrust_reversals [count]" in text
+    assert main([str(path), "--out", str(tmp_path / "data"), "--duration-scale", "0.02", "--no-verdict"]) == 0
+    assert "verdict" not in capsys.readouterr().out
+    assert main([str(bounded_copy(tmp_path, 3.0)), "--out", str(tmp_path / "held"), "--duration-scale", "0.02"]) == 0
+    assert "verdict: PASS, 2 bounds held" in capsys.readouterr().out
+
+
+def test_compare_gives_a_verdict_per_method(tmp_path, capsys):
+    path = bounded_copy(tmp_path, 1e-4)
+    assert main(["compare", str(path), "--methods", "qp", "pseudoinverse", "--out", str(tmp_path / "cmp"),
+                 "--duration-scale", "0.02"]) == 1
+    text = capsys.readouterr().out
+    assert "sim: qp: FAIL, run position_error_max" in text and "sim: pseudoinverse: FAIL" in text
+    assert "| thrust reversals [count] |" in text
 
 
 def test_a_bad_scenario_is_refused_with_its_key(tmp_path, capsys):

@@ -11,8 +11,8 @@ from allocator_pkg.simulation.scenario import ScenarioError, load_scenario
 SCENARIOS = sorted((ROOT / "config" / "scenarios").glob("*.yaml"))
 
 
-def test_four_scenarios_ship():
-    assert {path.stem for path in SCENARIOS} >= {"dp_station_keeping", "dp_azimuth_failure",
+def test_the_scenarios_ship():
+    assert {path.stem for path in SCENARIOS} >= {"dp_station_keeping", "dp_azimuth_failure", "dp_setpoint_change",
                                                   "rov_thruster_failure", "rov_battery_sag"}
 
 
@@ -120,3 +120,55 @@ def test_another_method_is_checked_against_the_vehicle():
     assert scenario.with_method("nonlinear").method == "nonlinear"
     with pytest.raises(ScenarioError, match=r"explicit.*cannot serve"):
         scenario.with_method("explicit")
+
+
+def test_set_point_events_windows_and_bounds_load():
+    scenario = load_scenario(ROOT / "config" / "scenarios" / "dp_setpoint_change.yaml")
+    step, ramp = scenario.events
+    assert (step.kind, step.time, step.value.position, step.value.speed) == ("setpoint", 60.0, (10.0, 0.0, 0.0), None)
+    assert ramp.value.heading == pytest.approx(math.radians(15.0))
+    assert ramp.value.heading_rate == pytest.approx(math.radians(0.2))
+    assert [w.name for w in scenario.windows] == ["settled", "moved", "turned"]
+    assert scenario.windows[0].bounds == {"position_error_max": 3.0, "heading_error_max": 2.0}
+    assert [(s.channel, s.time) for s in scenario.schedule().steps(scenario.duration)] == [("position", 60.0)]
+    short = scenario.scaled(0.5)
+    assert (short.windows[1].start, short.windows[1].end) == (120.0, 150.0)
+    assert short.events[1].value.heading_rate == pytest.approx(math.radians(0.4))      # the ramp takes half as long
+
+
+def test_the_automatic_windows_follow_the_faults():
+    scenario = load_scenario(ROOT / "config" / "scenarios" / "dp_azimuth_failure.yaml")
+    assert [(w.name, w.start, w.end) for w in scenario.all_windows()] == [("fault", 100.0, 220.0),
+                                                                          ("after_fault", 220.0, 300.0)]
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("{time: 300.0, setpoint: {heading: 15.0, heading_rate: 0.2}}", "{time: 300.0, setpoint: {heading_rate: 0.2}}",
+     r"events\[1\]\.setpoint: a mapping with a position, a heading or both"),
+    ("{time: 300.0, setpoint: {heading: 15.0, heading_rate: 0.2}}",
+     "{time: 300.0, setpoint: {heading: 15.0, speed: 0.2}}",
+     r"events\[1\]\.setpoint\.speed: a ramp of the position, which the event does not change"),
+    ("heading_rate: 0.2", "heading_rate: 0.0", r"events\[1\]\.setpoint\.heading_rate: a number > 0"),
+    ("heading_rate: 0.2", "heading_rte: 0.2", r"events\[1\]\.setpoint\.heading_rte: unknown key; did you mean "
+                                              "heading_rate"),
+    ("{position: [10.0, 0.0, 0.0]}", "{position: [10.0, 0.0]}", r"events\[0\]\.setpoint\.position: a list of 3"),
+    ("start: 240.0, end: 300.0", "start: 300.0, end: 240.0", r"windows\[1\]: start < end <= duration"),
+    ("start: 420.0, end: 480.0", "start: 420.0, end: 500.0", r"windows\[2\]: start < end <= duration \(480 s\)"),
+    ("name: moved", "name: settled", r"windows\[1\]\.name: 'settled' names another window too"),
+    ("name: moved", "name: after_fault", r"windows\[1\]\.name: 'after_fault' is the name of an automatic window"),
+    ("name: moved, start", "nme: moved, start", r"windows\[1\]\.nme: unknown key; did you mean name"),
+    ("bounds: {position_error_max: 11.0", "bounds: {realtime_factor: 11.0",
+     r"bounds\.realtime_factor: unknown key"),
+    ("bounds: {position_error_max: 2.0, heading_error_max: 1.0}", "bounds: {energy: -1.0}",
+     r"windows\[1\]\.bounds\.energy: at least 0"),
+])
+def test_set_point_events_windows_and_bounds_are_checked_at_load(tmp_path, old, new, message):
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(_bad(tmp_path, old, new, base="dp_setpoint_change.yaml"))
+
+
+def test_any_metric_but_the_real_time_factor_can_be_bounded(tmp_path):
+    scenario = load_scenario(_bad(tmp_path, "bounds: {position_error_max: 4.0", "bounds: {energy: 2.0e+8, "
+                                  "thrust_reversals: 3, saturated_fraction: 0.05, position_error_rms: 1.0"))
+    assert scenario.bounds == {"energy": 2e8, "thrust_reversals": 3.0, "saturated_fraction": 0.05,
+                               "position_error_rms": 1.0, "heading_error_max": 3.0}

@@ -84,3 +84,15 @@ def test_the_wrench_is_the_configuration_matrix_times_the_thrust():
     assert wrench[3] == pytest.approx(-(4.5 * 100e3 + 3.5 * 50e3), rel=1e-9)     # K = y Fz - z Fy
     with pytest.raises(ValueError, match="thruster_time_constant"):
         Thrusters(VESSEL, time_constant=0.0)
+
+
+def test_the_thrusters_start_where_the_commands_hold_them():
+    thrusters = Thrusters(VESSEL, time_constant=2.0)
+    thrusters.set_fault("tunnel_aft", "degraded", 0.5)
+    angles = np.array([0.3, -0.2, 1.0, 1.0])                          # the tunnels do not turn
+    thrusters.start_at(np.array([1e5, 2e5, 5e4, 9e9]), angles)
+    assert thrusters.thrust == pytest.approx([1e5, 2e5, 5e4, 0.5 * thrusters.high[3]])   # in range, degraded
+    assert thrusters.angle == pytest.approx([0.3, -0.2, 0.0, 0.0])
+    before = thrusters.wrench()
+    run(thrusters, [1e5, 2e5, 5e4, 9e9], angles, 1.0)                # held by the same commands: nothing moves
+    assert thrusters.wrench() == pytest.approx(before)

@@ -2,7 +2,9 @@
 lock-step on ROS 2 sim time.
 
     allocator-sim SCENARIO --out DIR [--seed N] [--method M] [--duration-scale S] [--live [SECONDS]]
-    allocator-sim compare SCENARIO --methods qp lp ... --out DIR [--duration-scale S] [--no-baseline]
+                  [--no-verdict]
+    allocator-sim compare SCENARIO --methods qp lp ... --out DIR [--duration-scale S] [--no-verdict]
+                  [--no-baseline]
 
 The node runs as its own process, unchanged, with ``use_sim_time`` and ``trigger: input``.
 This process publishes ``/clock``, the vehicle's ``odometry``, its ``battery_state`` and the
@@ -11,14 +13,17 @@ gets back. The clock advances one step (1 / rate_hz) only when the node has answ
 step's wrench (its ``allocation_status`` stamped with the step's time and echoing the
 wrench), so a run is deterministic for a seed and runs as fast as the node answers.
 
-Writes ``metrics.json``, ``run.mcap`` (every topic, for Foxglove and ``ros2 bag play``),
-``footprint.png`` and ``timeline.png`` into DIR; ``compare`` writes one such folder per
-method, ``compare.md`` and ``compare.png``. Frames: odometry and set-point in NED (frame_id
+Prints the metrics with their units over the run and its windows, the figures of each
+set-point step, and the verdict against the scenario's ``bounds`` (``compare``: one line per
+method); the exit status is 1 when a run breaks one (``--no-verdict``: the data only, no
+verdict). Writes ``metrics.json``, ``run.mcap`` (every topic, for Foxglove and ``ros2 bag
+play``), ``footprint.png`` and ``timeline.png`` into DIR; ``compare`` writes one such folder
+per method, ``compare.md`` and ``compare.png``. Frames: odometry and set-point in NED (frame_id
 ``ned``), the body in FRD (``base_link``), as the models are written.
 
 ``sim_loop`` runs the loop, ``sim_link`` is its ROS side, ``sim_setup`` builds the plant and
 the node's command line from the scenario, ``sim_metrics`` recomputes the metrics from
-``run.mcap`` and ``sim_plots`` draws the figures.
+``run.mcap``, ``sim_report`` writes the text and ``sim_plots`` draws the figures.
 """
 
 from __future__ import annotations
@@ -34,7 +39,7 @@ from ..configuration.parameters import load_vehicle
 from ..methods import METHODS
 from ..ros.process import dds_environment
 from ..simulation.scenario import Scenario, ScenarioError, load_scenario
-from . import sim_plots
+from . import sim_plots, sim_report
 from .sim_setup import RunResult, SimulationError
 
 
@@ -68,6 +73,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.add_argument("--duration-scale", type=float, default=1.0)
         parser.add_argument("--no-baseline", action="store_true",
                             help="skip each method's nominal run (same seed, no failure; doubles the run time)")
+        parser.add_argument("--no-verdict", action="store_true", help="no verdict against the bounds")
         arguments = parser.parse_args(argv[1:])
         try:
             scenario = _scenario(arguments)
@@ -98,7 +104,12 @@ def main(argv: list[str] | None = None) -> int:
         sim_plots.plot_compare(out / "compare.png", scenario, results, nominals)
         print(table)
         print(f"sim: comparison written to {out.resolve()}")
-        return 0
+        if arguments.no_verdict:
+            return 0
+        verdicts = [sim_report.method_verdict(scenario, m, r.report) for m, r in results.items()]
+        for _, line in verdicts:
+            print(f"sim: {line}")
+        return 0 if all(passed for passed, _ in verdicts) else 1
 
     parser = argparse.ArgumentParser(prog="allocator-sim", description=__doc__.split("\n\n")[0])
     parser.add_argument("scenario", help="scenario file (config/scenarios/*.yaml)")
@@ -109,6 +120,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="scale the duration and every event time (short runs)")
     parser.add_argument("--live", type=float, nargs="?", const=1.0, default=0.0, metavar="SECONDS",
                         help="a live table, one line every SECONDS of simulated time (default 1)")
+    parser.add_argument("--no-verdict", action="store_true",
+                        help="no verdict against the scenario's bounds (exit status 0 whatever the run did)")
     arguments = parser.parse_args(argv)
     try:
         scenario = _scenario(arguments)
@@ -121,10 +134,15 @@ def main(argv: list[str] | None = None) -> int:
         print(f"allocator-sim: {error}", file=sys.stderr)
         return 1
     sim_plots.plot_run(out, result, scenario)
-    for name, value in result.metrics.items():
-        print(f"sim: {name:20s} {value:.4g}")
+    for line in sim_report.metrics_lines(result.report) + sim_report.steps_lines(result.report):
+        print(f"sim: {line}")
     print(f"sim: outputs written to {out.resolve()}")
-    return 0
+    if arguments.no_verdict:
+        return 0
+    passed, lines = sim_report.verdict(scenario, result.report)
+    for line in lines:
+        print(f"sim: {line}")
+    return 0 if passed else 1
 
 
 if __name__ == "__main__":

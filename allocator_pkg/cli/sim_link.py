@@ -4,10 +4,14 @@ and ``battery_state`` and the controller's ``wrench_command`` out, the node's
 step into ``run.mcap``.
 
 The clock advances only when the node has answered the step's wrench: its status stamped with
-the step's time and echoing the wrench, and its commands of the same stamp."""
+the step's time and echoing the wrench, and its commands of the same stamp. Before the run,
+``synchronise`` brings the node onto this clock without a wrench (it allocates nothing) and
+``first_sample`` has it allocate the first one at a known step, so that the node allocates the
+same requests in every run."""
 
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 from typing import Any
@@ -27,7 +31,6 @@ from ..ros import qos
 from ..ros.conversions import array_to_wrench, wrench_to_array
 from ..simulation.kinematics import quaternion
 from ..simulation.plant import Pose
-from ..simulation.scenario import Scenario
 from .controller import Controller
 from .sim_recording import RunRecording
 from .sim_setup import SimulationError
@@ -42,6 +45,8 @@ node that did get the step and answers late (a busy machine) would take a second
 same step as one waiting for the next period, and sample twice in one step; a lost message is
 rare on loopback."""
 RETRIES = 3
+FIRST_WRENCH_DELAY = 0.1
+"""[s] of wall time between the first wrench and the clock step that is to allocate it."""
 TOPICS = {"clock": "/clock", "odometry": "/odometry", "setpoint": "/setpoint", "battery": "/battery_state",
           "wrench": "/wrench_command", "commands": "/thruster_commands", "status": "/allocation_status"}
 
@@ -58,8 +63,7 @@ def _nanoseconds(message) -> int:
 class NodeLink:
     """The link to the node of one run, in a rclpy context of its own; ``close`` ends it."""
 
-    def __init__(self, scenario: Scenario, out: Path, node_log: Path) -> None:
-        self.scenario = scenario
+    def __init__(self, out: Path, node_log: Path) -> None:
         self.node_log = node_log
         self.context = rclpy.Context()
         rclpy.init(context=self.context)
@@ -97,39 +101,63 @@ class NodeLink:
             if not running() or time.monotonic() - started > START_TIMEOUT:
                 raise SimulationError(f"allocator_node did not start (see {self.node_log})")
 
-    def warm_up(self, t_ns: int, period_ns: int, voltage: float | None) -> int:
-        """Zero requests, one clock step each from ``t_ns``, until the node has answered three
-        in a row each in its own step; the time of the run's first step. A wrench that reached
-        the node before its clock step waits for the next one; the node then answers on the
-        clock alone, and that step sends no wrench, so that nothing waits at the first real
-        step. The allocator stays at zero thrust."""
+    def synchronise(self, t_ns: int, period_ns: int, voltage: float | None) -> int:
+        """Clock steps from ``t_ns``, no wrench, until the node has stopped (its watchdog's zero
+        thrust, which leaves the allocation method untouched) in three steps in a row, each
+        stamped with its step's time and at the supply ``voltage``: the node then follows this
+        clock and has the battery's voltage. The time of the last of those steps."""
         in_step, started = 0, time.monotonic()
         while in_step < 3:
             if time.monotonic() - started > WARM_UP_TIMEOUT:
-                raise SimulationError(f"allocator_node did not answer in lock-step (see {self.node_log})")
+                raise SimulationError(f"allocator_node did not come into step with the clock (see {self.node_log})")
+            t_ns += period_ns
             self.answers.clear()
             self.publish_battery(t_ns, voltage)
             self.clock.publish(_clock(t_ns))
-            deadline = time.monotonic() + 0.02
-            while time.monotonic() < deadline:
-                self.executor.spin_once(timeout_sec=0.005)
-            if self.stamped(t_ns):                       # a waiting wrench, answered on the clock
-                in_step = 0
-            else:
-                self.answers.clear()
-                self.services.wrench.publish(array_to_wrench(np.zeros(6)))
-                deadline = time.monotonic() + 1.0
-                while not self.stamped(t_ns) and time.monotonic() < deadline:
-                    self.executor.spin_once(timeout_sec=0.01)
-                in_step = in_step + 1 if self.stamped(t_ns) else 0
-            t_ns += period_ns
+            deadline = time.monotonic() + 0.5
+            while not self._stopped_at(t_ns, voltage) and time.monotonic() < deadline:
+                self.executor.spin_once(timeout_sec=0.01)
+            in_step = in_step + 1 if self._stopped_at(t_ns, voltage) else 0
         return t_ns
 
-    def stamped(self, t_ns: int) -> bool:
-        """Whether the node's latest answer is a sample (not a stop) at ``t_ns``."""
+    def _stopped_at(self, t_ns: int, voltage: float | None) -> bool:
         status = self.answers.get("status")
-        return status is not None and status.outcome != AllocationStatus.OUTCOME_STOPPED \
-            and _nanoseconds(status) == t_ns
+        return status is not None and status.outcome == AllocationStatus.OUTCOME_STOPPED \
+            and _nanoseconds(status) == t_ns and (voltage is None or not math.isfinite(status.voltage)
+                                                  or abs(status.voltage - voltage) <= 1e-9 * abs(voltage))
+
+    def first_sample(self, t_ns: int, period_ns: int, wrench: np.ndarray,
+                     voltage: float | None) -> tuple[int, ThrusterCommands]:
+        """The node's first allocation, after :meth:`synchronise` ended at ``t_ns``: the wrench
+        is sent before the next clock step, so that it waits in the node (its last sample, a
+        stop, is less than a period old) and is allocated at that step. Should it come after
+        the step, the node stops once more and allocates it at the step after. The time of
+        the step that allocated it, and the node's commands."""
+        self.services.wrench.publish(array_to_wrench(wrench))
+        deadline = time.monotonic() + FIRST_WRENCH_DELAY
+        while time.monotonic() < deadline:
+            self.executor.spin_once(timeout_sec=0.005)
+        started = time.monotonic()
+        while time.monotonic() - started < WARM_UP_TIMEOUT:
+            t_ns += period_ns
+            self.answers.clear()
+            self.publish_battery(t_ns, voltage)
+            self.clock.publish(_clock(t_ns))
+            deadline = time.monotonic() + ANSWER_TIMEOUT
+            while time.monotonic() < deadline:
+                self.executor.spin_once(timeout_sec=0.01)
+                if self._answered(t_ns, wrench) or self._stopped_at(t_ns, None):
+                    break
+            if self._answered(t_ns, wrench):
+                return t_ns, self.answers["commands"]
+        raise SimulationError(f"allocator_node did not allocate the first wrench (see {self.node_log})")
+
+    def _answered(self, t_ns: int, wrench: np.ndarray) -> bool:
+        """Whether the latest status and commands are the node's sample of ``wrench`` at ``t_ns``."""
+        status, commands = self.answers.get("status"), self.answers.get("commands")
+        return status is not None and commands is not None and _nanoseconds(status) == t_ns == \
+            _nanoseconds(commands) and status.outcome != AllocationStatus.OUTCOME_STOPPED \
+            and np.allclose(wrench_to_array(status.requested), wrench, rtol=1e-9, atol=1e-9)
 
     def publish_battery(self, t_ns: int, value: float | None) -> BatteryState | None:
         if value is None:
@@ -139,11 +167,12 @@ class NodeLink:
         self.battery.publish(message)
         return message
 
-    def step(self, t_ns: int, pose: Pose, voltage: float | None,
-             wrench: np.ndarray) -> tuple[AllocationStatus, ThrusterCommands]:
+    def step(self, t_ns: int, pose: Pose, voltage: float | None, wrench: np.ndarray, setpoint_position,
+             setpoint_heading: float, record: bool = True) -> tuple[AllocationStatus, ThrusterCommands]:
         """One step at ``t_ns``: battery_state (when there is a voltage), the odometry of
-        ``pose``, then the clock and the wrench until the node answers; every message of the
-        step recorded. The node's status and commands."""
+        ``pose``, then the clock and the wrench until the node answers; with ``record``, every
+        message of the step and the set-point in force (``setpoint_position`` NED [m],
+        ``setpoint_heading`` [rad]) recorded. The node's status and commands."""
         battery = self.publish_battery(t_ns, voltage)
         odometry = Odometry()
         odometry.header.stamp.sec, odometry.header.stamp.nanosec = divmod(t_ns, 1_000_000_000)
@@ -157,10 +186,12 @@ class NodeLink:
         self.odometry.publish(odometry)
         goal = PoseStamped()
         goal.header = odometry.header
-        goal.pose.position.x, goal.pose.position.y, goal.pose.position.z = self.scenario.setpoint_position
+        goal.pose.position.x, goal.pose.position.y, goal.pose.position.z = (float(v) for v in setpoint_position)
         g = goal.pose.orientation
-        g.x, g.y, g.z, g.w = quaternion(0.0, 0.0, self.scenario.setpoint_heading)
+        g.x, g.y, g.z, g.w = quaternion(0.0, 0.0, setpoint_heading)
         status, commands, clock, message = self.exchange(t_ns, wrench)
+        if not record:
+            return status, commands
         for topic, item in (("clock", clock), ("battery", battery), ("odometry", odometry),
                             ("setpoint", goal), ("wrench", message), ("commands", commands),
                             ("status", status)):
@@ -184,13 +215,8 @@ class NodeLink:
             deadline = time.monotonic() + ANSWER_TIMEOUT
             while time.monotonic() < deadline:
                 self.executor.spin_once(timeout_sec=0.05)
-                status, commands = self.answers.get("status"), self.answers.get("commands")
-                if status is None or commands is None:
-                    continue
-                if _nanoseconds(status) == t_ns == _nanoseconds(commands) \
-                        and status.outcome != AllocationStatus.OUTCOME_STOPPED \
-                        and np.allclose(wrench_to_array(status.requested), wrench, rtol=1e-9, atol=1e-9):
-                    return status, commands, clock, message
+                if self._answered(t_ns, wrench):
+                    return self.answers["status"], self.answers["commands"], clock, message
             if attempt == 1:
                 self.services.wrench.publish(message)
         raise SimulationError(f"allocator_node did not answer the wrench of t = {t_ns * 1e-9:.3f} s "

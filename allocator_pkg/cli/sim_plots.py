@@ -22,9 +22,9 @@ METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),
                ("depth_error_max", "depth error max [m]", "{:.3f}"),
                ("energy", "energy [J]", "{:.4g}"),
                ("azimuth_travel", "azimuth travel [rad]", "{:.2f}"),
-               ("thrust_reversals", "thrust reversals", "{:.0f}"),
-               ("saturated_fraction", "saturated fraction", "{:.3f}"),
-               ("realtime_factor", "real-time factor", "{:.1f}"))
+               ("thrust_reversals", "thrust reversals [count]", "{:.0f}"),
+               ("saturated_fraction", "saturated fraction [share]", "{:.3f}"),
+               ("realtime_factor", "real-time factor [x real time]", "{:.1f}"))
 FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter")
 """The kinds of event the nominal run leaves out: what goes wrong, not what is asked."""
 

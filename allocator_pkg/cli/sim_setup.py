@@ -4,6 +4,7 @@ set-point and supply voltage, the node's command line, and the run's result and 
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,6 +19,10 @@ from ..simulation.trace import Trace
 from ..simulation.vessel import Vessel, VesselParameters
 from ..vehicle.config import Vehicle
 
+WARM_UP_MARGIN = 5.0
+"""[s] of equilibrium wrench beyond what the rate limits need (a method's own dynamics, as
+the dynamic law's, settle in it)."""
+
 
 class SimulationError(RuntimeError):
     pass
@@ -29,6 +34,8 @@ class RunResult:
     trace: Trace
     vehicle: Vehicle
     fault_intervals: list[tuple[float, float]]
+    report: dict
+    """What metrics.json holds (``simulation.report.run_report``)."""
 
 
 def build_plant(scenario: Scenario, vehicle: Vehicle) -> Plant:
@@ -42,11 +49,26 @@ def build_plant(scenario: Scenario, vehicle: Vehicle) -> Plant:
                  np.array([0.0, 0.0, scenario.initial_heading]))
 
 
-def setpoint_vector(scenario: Scenario, planar: bool) -> np.ndarray:
-    n, e, d = scenario.setpoint_position
+def setpoint_vector(position, heading: float, planar: bool) -> np.ndarray:
+    """The controller's set-point: [north, east, heading] or [north, east, down, 0, 0, heading]."""
+    n, e, d = position
     if planar:
-        return np.array([n, e, scenario.setpoint_heading])
-    return np.array([n, e, d, 0.0, 0.0, scenario.setpoint_heading])
+        return np.array([n, e, heading])
+    return np.array([n, e, d, 0.0, 0.0, heading])
+
+
+def warm_up_steps(vehicle: Vehicle, period: float) -> int:
+    """How many steps of the equilibrium wrench bring the node's commands to it from zero
+    thrust, a fixed number for a vehicle: the time the slowest thrust takes across its whole
+    range at its rate limit or the slowest azimuth half a turn, whichever is longer, plus
+    WARM_UP_MARGIN."""
+    longest = 0.0
+    for actuator in vehicle.actuators:
+        if actuator.thrust_rate_max > 0.0:
+            longest = max(longest, (actuator.thrust_max - actuator.thrust_min) / actuator.thrust_rate_max)
+        if actuator.rotatable and actuator.rotation.rate_max > 0.0:
+            longest = max(longest, math.pi / actuator.rotation.rate_max)
+    return math.ceil((longest + WARM_UP_MARGIN) / period)
 
 
 def scenario_command(scenario: Scenario, log_level: str = "warn") -> list[str]:

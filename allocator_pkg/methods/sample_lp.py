@@ -9,12 +9,12 @@ thruster (1.16), free, with a_x >= |f_x| and a_y >= |f_y| their magnitudes in th
 and either the slack s = s+ - s- of each controlled DOF (``objective="effort"``) or one scale
 lambda of the request (``objective="scale"``).
 
-    effort:  minimise  sum_i w_i F_i (p_i + m_i) + sum_j w_j F_j (a_xj + a_yj) + sum_k q_k D_k (s+_k + s-_k)
+    effort:  minimise  sum_i g_i w_i F_i (p_i + m_i) + sum_j g_j w_j F_j (a_xj + a_yj) + sum_k q_k D_k (s+_k + s-_k)
              subject to  T_e f_e - s = tau
     scale:   maximise   lambda - eps * (the same effort)
              subject to  T_e f_e = lambda tau,  0 <= lambda <= lambda_max
 
-and, for both, this sample's limits:
+with g the tie-break of :func:`tie_break` (1 for ``scale``), and, for both, this sample's limits:
 
 - a non-rotating actuator: low_i <= f_i <= high_i (bounds on p and m);
 - a rotatable thruster: the thrust circle |f| <= B as a polygon of N faces fixed in the body
@@ -24,6 +24,13 @@ and, for both, this sample's limits:
   a thrust that a rate limit keeps above zero as f . d >= F_low along the thruster's present
   direction d; a single allowed direction (STUCK, or a window narrower than PINNED) as the
   line through the origin along it.
+
+Ties: where several force vectors reach the same optimum (two thrusters of equal weight
+along one line, the four vertical thrusters of a BlueROV2 Heavy with one failed), a plain
+simplex returns whichever vertex its starting basis leads to, so that the answer to a request
+would depend on the samples before it. The effort's tie-break g makes the optimum unique
+(:func:`tie_break`); HiGHS's dual feasibility tolerance is set to DUAL_TOLERANCE so that it
+sees the tie-break.
 
 Only values change between samples: the bounds, and the coefficients of the cone's edges and
 of the along-row of each rotatable thruster (sent when they differ from the last sample's).
@@ -50,6 +57,28 @@ TIE_BREAK = 1e-6
 actuators at full force: among the forces reaching the largest lambda it takes the cheapest
 and costs lambda at most this fraction."""
 
+ORDER_SHARE = 1e-6
+"""Relative size of the effort's tie-break (:func:`tie_break`)."""
+DUAL_TOLERANCE = 1e-10
+"""HiGHS's dual feasibility tolerance for the effort objective (its default is 1e-7, its
+smallest 1e-10): the tie-break changes the reduced cost of a tied direction by about
+ORDER_SHARE x its cost x 1 / r^2, well above this."""
+
+
+def tie_break(count: int) -> np.ndarray:
+    """The weights g_k = 1 + ORDER_SHARE (k / r)^2, k = 1 ... r in configuration order, that
+    multiply each actuator's effort in the objective: among force vectors of equal effort the
+    one that loads the actuators early in the configuration more (a tied direction moves
+    effort between actuators; its cost now changes by ORDER_SHARE x the difference of their
+    squared indices, nonzero for mirrored layouts, where linear weights would cancel).
+
+    Size: the tie-break changes the objective of any force vector by at most ORDER_SHARE of
+    its effort, so it picks another vertex only among those whose effort lies within a
+    millionth of the optimum's: within what HiGHS, at its default dual tolerance of 1e-7 per
+    unit of a force range over up to r force ranges, already accepted as optimal. A
+    non-tied optimum further from every other vertex than that stays the same vertex."""
+    return 1.0 + ORDER_SHARE * ((np.arange(count) + 1.0) / count) ** 2
+
 
 def survey_apothem(sides: int) -> float:
     """Face distance, as a fraction of the radius, of the polygon between the inscribed and the
@@ -72,7 +101,7 @@ class SampleLP:
         if objective not in ("effort", "scale"):
             raise ValueError(f"objective is effort or scale, got {objective!r}")
         self.sides, self.apothem, self.objective, self.scale_max = sides, apothem, objective, scale_max
-        self._lp = LinearProgram()
+        self._lp = LinearProgram(DUAL_TOLERANCE if objective == "effort" else None)
         self._build(model)
 
     # -- set-up ---------------------------------------------------------------------------
@@ -86,15 +115,17 @@ class SampleLP:
         self._dof = model.dof_scale
         columns: list[float] = []                       # cost per column, physical units x scale
         scalar_p, scalar_m = {}, {}
+        order = tie_break(len(model.vehicle.actuators)) if self.objective == "effort" else \
+            np.ones(len(model.vehicle.actuators))
         for i in model.scalar:
             scalar_p[int(i)] = len(columns)
-            columns.append(model.weight[i] * force[i])
+            columns.append(model.weight[i] * force[i] * order[i])
             scalar_m[int(i)] = len(columns)
-            columns.append(model.weight[i] * force[i])
+            columns.append(model.weight[i] * force[i] * order[i])
         rotatable = []                                  # (f_x, f_y, a_x, a_y) per rotatable thruster
         for j in model.rot:
             first = len(columns)
-            columns += [0.0, 0.0, model.weight[j] * force[j], model.weight[j] * force[j]]
+            columns += [0.0, 0.0, model.weight[j] * force[j] * order[j], model.weight[j] * force[j] * order[j]]
             rotatable.append((first, first + 1, first + 2, first + 3))
         effort = float(sum(columns)) or 1.0
         if self.objective == "effort":

@@ -18,6 +18,12 @@ import math
 
 import numpy as np
 
+METRIC_UNITS = {"position_error_rms": "m", "position_error_max": "m", "heading_error_rms": "deg",
+                "heading_error_max": "deg", "depth_error_max": "m", "energy": "J", "azimuth_travel": "rad",
+                "thrust_reversals": "count", "saturated_fraction": "share", "realtime_factor": "x real time"}
+"""Every metric of a run, in the order they are reported, with its unit."""
+BOUNDED_METRICS = tuple(name for name in METRIC_UNITS if name != "realtime_factor")
+"""The metrics a scenario's ``bounds`` may hold a run to (from above): all but the wall-clock one."""
 REVERSAL_SHARE = 0.01
 """A thrust counts as having a sign when it exceeds this share of the actuator's largest force."""
 

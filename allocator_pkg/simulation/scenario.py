@@ -1,6 +1,7 @@
 """Scenario files (``config/scenarios/*.yaml``): the vehicle, the method and node parameters,
 the duration and seed, the hull model, the environment, the set-point, the controller's
-gains, timed events and the bounds the run must stay within. Paths are relative to the
+gains, timed events (set-point steps and ramps among them), named windows and the bounds the
+run must stay within (over the run, or over a window). Paths are relative to the
 scenario file. Bad input raises ``ScenarioError`` naming the key, before anything runs: an
 unknown key at any depth (with the nearest known one), a vehicle file that does not fit the hull
 model or whose parameters the allocator refuses, a method that cannot serve it, an event the
@@ -22,24 +23,32 @@ from ..configuration.params_file import read_parameters
 from ..effectiveness.faults import FaultMode, FaultSet
 from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
-from .environment import EnvironmentSpec, SlowVariation
+from .environment import EnvironmentSpec
 from .scenario_check import check_method_serves, check_parameter, check_vehicle, unknown_keys
+from .scenario_values import (
+    ScenarioError,
+    environment,
+    number,
+    read_bounds,
+    read_windows,
+    section,
+    setpoint_target,
+    vector,
+)
+from .setpoint import SetpointSchedule
+from .windows import Window, fault_windows
 
 MODELS = ("dp_vessel", "bluerov2_heavy")
 FAULT_MODES = ("failed", "stuck", "degraded")
-BOUND_KEYS = ("position_error_max", "heading_error_max", "depth_error_max")
-
-
-class ScenarioError(ValueError):
-    pass
+EVENT_KINDS = ("fault", "clear_faults", "battery_ramp", "parameter", "setpoint")
 
 
 @dataclass(frozen=True)
 class Event:
     """At ``time`` [s]: one of a fault (``fault``: actuator, mode, value: the share of force
     left when ``degraded``, the angle [rad] when ``stuck``, None for the angle it has then),
-    clearing every fault, a battery voltage ramp (``ramp``: to [V], duration [s]) or a node
-    parameter."""
+    clearing every fault, a battery voltage ramp (``ramp``: to [V], duration [s]), a node
+    parameter or a new set-point (``setpoint``: value a SetpointTarget)."""
 
     time: float
     kind: str
@@ -61,8 +70,9 @@ class Scenario:
     seed: int
     thruster_time_constant: float
     setpoint_position: tuple[float, float, float]
+    """NED [m] at t = 0; the set-point events move it (:meth:`schedule`)"""
     setpoint_heading: float
-    """[rad]"""
+    """[rad] at t = 0"""
     initial_position: tuple[float, float, float]
     initial_heading: float
     gains: Gains
@@ -72,6 +82,9 @@ class Scenario:
     voltage: float | None = None
     events: tuple[Event, ...] = ()
     bounds: dict[str, float] = field(default_factory=dict)
+    """Upper bounds of the run's metrics (metric name: largest value)."""
+    windows: tuple[Window, ...] = ()
+    """The named windows of the file (the automatic ones: :meth:`all_windows`)."""
     description: str = ""
 
     @property
@@ -83,8 +96,20 @@ class Scenario:
         """The same scenario with its duration, event times and ramps times ``factor``."""
         if not (math.isfinite(factor) and factor > 0.0):
             raise ScenarioError(f"duration scale: a finite number > 0, not {factor!r}")
-        events = tuple(replace(e, time=e.time * factor, duration=e.duration * factor) for e in self.events)
-        return replace(self, duration=self.duration * factor, events=events)
+        events = tuple(replace(e, time=e.time * factor, duration=e.duration * factor,
+                               value=e.value.scaled(factor) if e.kind == "setpoint" else e.value)
+                       for e in self.events)
+        return replace(self, duration=self.duration * factor, events=events,
+                       windows=tuple(w.scaled(factor) for w in self.windows))
+
+    def schedule(self) -> SetpointSchedule:
+        """The set-point at any time of the run."""
+        return SetpointSchedule(self.setpoint_position, self.setpoint_heading,
+                                [(e.time, e.value) for e in self.events if e.kind == "setpoint"])
+
+    def all_windows(self) -> tuple[Window, ...]:
+        """The file's windows, then the automatic ones of the faults (``windows.fault_windows``)."""
+        return self.windows + tuple(fault_windows(self.events, self.duration))
 
     def with_method(self, method: str) -> Scenario:
         """The same scenario under another method; ScenarioError when it cannot serve the vehicle."""
@@ -105,64 +130,19 @@ def vehicle_config(path: Path, parameters: dict[str, Any]) -> Vehicle:
                                       for key, reason in error.problems)) from error
 
 
-def _number(data: dict, key: str, where: str, default: float | None = None, minimum: float | None = None) -> float:
-    value = data.get(key, default)
-    if value is None:
-        raise ScenarioError(f"{where}{key}: required")
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ScenarioError(f"{where}{key}: a finite number, not {value!r}")
-    if minimum is not None and value < minimum:
-        raise ScenarioError(f"{where}{key}: at least {minimum:g}, not {value!r}")
-    return float(value)
-
-
-def _vector(data: dict, key: str, where: str, size: int, default: list | None = None) -> tuple[float, ...]:
-    value = data.get(key, default)
-    if not isinstance(value, list) or len(value) != size or not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value):
-        raise ScenarioError(f"{where}{key}: a list of {size} finite numbers, not {value!r}")
-    return tuple(float(v) for v in value)
-
-
-def _section(data: dict, key: str) -> dict:
-    value = data.get(key, {})
-    if not isinstance(value, dict):
-        raise ScenarioError(f"{key}: a mapping, not {value!r}")
-    return value
-
-
-def _variation(data: dict, sigma: str, time: str, where: str) -> SlowVariation:
-    return SlowVariation(_number(data, sigma, where, 0.0, 0.0), _number(data, time, where, 60.0, 1e-6))
-
-
-def _environment(data: dict) -> EnvironmentSpec:
-    current, wind, waves = (_section(data, k) for k in ("current", "wind", "waves"))
-    return EnvironmentSpec(
-        current_speed=_number(current, "speed", "environment.current.", 0.0, 0.0),
-        current_direction=_number(current, "direction", "environment.current.", 0.0),
-        current_speed_variation=_variation(current, "speed_sigma", "time_constant", "environment.current."),
-        current_direction_variation=_variation(current, "direction_sigma", "time_constant", "environment.current."),
-        current_down=_number(current, "down", "environment.current.", 0.0),
-        wind_speed=_number(wind, "speed", "environment.wind.", 0.0, 0.0),
-        wind_direction=_number(wind, "direction", "environment.wind.", 0.0),
-        gusts=_variation(wind, "gust_sigma", "gust_time_constant", "environment.wind."),
-        wave_height=_number(waves, "hs", "environment.waves.", 0.0, 0.0),
-        wave_period=_number(waves, "peak_period", "environment.waves.", 8.0, 0.0),
-        wave_direction=_number(waves, "direction", "environment.waves.", 0.0),
-        drift_variation=_variation(waves, "drift_sigma", "drift_time_constant", "environment.waves."))
-
-
 def _event(data: Any, index: int) -> Event:
     where = f"events[{index}]."
     if not isinstance(data, dict):
         raise ScenarioError(f"events[{index}]: a mapping, not {data!r}")
-    time = _number(data, "time", where, minimum=0.0)
-    kinds = [k for k in ("fault", "clear_faults", "battery_ramp", "parameter") if k in data]
+    time = number(data, "time", where, minimum=0.0)
+    kinds = [k for k in EVENT_KINDS if k in data]
     if len(kinds) != 1:
-        raise ScenarioError(f"{where[:-1]}: exactly one of fault, clear_faults, battery_ramp, parameter")
+        raise ScenarioError(f"{where[:-1]}: exactly one of {', '.join(EVENT_KINDS)}")
     kind, body = kinds[0], data[kinds[0]]
     if kind == "clear_faults":
         return Event(time, kind)
+    if kind == "setpoint":
+        return Event(time, kind, value=setpoint_target(body, where + "setpoint"))
     if not isinstance(body, dict):
         raise ScenarioError(f"{where}{kind}: a mapping, not {body!r}")
     if kind == "fault":
@@ -173,11 +153,11 @@ def _event(data: Any, index: int) -> Event:
             raise ScenarioError(f"{where}fault.actuator: an actuator name, not {body.get('actuator')!r}")
         if mode == "degraded" and "value" not in body:
             raise ScenarioError(f"{where}fault.value: required for degraded, the share of force left in (0, 1]")
-        value = None if mode == "stuck" and "value" not in body else _number(body, "value", where + "fault.", 0.0)
+        value = None if mode == "stuck" and "value" not in body else number(body, "value", where + "fault.", 0.0)
         return Event(time, kind, actuator=body["actuator"], mode=mode, value=value)
     if kind == "battery_ramp":
-        return Event(time, kind, value=_number(body, "to", where + "battery_ramp.", minimum=0.0),
-                     duration=_number(body, "duration", where + "battery_ramp.", 0.0, 0.0))
+        return Event(time, kind, value=number(body, "to", where + "battery_ramp.", minimum=0.0),
+                     duration=number(body, "duration", where + "battery_ramp.", 0.0, 0.0))
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
@@ -245,22 +225,19 @@ def load_scenario(path: str | Path) -> Scenario:
             particulars = load_particulars(path.parent / data["particulars"]).vessel
         except ValueError as error:
             raise ScenarioError(f"particulars: {error}") from error
-    setpoint, initial = _section(data, "setpoint"), _section(data, "initial")
-    position = _vector(setpoint, "position", "setpoint.", 3, [0.0, 0.0, 0.0])
-    heading = _number(setpoint, "heading", "setpoint.", 0.0)
-    controller = _section(data, "controller")
+    setpoint, initial = section(data, "setpoint"), section(data, "initial")
+    position = vector(setpoint, "position", "setpoint.", 3, [0.0, 0.0, 0.0])
+    heading = number(setpoint, "heading", "setpoint.", 0.0)
+    controller = section(data, "controller")
     try:
         gains = Gains(**{k: tuple(controller.get(k, ())) for k in ("kp", "kd", "ki", "unallocated_threshold")})
     except (TypeError, ValueError) as error:
         raise ScenarioError(str(error)) from error
     if len(gains.kp) != (3 if model == "dp_vessel" else 6):
         raise ScenarioError(f"controller.kp: {3 if model == 'dp_vessel' else 6} values for {model}")
-    bounds = _section(data, "bounds")
-    for key in bounds:
-        if key not in BOUND_KEYS:
-            raise ScenarioError(f"bounds.{key}: not one of {', '.join(BOUND_KEYS)}")
-        _number(bounds, key, "bounds.", minimum=0.0)
-    battery = _section(data, "battery")
+    duration = number(data, "duration", "", minimum=1e-3)
+    named = read_windows(data.get("windows", []) or [], duration)
+    battery = section(data, "battery")
     events = data.get("events", []) or []
     if not isinstance(events, list):
         raise ScenarioError("events: a list")
@@ -276,13 +253,14 @@ def load_scenario(path: str | Path) -> Scenario:
                 raise ScenarioError(f"events[{index}].parameter: the allocator refuses it: {error}") from error
     return Scenario(
         name=str(data.get("name", path.stem)), path=path, vehicle=vehicle, model=model, method=data["method"],
-        duration=_number(data, "duration", "", minimum=1e-3), seed=int(_number(data, "seed", "", 0.0, 0.0)),
-        thruster_time_constant=_number(data, "thruster_time_constant", "", 1.0, 1e-6),
+        duration=duration, seed=int(number(data, "seed", "", 0.0, 0.0)),
+        thruster_time_constant=number(data, "thruster_time_constant", "", 1.0, 1e-6),
         setpoint_position=position, setpoint_heading=math.radians(heading),
-        initial_position=_vector(initial, "position", "initial.", 3, list(position)),
-        initial_heading=math.radians(_number(initial, "heading", "initial.", heading)),
-        gains=gains, environment=_environment(_section(data, "environment")), particulars=particulars,
-        parameters=dict(parameters), voltage=_number(battery, "voltage", "battery.", minimum=0.0) if battery else None,
+        initial_position=vector(initial, "position", "initial.", 3, list(position)),
+        initial_heading=math.radians(number(initial, "heading", "initial.", heading)),
+        gains=gains, environment=environment(section(data, "environment")), particulars=particulars,
+        parameters=dict(parameters), voltage=number(battery, "voltage", "battery.", minimum=0.0) if battery else None,
         events=tuple(sorted(checked, key=lambda e: e.time)),
-        bounds={k: float(v) for k, v in bounds.items()}, description=str(data.get("description", "")))
+        bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
+        description=str(data.get("description", "")))
 

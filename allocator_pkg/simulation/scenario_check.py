@@ -12,6 +12,7 @@ from ..allocation.solve import check_method
 from ..configuration.schema import key_for
 from ..methods import METHODS
 from ..vehicle.config import Vehicle
+from .metrics import BOUNDED_METRICS
 
 ANY = None
 """A key whose value is a free mapping (node parameters, checked against the schema instead)."""
@@ -28,7 +29,9 @@ EVENT_KEYS = {
     "clear_faults": {},
     "battery_ramp": {"to": {}, "duration": {}},
     "parameter": {"name": {}, "value": {}},
+    "setpoint": {"position": {}, "heading": {}, "speed": {}, "heading_rate": {}},
 }
+BOUND_KEYS = {name: {} for name in BOUNDED_METRICS}
 SCENARIO_KEYS: dict[str, Any] = {
     "name": {}, "description": {}, "model": {}, "vehicle": {}, "particulars": {}, "method": {}, "duration": {},
     "seed": {}, "thruster_time_constant": {},
@@ -39,7 +42,8 @@ SCENARIO_KEYS: dict[str, Any] = {
     "parameters": ANY,
     "battery": {"voltage": {}},
     "events": [EVENT_KEYS],
-    "bounds": {"position_error_max": {}, "heading_error_max": {}, "depth_error_max": {}},
+    "bounds": BOUND_KEYS,
+    "windows": [{"name": {}, "start": {}, "end": {}, "bounds": BOUND_KEYS}],
 }
 """Every key of a scenario file, nested as the file nests them; a list holds the keys of each item."""
 

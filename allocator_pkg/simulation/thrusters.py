@@ -53,6 +53,14 @@ class Thrusters:
         if mode == "stuck" and self.vehicle.actuators[i].rotatable:
             self.angle[i] = value
 
+    def start_at(self, thrust: np.ndarray, angle: np.ndarray) -> None:
+        """Start where the commands ``thrust`` [N] and ``angle`` [rad] hold them: the thrust they
+        give (inside the force ranges, times the efficiencies), the angles of the rotatable
+        actuators."""
+        self.thrust = np.clip(np.asarray(thrust, dtype=float), self.low, self.high) * self.efficiency
+        rotatable = np.array([a.rotatable for a in self.vehicle.actuators])
+        self.angle = np.where(rotatable, np.asarray(angle, dtype=float), self.angle)
+
     def clear_faults(self) -> None:
         self.efficiency[:] = 1.0
         self.stuck[:] = False

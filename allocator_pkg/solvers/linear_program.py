@@ -21,10 +21,13 @@ from .outcome import Outcome, Solution
 class LinearProgram:
     """One HiGHS model; :meth:`setup` gives it its structure and first values."""
 
-    def __init__(self) -> None:
+    def __init__(self, dual_tolerance: float | None = None) -> None:
+        """``dual_tolerance``: HiGHS's dual feasibility tolerance (None: its default)."""
         self._highs = highspy.Highs()
         self._highs.setOptionValue("output_flag", False)
         self._highs.setOptionValue("presolve", "off")
+        if dual_tolerance is not None:
+            self._highs.setOptionValue("dual_feasibility_tolerance", dual_tolerance)
 
     def setup(self, costs: np.ndarray, column_low: np.ndarray, column_up: np.ndarray, a: sp.csc_matrix,
               low: np.ndarray, up: np.ndarray, time_limit: float, keep_basis: bool = False) -> None:

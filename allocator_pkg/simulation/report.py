@@ -1,0 +1,42 @@
+"""What ``metrics.json`` holds for one run, and its verdict: the metrics over the whole run
+with their units, the same metrics over each window (the scenario's and the automatic ones of
+its faults), the step-response figures of each set-point step, and the checks of the
+scenario's bounds against them."""
+
+from __future__ import annotations
+
+import math
+
+from ..vehicle.config import Vehicle
+from .metrics import METRIC_UNITS
+from .scenario import Scenario
+from .step_response import SETTLING_BAND
+from .trace import Trace
+from .verdict import Check, checks
+
+STEP_UNITS = {"time": "s", "size": "m or deg (the channel's)", "rise_time": "s", "overshoot": "%",
+              "settling_time": "s"}
+
+
+def run_report(scenario: Scenario, trace: Trace, vehicle: Vehicle, realtime_factor: float) -> dict:
+    """The contents of metrics.json (see the module); figures a step does not reach are None."""
+    metrics = trace.metrics(vehicle)
+    metrics["realtime_factor"] = realtime_factor
+    windows = {window.name: {"start": window.start, "end": window.end,
+                             "metrics": trace.metrics(vehicle, window.start, window.end)}
+               for window in scenario.all_windows()}
+    steps = []
+    for step in scenario.schedule().steps(scenario.duration):
+        size = step.size if step.channel == "position" else math.degrees(float(step.end[0] - step.start[0]))
+        steps.append({"channel": step.channel, "time": step.time, "size": size,
+                      **trace.step_response(step).as_dict()})
+    return {"scenario": scenario.name, "method": scenario.method, "seed": scenario.seed,
+            "duration": scenario.duration, "metrics": metrics, "units": dict(METRIC_UNITS), "windows": windows,
+            "steps": steps, "step_units": dict(STEP_UNITS), "settling_band": SETTLING_BAND}
+
+
+def report_checks(scenario: Scenario, report: dict) -> list[Check]:
+    """The scenario's bounds against a run's report: ``bounds`` over the run, each window's
+    bounds over that window."""
+    return checks(report["metrics"], scenario.bounds, {name: w["metrics"] for name, w in report["windows"].items()},
+                  {window.name: window.bounds for window in scenario.windows if window.bounds})

@@ -1,0 +1,118 @@
+"""Reading the values of a scenario file: numbers, vectors and mappings, each refused with
+its key (``ScenarioError``); the environment, a set-point event's target, the bounds and the
+named windows."""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any
+
+from .environment import EnvironmentSpec, SlowVariation
+from .metrics import BOUNDED_METRICS
+from .setpoint import SetpointTarget
+from .windows import Window
+
+
+class ScenarioError(ValueError):
+    pass
+
+
+def number(data: dict, key: str, where: str, default: float | None = None, minimum: float | None = None) -> float:
+    value = data.get(key, default)
+    if value is None:
+        raise ScenarioError(f"{where}{key}: required")
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ScenarioError(f"{where}{key}: a finite number, not {value!r}")
+    if minimum is not None and value < minimum:
+        raise ScenarioError(f"{where}{key}: at least {minimum:g}, not {value!r}")
+    return float(value)
+
+
+def vector(data: dict, key: str, where: str, size: int, default: list | None = None) -> tuple[float, ...]:
+    value = data.get(key, default)
+    if not isinstance(value, list) or len(value) != size or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value):
+        raise ScenarioError(f"{where}{key}: a list of {size} finite numbers, not {value!r}")
+    return tuple(float(v) for v in value)
+
+
+def section(data: dict, key: str) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, dict):
+        raise ScenarioError(f"{key}: a mapping, not {value!r}")
+    return value
+
+
+def _variation(data: dict, sigma: str, time: str, where: str) -> SlowVariation:
+    return SlowVariation(number(data, sigma, where, 0.0, 0.0), number(data, time, where, 60.0, 1e-6))
+
+
+def environment(data: dict) -> EnvironmentSpec:
+    current, wind, waves = (section(data, k) for k in ("current", "wind", "waves"))
+    return EnvironmentSpec(
+        current_speed=number(current, "speed", "environment.current.", 0.0, 0.0),
+        current_direction=number(current, "direction", "environment.current.", 0.0),
+        current_speed_variation=_variation(current, "speed_sigma", "time_constant", "environment.current."),
+        current_direction_variation=_variation(current, "direction_sigma", "time_constant", "environment.current."),
+        current_down=number(current, "down", "environment.current.", 0.0),
+        wind_speed=number(wind, "speed", "environment.wind.", 0.0, 0.0),
+        wind_direction=number(wind, "direction", "environment.wind.", 0.0),
+        gusts=_variation(wind, "gust_sigma", "gust_time_constant", "environment.wind."),
+        wave_height=number(waves, "hs", "environment.waves.", 0.0, 0.0),
+        wave_period=number(waves, "peak_period", "environment.waves.", 8.0, 0.0),
+        wave_direction=number(waves, "direction", "environment.waves.", 0.0),
+        drift_variation=_variation(waves, "drift_sigma", "drift_time_constant", "environment.waves."))
+
+
+
+def setpoint_target(body: Any, where: str) -> SetpointTarget:
+    """A set-point event's ``setpoint``: a position NED [m] and/or a heading [deg], a ramp's
+    ``speed`` [m/s] (with a position) and ``heading_rate`` [deg/s] (with a heading), each > 0."""
+    if not isinstance(body, dict) or not ("position" in body or "heading" in body):
+        raise ScenarioError(f"{where}: a mapping with a position, a heading or both, not {body!r}")
+    for rate, of in (("speed", "position"), ("heading_rate", "heading")):
+        if rate in body and of not in body:
+            raise ScenarioError(f"{where}.{rate}: a ramp of the {of}, which the event does not change")
+        if rate in body and number(body, rate, where + ".") <= 0.0:
+            raise ScenarioError(f"{where}.{rate}: a number > 0, not {body[rate]!r}")
+    return SetpointTarget(
+        position=vector(body, "position", where + ".", 3) if "position" in body else None,
+        heading=math.radians(number(body, "heading", where + ".")) if "heading" in body else None,
+        speed=float(body["speed"]) if "speed" in body else None,
+        heading_rate=math.radians(float(body["heading_rate"])) if "heading_rate" in body else None)
+
+
+def read_bounds(data: Any, where: str) -> dict[str, float]:
+    """Upper bounds (metric name: largest value, >= 0) of BOUNDED_METRICS."""
+    if not isinstance(data, dict):
+        raise ScenarioError(f"{where}: a mapping of metric names to their largest values, not {data!r}")
+    for key in data:
+        if key not in BOUNDED_METRICS:
+            raise ScenarioError(f"{where}.{key}: not one of {', '.join(BOUNDED_METRICS)}")
+        number(data, key, where + ".", minimum=0.0)
+    return {key: float(value) for key, value in data.items()}
+
+
+def read_windows(data: Any, duration: float) -> list[Window]:
+    """The named windows: each a name, ``start`` [s] and ``end`` [s] (default: the end of the
+    run) with 0 <= start < end <= duration, and bounds of its own; names distinct and not
+    those of the automatic windows."""
+    if not isinstance(data, list):
+        raise ScenarioError(f"windows: a list, not {data!r}")
+    found = []
+    for index, item in enumerate(data):
+        where = f"windows[{index}]"
+        if not isinstance(item, dict) or not isinstance(item.get("name"), str) or not item["name"]:
+            raise ScenarioError(f"{where}: a mapping with a name")
+        start = number(item, "start", where + ".", minimum=0.0)
+        end = number(item, "end", where + ".", duration)
+        if not start < end <= duration:
+            raise ScenarioError(f"{where}: start < end <= duration ({duration:g} s), not {start:g} to {end:g}")
+        if re.fullmatch(r"(after_)?fault(_\d+)?", item["name"]):
+            raise ScenarioError(f"{where}.name: '{item['name']}' is the name of an automatic window (fault, "
+                                "after_fault, fault_N, after_fault_N)")
+        if item["name"] in [w.name for w in found]:
+            raise ScenarioError(f"{where}.name: '{item['name']}' names another window too")
+        found.append(Window(item["name"], start, end, read_bounds(item.get("bounds", {}), where + ".bounds")))
+    return found
