@@ -32,6 +32,7 @@ from allocator_pkg.cli.sim_style import (
 from allocator_pkg.cli.sim_timeline import POWER_LABEL, thrust_limits_over_time, timeline_figure
 from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.effectiveness.faults import thrust_limits
+from allocator_pkg.simulation.report import run_report
 from allocator_pkg.simulation.scenario import Event, load_scenario
 from allocator_pkg.simulation.trace import Trace
 
@@ -60,7 +61,8 @@ def made_up_run(case, amplitude: float = 1.0, voltage=None) -> RunResult:
                   thrust, [0.5 * i + 0.1 * wave if a.rotatable else 0.0 for i, a in enumerate(vehicle.actuators)],
                   k % 7 == 0, float(coefficients @ np.abs(thrust) ** 1.5), any(start <= t for start, _ in faults),
                   math.nan if voltage is None else voltage(t))
-    return RunResult(trace.metrics(vehicle), trace, vehicle, faults)
+    report = run_report(case, trace, vehicle, realtime_factor=1.0)
+    return RunResult(report["metrics"], trace, vehicle, faults, report)
 
 
 @pytest.fixture(autouse=True)
