@@ -50,7 +50,7 @@ WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
                 "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters")
 NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], power per "
-           "switchboard [3.12], Tables A-1, A-6, A-7, A-8")
+           "switchboard [3.12]")
 READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); the second range of B in [3.9.4] read as the union of "
             "[-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] in N")
 """Where the text cannot be read as it stands, and how it is read here."""
@@ -233,11 +233,16 @@ class Level1:
             self._capabilities[key] = Capability(variant, self.method, speed=0.0)
         return self._capabilities[key]
 
+    def required(self, condition: Condition, direction: float) -> np.ndarray:
+        """The wrench [X, Y, Z, K, M, N] (body frame) the thrusters must give: -1.25 times the loads."""
+        tau = np.zeros(6)
+        tau[[0, 1, 5]] = -DYNAMIC_FACTOR * self.loads(condition, direction).total
+        return tau
+
     def balanced(self, level: float, direction: float, failed: tuple[str, ...] = ()) -> bool:
         """Whether the thrusters hold the condition at ``level`` from ``direction`` [rad]."""
         condition = condition_at(level)
-        tau = np.zeros(6)
-        tau[[0, 1, 5]] = -DYNAMIC_FACTOR * self.loads(condition, direction).total
+        tau = self.required(condition, direction)
         if not np.any(tau):
             return True
         if np.any(np.abs(tau[self.uncontrolled]) > 1e-9 * np.max(np.abs(tau))):
