@@ -7,8 +7,9 @@ Table 2-1: :data:`CONDITIONS`) times the dynamic factor :data:`DYNAMIC_FACTOR` [
 balanced by the thrusters. The number of a heading is the highest condition balanced with every
 lower one balanced too; the limiting wind speed the highest wind balanced when the conditions
 between two numbers are interpolated linearly (:func:`condition_at`). This is done intact and
-for each failure group (actuators lost together); the worst single failure is, per heading, the
-lowest over the groups. :meth:`Level1Result.summary` gives DP capability-L1(A, B, C, D).
+for each redundancy group of the vehicle file (actuators and power sources lost together; a
+thruster fed in part by a lost source keeps its remaining share of P_B); the worst single
+failure is, per heading, the lowest over the groups. :meth:`Level1Result.summary` gives DP capability-L1(A, B, C, D).
 
 Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's thrust from its
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
@@ -49,9 +50,14 @@ INTACT = "intact"
 WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
                 "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters")
-NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], power per "
-           "switchboard [3.12]")
-READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); the second range of B in [3.9.4] read as the union of "
+NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], the power "
+           "balance per switchboard [3.12]")
+POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
+                 "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
+                 "Table A-5 as transcribed: what it can consume from each source); source capacities are not "
+                 "balanced yet.")
+READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed share s keeps (1 - s) P_B ([3.12], "
+            "Table A-5); the second range of B in [3.9.4] read as the union of "
             "[-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] in N")
 """Where the text cannot be read as it stands, and how it is read here."""
 SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
@@ -114,7 +120,7 @@ def load_particulars(path: str | Path) -> Particulars:
 @dataclass(frozen=True)
 class Level1Result:
     """Capability numbers and limiting wind speeds per heading for each case: ``intact``, each
-    failure group by name, and ``worst failure`` (per heading the lowest over the groups)."""
+    redundancy group by name, and ``worst single failure`` (per heading the lowest over the groups)."""
 
     headings_deg: np.ndarray
     numbers: dict[str, np.ndarray]
@@ -162,13 +168,10 @@ class Level1:
     def __init__(self, vehicle: Vehicle, particulars: Particulars, method: str | None = None):
         self.vehicle = vehicle
         self.particulars = particulars
-        names = set(vehicle.names)
-        for group, members in particulars.failure_groups.items():
-            unknown = [m for m in members if m not in names]
-            if unknown:
-                raise ValueError(f"failure_groups.{group}: no actuator named {', '.join(unknown)}; "
-                                 f"the vehicle has {', '.join(vehicle.names)}")
-        self.groups = dict(particulars.failure_groups) or {name: (name,) for name in vehicle.names}
+        self.groups = ({g.name: (*g.actuators, *g.sources) for g in vehicle.redundancy_groups}
+                       or {name: (name,) for name in vehicle.names})
+        """What each group's loss takes away: its actuators, then its power sources (the vehicle
+        file's redundancy groups; without any, each actuator alone)."""
         self.actuators = _actuators(vehicle, particulars)
         self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
@@ -181,10 +184,27 @@ class Level1:
         return level1_loads(self.particulars.hull, self.particulars.frame, condition.wind, condition.current,
                             condition.hs, condition.tp, direction)
 
-    def thrust_range(self, name: str, condition: Condition, direction: float) -> tuple[float, float]:
-        """[low, high] [N] of one thruster: nominal thrust times beta_misc and beta_vent, each way."""
+    def power_share(self, name: str, lost: tuple[str, ...] = ()) -> float:
+        """The share of its P_B a thruster keeps when the sources in ``lost`` are: 1 less the
+        feed shares of the lost feeds (Table A-5)."""
+        actuator = self.actuators[name].config
+        return 1.0 - sum(share for feed, share in zip(actuator.feeds, actuator.feed_shares) if feed in lost)
+
+    def thrust_range(self, name: str, condition: Condition, direction: float,
+                     lost: tuple[str, ...] = ()) -> tuple[float, float]:
+        """[low, high] [N] of one thruster: nominal thrust times beta_misc and beta_vent, each way.
+        A thruster fed in part by a source in ``lost`` runs on the P_B of its remaining share
+        (T_nominal times share^(2/3) [3.9.2], beta_vent of that T_nominal)."""
         unit = self.actuators[name]
         data = self.particulars.thrusters[name]
+        share = self.power_share(name, lost)
+        if share <= 0.0:
+            raise ValueError(f"{name}: every feed lost ({', '.join(unit.config.feeds)}) but not the thruster; "
+                             "list it in the redundancy group's actuators")
+        if share < 1.0:
+            data = replace(data, power=data.power * share)
+            unit = replace(unit, forward=nominal_thrust(data) if unit.forward else 0.0,
+                           reverse=nominal_thrust(data, reverse=True) if unit.reverse else 0.0)
 
         def effective(nominal: float, reverse: bool) -> float:
             if nominal == 0.0:
@@ -212,7 +232,7 @@ class Level1:
             if actuator.name in failed:
                 continue
             unit = self.actuators[actuator.name]
-            low, high = self.thrust_range(actuator.name, condition, direction)
+            low, high = self.thrust_range(actuator.name, condition, direction, failed)
             own = [zone for zone in zones if zone.thruster == actuator.name]
             if actuator.rotatable:
                 rotation = replace(actuator.rotation, forbidden_sectors=tuple(zone.sector for zone in own))
@@ -290,7 +310,8 @@ class Level1:
                                           f"{math.degrees(z.sector[1]):.1f} deg (flushing {z.flushed})"
                                           for z in self.zones()) or "none")
             + " (thrust angle in the body frame, 0 forward, 90 to starboard).",
-            "Failure groups: " + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ".",
+            "Redundancy groups (lost together: actuators, then power sources): "
+            + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ". " + POWER_READING,
             "Limiting wind speed: conditions between two numbers interpolated linearly; "
             f"at number {TOP} the table's {CONDITIONS[TOP].wind:g} m/s (held at least that).",
         ]
@@ -363,5 +384,5 @@ def limit(balanced: Callable[[float], bool]) -> tuple[int, float]:
 
 def level1(vehicle: Vehicle, particulars: Particulars, step_deg: float = 10.0,
            method: str | None = None) -> Level1Result:
-    """DP capability Level 1 of a vehicle: every heading, intact and for each failure group."""
+    """DP capability Level 1 of a vehicle: every heading, intact and for each redundancy group."""
     return Level1(vehicle, particulars, method).run(step_deg)
