@@ -353,3 +353,16 @@ def test_cli_refuses_a_bad_particulars_file(tmp_path, capsys):
     bad.write_text("lpp: 80\nbeam: 20\n")
     assert main(["--dnv-level1", str(DP_VESSEL), str(bad), "--out", str(tmp_path)]) == 2
     assert "missing key(s): draught" in capsys.readouterr().err
+
+
+def test_a_balance_is_the_largest_multiple_at_least_one(dp_level1):
+    """balanced() stops at the first convex pieces that hold, starting with those that held last;
+    the answer is that of the largest multiple over every combination."""
+    for failed in ((), dp_level1.groups["switchboard_a"]):
+        for level, heading in ((3.5, 0.0), (6.0, 70.0), (8.2, 200.0), (9.7, 300.0), (10.5, 30.0)):
+            condition, direction = condition_at(level), math.radians(heading)
+            tau = dp_level1.required(condition, direction)
+            capability = dp_level1.capability(dp_level1.variant(condition, direction, failed))
+            scale = float(np.max(np.abs(tau[capability.model.dof_index]) / capability.model.authority))
+            expected = capability.reach(tau / scale)[0] >= scale * (1.0 - 1e-9)
+            assert dp_level1.balanced(level, direction, failed) == expected, (failed, level, heading)

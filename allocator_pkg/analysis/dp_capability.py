@@ -177,6 +177,7 @@ class Level1:
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
         self._zones: dict[tuple[str, ...], list[Zone]] = {}
         self._capabilities: dict[tuple, Capability] = {}
+        self._winners: dict[tuple[str, ...], int] = {}
         self.capability(vehicle)                               # the method can serve the vehicle
 
     def loads(self, condition: Condition, direction: float) -> LoadComponents:
@@ -270,9 +271,12 @@ class Level1:
         variant = self.variant(condition, direction, failed)
         if not variant.actuators:
             return False
-        model = self.capability(variant).model
-        scale = float(np.max(np.abs(tau[model.dof_index]) / np.maximum(model.authority, 1e-12)))
-        return self.capability(variant).reach(tau / scale)[0] >= scale * (1.0 - 1e-9)   # in units of authority
+        capability = self.capability(variant)
+        scale = float(np.max(np.abs(tau[capability.model.dof_index]) / np.maximum(capability.model.authority, 1e-12)))
+        held, winner = capability.attains(tau / scale, scale * (1.0 - 1e-9), self._winners.get(failed, 0))
+        if held:                                # in units of authority; the pieces that held first next time
+            self._winners[failed] = winner
+        return held
 
     def heading(self, direction: float, failed: tuple[str, ...] = ()) -> tuple[int, float]:
         """(capability number, limiting wind speed [m/s]) of one heading."""
