@@ -165,3 +165,5 @@ def test_the_report_files_and_summary(report):
     assert f"**{result.summary_line()}**" in summary and "Not verified by DNV" in summary
     assert "| `lpp` | 83.0 | m, osv.m |" in summary and "| loss of switchboard_a | 6 |" in summary
     assert SCOPE in summary and "dp_vessel_dp_l1_table_a8.csv" in summary
+    assert "Power sources: swbd_a 5600 kW, swbd_b 7800 kW; feeds: azimuth_stbd swbd_a 100 %" in summary
+    assert "switchboard_a: azimuth_stbd, tunnel_fwd, swbd_a" in summary

@@ -106,10 +106,12 @@ def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_pa
         "",
         "## Inputs",
         "",
-        f"- Vehicle file `{vehicle_path}`: each thruster's position, type, direction and azimuth range.",
-        f"- Particulars file `{particulars_path}`: the hull (Table A-2), each thruster's Table A-3 row, the "
-        "redundancy groups.",
-        "- Redundancy groups: " + "; ".join(f"{g}: {', '.join(analysis.groups[g])}" for g in groups) + ".",
+        f"- Vehicle file `{vehicle_path}`: each thruster's position, type, direction and azimuth range; the power "
+        "sources, feeds (Table A-5) and redundancy groups.",
+        f"- Particulars file `{particulars_path}`: the hull (Table A-2) and each thruster's Table A-3 row.",
+        *_power_lines(analysis),
+        "- Redundancy groups (lost together): " + "; ".join(f"{g}: {', '.join(analysis.groups[g])}"
+                                                             for g in groups) + ".",
         "",
     ]
     sources = input_sources(particulars_path)
@@ -129,6 +131,16 @@ def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_pa
               "## Files", "", *(f"- `{p.name}`" for p in files), "",
               "## Scope", "", *(f"- {note}" for note in result.notes), ""]
     path.write_text("\n".join(lines))
+
+
+def _power_lines(analysis: Level1) -> list[str]:
+    vehicle = analysis.vehicle
+    if not vehicle.power_sources:
+        return ["- Power sources: none given (each group loses its actuators only)."]
+    feeds = "; ".join(f"{a.name} " + ", ".join(f"{f} {100.0 * s:g} %" for f, s in zip(a.feeds, a.feed_shares))
+                      for a in vehicle.actuators if a.feeds)
+    return ["- Power sources: " + ", ".join(f"{s.name} {s.capacity:g} kW" for s in vehicle.power_sources)
+            + f"; feeds: {feeds}."]
 
 
 def _step(result: Level1Result) -> float:
