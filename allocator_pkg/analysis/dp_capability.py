@@ -24,8 +24,7 @@ method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -33,7 +32,8 @@ import yaml
 
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability import Capability
-from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, level1_loads
+from .dnv_conditions import CONDITIONS, TOP, Condition, condition_at, limit
+from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, current_load, wave_drift_load, wind_load
 from .dnv_thrust import BETA_MISC, ThrusterData, nominal_thrust, ventilation_factor
 from .dnv_zones import Unit, Zone, flushing_zones
 from .dp_particulars import Particulars, particulars_from_mapping
@@ -44,9 +44,8 @@ BOW_SECTOR_DEG = 30.0
 """A and C are the minima within this many degrees of the bow."""
 MAX_STEP_DEG = 10.0
 """The standard asks for headings this far apart or closer."""
-BISECTION_STEPS = 14
-"""Halvings of the interval between two capability numbers for the limiting wind speed."""
 INTACT = "intact"
+LOAD_SOURCES = ("wind", "current", "waves")
 WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
                 "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters")
@@ -63,45 +62,6 @@ READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed sha
 SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
          f"unclear: {READINGS}. Not verified by DNV.")
 """What every output says about itself."""
-
-
-@dataclass(frozen=True)
-class Condition:
-    """One environmental condition: wind [m/s], Hs [m], Tp [s], current [m/s]."""
-
-    wind: float
-    hs: float
-    tp: float
-    current: float
-
-
-CONDITIONS = (
-    Condition(0.0, 0.0, 0.0, 0.0),
-    Condition(1.5, 0.1, 3.5, 0.25),
-    Condition(3.4, 0.4, 4.5, 0.50),
-    Condition(5.4, 0.8, 5.5, 0.75),
-    Condition(7.9, 1.3, 6.5, 0.75),
-    Condition(10.7, 2.1, 7.5, 0.75),
-    Condition(13.8, 3.1, 8.5, 0.75),
-    Condition(17.1, 4.2, 9.0, 0.75),
-    Condition(20.7, 5.7, 10.0, 0.75),
-    Condition(24.4, 7.4, 10.5, 0.75),
-    Condition(28.4, 9.5, 11.5, 0.75),
-    Condition(32.6, 12.1, 12.0, 0.75),
-)
-"""The conditions of DP capability numbers 0 to 11 (index = number)."""
-TOP = len(CONDITIONS) - 1
-
-
-def condition_at(level: float) -> Condition:
-    """The condition at a fractional capability number in [0, 11], each quantity linear between
-    the two numbers around it."""
-    if not 0.0 <= level <= TOP:
-        raise ValueError(f"a capability number between 0 and {TOP}, not {level}")
-    low = min(math.floor(level), TOP - 1)
-    t = level - low
-    a, b = CONDITIONS[low], CONDITIONS[low + 1]
-    return Condition(*((1.0 - t) * getattr(a, f.name) + t * getattr(b, f.name) for f in fields(Condition)))
 
 
 def load_particulars(path: str | Path) -> Particulars:
@@ -126,6 +86,10 @@ class Level1Result:
     numbers: dict[str, np.ndarray]
     wind_limits: dict[str, np.ndarray]
     notes: tuple[str, ...]
+    level: int = 1
+    """The standard's level of the analysis (1, or 2 with the vessel's own data)."""
+    scope: str = SCOPE
+    """What is per the standard and what is not, for every output."""
 
     def summary(self) -> tuple[int, int, int, int]:
         """(A, B, C, D): intact minimum within +-30 deg of the bow and over every heading, the
@@ -133,7 +97,7 @@ class Level1Result:
         return level1_summary(self.headings_deg, self.numbers[INTACT], self.numbers[WORST])
 
     def summary_line(self) -> str:
-        return "DP capability-L1({}, {}, {}, {})".format(*self.summary())
+        return f"DP capability-L{self.level}" + "({}, {}, {}, {})".format(*self.summary())
 
     def rows(self) -> list[tuple[str, float, int, float]]:
         """(case, heading_deg, capability_number, wind_speed_limit) for every case and heading."""
@@ -165,6 +129,9 @@ class _Actuator:
 class Level1:
     """The Level 1 balance of one vehicle and its particulars."""
 
+    level = 1
+    scope = SCOPE
+
     def __init__(self, vehicle: Vehicle, particulars: Particulars, method: str | None = None):
         self.vehicle = vehicle
         self.particulars = particulars
@@ -182,8 +149,16 @@ class Level1:
 
     def loads(self, condition: Condition, direction: float) -> LoadComponents:
         """The unfactored wind, current and wave loads [X, Y, N] (body frame) from ``direction``."""
-        return level1_loads(self.particulars.hull, self.particulars.frame, condition.wind, condition.current,
-                            condition.hs, condition.tp, direction)
+        loads = self.standard_loads(condition, direction)
+        return LoadComponents(*(self.particulars.frame.load(loads[source]) for source in LOAD_SOURCES))
+
+    def standard_loads(self, condition: Condition, direction: float) -> dict[str, np.ndarray]:
+        """The unfactored [Fx, Fy, Mz] of wind [3.5], current [3.6] and waves [3.7] in the
+        standard's frame [2.8.2] [N, N m]."""
+        hull = self.particulars.hull
+        return {"wind": wind_load(hull, condition.wind, direction),
+                "current": current_load(hull, condition.current, direction),
+                "waves": wave_drift_load(hull, condition.hs, condition.tp, direction)}
 
     def power_share(self, name: str, lost: tuple[str, ...] = ()) -> float:
         """The share of its P_B a thruster keeps when the sources in ``lost`` are: 1 less the
@@ -297,12 +272,12 @@ class Level1:
         notes = self.notes()
         if step_deg > MAX_STEP_DEG:
             notes.append(f"Headings every {step_deg:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
-        return Level1Result(headings, numbers, winds, tuple(notes))
+        return Level1Result(headings, numbers, winds, tuple(notes), self.level, self.scope)
 
     def notes(self) -> list[str]:
         """What the numbers rest on, for the output."""
         notes = [
-            SCOPE,
+            self.scope,
             f"Method {self.method}. The vehicle file gives each thruster's position, type and azimuth range; its "
             "thrust limits and forbidden sectors are replaced by the standard's thrust and [3.11.3] zones (a zone "
             "lifts when the thruster it protects has failed).",
@@ -370,21 +345,6 @@ def _actuators(vehicle: Vehicle, particulars: Particulars) -> dict[str, _Actuato
             angle=math.atan2(actuator.direction[1], actuator.direction[0]),
             forward=nominal_thrust(data), reverse=nominal_thrust(data, reverse=True) if reversible else 0.0)
     return result
-
-def limit(balanced: Callable[[float], bool]) -> tuple[int, float]:
-    """(capability number, limiting wind speed) from a test of a fractional number: the highest
-    number held with every lower one, then bisection toward the next."""
-    number = 0
-    while number < TOP and balanced(number + 1):
-        number += 1
-    if number == TOP:
-        return number, CONDITIONS[TOP].wind
-    low, high = float(number), float(number + 1)
-    for _ in range(BISECTION_STEPS):
-        middle = 0.5 * (low + high)
-        low, high = (middle, high) if balanced(middle) else (low, middle)
-    return number, condition_at(low).wind
-
 
 def level1(vehicle: Vehicle, particulars: Particulars, step_deg: float = 10.0,
            method: str | None = None) -> Level1Result:

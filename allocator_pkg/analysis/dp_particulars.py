@@ -14,6 +14,9 @@ Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, fo
 - ``thrusters``: per actuator of the vehicle file, by its name, its Table A-3 row
   (:class:`~.dnv_thrust.ThrusterData`: ``kind``, ``diameter`` [m], ``power`` P_B [kW], ``pitch``,
   ``ducted``, ``contra_rotating``, ``permanent_magnet``, ``tunnel_inlet``);
+- ``level2`` (optional): the vessel's own data for Level 2, ``wind_coefficients`` and
+  ``current_coefficients`` (:class:`~.dnv_coefficients.CoefficientTable`: ``heading_deg``,
+  ``cx``, ``cy``, ``cn``);
 - ``name``. The redundancy groups are the vehicle file's (``redundancy_groups.*``, with
   ``power.*`` and each thruster's ``feeds``): a ``failure_groups`` key is refused, saying so.
 """
@@ -25,6 +28,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, fields
 from typing import Any
 
+from .dnv_coefficients import CoefficientTable, coefficient_table
 from .dnv_loads import BodyFrame, DnvHull
 from .dnv_thrust import ThrusterData
 from .environment_loads import LoadCoefficients, VesselParticulars
@@ -48,6 +52,10 @@ class Particulars:
     frame: BodyFrame
     thrusters: Mapping[str, ThrusterData]
     name: str = ""
+    wind_coefficients: CoefficientTable | None = None
+    """Level 2: the vessel's wind coefficients over heading (None: [3.5])."""
+    current_coefficients: CoefficientTable | None = None
+    """Level 2: the vessel's current coefficients over heading (None: [3.6])."""
 
 
 def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particulars:
@@ -56,7 +64,7 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
         raise ValueError("a particulars file is a mapping of keys to values")
     if "failure_groups" in data:
         raise ValueError(MOVED_GROUPS)
-    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name"}
+    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ValueError(f"unknown key(s): {', '.join(unknown)}; known: {', '.join(sorted(known))}")
@@ -77,7 +85,7 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
                    current_area_lateral=numbers["current_area_lateral"],
                    current_centre_x=frame.standard_x(vessel.underwater_centre_x))
     return Particulars(vessel=vessel, hull=hull, frame=frame, thrusters=_thrusters(data["thrusters"]),
-                       name=str(data.get("name", name)))
+                       name=str(data.get("name", name)), **_level2(data.get("level2")))
 
 
 def _number(data: Mapping[str, Any], key: str, prefix: str = "") -> float:
@@ -113,3 +121,12 @@ def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
             raise ValueError(f"thrusters.{name}: missing key(s) {', '.join(missing)}")
         result[str(name)] = ThrusterData(name=str(name), **row)
     return result
+
+
+def _level2(level2: Any) -> dict[str, CoefficientTable]:
+    if level2 is None:
+        return {}
+    keys = ("wind_coefficients", "current_coefficients")
+    if not isinstance(level2, Mapping) or set(level2) - set(keys):
+        raise ValueError(f"level2: a mapping with {' and/or '.join(keys)}")
+    return {key: coefficient_table(level2[key], f"level2.{key}") for key in keys if key in level2}

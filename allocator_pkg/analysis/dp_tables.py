@@ -24,27 +24,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .dnv_loads import current_load, wave_drift_load, wind_load
-from .dp_capability import CONDITIONS, DYNAMIC_FACTOR, INTACT, TOP, WORST, Condition, Level1, Level1Result
+from .dp_capability import CONDITIONS, DYNAMIC_FACTOR, INTACT, LOAD_SOURCES, TOP, WORST, Level1, Level1Result
 
 KILO = 1e3
-SOURCES = ("wind", "current", "waves")
 A1_FIXED = ("heading_deg", INTACT)
 A6_COLUMNS = ("case", "thruster", "from_deg", "to_deg", "flushing")
 A7_COLUMNS = ("case", "heading_deg", "capability_number", "wind_speed_limit",
-              *(f"{source}_{quantity}" for source in SOURCES for quantity in ("fx_kn", "fy_kn", "mz_knm")))
+              *(f"{source}_{quantity}" for source in LOAD_SOURCES for quantity in ("fx_kn", "fy_kn", "mz_knm")))
 A8_COLUMNS = ("case", "heading_deg", "capability_number", "thruster", "thrust_kn", "angle_deg", "available_kn",
               "utilisation_pct")
 LOAD_COLUMNS = ("heading_deg", "capability_number", "wind_speed", "hs", "tp", "current_speed", "source", "fx_kn",
                 "fy_kn", "mz_knm")
-
-
-def standard_loads(analysis: Level1, condition: Condition, direction: float) -> dict[str, np.ndarray]:
-    """The unfactored [Fx, Fy, Mz] of each source in the standard's frame [2.8.2] [N, N m]."""
-    hull = analysis.particulars.hull
-    return {"wind": wind_load(hull, condition.wind, direction),
-            "current": current_load(hull, condition.current, direction),
-            "waves": wave_drift_load(hull, condition.hs, condition.tp, direction)}
 
 
 def groups_of(result: Level1Result) -> list[str]:
@@ -86,9 +76,9 @@ def table_a7(analysis: Level1, result: Level1Result) -> list[tuple]:
     for case in result.numbers:
         for k, heading in enumerate(result.headings_deg):
             number = int(result.numbers[case][k])
-            loads = standard_loads(analysis, CONDITIONS[number], math.radians(heading))
+            loads = analysis.standard_loads(CONDITIONS[number], math.radians(heading))
             rows.append((case, float(heading), number, float(result.wind_limits[case][k]),
-                         *(float(value) / KILO for source in SOURCES for value in loads[source])))
+                         *(float(value) / KILO for source in LOAD_SOURCES for value in loads[source])))
     return rows
 
 
@@ -99,7 +89,7 @@ def load_table(analysis: Level1, result: Level1Result) -> list[tuple]:
     for heading in result.headings_deg:
         for number in range(1, TOP + 1):
             condition = CONDITIONS[number]
-            loads = standard_loads(analysis, condition, math.radians(heading))
+            loads = analysis.standard_loads(condition, math.radians(heading))
             loads[f"total x {DYNAMIC_FACTOR:g}"] = DYNAMIC_FACTOR * sum(loads.values())
             rows.extend((float(heading), number, condition.wind, condition.hs, condition.tp, condition.current,
                          source, *(float(v) / KILO for v in values)) for source, values in loads.items())

@@ -1,8 +1,10 @@
-"""DP capability Level 1 report (``allocator-capability --dnv-level1``): plots, tables, summary.
+"""DP capability report (``allocator-capability --dnv-level1`` / ``--dnv-level2``): plots, tables,
+summary.
 
-:func:`write_level1` reads a vehicle params file and a particulars file, runs
-:class:`~allocator_pkg.analysis.dp_capability.Level1` and writes, in the output folder, files named
-``<vehicle>_dp_l1...``:
+:func:`write_report` reads a vehicle params file and a particulars file, runs
+:class:`~allocator_pkg.analysis.dp_capability.Level1` (or
+:class:`~allocator_pkg.analysis.dp_level2.Level2`) and writes, in the output folder, files named
+``<vehicle>_dp_l1...`` (``_dp_l2...``):
 
 - ``_number.png`` / ``_wind.png``: intact and worst single failure (Figure A-1), capability number
   and limiting wind speed [m/s], a marker per heading in the colour of the worst group;
@@ -13,10 +15,11 @@
 - ``_table_a1.csv``, ``_table_a6.csv``, ``_table_a7.csv``, ``_table_a8.csv``, ``_loads.csv``
   (:mod:`.dp_report`);
 - ``.txt``: the DP capability-L1(A, B, C, D) line and what the numbers rest on;
-- ``_report.md``: the one-page summary.
+- ``_report.md``: the one-page summary;
+- at Level 2, ``_vs_l1_number.png`` / ``_vs_l1_wind.png``: Level 1 and Level 2 on one.
 
-Every one says what is per DNV-ST-0111 Level 1 and what is not yet, and that it is not verified by
-DNV (:data:`~allocator_pkg.analysis.dp_capability.SCOPE`).
+Every one says what is per DNV-ST-0111 and what is not yet, and that it is not verified by DNV
+(:data:`~allocator_pkg.analysis.dp_capability.SCOPE`, :data:`~allocator_pkg.analysis.dp_level2.SCOPE_L2`).
 """
 
 from __future__ import annotations
@@ -24,10 +27,11 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-from ..analysis.dp_capability import INTACT, SCOPE, WORST, Level1, Level1Result, load_particulars
+from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result, load_particulars
+from ..analysis.dp_level2 import Level2
 from ..analysis.dp_tables import groups_of
 from ..configuration.parameters import load_vehicle
-from .dp_plots import Outline, polar_plot
+from .dp_plots import Outline, comparison_plot, polar_plot
 from .dp_report import write_summary, write_tables
 
 CSV_COLUMNS = ("case", "heading_deg", "capability_number", "wind_speed_limit")
@@ -36,12 +40,19 @@ CSV_COLUMNS = ("case", "heading_deg", "capability_number", "wind_speed_limit")
 def write_level1(vehicle_path: str | Path, particulars_path: str | Path, out: str | Path, step_deg: float = 10.0,
                  method: str | None = None) -> tuple[Level1Result, list[Path]]:
     """Run Level 1 on the two files and write the report; (result, paths written)."""
+    return write_report(vehicle_path, particulars_path, out, step_deg, method, level=1)
+
+
+def write_report(vehicle_path: str | Path, particulars_path: str | Path, out: str | Path, step_deg: float = 10.0,
+                 method: str | None = None, level: int = 1) -> tuple[Level1Result, list[Path]]:
+    """Run Level 1 or 2 on the two files and write the report; (result, paths written)."""
     vehicle_path, particulars_path = Path(vehicle_path), Path(particulars_path)
-    analysis = Level1(load_vehicle(vehicle_path), load_particulars(particulars_path), method)
+    vehicle, particulars = load_vehicle(vehicle_path), load_particulars(particulars_path)
+    analysis = (Level1 if level == 1 else Level2)(vehicle, particulars, method)
     result = analysis.run(step_deg)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    stem = f"{vehicle_path.stem}_dp_l1"
+    stem = f"{vehicle_path.stem}_dp_l{level}"
     title = analysis.particulars.name or vehicle_path.stem
     outline = Outline.of(analysis)
     paths = []
@@ -54,6 +65,11 @@ def write_level1(vehicle_path: str | Path, particulars_path: str | Path, out: st
             path = out / f"{stem}{suffix}_{quantity}.png"
             polar_plot(path, result, title, caption, wind, cases, outline, failed, mark)
             paths.append(path)
+    if level == 2:
+        level1_result = Level1(vehicle, particulars, method).run(step_deg)
+        for wind, quantity in ((False, "number"), (True, "wind")):
+            paths.append(out / f"{stem}_vs_l1_{quantity}.png")
+            comparison_plot(paths[-1], level1_result, result, title, wind, outline)
     paths.append(out / f"{stem}.csv")
     write_csv(paths[-1], result)
     paths += write_tables(out, stem, analysis, result)
@@ -66,7 +82,7 @@ def write_level1(vehicle_path: str | Path, particulars_path: str | Path, out: st
 
 def write_csv(path: Path, result: Level1Result) -> None:
     with path.open("w", newline="") as handle:
-        handle.write(f"# {SCOPE}\n")
+        handle.write(f"# {result.scope}\n")
         writer = csv.writer(handle)
         writer.writerow(CSV_COLUMNS)
         for case, heading, number, wind in result.rows():

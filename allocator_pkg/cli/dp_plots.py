@@ -15,10 +15,15 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.dp_capability import CONDITIONS, INTACT, NOT_YET, TOP, WORST, Level1, Level1Result
+from ..analysis.dp_level2 import NOT_YET_L2
 from ..analysis.dp_tables import groups_of, worst_groups
 
-FOOTER = (f"Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones.\nNot yet: {NOT_YET}.\n"
-          "Unclear clauses read as the report says. Not verified by DNV.")
+FOOTERS = {
+    1: f"Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones.\nNot yet: {NOT_YET}.\n"
+       "Unclear clauses read as the report says. Not verified by DNV.",
+    2: "DNV-ST-0111 Level 2 as read here (no Level 2 text in the transcription used): the vessel's coefficients, "
+       f"thrust limits and sectors.\nNot yet: {NOT_YET_L2}.\nNot verified by DNV.",
+}
 CASE_STYLE = {INTACT: dict(color="tab:blue", linewidth=2.4), WORST: dict(color="tab:red", linewidth=1.8,
                                                                          linestyle="--")}
 GROUP_COLOURS = ("tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan")
@@ -103,8 +108,30 @@ def polar_figure(result: Level1Result, title: str, caption: str, wind: bool, cas
     draw_outline(axes, outline, failed)
     figure.tight_layout(rect=(0.0, 0.12, 1.0, 1.0))
     figure.legend(loc="lower center", bbox_to_anchor=(0.5, 0.065), ncol=4, fontsize=8.5, frameon=False)
-    figure.text(0.5, 0.01, FOOTER, ha="center", va="bottom", fontsize=7, wrap=True)
+    figure.text(0.5, 0.01, FOOTERS[result.level], ha="center", va="bottom", fontsize=7, wrap=True)
     return figure
+
+
+def comparison_plot(path: Path, level1: Level1Result, level2: Level1Result, title: str, wind: bool,
+                    outline: Outline) -> None:
+    """Level 1 and Level 2, intact and worst single failure, on one polar figure."""
+    import matplotlib.pyplot as plt
+
+    figure = polar_figure(level2, title, f"Level 1 ({level1.summary_line()}) against Level 2", wind,
+                          [INTACT, WORST], outline)
+    axes = figure.axes[0]
+    angles = np.radians(np.append(level1.headings_deg, level1.headings_deg[0]))
+    values = level1.wind_limits if wind else level1.numbers
+    for line in axes.get_lines():
+        line.set_label(f"Level 2 {line.get_label()}")
+    for case, colour in ((INTACT, "tab:cyan"), (WORST, "tab:orange")):
+        axes.plot(angles, np.append(values[case], values[case][0]), color=colour, linewidth=1.4, linestyle=":",
+                  label=f"Level 1 {case}")
+    for legend in figure.legends:
+        legend.remove()
+    figure.legend(loc="lower center", bbox_to_anchor=(0.5, 0.065), ncol=4, fontsize=8.5, frameon=False)
+    figure.savefig(path, dpi=100)
+    plt.close(figure)
 
 
 def draw_outline(axes, outline: Outline, failed: tuple[str, ...]) -> None:

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.dp_capability import INTACT, SCOPE, WORST, Level1, Level1Result
+from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result
 from ..analysis.dp_tables import (
     A6_COLUMNS,
     A7_COLUMNS,
@@ -33,8 +33,9 @@ TABLES = {
     "table_a1": "Table A-1: capability number per heading (deg, environment from; 0 ahead, 90 from starboard) "
                 "intact, after the loss of each redundancy group, combined (the lowest over the groups) and "
                 "the group whose loss is worst there",
-    "table_a6": "Table A-6: forbidden zones [3.11.3] in force per case; thrust angles [deg] in the body frame "
-                "(0 forward, 90 to starboard), the thruster whose race the zone protects",
+    "table_a6": "Table A-6: forbidden zones in force per case ([3.11.3] at Level 1, the vehicle file's sectors at "
+                "Level 2); thrust angles [deg] in the body frame (0 forward, 90 to starboard), the thruster whose "
+                "race the zone protects",
     "table_a7": "Table A-7: per case and heading the capability number, the limiting wind speed [m/s] and the "
                 "unfactored wind, current and wave loads of the number's Table 2-1 condition in the frame of "
                 "[2.8.2] (x forward, y to port; Fx, Fy [kN]; Mz [kN m] about Lpp/2, bow to port positive)",
@@ -53,9 +54,9 @@ def _cell(value) -> str:
     return str(value)
 
 
-def write_table(path: Path, what: str, columns, rows) -> None:
+def write_table(path: Path, what: str, scope: str, columns, rows) -> None:
     with path.open("w", newline="") as handle:
-        handle.write(f"# {what}\n# {SCOPE}\n")
+        handle.write(f"# {what}\n# {scope}\n")
         writer = csv.writer(handle)
         writer.writerow(columns)
         writer.writerows([_cell(v) for v in row] for row in rows)
@@ -71,7 +72,7 @@ def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result) -
     paths = []
     for key, (columns, rows) in contents.items():
         path = out / f"{stem}_{key}.csv"
-        write_table(path, TABLES[key], columns, rows)
+        write_table(path, TABLES[key], result.scope, columns, rows)
         paths.append(path)
     return paths
 
@@ -96,9 +97,11 @@ def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_pa
     a, b, c, d = result.summary()
     groups = groups_of(result)
     lines = [
-        f"# DP capability Level 1: {title}",
+        f"# DP capability Level {result.level}: {title}",
         "",
-        f"**{result.summary_line()}** per DNV-ST-0111 (edition December 2021) Level 1. **Not verified by DNV.**",
+        f"**{result.summary_line()}** per DNV-ST-0111 (edition December 2021) Level {result.level}"
+        + (" as read here (the transcription used has no Level 2 text)" if result.level == 2 else "")
+        + ". **Not verified by DNV.**",
         "",
         f"- A = {a}: intact, lowest within +-30 deg of the bow; B = {b}: intact, lowest over 360 deg "
         f"(at {_headings(result, INTACT, b)} deg).",
