@@ -31,7 +31,7 @@ help:
 	@echo "make lint    ruff"
 	@echo "make docs    regenerate docs/configuration.md (schema), docs/faults.md, docs/thrust_markers.png, docs/priorities.png"
 	@echo "make capability  capability plots of every shipped vehicle (and of each method that differs) into docs/capability/"
-	@echo "make dp-capability  DNV-ST-0111 Level 1 DP capability of every vessel in config/particulars/ into docs/dp_capability/"
+	@echo "make dp-capability  DNV-ST-0111 Level 1 DP capability of every vessel in config/particulars/, Level 2 of dp_vessel, into docs/dp_capability/"
 	@echo "make bench   solver and node benchmarks into bench/results/latest.json and docs/performance.md"
 	@echo "make load    the node under a 10 kHz wrench flood and a busy core, LOAD_SECONDS=$(LOAD_SECONDS) per trigger"
 	@echo "make soak    the node for SOAK_MINUTES=$(SOAK_MINUTES) at 500 Hz under random faults and changes"
@@ -103,6 +103,7 @@ capability: setup
 .PHONY: dp-capability
 dp-capability: setup
 	@for particulars in config/particulars/*.yaml; do $(VENV)/bin/allocator-capability --dnv-level1 config/$$(basename $$particulars) $$particulars --out docs/dp_capability || exit 1; done
+	@$(VENV)/bin/allocator-capability --dnv-level2 config/dp_vessel.yaml config/particulars/dp_vessel.yaml --out docs/dp_capability
 
 BENCH_ARGS ?=
 bench: setup

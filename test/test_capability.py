@@ -159,3 +159,16 @@ def test_reach_gives_the_wrench_there_and_follows_speed_and_voltage():
     assert bluerov.reach(heave)[0] == pytest.approx(4 * 51.5, rel=1e-6)     # the nominal 16 V
     assert bluerov.reach(heave, faults={"thruster_5": FaultMode.FAILED}, voltage=12.0)[0] == \
         pytest.approx(2 * 36.4, rel=1e-6)                                   # a diagonal pair: no roll or pitch
+
+
+@pytest.mark.parametrize("method", ["qp", "lp", "pseudoinverse"])
+def test_attains_answers_as_reach_whichever_pieces_it_tries_first(method):
+    """dp_vessel's azimuths have forbidden sectors: two convex pieces each, four combinations."""
+    capability = Capability(load_vehicle(ROOT / "config" / "dp_vessel.yaml"), method, speed=0.0)
+    for tau in ([3e5, -2e5, 0, 0, 0, 4e6], [-1e5, 4e5, 0, 0, 0, -9e6], [0, 6e5, 0, 0, 0, 0]):
+        reach = capability.reach(tau)[0]
+        for multiple in (0.5 * reach, reach * (1 - 1e-9), reach * (1 + 1e-6), 2.0 * reach):
+            for first in (0, 3, 7):
+                held, winner = capability.attains(tau, multiple, first)
+                assert held == (reach >= multiple), (tau, multiple, first)
+                assert (winner >= 0) == (held and method != "pseudoinverse")

@@ -10,9 +10,9 @@ import pytest
 from allocator_pkg.analysis.dnv_loads import (
     BodyFrame,
     DnvHull,
+    LoadComponents,
     current_load,
     fold,
-    level1_loads,
     period_factor,
     wave_drift_load,
     wind_load,
@@ -112,7 +112,10 @@ def test_body_frame_conversion():
     assert frame.load(np.array([1.0, 2.0, 3.0])) == pytest.approx([1.0, -2.0, 17.0])
     assert frame.standard_x(-41.5) == pytest.approx(-31.5) and frame.height(4.5) == pytest.approx(0.5)
     # Wind from starboard pushes to port: Y < 0 in FRD, as in the standard's Fy > 0.
-    components = level1_loads(HULL, BodyFrame(0.0, 6.0), 10.0, 1.0, 2.0, 3.5, DEG(90))
+    frame = BodyFrame(0.0, 6.0)
+    components = LoadComponents(wind=frame.load(wind_load(HULL, 10.0, DEG(90))),
+                                current=frame.load(current_load(HULL, 1.0, DEG(90))),
+                                waves=frame.load(wave_drift_load(HULL, 2.0, 3.5, DEG(90))))
     assert components.wind == pytest.approx([0.0, -44136.0, -220680.0], abs=1e-6)
     assert components.total == pytest.approx(components.wind + components.current + components.waves)
 

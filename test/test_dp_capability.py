@@ -53,9 +53,24 @@ TUNNEL = {"kind": "tunnel", "diameter": 0.3, "power": 0.13, "tunnel_inlet": "bro
 HULL = {"lpp": 2.0, "beam": 0.8, "draught": 0.3, "wind_area_frontal": 0.4, "wind_area_lateral": 1.2,
         "body_origin_x": 0.0, "body_origin_height": 0.3, "los": 2.0, "los_centre_x": 0.0, "bow_angle": 25.0,
         "waterplane_area_aft": 0.7, "current_area_lateral": 0.5}
-SMALL = particulars_from_mapping({**HULL, "thrusters": dict.fromkeys(BOX_NAMES, TUNNEL),
-                                  "failure_groups": {"surge_port": ["surge_port"], "sway_fwd": ["sway_fwd"]}})
-BOX_LEVEL1 = Level1(vehicle_from_parameters(BOX), SMALL)
+SMALL = particulars_from_mapping({**HULL, "thrusters": dict.fromkeys(BOX_NAMES, TUNNEL)})
+
+
+def groups(**members: list[str]) -> dict:
+    """The vehicle keys of redundancy groups that lose actuators."""
+    return {"redundancy_groups.names": list(members),
+            **{f"redundancy_groups.{name}.actuators": lost for name, lost in members.items()}}
+
+
+BOX_LEVEL1 = Level1(vehicle_from_parameters({**BOX, **groups(surge_port=["surge_port"], sway_fwd=["sway_fwd"])}),
+                    SMALL)
+# Two buses: sway_aft on bus_a, surge_stbd and sway_fwd on bus_b, surge_port split 50/50; losing bus_a
+# fails sway_aft and leaves surge_port half its P_B.
+SPLIT = {**BOX, "power.sources": ["bus_a", "bus_b"], "power.bus_a.capacity": 1.0, "power.bus_b.capacity": 1.0,
+         "actuators.surge_port.feeds": ["bus_a", "bus_b"], "actuators.surge_port.feed_shares": [0.5, 0.5],
+         "actuators.sway_aft.feeds": ["bus_a"], "actuators.surge_stbd.feeds": ["bus_b"],
+         "actuators.sway_fwd.feeds": ["bus_b"], "redundancy_groups.names": ["bus_a"],
+         "redundancy_groups.bus_a.sources": ["bus_a"], "redundancy_groups.bus_a.actuators": ["sway_aft"]}
 
 
 def test_conditions_and_their_interpolation():
@@ -120,8 +135,7 @@ def test_a_condition_held_with_failures_is_held_intact(level, heading, failed):
 
 
 def test_every_thruster_failed_gives_zero():
-    everything = replace(SMALL, failure_groups={"all": tuple(BOX_NAMES)})
-    result = level1(vehicle_from_parameters(BOX), everything, 30.0)
+    result = level1(vehicle_from_parameters({**BOX, **groups(all=BOX_NAMES)}), SMALL, 30.0)
     assert np.all(result.numbers["all"] == 0) and np.all(result.wind_limits["all"] == 0.0)
     assert result.summary()[2:] == (0, 0)
 
@@ -208,7 +222,8 @@ def test_a_load_in_an_uncontrolled_dof_is_not_held():
     ({**HULL, "coefficients": {"wind_drag": 1.0}}, "coefficients: unknown key.*wind_drag"),
     ({**HULL, "lenght": 3.0}, "unknown key.*lenght"),
     ({**HULL, "thrust_loss_factor": 0.9}, "unknown key.*thrust_loss_factor"),
-    ({**HULL, "failure_groups": {"a": []}}, "failure_groups"),
+    ({**HULL, "failure_groups": {"a": ["b"]}}, r"failure_groups: the redundancy groups are in the vehicle params "
+                                               r"file: redundancy_groups\.names"),
     ({**HULL, "thrusters": {"a": {"kind": "tunnel", "diameter": 1.0}}}, r"thrusters\.a: missing key.*power"),
     ({**HULL, "thrusters": {"a": {**TUNNEL, "rpm": 100}}}, r"thrusters\.a: unknown key.*rpm"),
     ({**HULL, "thrusters": {"a": {**TUNNEL, "kind": "water_jet"}}}, r"thrusters\.a\.kind: water jets"),
@@ -243,10 +258,47 @@ def test_shipped_particulars_load():
     assert load_particulars(DP_PARTICULARS).vessel.coefficients == LoadCoefficients()
 
 
-def test_failure_group_naming_no_actuator_is_refused():
-    bad = replace(SMALL, failure_groups={"bow": ("tunnel_bow",)})
-    with pytest.raises(ValueError, match=r"failure_groups\.bow: no actuator named tunnel_bow"):
-        Level1(vehicle_from_parameters(BOX), bad)
+def test_groups_come_from_the_vehicle_file_without_them_each_actuator_alone():
+    assert BOX_LEVEL1.groups == {"surge_port": ("surge_port",), "sway_fwd": ("sway_fwd",)}
+    assert Level1(vehicle_from_parameters(BOX), SMALL).groups == {name: (name,) for name in BOX_NAMES}
+    split = Level1(vehicle_from_parameters(SPLIT), SMALL)
+    assert split.groups == {"bus_a": ("sway_aft", "bus_a")}
+
+
+def test_a_split_fed_thruster_keeps_its_remaining_share():
+    """[3.12] as transcribed: 1000 kW open azimuth of D 2 m fed 50/50 keeps 500 kW after one
+    source is lost: T_nominal 120.99 kN becomes 120.99 0.5^(2/3) = 76.22 kN."""
+    azimuth = ThrusterData("az", kind="azimuth", diameter=2.0, power=1000.0)
+    assert nominal_thrust(azimuth) == pytest.approx(120.99e3, abs=10.0)
+    assert nominal_thrust(replace(azimuth, power=500.0)) == pytest.approx(76.22e3, abs=10.0)
+    split = Level1(vehicle_from_parameters(SPLIT), SMALL)
+    assert split.power_share("surge_port", ("bus_a",)) == 0.5 and split.power_share("surge_stbd", ("bus_a",)) == 1.0
+    assert split.power_share("surge_port") == 1.0
+    condition, direction = CONDITIONS[5], math.radians(60.0)
+    half = replace(SMALL.thrusters["surge_port"], power=0.5 * SMALL.thrusters["surge_port"].power)
+    unit = split.actuators["surge_port"]
+    expected = 0.9 * nominal_thrust(half) * ventilation_factor(half, unit.x, unit.submergence, 2.0, condition.hs,
+                                                                condition.tp, direction, False)
+    low, high = split.thrust_range("surge_port", condition, direction, split.groups["bus_a"])
+    assert high == pytest.approx(expected, rel=1e-12) and low == pytest.approx(-expected, rel=1e-12)
+    intact = split.thrust_range("surge_port", condition, direction)[1]
+    assert 0.5 ** (2 / 3) * intact < high < intact               # beta_vent rises as T_nominal falls
+    variant = split.variant(condition, direction, split.groups["bus_a"])
+    assert variant.names == ("surge_port", "surge_stbd", "sway_fwd") and variant.actuators[0].thrust_max == high
+
+
+def test_feeds_do_not_change_the_intact_numbers_and_a_derated_group_holds_less():
+    split = Level1(vehicle_from_parameters(SPLIT), SMALL).run(30.0)
+    plain = Level1(vehicle_from_parameters({**BOX, **groups(bus_a=["sway_aft"])}), SMALL).run(30.0)
+    assert np.array_equal(split.numbers["intact"], plain.numbers["intact"])
+    assert np.all(split.wind_limits["bus_a"] <= plain.wind_limits["bus_a"])
+    assert np.any(split.wind_limits["bus_a"] < plain.wind_limits["bus_a"])
+
+
+def test_a_thruster_left_without_any_feed_is_refused():
+    split = Level1(vehicle_from_parameters(SPLIT), SMALL)
+    with pytest.raises(ValueError, match="surge_stbd: every feed lost"):
+        split.thrust_range("surge_stbd", CONDITIONS[3], 0.0, ("bus_b",))
 
 
 # -- the command line -------------------------------------------------------------------------
@@ -301,3 +353,16 @@ def test_cli_refuses_a_bad_particulars_file(tmp_path, capsys):
     bad.write_text("lpp: 80\nbeam: 20\n")
     assert main(["--dnv-level1", str(DP_VESSEL), str(bad), "--out", str(tmp_path)]) == 2
     assert "missing key(s): draught" in capsys.readouterr().err
+
+
+def test_a_balance_is_the_largest_multiple_at_least_one(dp_level1):
+    """balanced() stops at the first convex pieces that hold, starting with those that held last;
+    the answer is that of the largest multiple over every combination."""
+    for failed in ((), dp_level1.groups["switchboard_a"]):
+        for level, heading in ((3.5, 0.0), (6.0, 70.0), (8.2, 200.0), (9.7, 300.0), (10.5, 30.0)):
+            condition, direction = condition_at(level), math.radians(heading)
+            tau = dp_level1.required(condition, direction)
+            capability = dp_level1.capability(dp_level1.variant(condition, direction, failed))
+            scale = float(np.max(np.abs(tau[capability.model.dof_index]) / capability.model.authority))
+            expected = capability.reach(tau / scale)[0] >= scale * (1.0 - 1e-9)
+            assert dp_level1.balanced(level, direction, failed) == expected, (failed, level, heading)

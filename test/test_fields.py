@@ -7,10 +7,20 @@ import pytest
 
 from allocator_pkg import parse_parameters
 from allocator_pkg.configuration import schema
-from allocator_pkg.configuration.fields import Field, actuator_field, filled, node_field, vehicle_field
+from allocator_pkg.configuration.fields import (
+    Field,
+    actuator_field,
+    filled,
+    group_field,
+    node_field,
+    source_field,
+    vehicle_field,
+)
 from allocator_pkg.vehicle.config import (
     ActuatorConfig,
     CommandMapConfig,
+    PowerSource,
+    RedundancyGroup,
     RotationConfig,
     SolverSettings,
     SurfaceConfig,
@@ -19,21 +29,26 @@ from allocator_pkg.vehicle.config import (
 )
 from allocator_pkg.vehicle.node_settings import NodeSettings
 
-TABLES = ((schema.VEHICLE_KEYS, vehicle_field), (schema.NODE_KEYS, node_field), (schema.ACTUATOR_KEYS, actuator_field))
+TABLES = ((schema.VEHICLE_KEYS, vehicle_field), (schema.NODE_KEYS, node_field), (schema.ACTUATOR_KEYS, actuator_field),
+          (schema.SOURCE_KEYS, source_field), (schema.GROUP_KEYS, group_field))
 STRUCTS = (Vehicle, Weights, SolverSettings, NodeSettings, ActuatorConfig, CommandMapConfig, RotationConfig,
-           SurfaceConfig)
+           SurfaceConfig, PowerSource, RedundancyGroup)
 
-NO_FIELD = {"actuators.names", "link"}
-"""Keys read by hand: the names make Vehicle.actuators, a link is configuration.urdf's."""
+NO_FIELD = {"actuators.names", "redundancy_groups.names", "link"}
+"""Keys read by hand: the names make Vehicle.actuators and Vehicle.redundancy_groups, a link is
+configuration.urdf's."""
 
-NO_KEY = {Vehicle: {"actuators", "weights", "solver"}, ActuatorConfig: {"name", "command", "rotation", "surface"}}
-"""Fields of no key: built from other keys."""
+NO_KEY = {Vehicle: {"actuators", "weights", "solver", "redundancy_groups"},
+          ActuatorConfig: {"name", "command", "rotation", "surface"}, PowerSource: {"name"},
+          RedundancyGroup: {"name"}}
+"""Fields of no key: built from other keys (a source's or group's name is its place in the list)."""
 
 DERIVED = {"dofs", "weights.slack", "priorities", "nominal_voltage", "ros2_control.actuators", "position", "direction",
            "thrust_min", "gain_reverse", "command_min", "command_max", "table_command", "table_thrust", "table_voltage",
-           "forbidden_sectors"}
+           "forbidden_sectors", "power.sources", "feeds", "feed_shares", "sources", "actuators"}
 """Keys whose field the builder derives by hand (an order, a default that depends on other keys,
-a normalised vector, sector pairs); every other key's value is its field's as it stands."""
+a normalised vector, sector pairs, structs or tuples of names); every other key's value is its
+field's as it stands."""
 
 
 def test_every_key_fills_one_field_and_every_field_is_one_key():
@@ -70,6 +85,7 @@ THRUSTER_VALUES = {
     "command_map": "quadratic", "gain": 2.0, "command_deadband": 0.1, "reversed": True, "azimuth_min": -1.0,
     "azimuth_max": 2.0, "azimuth_rate_max": 0.5, "reversible": True, "azimuth_initial": 0.3,
 }
+SOURCE_VALUES = {"capacity": 1500.0}
 SURFACE_VALUES = {
     "type": "fin", "weight": 0.3, "power_coefficient": 0.2, "area": 0.2, "lift_coefficient": 2.5,
     "drag_coefficient": 0.3, "deflection_max": 0.6, "deflection_rate_max": 0.4, "flow": "propeller_wake",
@@ -83,6 +99,8 @@ def test_every_other_key_is_the_value_of_its_field():
                   "actuators.azi.position": [1.0, 0.0, 0.0], "actuators.fin.position": [-1.0, 0.0, 0.0]}
     parameters.update({f"actuators.azi.{key}": value for key, value in THRUSTER_VALUES.items()})
     parameters.update({f"actuators.fin.{key}": value for key, value in SURFACE_VALUES.items()})
+    parameters.update({"power.sources": ["bus"], "actuators.azi.feeds": ["bus"],
+                       **{f"power.bus.{key}": value for key, value in SOURCE_VALUES.items()}})
     vehicle, settings = parse_parameters(parameters)
     azi, fin = vehicle.actuators
     owners = {Vehicle: vehicle, Weights: vehicle.weights, SolverSettings: vehicle.solver, NodeSettings: settings}
@@ -90,7 +108,8 @@ def test_every_other_key_is_the_value_of_its_field():
     given = [(VEHICLE_VALUES, vehicle_field, schema.key_for, owners), (NODE_VALUES, node_field, schema.key_for, owners),
              (THRUSTER_VALUES, actuator_field, per_actuator, {ActuatorConfig: azi, CommandMapConfig: azi.command,
                                                               RotationConfig: azi.rotation}),
-             (SURFACE_VALUES, actuator_field, per_actuator, {ActuatorConfig: fin, SurfaceConfig: fin.surface})]
+             (SURFACE_VALUES, actuator_field, per_actuator, {ActuatorConfig: fin, SurfaceConfig: fin.surface}),
+             (SOURCE_VALUES, source_field, schema.SOURCE_KEY_BY_NAME.get, {PowerSource: vehicle.power_sources[0]})]
     checked = set()
     for values, field_of, key_of, objects in given:
         for name, value in values.items():

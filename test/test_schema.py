@@ -24,12 +24,14 @@ def test_every_actuator_type_has_its_keys():
 def test_read_only_keys():
     read_only = {key.name for key in schema.VEHICLE_KEYS + schema.NODE_KEYS + schema.ACTUATOR_KEYS if key.read_only}
     assert read_only == {"actuators.names", "type", "link", "frame", "base_frame", "wrench_type", "geometry_source",
-                         "robot_description_file", "executor"}
+                         "robot_description_file", "executor", "power.sources", "redundancy_groups.names", "feeds",
+                         "feed_shares"}
+    assert all(key.read_only for key in schema.SOURCE_KEYS + schema.GROUP_KEYS)
 
 
 def test_every_key_says_what_it_accepts():
     """The text of ROS descriptors' additional_constraints: every key has one, dofs and forbidden_sectors too."""
-    for key in schema.VEHICLE_KEYS + schema.NODE_KEYS + schema.ACTUATOR_KEYS:
+    for key in schema.VEHICLE_KEYS + schema.NODE_KEYS + schema.ACTUATOR_KEYS + schema.SOURCE_KEYS + schema.GROUP_KEYS:
         assert key.documented_range(), key.name
     assert "each at most once" in schema.VEHICLE_KEY_BY_NAME["dofs"].documented_range()
     assert "[start, end] pairs" in schema.ACTUATOR_KEY_BY_NAME["forbidden_sectors"].documented_range()

@@ -99,9 +99,16 @@ class Capability:
         of tau ignored; inf for a zero request) at a surge speed and supply voltage (None: the
         analysis' speed, the nominal voltage), and the whole wrench [X, Y, Z, K, M, N] the
         actuators give there (in the uncontrolled DOFs what they give on the way)."""
+        magnitude, force = self.reach_forces(tau, faults, speed, voltage)
+        return magnitude, self.model.t_e @ force
+
+    def reach_forces(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None, speed: float | None = None,
+                     voltage: float | None = None) -> tuple[float, np.ndarray]:
+        """(lambda, f): lambda as :meth:`reach` gives it and the extended forces f (m, the model's
+        columns) that give lambda * tau (zeros for a zero request)."""
         request = np.asarray(tau, dtype=float)[self.model.dof_index]
         if not np.any(request):
-            return math.inf, np.zeros(6)
+            return math.inf, np.zeros(self.model.m)
         faults = FaultSet.of(self.vehicle, faults)
         low, high = static_ranges(self.vehicle, faults, self.speed if speed is None else speed, voltage)
         zero = np.zeros(self.model.n)
@@ -109,7 +116,26 @@ class Capability:
             magnitude, force = self._pseudo_inverse_limit(request, zero, faults, low, high)
         else:
             magnitude, force = self._linear_programme(request, zero, faults, low, high)
-        return magnitude, self.model.t_e @ force
+        return magnitude, force
+
+    def attains(self, tau, multiple: float, first: int = 0) -> tuple[bool, int]:
+        """Whether ``multiple`` (> 0) times tau is attainable, as ``reach(tau)[0] >= multiple``,
+        and the index of the combination of convex pieces that attains it (-1: none, or a method
+        without pieces). Stops at the first combination that does, trying ``first`` before the
+        others: the same answer as :meth:`reach` with fewer linear programmes."""
+        request = np.asarray(tau, dtype=float)[self.model.dof_index]
+        if self.sides is None or not np.any(request):
+            return self.reach(tau)[0] >= multiple, -1
+        faults = FaultSet.of(self.vehicle, None)
+        low, high = static_ranges(self.vehicle, faults, self.speed)
+        combinations = list(itertools.product(*(_pieces(self.vehicle.actuators[i], None, low[i], high[i])
+                                                for i in self.model.rot)))
+        order = sorted(range(len(combinations)), key=lambda k: k != first)          # ``first`` first
+        zero = np.zeros(self.model.n)
+        for k in order:
+            if self._solve(request, zero, low, high, combinations[k], self.sides)[0] >= multiple:
+                return True, k
+        return False, -1
 
     def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
                  faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:

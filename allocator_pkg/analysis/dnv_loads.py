@@ -178,11 +178,3 @@ class LoadComponents:
     @property
     def total(self) -> np.ndarray:
         return self.wind + self.current + self.waves
-
-
-def level1_loads(hull: DnvHull, frame: BodyFrame, wind: float, current: float, hs: float, tp: float,
-                 direction: float) -> LoadComponents:
-    """Wind, current and wave drift from ``direction`` [rad] (collinear [3.3.1]), in the body frame."""
-    return LoadComponents(wind=frame.load(wind_load(hull, wind, direction)),
-                          current=frame.load(current_load(hull, current, direction)),
-                          waves=frame.load(wave_drift_load(hull, hs, tp, direction)))

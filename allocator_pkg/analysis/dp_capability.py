@@ -7,8 +7,9 @@ Table 2-1: :data:`CONDITIONS`) times the dynamic factor :data:`DYNAMIC_FACTOR` [
 balanced by the thrusters. The number of a heading is the highest condition balanced with every
 lower one balanced too; the limiting wind speed the highest wind balanced when the conditions
 between two numbers are interpolated linearly (:func:`condition_at`). This is done intact and
-for each failure group (actuators lost together); the worst single failure is, per heading, the
-lowest over the groups. :meth:`Level1Result.summary` gives DP capability-L1(A, B, C, D).
+for each redundancy group of the vehicle file (actuators and power sources lost together; a
+thruster fed in part by a lost source keeps its remaining share of P_B); the worst single
+failure is, per heading, the lowest over the groups. :meth:`Level1Result.summary` gives DP capability-L1(A, B, C, D).
 
 Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's thrust from its
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
@@ -23,8 +24,7 @@ method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -32,7 +32,8 @@ import yaml
 
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability import Capability
-from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, level1_loads
+from .dnv_conditions import CONDITIONS, TOP, Condition, condition_at, limit
+from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, current_load, wave_drift_load, wind_load
 from .dnv_thrust import BETA_MISC, ThrusterData, nominal_thrust, ventilation_factor
 from .dnv_zones import Unit, Zone, flushing_zones
 from .dp_particulars import Particulars, particulars_from_mapping
@@ -43,59 +44,24 @@ BOW_SECTOR_DEG = 30.0
 """A and C are the minima within this many degrees of the bow."""
 MAX_STEP_DEG = 10.0
 """The standard asks for headings this far apart or closer."""
-BISECTION_STEPS = 14
-"""Halvings of the interval between two capability numbers for the limiting wind speed."""
 INTACT = "intact"
+LOAD_SOURCES = ("wind", "current", "waves")
 WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
                 "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters")
-NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], power per "
-           "switchboard [3.12], Tables A-1, A-6, A-7, A-8")
-READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); the second range of B in [3.9.4] read as the union of "
+NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], the power "
+           "balance per switchboard [3.12]")
+POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
+                 "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
+                 "Table A-5 as transcribed: what it can consume from each source); source capacities are not "
+                 "balanced yet.")
+READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed share s keeps (1 - s) P_B ([3.12], "
+            "Table A-5); the second range of B in [3.9.4] read as the union of "
             "[-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] in N")
 """Where the text cannot be read as it stands, and how it is read here."""
 SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
          f"unclear: {READINGS}. Not verified by DNV.")
 """What every output says about itself."""
-
-
-@dataclass(frozen=True)
-class Condition:
-    """One environmental condition: wind [m/s], Hs [m], Tp [s], current [m/s]."""
-
-    wind: float
-    hs: float
-    tp: float
-    current: float
-
-
-CONDITIONS = (
-    Condition(0.0, 0.0, 0.0, 0.0),
-    Condition(1.5, 0.1, 3.5, 0.25),
-    Condition(3.4, 0.4, 4.5, 0.50),
-    Condition(5.4, 0.8, 5.5, 0.75),
-    Condition(7.9, 1.3, 6.5, 0.75),
-    Condition(10.7, 2.1, 7.5, 0.75),
-    Condition(13.8, 3.1, 8.5, 0.75),
-    Condition(17.1, 4.2, 9.0, 0.75),
-    Condition(20.7, 5.7, 10.0, 0.75),
-    Condition(24.4, 7.4, 10.5, 0.75),
-    Condition(28.4, 9.5, 11.5, 0.75),
-    Condition(32.6, 12.1, 12.0, 0.75),
-)
-"""The conditions of DP capability numbers 0 to 11 (index = number)."""
-TOP = len(CONDITIONS) - 1
-
-
-def condition_at(level: float) -> Condition:
-    """The condition at a fractional capability number in [0, 11], each quantity linear between
-    the two numbers around it."""
-    if not 0.0 <= level <= TOP:
-        raise ValueError(f"a capability number between 0 and {TOP}, not {level}")
-    low = min(math.floor(level), TOP - 1)
-    t = level - low
-    a, b = CONDITIONS[low], CONDITIONS[low + 1]
-    return Condition(*((1.0 - t) * getattr(a, f.name) + t * getattr(b, f.name) for f in fields(Condition)))
 
 
 def load_particulars(path: str | Path) -> Particulars:
@@ -114,12 +80,16 @@ def load_particulars(path: str | Path) -> Particulars:
 @dataclass(frozen=True)
 class Level1Result:
     """Capability numbers and limiting wind speeds per heading for each case: ``intact``, each
-    failure group by name, and ``worst failure`` (per heading the lowest over the groups)."""
+    redundancy group by name, and ``worst single failure`` (per heading the lowest over the groups)."""
 
     headings_deg: np.ndarray
     numbers: dict[str, np.ndarray]
     wind_limits: dict[str, np.ndarray]
     notes: tuple[str, ...]
+    level: int = 1
+    """The standard's level of the analysis (1, or 2 with the vessel's own data)."""
+    scope: str = SCOPE
+    """What is per the standard and what is not, for every output."""
 
     def summary(self) -> tuple[int, int, int, int]:
         """(A, B, C, D): intact minimum within +-30 deg of the bow and over every heading, the
@@ -127,7 +97,7 @@ class Level1Result:
         return level1_summary(self.headings_deg, self.numbers[INTACT], self.numbers[WORST])
 
     def summary_line(self) -> str:
-        return "DP capability-L1({}, {}, {}, {})".format(*self.summary())
+        return f"DP capability-L{self.level}" + "({}, {}, {}, {})".format(*self.summary())
 
     def rows(self) -> list[tuple[str, float, int, float]]:
         """(case, heading_deg, capability_number, wind_speed_limit) for every case and heading."""
@@ -159,32 +129,58 @@ class _Actuator:
 class Level1:
     """The Level 1 balance of one vehicle and its particulars."""
 
+    level = 1
+    scope = SCOPE
+
     def __init__(self, vehicle: Vehicle, particulars: Particulars, method: str | None = None):
         self.vehicle = vehicle
         self.particulars = particulars
-        names = set(vehicle.names)
-        for group, members in particulars.failure_groups.items():
-            unknown = [m for m in members if m not in names]
-            if unknown:
-                raise ValueError(f"failure_groups.{group}: no actuator named {', '.join(unknown)}; "
-                                 f"the vehicle has {', '.join(vehicle.names)}")
-        self.groups = dict(particulars.failure_groups) or {name: (name,) for name in vehicle.names}
+        self.groups = ({g.name: (*g.actuators, *g.sources) for g in vehicle.redundancy_groups}
+                       or {name: (name,) for name in vehicle.names})
+        """What each group's loss takes away: its actuators, then its power sources (the vehicle
+        file's redundancy groups; without any, each actuator alone)."""
         self.actuators = _actuators(vehicle, particulars)
         self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
         self._zones: dict[tuple[str, ...], list[Zone]] = {}
         self._capabilities: dict[tuple, Capability] = {}
+        self._winners: dict[tuple[str, ...], int] = {}
         self.capability(vehicle)                               # the method can serve the vehicle
 
     def loads(self, condition: Condition, direction: float) -> LoadComponents:
         """The unfactored wind, current and wave loads [X, Y, N] (body frame) from ``direction``."""
-        return level1_loads(self.particulars.hull, self.particulars.frame, condition.wind, condition.current,
-                            condition.hs, condition.tp, direction)
+        loads = self.standard_loads(condition, direction)
+        return LoadComponents(*(self.particulars.frame.load(loads[source]) for source in LOAD_SOURCES))
 
-    def thrust_range(self, name: str, condition: Condition, direction: float) -> tuple[float, float]:
-        """[low, high] [N] of one thruster: nominal thrust times beta_misc and beta_vent, each way."""
+    def standard_loads(self, condition: Condition, direction: float) -> dict[str, np.ndarray]:
+        """The unfactored [Fx, Fy, Mz] of wind [3.5], current [3.6] and waves [3.7] in the
+        standard's frame [2.8.2] [N, N m]."""
+        hull = self.particulars.hull
+        return {"wind": wind_load(hull, condition.wind, direction),
+                "current": current_load(hull, condition.current, direction),
+                "waves": wave_drift_load(hull, condition.hs, condition.tp, direction)}
+
+    def power_share(self, name: str, lost: tuple[str, ...] = ()) -> float:
+        """The share of its P_B a thruster keeps when the sources in ``lost`` are: 1 less the
+        feed shares of the lost feeds (Table A-5)."""
+        actuator = self.actuators[name].config
+        return 1.0 - sum(share for feed, share in zip(actuator.feeds, actuator.feed_shares) if feed in lost)
+
+    def thrust_range(self, name: str, condition: Condition, direction: float,
+                     lost: tuple[str, ...] = ()) -> tuple[float, float]:
+        """[low, high] [N] of one thruster: nominal thrust times beta_misc and beta_vent, each way.
+        A thruster fed in part by a source in ``lost`` runs on the P_B of its remaining share
+        (T_nominal times share^(2/3) [3.9.2], beta_vent of that T_nominal)."""
         unit = self.actuators[name]
         data = self.particulars.thrusters[name]
+        share = self.power_share(name, lost)
+        if share <= 0.0:
+            raise ValueError(f"{name}: every feed lost ({', '.join(unit.config.feeds)}) but not the thruster; "
+                             "list it in the redundancy group's actuators")
+        if share < 1.0:
+            data = replace(data, power=data.power * share)
+            unit = replace(unit, forward=nominal_thrust(data) if unit.forward else 0.0,
+                           reverse=nominal_thrust(data, reverse=True) if unit.reverse else 0.0)
 
         def effective(nominal: float, reverse: bool) -> float:
             if nominal == 0.0:
@@ -212,7 +208,7 @@ class Level1:
             if actuator.name in failed:
                 continue
             unit = self.actuators[actuator.name]
-            low, high = self.thrust_range(actuator.name, condition, direction)
+            low, high = self.thrust_range(actuator.name, condition, direction, failed)
             own = [zone for zone in zones if zone.thruster == actuator.name]
             if actuator.rotatable:
                 rotation = replace(actuator.rotation, forbidden_sectors=tuple(zone.sector for zone in own))
@@ -233,11 +229,16 @@ class Level1:
             self._capabilities[key] = Capability(variant, self.method, speed=0.0)
         return self._capabilities[key]
 
+    def required(self, condition: Condition, direction: float) -> np.ndarray:
+        """The wrench [X, Y, Z, K, M, N] (body frame) the thrusters must give: -1.25 times the loads."""
+        tau = np.zeros(6)
+        tau[[0, 1, 5]] = -DYNAMIC_FACTOR * self.loads(condition, direction).total
+        return tau
+
     def balanced(self, level: float, direction: float, failed: tuple[str, ...] = ()) -> bool:
         """Whether the thrusters hold the condition at ``level`` from ``direction`` [rad]."""
         condition = condition_at(level)
-        tau = np.zeros(6)
-        tau[[0, 1, 5]] = -DYNAMIC_FACTOR * self.loads(condition, direction).total
+        tau = self.required(condition, direction)
         if not np.any(tau):
             return True
         if np.any(np.abs(tau[self.uncontrolled]) > 1e-9 * np.max(np.abs(tau))):
@@ -245,9 +246,12 @@ class Level1:
         variant = self.variant(condition, direction, failed)
         if not variant.actuators:
             return False
-        model = self.capability(variant).model
-        scale = float(np.max(np.abs(tau[model.dof_index]) / np.maximum(model.authority, 1e-12)))
-        return self.capability(variant).reach(tau / scale)[0] >= scale * (1.0 - 1e-9)   # in units of authority
+        capability = self.capability(variant)
+        scale = float(np.max(np.abs(tau[capability.model.dof_index]) / np.maximum(capability.model.authority, 1e-12)))
+        held, winner = capability.attains(tau / scale, scale * (1.0 - 1e-9), self._winners.get(failed, 0))
+        if held:                                # in units of authority; the pieces that held first next time
+            self._winners[failed] = winner
+        return held
 
     def heading(self, direction: float, failed: tuple[str, ...] = ()) -> tuple[int, float]:
         """(capability number, limiting wind speed [m/s]) of one heading."""
@@ -268,12 +272,12 @@ class Level1:
         notes = self.notes()
         if step_deg > MAX_STEP_DEG:
             notes.append(f"Headings every {step_deg:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
-        return Level1Result(headings, numbers, winds, tuple(notes))
+        return Level1Result(headings, numbers, winds, tuple(notes), self.level, self.scope)
 
     def notes(self) -> list[str]:
         """What the numbers rest on, for the output."""
         notes = [
-            SCOPE,
+            self.scope,
             f"Method {self.method}. The vehicle file gives each thruster's position, type and azimuth range; its "
             "thrust limits and forbidden sectors are replaced by the standard's thrust and [3.11.3] zones (a zone "
             "lifts when the thruster it protects has failed).",
@@ -285,7 +289,8 @@ class Level1:
                                           f"{math.degrees(z.sector[1]):.1f} deg (flushing {z.flushed})"
                                           for z in self.zones()) or "none")
             + " (thrust angle in the body frame, 0 forward, 90 to starboard).",
-            "Failure groups: " + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ".",
+            "Redundancy groups (lost together: actuators, then power sources): "
+            + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ". " + POWER_READING,
             "Limiting wind speed: conditions between two numbers interpolated linearly; "
             f"at number {TOP} the table's {CONDITIONS[TOP].wind:g} m/s (held at least that).",
         ]
@@ -341,22 +346,7 @@ def _actuators(vehicle: Vehicle, particulars: Particulars) -> dict[str, _Actuato
             forward=nominal_thrust(data), reverse=nominal_thrust(data, reverse=True) if reversible else 0.0)
     return result
 
-def limit(balanced: Callable[[float], bool]) -> tuple[int, float]:
-    """(capability number, limiting wind speed) from a test of a fractional number: the highest
-    number held with every lower one, then bisection toward the next."""
-    number = 0
-    while number < TOP and balanced(number + 1):
-        number += 1
-    if number == TOP:
-        return number, CONDITIONS[TOP].wind
-    low, high = float(number), float(number + 1)
-    for _ in range(BISECTION_STEPS):
-        middle = 0.5 * (low + high)
-        low, high = (middle, high) if balanced(middle) else (low, middle)
-    return number, condition_at(low).wind
-
-
 def level1(vehicle: Vehicle, particulars: Particulars, step_deg: float = 10.0,
            method: str | None = None) -> Level1Result:
-    """DP capability Level 1 of a vehicle: every heading, intact and for each failure group."""
+    """DP capability Level 1 of a vehicle: every heading, intact and for each redundancy group."""
     return Level1(vehicle, particulars, method).run(step_deg)

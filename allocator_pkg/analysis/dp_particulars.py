@@ -1,5 +1,5 @@
 """A vessel's particulars file (YAML, not a ROS params file): the hull for the simulation's load
-model and for DNV-ST-0111 Level 1, the actuators' Level 1 data and the failure groups.
+model and for DNV-ST-0111 Level 1, and the actuators' Level 1 data.
 
 Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, forward positive):
 
@@ -14,16 +14,21 @@ Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, fo
 - ``thrusters``: per actuator of the vehicle file, by its name, its Table A-3 row
   (:class:`~.dnv_thrust.ThrusterData`: ``kind``, ``diameter`` [m], ``power`` P_B [kW], ``pitch``,
   ``ducted``, ``contra_rotating``, ``permanent_magnet``, ``tunnel_inlet``);
-- ``failure_groups``: name: actuators lost together (none: each actuator alone); ``name``.
+- ``level2`` (optional): the vessel's own data for Level 2, ``wind_coefficients`` and
+  ``current_coefficients`` (:class:`~.dnv_coefficients.CoefficientTable`: ``heading_deg``,
+  ``cx``, ``cy``, ``cn``);
+- ``name``. The redundancy groups are the vehicle file's (``redundancy_groups.*``, with
+  ``power.*`` and each thruster's ``feeds``): a ``failure_groups`` key is refused, saying so.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, fields
 from typing import Any
 
+from .dnv_coefficients import CoefficientTable, coefficient_table
 from .dnv_loads import BodyFrame, DnvHull
 from .dnv_thrust import ThrusterData
 from .environment_loads import LoadCoefficients, VesselParticulars
@@ -33,27 +38,33 @@ SHARED_KEYS = ("lpp", "beam", "draught", "wind_area_frontal", "wind_area_lateral
 LEVEL1_KEYS = ("body_origin_x", "body_origin_height", "los", "los_centre_x", "bow_angle", "waterplane_area_aft",
                "current_area_lateral")
 THRUSTER_KEYS = tuple(f.name for f in fields(ThrusterData) if f.name != "name")
+MOVED_GROUPS = ("failure_groups: the redundancy groups are in the vehicle params file: redundancy_groups.names and "
+                "redundancy_groups.<group>.actuators / .sources, with power.sources and actuators.<name>.feeds")
 
 
 @dataclass(frozen=True)
 class Particulars:
     """A particulars file: ``vessel`` for the simulation's loads, ``hull`` and ``frame`` for
-    Level 1 (the hull in the standard's frame), the actuators' Level 1 data by name, the failure
-    groups."""
+    Level 1 (the hull in the standard's frame), the actuators' Level 1 data by name."""
 
     vessel: VesselParticulars
     hull: DnvHull
     frame: BodyFrame
     thrusters: Mapping[str, ThrusterData]
-    failure_groups: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
     name: str = ""
+    wind_coefficients: CoefficientTable | None = None
+    """Level 2: the vessel's wind coefficients over heading (None: [3.5])."""
+    current_coefficients: CoefficientTable | None = None
+    """Level 2: the vessel's current coefficients over heading (None: [3.6])."""
 
 
 def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particulars:
     """The particulars of a mapping with the keys of a particulars file."""
     if not isinstance(data, Mapping):
         raise ValueError("a particulars file is a mapping of keys to values")
-    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "failure_groups", "name"}
+    if "failure_groups" in data:
+        raise ValueError(MOVED_GROUPS)
+    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ValueError(f"unknown key(s): {', '.join(unknown)}; known: {', '.join(sorted(known))}")
@@ -74,7 +85,7 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
                    current_area_lateral=numbers["current_area_lateral"],
                    current_centre_x=frame.standard_x(vessel.underwater_centre_x))
     return Particulars(vessel=vessel, hull=hull, frame=frame, thrusters=_thrusters(data["thrusters"]),
-                       failure_groups=_groups(data.get("failure_groups") or {}), name=str(data.get("name", name)))
+                       name=str(data.get("name", name)), **_level2(data.get("level2")))
 
 
 def _number(data: Mapping[str, Any], key: str, prefix: str = "") -> float:
@@ -112,9 +123,10 @@ def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
     return result
 
 
-def _groups(groups: Any) -> dict[str, tuple[str, ...]]:
-    if not isinstance(groups, Mapping) or not all(
-            isinstance(members, list) and members and all(isinstance(m, str) for m in members)
-            for members in groups.values()):
-        raise ValueError("failure_groups: a mapping of group names to non-empty lists of actuator names")
-    return {str(k): tuple(v) for k, v in groups.items()}
+def _level2(level2: Any) -> dict[str, CoefficientTable]:
+    if level2 is None:
+        return {}
+    keys = ("wind_coefficients", "current_coefficients")
+    if not isinstance(level2, Mapping) or set(level2) - set(keys):
+        raise ValueError(f"level2: a mapping with {' and/or '.join(keys)}")
+    return {key: coefficient_table(level2[key], f"level2.{key}") for key in keys if key in level2}

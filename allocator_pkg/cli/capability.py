@@ -8,7 +8,8 @@ for each group of registered methods whose constraints give another capability t
 file's method. The numbers come from :class:`~allocator_pkg.analysis.capability.Capability`.
 
 ``allocator-capability --dnv-level1 VESSEL.yaml PARTICULARS.yaml [--out folder]`` writes the
-DNV-ST-0111 Level 1 DP capability plots, CSV and summary of :mod:`.dp_capability`.
+DNV-ST-0111 Level 1 DP capability report of :mod:`.dp_capability` (plots, tables, summary);
+``--dnv-level2`` the same at Level 2 with a plot of Level 1 against it.
 """
 
 from __future__ import annotations
@@ -23,12 +24,11 @@ import numpy as np
 
 from ..allocation.allocator import Allocator
 from ..analysis.capability import FORCE_DOFS, Capability, Envelope, differing_methods
-from ..analysis.dp_capability import SCOPE
 from ..configuration.parameters import load_vehicle
 from ..effectiveness.faults import FaultMode
 from ..methods import METHODS
 from ..vehicle.config import DOF_NAMES
-from .dp_capability import write_level1
+from .dp_capability import write_report
 
 
 def write_csv(path: Path, plane: tuple[str, str], cases: dict[str, Envelope]) -> None:
@@ -98,15 +98,18 @@ def main(argv: list[str] | None = None) -> int:
                         help="also <vehicle>_<method>_capability.png and .csv for each group of registered methods "
                              "whose constraints give another capability than the file's method")
     parser.add_argument("--dnv-level1", nargs=2, metavar=("VESSEL", "PARTICULARS"),
-                        help="DNV-ST-0111 Level 1 DP capability of a vehicle params file and a particulars file "
-                             "(config/particulars/): <vehicle>_dp_l1_number.png, _dp_l1_wind.png, .csv, .txt")
+                        help="DNV-ST-0111 Level 1 DP capability report of a vehicle params file and a particulars "
+                             "file (config/particulars/): <vehicle>_dp_l1_report.md, plots, tables")
+    parser.add_argument("--dnv-level2", nargs=2, metavar=("VESSEL", "PARTICULARS"),
+                        help="the same at Level 2 with the vessel's own data (<vehicle>_dp_l2...), and a plot of "
+                             "Level 1 against Level 2")
     parser.add_argument("--heading-step", type=float, default=10.0,
-                        help="degrees between headings for --dnv-level1 (default %(default)s)")
+                        help="degrees between headings for --dnv-level1/2 (default %(default)s)")
     arguments = parser.parse_args(argv)
-    if arguments.dnv_level1:
-        return _dnv_level1(arguments)
+    if arguments.dnv_level1 or arguments.dnv_level2:
+        return _dnv(arguments)
     if arguments.config is None:
-        parser.error("a vehicle params file, or --dnv-level1 VESSEL PARTICULARS")
+        parser.error("a vehicle params file, or --dnv-level1/--dnv-level2 VESSEL PARTICULARS")
     vehicle = load_vehicle(arguments.config)
     plane = tuple(arguments.plane) if arguments.plane else None
     try:
@@ -143,16 +146,18 @@ def _write(capability: Capability, out: Path, stem: str, suffix: str, title: str
     print(out / f"{stem}{suffix}_capability.csv")
 
 
-def _dnv_level1(arguments: argparse.Namespace) -> int:
-    """--dnv-level1: the Level 1 files of cli/dp_capability.py, the summary line on stdout."""
-    vessel, particulars = arguments.dnv_level1
+def _dnv(arguments: argparse.Namespace) -> int:
+    """--dnv-level1/2: the report of cli/dp_capability.py, the summary and scope lines on stdout."""
+    level = 1 if arguments.dnv_level1 else 2
+    vessel, particulars = arguments.dnv_level1 or arguments.dnv_level2
     try:
-        result, paths = write_level1(vessel, particulars, arguments.out, arguments.heading_step, arguments.method)
+        result, paths = write_report(vessel, particulars, arguments.out, arguments.heading_step, arguments.method,
+                                     level)
     except ValueError as error:                 # a ConfigError too
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2
     print(result.summary_line())
-    print(SCOPE)
+    print(result.scope)
     for path in paths:
         print(path)
     return 0

@@ -1,14 +1,25 @@
-"""DP capability Level 1 files: two polar plots, a CSV and the summary (``allocator-capability --dnv-level1``).
+"""DP capability report (``allocator-capability --dnv-level1`` / ``--dnv-level2``): plots, tables,
+summary.
 
-:func:`write_level1` reads a vehicle params file and a particulars file, runs
-:func:`~allocator_pkg.analysis.dp_capability.level1` and writes, in the output folder,
-``<vehicle>_dp_l1_number.png`` (capability number per heading, intact and worst single
-failure), ``<vehicle>_dp_l1_wind.png`` (the same in limiting wind speed),
-``<vehicle>_dp_l1.csv`` (after a ``#`` comment line saying what is per the standard and what
-not, columns ``case``, ``heading_deg``, ``capability_number``, ``wind_speed_limit``) and
-``<vehicle>_dp_l1.txt`` (the DP capability-L1(A, B, C, D) line and what the numbers rest on).
-Every one of them says what is per DNV-ST-0111 Level 1 and what is not yet, and that it is not
-verified by DNV (:data:`~allocator_pkg.analysis.dp_capability.SCOPE`).
+:func:`write_report` reads a vehicle params file and a particulars file, runs
+:class:`~allocator_pkg.analysis.dp_capability.Level1` (or
+:class:`~allocator_pkg.analysis.dp_level2.Level2`) and writes, in the output folder, files named
+``<vehicle>_dp_l1...`` (``_dp_l2...``):
+
+- ``_number.png`` / ``_wind.png``: intact and worst single failure (Figure A-1), capability number
+  and limiting wind speed [m/s], a marker per heading in the colour of the worst group;
+- ``_groups_number.png`` / ``_groups_wind.png``: every redundancy group's loss on one (Figure A-2);
+- ``_<group>_number.png`` / ``_<group>_wind.png``: one per group (its failed thrusters crossed);
+- ``.csv``: ``case``, ``heading_deg``, ``capability_number``, ``wind_speed_limit`` after a ``#``
+  line with the scope;
+- ``_table_a1.csv``, ``_table_a6.csv``, ``_table_a7.csv``, ``_table_a8.csv``, ``_loads.csv``
+  (:mod:`.dp_report`);
+- ``.txt``: the DP capability-L1(A, B, C, D) line and what the numbers rest on;
+- ``_report.md``: the one-page summary;
+- at Level 2, ``_vs_l1_number.png`` / ``_vs_l1_wind.png``: Level 1 and Level 2 on one.
+
+Every one says what is per DNV-ST-0111 and what is not yet, and that it is not verified by DNV
+(:data:`~allocator_pkg.analysis.dp_capability.SCOPE`, :data:`~allocator_pkg.analysis.dp_level2.SCOPE_L2`).
 """
 
 from __future__ import annotations
@@ -16,84 +27,63 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-import numpy as np
-
-from ..analysis.dp_capability import (
-    CONDITIONS,
-    INTACT,
-    NOT_YET,
-    SCOPE,
-    TOP,
-    WORST,
-    Level1Result,
-    level1,
-    load_particulars,
-)
+from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result, load_particulars
+from ..analysis.dp_level2 import Level2
+from ..analysis.dp_tables import groups_of
 from ..configuration.parameters import load_vehicle
+from .dp_plots import Outline, comparison_plot, polar_plot
+from .dp_report import write_summary, write_tables
 
 CSV_COLUMNS = ("case", "heading_deg", "capability_number", "wind_speed_limit")
 
 
 def write_level1(vehicle_path: str | Path, particulars_path: str | Path, out: str | Path, step_deg: float = 10.0,
                  method: str | None = None) -> tuple[Level1Result, list[Path]]:
-    """Run Level 1 on the two files and write the four outputs; (result, paths written)."""
-    vehicle = load_vehicle(vehicle_path)
-    particulars = load_particulars(particulars_path)
-    result = level1(vehicle, particulars, step_deg, method)
+    """Run Level 1 on the two files and write the report; (result, paths written)."""
+    return write_report(vehicle_path, particulars_path, out, step_deg, method, level=1)
+
+
+def write_report(vehicle_path: str | Path, particulars_path: str | Path, out: str | Path, step_deg: float = 10.0,
+                 method: str | None = None, level: int = 1) -> tuple[Level1Result, list[Path]]:
+    """Run Level 1 or 2 on the two files and write the report; (result, paths written)."""
+    vehicle_path, particulars_path = Path(vehicle_path), Path(particulars_path)
+    vehicle, particulars = load_vehicle(vehicle_path), load_particulars(particulars_path)
+    analysis = (Level1 if level == 1 else Level2)(vehicle, particulars, method)
+    result = analysis.run(step_deg)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    stem = Path(vehicle_path).stem
-    title = particulars.name or stem
-    paths = [out / f"{stem}_dp_l1_number.png", out / f"{stem}_dp_l1_wind.png", out / f"{stem}_dp_l1.csv",
-             out / f"{stem}_dp_l1.txt"]
-    plot(paths[0], result, title, wind=False)
-    plot(paths[1], result, title, wind=True)
-    write_csv(paths[2], result)
-    paths[3].write_text("\n".join([f"{title}: {result.summary_line()}", "", *result.notes]) + "\n")
+    stem = f"{vehicle_path.stem}_dp_l{level}"
+    title = analysis.particulars.name or vehicle_path.stem
+    outline = Outline.of(analysis)
+    paths = []
+    figures = [("", "intact and worst single failure", [INTACT, WORST], (), True),
+               ("_groups", "loss of each redundancy group", groups_of(result), (), False)]
+    figures += [(f"_{group}", f"loss of {group} (failed: x)", [group], tuple(analysis.groups[group]), False)
+                for group in groups_of(result)]
+    for suffix, caption, cases, failed, mark in figures:
+        for wind, quantity in ((False, "number"), (True, "wind")):
+            path = out / f"{stem}{suffix}_{quantity}.png"
+            polar_plot(path, result, title, caption, wind, cases, outline, failed, mark)
+            paths.append(path)
+    if level == 2:
+        level1_result = Level1(vehicle, particulars, method).run(step_deg)
+        for wind, quantity in ((False, "number"), (True, "wind")):
+            paths.append(out / f"{stem}_vs_l1_{quantity}.png")
+            comparison_plot(paths[-1], level1_result, result, title, wind, outline)
+    paths.append(out / f"{stem}.csv")
+    write_csv(paths[-1], result)
+    paths += write_tables(out, stem, analysis, result)
+    paths.append(out / f"{stem}.txt")
+    paths[-1].write_text("\n".join([f"{title}: {result.summary_line()}", "", *result.notes]) + "\n")
+    paths.append(out / f"{stem}_report.md")
+    write_summary(paths[-1], analysis, result, vehicle_path, particulars_path, paths[:-1])
     return result, paths
 
 
 def write_csv(path: Path, result: Level1Result) -> None:
     with path.open("w", newline="") as handle:
-        handle.write(f"# {SCOPE}\n")
+        handle.write(f"# {result.scope}\n")
         writer = csv.writer(handle)
         writer.writerow(CSV_COLUMNS)
         for case, heading, number, wind in result.rows():
             writer.writerow([case, f"{heading:g}", number, f"{wind:.2f}"])
-
-
-def plot(path: Path, result: Level1Result, title: str, wind: bool) -> None:
-    """Intact and worst single failure on one polar figure: 0 deg (environment from ahead) at the
-    top, clockwise; radius the capability number or the limiting wind speed."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    values = result.wind_limits if wind else result.numbers
-    figure = plt.figure(figsize=(7.5, 7.5))
-    axes = figure.add_subplot(projection="polar")
-    angles = np.radians(np.append(result.headings_deg, result.headings_deg[0]))
-    for case, style in ((INTACT, dict(color="tab:blue", linewidth=2.4)),
-                        (WORST, dict(color="tab:red", linewidth=1.8, linestyle="--"))):
-        closed = np.append(values[case], values[case][0])
-        axes.plot(angles, closed, label=case, **style)
-        axes.fill(angles, closed, alpha=0.12, color=style["color"])
-    axes.set_theta_zero_location("N")
-    axes.set_theta_direction(-1)
-    if wind:
-        axes.set_ylim(0.0, CONDITIONS[TOP].wind)
-        quantity = "limiting wind speed [m/s]"
-    else:
-        axes.set_ylim(0, TOP)
-        axes.set_yticks(range(TOP + 1))
-        quantity = "DP capability number"
-    axes.set_title(f"{title}\n{result.summary_line()}: {quantity}\nenvironment from heading (0 = head on)", pad=20)
-    axes.legend(loc="upper left", bbox_to_anchor=(0.92, 1.08), fontsize=9)
-    figure.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
-    figure.text(0.5, 0.01, "Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones.\n"
-                f"Not yet: {NOT_YET}.\n"
-                "Unclear clauses read as the .txt says. Not verified by DNV.",
-                ha="center", va="bottom", fontsize=7, wrap=True)
-    figure.savefig(path, dpi=100)
-    plt.close(figure)

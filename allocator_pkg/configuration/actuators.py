@@ -55,8 +55,13 @@ def parse_actuator(reader: Reader, name: str) -> ActuatorConfig | None:
     v = {key.name: reader.value(key, param(key.name), actuator_type) for key in applicable}
     if any(value is MISSING for value in v.values()):
         return None
+    feeds = tuple(v.get("feeds") or ())
+    shares = v.get("feed_shares")
+    if shares is None:
+        shares = (1.0,) if len(feeds) == 1 else ()             # one feed: all of the power from it
     derived = dict(name=name, position=tuple(v["position"]),
-                   direction=_direction(reader, actuator_type, v.get("direction"), param("direction")))
+                   direction=_direction(reader, actuator_type, v.get("direction"), param("direction")),
+                   feeds=feeds, feed_shares=tuple(shares))
     if actuator_type in SURFACE_TYPES:
         return filled(ActuatorConfig, v, actuator_field, **derived, surface=filled(SurfaceConfig, v, actuator_field))
     return _thruster(reader, name, v, derived)

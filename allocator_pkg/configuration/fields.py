@@ -6,8 +6,11 @@ A vehicle-wide or node key fills the field named as the key with '.' read as '_'
 :data:`NESTED` fills the field of the rest in that struct (``solver.eps_abs``:
 ``SolverSettings.eps_abs``). A per-actuator key fills the field of its name in whichever of
 :data:`ACTUATOR_STRUCTS` has one, or the field :data:`RENAMED` gives it (``azimuth_rate_max``:
-``RotationConfig.rate_max``). A key whose name fills no field (``actuators.names``, ``link``)
-is read by hand.
+``RotationConfig.rate_max``). A power source's key (``power.<source>.<key>``) fills the field of
+its name in :class:`~allocator_pkg.vehicle.config.PowerSource`, a redundancy group's
+(``redundancy_groups.<group>.<key>``) in :class:`~allocator_pkg.vehicle.config.RedundancyGroup`.
+A key whose name fills no field (``actuators.names``, ``redundancy_groups.names``, ``link``) is
+read by hand.
 
 The builder gives by hand the fields whose values it derives (an order, a default that depends
 on other keys, a nested struct); :func:`filled` takes every other field from its key.
@@ -22,6 +25,8 @@ from typing import Any, TypeVar
 from ..vehicle.config import (
     ActuatorConfig,
     CommandMapConfig,
+    PowerSource,
+    RedundancyGroup,
     RotationConfig,
     SolverSettings,
     SurfaceConfig,
@@ -42,7 +47,8 @@ RENAMED = {"command_map": "kind", "command_deadband": "deadband", "azimuth_rate_
 lives in the struct of that (``CommandMapConfig.kind``, ``RotationConfig.initial``)."""
 
 _FIELD_NAMES = {struct: {field.name for field in fields(struct)}
-                for struct in (Vehicle, NodeSettings, *NESTED.values(), *ACTUATOR_STRUCTS)}
+                for struct in (Vehicle, NodeSettings, PowerSource, RedundancyGroup, *NESTED.values(),
+                                 *ACTUATOR_STRUCTS)}
 
 Struct = TypeVar("Struct")
 
@@ -76,6 +82,16 @@ def actuator_field(key: str) -> Field | None:
     """The field a per-actuator key (its name under ``actuators.<name>.``) fills, or None."""
     name = RENAMED.get(key, key)
     return next((Field(struct, name) for struct in ACTUATOR_STRUCTS if name in _FIELD_NAMES[struct]), None)
+
+
+def source_field(key: str) -> Field | None:
+    """The field of PowerSource a power source's key (its name under ``power.<source>.``) fills."""
+    return _field(PowerSource, key)
+
+
+def group_field(key: str) -> Field | None:
+    """The field of RedundancyGroup a group's key (under ``redundancy_groups.<group>.``) fills."""
+    return _field(RedundancyGroup, key)
 
 
 def filled(struct: type[Struct], values: Mapping[str, Any], field_of: Callable[[str], Field | None],

@@ -29,8 +29,12 @@ from . import schema
 from .actuators import parse_actuator
 from .fields import filled, node_field, vehicle_field
 from .params_file import read_parameters
+from .power import parse_power
 from .schema import ACTUATOR_KEY_BY_NAME, ACTUATOR_PREFIX, NODE_KEY_BY_NAME, VEHICLE_KEY_BY_NAME
 from .values import MISSING, Reader
+
+BY_HAND = ("actuators.names", "power.sources", "redundancy_groups.names")
+"""Vehicle-wide keys read by their own parsers."""
 
 
 def parse_parameters(parameters: Mapping[str, Any]) -> tuple[Vehicle, NodeSettings]:
@@ -69,11 +73,13 @@ class _Parser(Reader):
                 if not self.parameters.get(schema.actuator_parameter(name, "link"), name):
                     self.fail(schema.actuator_parameter(name, "link"), "must not be empty")
                 known.update(schema.actuator_parameter(name, key) for key in ACTUATOR_KEY_BY_NAME)
+        sources, groups, power_keys = parse_power(self, names if names is not MISSING else [], actuators)
+        known.update(power_keys)
         for name in self.parameters:
             if name not in known:
                 self._unknown(name, names if names is not MISSING else [])
 
-        values = {key.name: self.value(key) for key in schema.VEHICLE_KEYS if key.name != "actuators.names"}
+        values = {key.name: self.value(key) for key in schema.VEHICLE_KEYS if key.name not in BY_HAND}
         node = {key.name: self.value(key) for key in schema.NODE_KEYS}
         if node["base_frame"] == "":
             self.fail("base_frame", "must not be empty")
@@ -90,7 +96,8 @@ class _Parser(Reader):
         vehicle = filled(Vehicle, values, vehicle_field, actuators=tuple(actuators), dofs=dofs,
                          weights=filled(Weights, values, vehicle_field, slack=slack),
                          solver=filled(SolverSettings, values, vehicle_field),
-                         priorities=priorities, nominal_voltage=nominal_voltage)
+                         priorities=priorities, nominal_voltage=nominal_voltage, power_sources=sources,
+                         redundancy_groups=groups)
         ros2_control_actuators = self._ros2_control(node, vehicle)
         if self.problems:
             raise ConfigError(self.problems)
@@ -138,6 +145,12 @@ class _Parser(Reader):
             actuator_type = self.parameters.get(schema.actuator_parameter(actuator, "type"))
             self.fail(name, f"unknown key '{key}' for a {actuator_type} actuator")
             return
+        for prefix, listing in ((schema.SOURCE_PREFIX, "power.sources"),
+                                (schema.GROUP_PREFIX, "redundancy_groups.names")):
+            if name.startswith(prefix):
+                instance = name[len(prefix):].partition(".")[0]
+                self.fail(name, f"'{instance}' is not in {listing}" if schema.key_for(name) else "unknown key")
+                return
         self.fail(name, schema.REPLACED_KEYS.get(name, "unknown key"))
 
     def _dofs(self, dofs: Any) -> tuple[str, ...]:

@@ -15,9 +15,6 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
-from dataclasses import dataclass, field
-from typing import Any
 
 from ..vehicle.config import (
     ACTUATOR_TYPES,
@@ -32,84 +29,12 @@ from ..vehicle.config import (
     SATURATION_MODES,
     SURFACE_TYPES,
     THRUSTER_TYPES,
+    Vehicle,
 )
 from ..vehicle.node_settings import EXECUTORS, FRAMES, GEOMETRY_SOURCES, TRIGGERS, WRENCH_TYPES
+from .key import BOOL, FLOAT, FLOAT_LIST, INT, INT_LIST, STR, STR_LIST, Key
 
 ACTUATOR_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
-
-FLOAT = "float"
-INT = "int"
-BOOL = "bool"
-STR = "str"
-FLOAT_LIST = "float[]"
-INT_LIST = "integer[]"
-STR_LIST = "string[]"
-
-
-@dataclass(frozen=True)
-class Key:
-    """One parameter: its type, default, limits and documentation.
-
-    ``default`` is the value used when the parameter is absent; ``None`` means the key is
-    optional with a default that depends on other keys (``default_doc`` says which), and
-    ``required`` means it must be given. A per-actuator key whose default differs by actuator
-    type has it in ``type_defaults`` (type: default). ``constraint`` says in words what the
-    checks of :mod:`allocator_pkg.configuration.parameters` and
-    :mod:`allocator_pkg.configuration.actuators` want beyond type, choices, range and length.
-    """
-
-    name: str
-    kind: str
-    description: str
-    default: Any = None
-    default_doc: str = ""
-    required: bool = False
-    minimum: float | None = None
-    maximum: float | None = None
-    exclusive_minimum: bool = False
-    choices: tuple[str, ...] = ()
-    length: int | None = None
-    applies_to: tuple[str, ...] = ()
-    read_only: bool = False
-    unit: str = ""
-    constraint: str = ""
-    type_defaults: Mapping[str, Any] = field(default_factory=dict)
-
-    def default_for(self, actuator_type: str | None) -> Any:
-        """The default of this key for an actuator of ``actuator_type`` (None: not per actuator)."""
-        return self.type_defaults.get(actuator_type, self.default)
-
-    def documented_default(self) -> str:
-        if self.required:
-            return "required"
-        if self.default_doc:
-            return self.default_doc
-        if self.default is None:
-            return "not set"
-        if isinstance(self.default, bool):
-            return str(self.default).lower()
-        if isinstance(self.default, str):
-            return f"`{self.default}`" if self.default else "empty"
-        if isinstance(self.default, list):
-            return "[" + ", ".join(map(str, self.default)) + "]"
-        return f"{self.default:g}" if isinstance(self.default, float) else str(self.default)
-
-    def documented_range(self) -> str:
-        parts = []
-        if self.choices:
-            parts.append("one of " + ", ".join(f"`{c}`" for c in self.choices))
-        if self.minimum is not None:
-            parts.append(f"{'>' if self.exclusive_minimum else '>='} {self.minimum:g}")
-        if self.maximum is not None:
-            parts.append(f"<= {self.maximum:g}")
-        if self.length is not None:
-            parts.append(f"{self.length} elements")
-        if self.constraint:
-            parts.append(self.constraint)
-        if self.kind == BOOL:
-            parts.append("true or false")
-        return ", ".join(parts)
-
 
 VEHICLE_KEYS: tuple[Key, ...] = (
     Key("rate_hz", FLOAT, "Allocation rate: one sample per period, also the dt of rate limits.",
@@ -174,7 +99,33 @@ VEHICLE_KEYS: tuple[Key, ...] = (
     Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
         required=True, read_only=True,
         constraint="at least one; unique; letters, digits and '_', starting with a letter"),
+    Key("power.sources", STR_LIST, "Power sources of the thrusters (switchboards, prime movers: the columns of "
+        "DNV-ST-0111 Table A-5), each with power.<source>.capacity; with any, every thruster names its "
+        "actuators.<name>.feeds. Read by the DP capability analysis, not by the allocation.",
+        default_doc="none", read_only=True,
+        constraint="unique; letters, digits and '_', starting with a letter; no actuator's name"),
+    Key("redundancy_groups.names", STR_LIST, "Redundancy groups: what one single failure takes away together "
+        "(DNV-ST-0111 [2.4.8]; the DP FMEA's redundancy concept), each with redundancy_groups.<group>.sources and "
+        "redundancy_groups.<group>.actuators. Read by the DP capability analysis, not by the allocation.",
+        default_doc="none", read_only=True,
+        constraint="unique; letters, digits and '_', starting with a letter"),
 )
+
+SOURCE_KEYS: tuple[Key, ...] = (
+    Key("capacity", FLOAT, "Power the source can deliver to its consumers (Table A-5's available power).",
+        required=True, minimum=0.0, exclusive_minimum=True, unit="kW", read_only=True),
+)
+"""Keys of each power source, ``power.<source>.<key>``."""
+
+GROUP_KEYS: tuple[Key, ...] = (
+    Key("sources", STR_LIST, "Power sources lost with the group: a thruster fed by one of them loses that "
+        "feed's share of its power.", default_doc="none", read_only=True,
+        constraint="names from power.sources, each at most once"),
+    Key("actuators", STR_LIST, "Actuators lost with the group.", default_doc="none", read_only=True,
+        constraint="names from actuators.names, each at most once; with sources, at least one of the two; every "
+                   "thruster fed only by the group's sources"),
+)
+"""Keys of each redundancy group, ``redundancy_groups.<group>.<key>``."""
 
 NODE_KEYS: tuple[Key, ...] = (
     Key("wrench_timeout", FLOAT, "Watchdog: with no valid wrench for this long, command zero thrust (0 disables).",
@@ -300,6 +251,13 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
     Key("reversed", BOOL, "The thruster is wired or propped backwards: its command is mirrored about the "
         "set-point of zero force (0, or a table's neutral), its force model unchanged (ArduSub's MOT_n_DIRECTION).",
         default=False, applies_to=_THR),
+    Key("feeds", STR_LIST, "Power sources this thruster draws from (its row of DNV-ST-0111 Table A-5). Read by the "
+        "DP capability analysis, not by the allocation.", applies_to=_THR, default_doc="none", read_only=True,
+        constraint="names from power.sources, each at most once; required for every thruster when power.sources "
+                   "is set"),
+    Key("feed_shares", FLOAT_LIST, "Share of this thruster's power from each of its feeds, in feeds order (a split "
+        "feed).", applies_to=_THR, default_doc="[1] with one feed; required with more", minimum=0.0,
+        exclusive_minimum=True, read_only=True, constraint="one per feed, summing to 1"),
     Key("azimuth_min", FLOAT, "Feasible sector, lower end (the thruster cannot turn outside it).",
         default=-math.pi, applies_to=_ROT, unit="rad", constraint="below azimuth_max"),
     Key("azimuth_max", FLOAT, "Feasible sector, upper end; azimuth_max - azimuth_min = 2 pi means free rotation.",
@@ -334,7 +292,15 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
 VEHICLE_KEY_BY_NAME = {key.name: key for key in VEHICLE_KEYS}
 NODE_KEY_BY_NAME = {key.name: key for key in NODE_KEYS}
 ACTUATOR_KEY_BY_NAME = {key.name: key for key in ACTUATOR_KEYS}
+SOURCE_KEY_BY_NAME = {key.name: key for key in SOURCE_KEYS}
+GROUP_KEY_BY_NAME = {key.name: key for key in GROUP_KEYS}
 ACTUATOR_PREFIX = "actuators."
+SOURCE_PREFIX = "power."
+GROUP_PREFIX = "redundancy_groups."
+INSTANCE_KEYS = ((ACTUATOR_PREFIX, ACTUATOR_KEY_BY_NAME), (SOURCE_PREFIX, SOURCE_KEY_BY_NAME),
+                 (GROUP_PREFIX, GROUP_KEY_BY_NAME))
+"""The keys given per named instance, ``<prefix><instance>.<key>``: actuators, power sources and
+redundancy groups."""
 
 
 def actuator_parameter(actuator: str, key: str) -> str:
@@ -342,11 +308,33 @@ def actuator_parameter(actuator: str, key: str) -> str:
     return f"{ACTUATOR_PREFIX}{actuator}.{key}"
 
 
+def source_parameter(source: str, key: str) -> str:
+    """Full parameter name of a power source's key."""
+    return f"{SOURCE_PREFIX}{source}.{key}"
+
+
+def group_parameter(group: str, key: str) -> str:
+    """Full parameter name of a redundancy group's key."""
+    return f"{GROUP_PREFIX}{group}.{key}"
+
+
 def key_for(name: str) -> Key | None:
-    """The key of a parameter name (``actuators.<name>.<key>`` included), or None."""
-    if name.startswith(ACTUATOR_PREFIX) and name not in VEHICLE_KEY_BY_NAME:
-        return ACTUATOR_KEY_BY_NAME.get(name[len(ACTUATOR_PREFIX):].partition(".")[2])
-    return VEHICLE_KEY_BY_NAME.get(name) or NODE_KEY_BY_NAME.get(name)
+    """The key of a parameter name (``actuators.<name>.<key>``, ``power.<source>.<key>`` and
+    ``redundancy_groups.<group>.<key>`` included), or None."""
+    if name in VEHICLE_KEY_BY_NAME or name in NODE_KEY_BY_NAME:
+        return VEHICLE_KEY_BY_NAME.get(name) or NODE_KEY_BY_NAME.get(name)
+    for prefix, keys in INSTANCE_KEYS:
+        if name.startswith(prefix):
+            return keys.get(name[len(prefix):].partition(".")[2])
+    return None
+
+
+def instance_keys(vehicle: Vehicle) -> list[tuple[str, Key]]:
+    """(parameter name, key) of every per-actuator, per-source and per-group key of a vehicle."""
+    keys = [(actuator_parameter(a.name, key.name), key) for a in vehicle.actuators for key in keys_for_type(a.type)]
+    keys += [(source_parameter(s.name, key.name), key) for s in vehicle.power_sources for key in SOURCE_KEYS]
+    keys += [(group_parameter(g.name, key.name), key) for g in vehicle.redundancy_groups for key in GROUP_KEYS]
+    return keys
 
 
 def keys_for_type(actuator_type: str) -> tuple[Key, ...]:
@@ -379,4 +367,8 @@ def markdown_reference() -> str:
     lines += table(NODE_KEYS, show_types=False)
     lines += ["", "### Per-actuator keys (`actuators.<name>.<key>`)", ""]
     lines += table(ACTUATOR_KEYS, show_types=True)
+    lines += ["", "### Power sources (`power.<source>.<key>`)", ""]
+    lines += table(SOURCE_KEYS, show_types=False)
+    lines += ["", "### Redundancy groups (`redundancy_groups.<group>.<key>`)", ""]
+    lines += table(GROUP_KEYS, show_types=False)
     return "\n".join(lines) + "\n"

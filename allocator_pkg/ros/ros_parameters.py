@@ -93,12 +93,10 @@ def allocator_parameters(node: Node) -> dict[str, Any]:
 
 
 def declare(node: Node, vehicle: Vehicle) -> None:
-    """Declare every schema key of this vehicle (those the params file set already are),
-    each with its descriptor, so that ``ros2 param list/describe`` shows all of them."""
-    keys = [(key.name, key) for key in schema.VEHICLE_KEYS + schema.NODE_KEYS]
-    for actuator in vehicle.actuators:
-        keys += [(schema.actuator_parameter(actuator.name, key.name), key)
-                 for key in schema.keys_for_type(actuator.type)]
+    """Declare every schema key of this vehicle, its actuators, power sources and redundancy
+    groups (those the params file set already are), each with its descriptor, so that
+    ``ros2 param list/describe`` shows all of them."""
+    keys = [(key.name, key) for key in schema.VEHICLE_KEYS + schema.NODE_KEYS] + schema.instance_keys(vehicle)
     for name, key in keys:
         if node.has_parameter(name) and node.describe_parameter(name).read_only:
             continue                                 # described by an earlier configure (lifecycle)

@@ -106,7 +106,9 @@ class ActuatorConfig:
     """One actuator. ``direction`` is the unit force (or lift) direction of fixed
     thrusters and control surfaces; rotatable thrusters take theirs from the angle. The thrust
     range and ``command`` are a thruster's (a control surface has none: zero), ``rotation`` a
-    rotatable thruster's and ``surface`` a control surface's."""
+    rotatable thruster's and ``surface`` a control surface's. ``feeds`` are the power sources a
+    thruster draws from and ``feed_shares`` the share of its power from each (Table A-5 of
+    DNV-ST-0111); the allocation does not read them."""
 
     name: str
     type: str
@@ -120,6 +122,8 @@ class ActuatorConfig:
     command: CommandMapConfig | None = None
     rotation: RotationConfig | None = None
     surface: SurfaceConfig | None = None
+    feeds: tuple[str, ...] = ()
+    feed_shares: tuple[float, ...] = ()
 
     @property
     def rotatable(self) -> bool:
@@ -150,6 +154,25 @@ class SolverSettings:
 
 
 @dataclass(frozen=True)
+class PowerSource:
+    """A switchboard or prime mover that feeds thrusters (a column of DNV-ST-0111 Table A-5):
+    ``capacity`` [kW] the power it can deliver."""
+
+    name: str
+    capacity: float
+
+
+@dataclass(frozen=True)
+class RedundancyGroup:
+    """What one single failure takes away together (DNV-ST-0111 [2.4.8]): power sources and
+    actuators, by name."""
+
+    name: str
+    sources: tuple[str, ...]
+    actuators: tuple[str, ...]
+
+
+@dataclass(frozen=True)
 class Vehicle:
     """A validated vehicle configuration: the actuators and how to allocate over them."""
 
@@ -171,6 +194,8 @@ class Vehicle:
     priorities: tuple[int, ...]
     nominal_voltage: float | None
     explicit_regions: str
+    power_sources: tuple[PowerSource, ...] = ()
+    redundancy_groups: tuple[RedundancyGroup, ...] = ()
 
     @property
     def priority_levels(self) -> tuple[tuple[int, ...], ...]:

@@ -1,0 +1,105 @@
+"""DP capability Level 2 of DNV-ST-0111 as this package reads it: the Level 1 balance
+(:class:`~.dp_capability.Level1`) with its prescriptive parts replaced where the vessel's own data
+are given.
+
+- Wind and current: the particulars' coefficient tables over heading
+  (:mod:`.dnv_coefficients`) where given, else [3.5] and [3.6];
+- thrust: each thruster's ``thrust_min`` and ``thrust_max`` of the vehicle file, taken as the
+  thrust it delivers (no [3.9.3] or [3.9.4] loss applied); a split-fed thruster that loses the
+  feed share s keeps (1 - s)^(2/3) of it, the power-to-thrust relation of [3.9.2];
+- forbidden directions: the vehicle file's ``forbidden_sectors`` instead of the [3.11.3] zones; a
+  sector whose race points only at failed thrusters lifts in that case, as a zone does.
+
+Kept from Level 1: the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2],
+the search and the redundancy groups. The public transcription of the standard has no Level 2
+text: what is replaced, and how, is this package's reading (:data:`SCOPE_L2` says so on every
+output). Not verified by DNV.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .dnv_conditions import Condition
+from .dnv_zones import Zone
+from .dp_capability import NOT_YET, Level1
+from .environment_loads import RHO_AIR, RHO_WATER
+
+OWN_DATA = ("wind and current loads from the particulars' coefficient tables over heading where given ([3.5], [3.6] "
+            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4] loss; a "
+            "lost feed share s leaves (1 - s)^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
+            "thruster they protect)")
+KEPT = "the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2], the redundancy groups"
+NOT_YET_L2 = f"a site environment in place of Table 2-1, the vessel's wave drift data, {NOT_YET}"
+SCOPE_L2 = (f"DNV-ST-0111 (Dec 2021) Level 2 as read here (the transcription used has no Level 2 text): the Level 1 "
+            f"balance with the vessel's own data: {OWN_DATA}. Kept from Level 1: {KEPT}. Not yet: {NOT_YET_L2}. "
+            "Not verified by DNV.")
+"""What every Level 2 output says about itself."""
+AREA_NOTE = ("coefficients: Fx = q A_F,wind Cx, Fy = q A_L,wind Cy, Mz = q A_L,wind Lpp Cn for wind; B T, "
+             "A_L,current and A_L,current Lpp for current; the standard's frame, moment about Lpp/2")
+
+
+class Level2(Level1):
+    """The Level 2 balance of one vehicle and its particulars."""
+
+    level = 2
+    scope = SCOPE_L2
+
+    def standard_loads(self, condition: Condition, direction: float) -> dict[str, np.ndarray]:
+        """[Fx, Fy, Mz] per source [N, N m], the standard's frame: the vessel's coefficients where given."""
+        loads = super().standard_loads(condition, direction)
+        hull, particulars = self.particulars.hull, self.particulars
+        for source, table, rho, speed, areas in (
+                ("wind", particulars.wind_coefficients, RHO_AIR, condition.wind,
+                 (hull.wind_area_frontal, hull.wind_area_lateral, hull.wind_area_lateral * hull.lpp)),
+                ("current", particulars.current_coefficients, RHO_WATER, condition.current,
+                 (hull.beam * hull.draught, hull.current_area_lateral, hull.current_area_lateral * hull.lpp))):
+            if table is not None:
+                loads[source] = 0.5 * rho * speed ** 2 * np.array(areas) * table.at(direction)
+        return loads
+
+    def thrust_range(self, name: str, condition: Condition, direction: float,
+                     lost: tuple[str, ...] = ()) -> tuple[float, float]:
+        """[low, high] [N]: the vehicle file's thrust limits, times share^(2/3) after a lost feed."""
+        actuator = self.actuators[name].config
+        share = self.power_share(name, lost)
+        if share <= 0.0:
+            raise ValueError(f"{name}: every feed lost ({', '.join(actuator.feeds)}) but not the thruster; "
+                             "list it in the redundancy group's actuators")
+        factor = share ** (2.0 / 3.0)
+        return actuator.thrust_min * factor, actuator.thrust_max * factor
+
+    def zones(self, failed: tuple[str, ...] = ()) -> list[Zone]:
+        """The vehicle file's forbidden sectors of the working thrusters, but those whose race
+        points at a failed thruster only (the bearing from it to the thruster inside the sector):
+        a sector lifts with the thruster it protects, as a [3.11.3] zone does."""
+        position = {a.name: a.position for a in self.vehicle.actuators}
+        zones = []
+        for actuator in self.vehicle.actuators:
+            if actuator.name in failed or actuator.rotation is None:
+                continue
+            x, y, _ = actuator.position
+            for start, end in actuator.rotation.forbidden_sectors:
+                zone = Zone(actuator.name, "(vehicle file)", 0.5 * (start + end), 0.5 * (end - start))
+                protected = [name for name in position if name != actuator.name and zone.forbids(
+                    math.atan2(y - position[name][1], x - position[name][0]))]
+                if not protected or not all(name in failed for name in protected):
+                    zones.append(zone)
+        return zones
+
+    def notes(self) -> list[str]:
+        """Level 1's notes with the method, the thrusters and the sectors of Level 2."""
+        notes = super().notes()
+        notes[1] = (f"Method {self.method}. The vehicle file gives each thruster's position, type, azimuth range, "
+                    "thrust limits and forbidden sectors. " + AREA_NOTE + ". Coefficient tables: "
+                    + ", ".join(f"{source} {'given' if table else 'none ([3.5]/[3.6])'}" for source, table in
+                                (("wind", self.particulars.wind_coefficients),
+                                 ("current", self.particulars.current_coefficients))) + ".")
+        notes[3] = "Thrusters (thrust_min / thrust_max [kN] of the vehicle file): " + "; ".join(
+            f"{a.name} {a.thrust_min / 1e3:.1f} / {a.thrust_max / 1e3:.1f}" for a in self.vehicle.actuators) + "."
+        notes[4] = "Forbidden sectors (vehicle file): " + ("; ".join(
+            f"{z.thruster} {math.degrees(z.sector[0]):.1f} to {math.degrees(z.sector[1]):.1f} deg"
+            for z in self.zones()) or "none") + " (thrust angle in the body frame, 0 forward, 90 to starboard)."
+        return notes

@@ -1,0 +1,152 @@
+"""The tables and the one-page summary of a DNV-ST-0111 Level 1 report (App. A.3).
+
+:func:`write_tables` writes the CSV tables of :mod:`allocator_pkg.analysis.dp_tables`, each after
+two ``#`` lines (what the table is, with its units; the scope); :func:`write_summary` the Markdown
+summary: the vessel, the inputs and where they come from, the DP capability-L1 notation, the
+tables' headlines, the scope and "Not verified by DNV".
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+from pathlib import Path
+
+import numpy as np
+
+from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result
+from ..analysis.dp_tables import (
+    A6_COLUMNS,
+    A7_COLUMNS,
+    A8_COLUMNS,
+    LOAD_COLUMNS,
+    groups_of,
+    load_table,
+    table_a1,
+    table_a6,
+    table_a7,
+    table_a8,
+    worst_groups,
+)
+
+TABLES = {
+    "table_a1": "Table A-1: capability number per heading (deg, environment from; 0 ahead, 90 from starboard) "
+                "intact, after the loss of each redundancy group, combined (the lowest over the groups) and "
+                "the group whose loss is worst there",
+    "table_a6": "Table A-6: forbidden zones in force per case ([3.11.3] at Level 1, the vehicle file's sectors at "
+                "Level 2); thrust angles [deg] in the body frame (0 forward, 90 to starboard), the thruster whose "
+                "race the zone protects",
+    "table_a7": "Table A-7: per case and heading the capability number, the limiting wind speed [m/s] and the "
+                "unfactored wind, current and wave loads of the number's Table 2-1 condition in the frame of "
+                "[2.8.2] (x forward, y to port; Fx, Fy [kN]; Mz [kN m] about Lpp/2, bow to port positive)",
+    "table_a8": "Table A-8: per case, heading and working thruster at the heading's number: thrust [kN] "
+                "(signed for a fixed thruster), its angle [deg, body frame], the effective thrust available "
+                "that way [kN] and the utilisation [%]; one allocation that holds the load, whose largest "
+                "utilisation is the least possible",
+    "loads": "Loads per source for every heading and number 1-11 (condition: wind [m/s], Hs [m], Tp [s], "
+             "current [m/s]), unfactored, and their sum times 1.25; frame of [2.8.2], Fx, Fy [kN], Mz [kN m]",
+}
+
+
+def _cell(value) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}" if abs(value) < 1e6 else f"{value:.1f}"
+    return str(value)
+
+
+def write_table(path: Path, what: str, scope: str, columns, rows) -> None:
+    with path.open("w", newline="") as handle:
+        handle.write(f"# {what}\n# {scope}\n")
+        writer = csv.writer(handle)
+        writer.writerow(columns)
+        writer.writerows([_cell(v) for v in row] for row in rows)
+
+
+def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result) -> list[Path]:
+    """The five CSV tables, ``<stem>_<table>.csv``; the paths written."""
+    a1_columns, a1_rows = table_a1(result)
+    contents = {"table_a1": (a1_columns, a1_rows), "table_a6": (A6_COLUMNS, table_a6(analysis)),
+                "table_a7": (A7_COLUMNS, table_a7(analysis, result)),
+                "table_a8": (A8_COLUMNS, table_a8(analysis, result)),
+                "loads": (LOAD_COLUMNS, load_table(analysis, result))}
+    paths = []
+    for key, (columns, rows) in contents.items():
+        path = out / f"{stem}_{key}.csv"
+        write_table(path, TABLES[key], result.scope, columns, rows)
+        paths.append(path)
+    return paths
+
+
+def input_sources(particulars_path: Path) -> list[tuple[str, str, str]]:
+    """(key, value, comment) of each top-level key of a particulars file with a comment beside it:
+    the file's statement of the unit and where the value comes from."""
+    pattern = re.compile(r"^([a-z_]+):\s*([^#]*?)\s*#\s*(.+)$")
+    return [match.groups() for line in particulars_path.read_text().splitlines()
+            if (match := pattern.match(line))]
+
+
+def _headings(result: Level1Result, case: str, value: int) -> str:
+    where = result.headings_deg[result.numbers[case] == value]
+    return ", ".join(f"{h:g}" for h in where)
+
+
+def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_path: Path, particulars_path: Path,
+                  files: list[Path]) -> None:
+    """The one-page Markdown summary."""
+    title = analysis.particulars.name or vehicle_path.stem
+    a, b, c, d = result.summary()
+    groups = groups_of(result)
+    lines = [
+        f"# DP capability Level {result.level}: {title}",
+        "",
+        f"**{result.summary_line()}** per DNV-ST-0111 (edition December 2021) Level {result.level}"
+        + (" as read here (the transcription used has no Level 2 text)" if result.level == 2 else "")
+        + ". **Not verified by DNV.**",
+        "",
+        f"- A = {a}: intact, lowest within +-30 deg of the bow; B = {b}: intact, lowest over 360 deg "
+        f"(at {_headings(result, INTACT, b)} deg).",
+        f"- C = {c}, D = {d}: the same for the worst single failure (D at {_headings(result, WORST, d)} deg).",
+        "",
+        "## Inputs",
+        "",
+        f"- Vehicle file `{vehicle_path}`: each thruster's position, type, direction and azimuth range; the power "
+        "sources, feeds (Table A-5) and redundancy groups.",
+        f"- Particulars file `{particulars_path}`: the hull (Table A-2) and each thruster's Table A-3 row.",
+        *_power_lines(analysis),
+        "- Redundancy groups (lost together): " + "; ".join(f"{g}: {', '.join(analysis.groups[g])}"
+                                                             for g in groups) + ".",
+        "",
+    ]
+    sources = input_sources(particulars_path)
+    if sources:
+        lines += ["| input | value | unit, source (as the particulars file states) |", "|---|---|---|",
+                  *(f"| `{key}` | {value} | {comment} |" for key, value, comment in sources), ""]
+    lines += [f"## Results (headings every {_step(result):g} deg, environment from)", "",
+              "| case | lowest number | at heading [deg] | lowest limiting wind [m/s] |", "|---|---|---|---|"]
+    for case in (INTACT, *groups, WORST):
+        low = int(np.min(result.numbers[case]))
+        label = case if case in (INTACT, WORST) else f"loss of {case}"
+        lines.append(f"| {label} | {low} | {_headings(result, case, low)} | "
+                     f"{float(np.min(result.wind_limits[case])):.1f} |")
+    worst = worst_groups(result)
+    counts = ", ".join(f"{g} at {worst.count(g)}" for g in groups)
+    lines += ["", f"Worst single failure per heading (Table A-1): {counts} of {len(worst)} headings.", "",
+              "## Files", "", *(f"- `{p.name}`" for p in files), "",
+              "## Scope", "", *(f"- {note}" for note in result.notes), ""]
+    path.write_text("\n".join(lines))
+
+
+def _power_lines(analysis: Level1) -> list[str]:
+    vehicle = analysis.vehicle
+    if not vehicle.power_sources:
+        return ["- Power sources: none given (each group loses its actuators only)."]
+    feeds = "; ".join(f"{a.name} " + ", ".join(f"{f} {100.0 * s:g} %" for f, s in zip(a.feeds, a.feed_shares))
+                      for a in vehicle.actuators if a.feeds)
+    return ["- Power sources: " + ", ".join(f"{s.name} {s.capacity:g} kW" for s in vehicle.power_sources)
+            + f"; feeds: {feeds}."]
+
+
+def _step(result: Level1Result) -> float:
+    headings = result.headings_deg
+    return float(headings[1] - headings[0]) if len(headings) > 1 else 360.0
+
