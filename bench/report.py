@@ -380,6 +380,20 @@ def _idle_core_section(idle: dict) -> list[str]:
     return lines
 
 
+def _dp_capability_section(run: dict) -> list[str]:
+    """The wall time of a full DNV-ST-0111 Level 1 run (bench/dp_capability.py)."""
+    met = "yes" if run["wall_s_median"] < run["target_s"] else "no"
+    return ["## DP capability Level 1", "",
+            f"`bench/dp_capability.py`: a full Level 1 run on {run['vessel']} ({run['headings']} headings every "
+            f"{run['heading_step_deg']:g} deg, {run['cases']} cases: intact and every redundancy group; a fresh "
+            "analysis, nothing cached), timed by the wall clock; the median over "
+            f"{run['repeats']} runs. A balance is one condition, heading and case.", "",
+            "| vessel | summary | balances | wall s (median) | per balance ms | target s | met |",
+            "|---|---|---|---|---|---|---|",
+            f"| {run['vessel']} | {run['summary']} | {run['balances']} | {run['wall_s_median']:.2f} | "
+            f"{1e3 * run['wall_s_median'] / run['balances']:.2f} | < {run['target_s']:g} | {met} |"]
+
+
 def _allocate_share(row: dict) -> str:
     """``allocate``'s p50 wall time in the node and its share of the CPU per sample (none for a bare node)."""
     if row.get("allocate_ms_p50") is None:
@@ -445,5 +459,7 @@ def write(result: dict, path: Path) -> None:
         lines += ["", *_overhead_section(result["overhead"])]
     if "idle_core" in result:
         lines += ["", *_idle_core_section(result["idle_core"])]
+    if "dp_capability" in result:
+        lines += ["", *_dp_capability_section(result["dp_capability"])]
     lines += ["", *_load_section(result), "", SOAK]
     path.write_text("\n".join(lines) + "\n")

@@ -67,6 +67,9 @@ def main(argv: list[str] | None = None) -> int:
     result["overhead"] = json.loads(overhead_out.read_text())
     result["idle_core"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "idle_core.py")]
                                               + (["--rounds", "1", "--samples", "100"] if arguments.quick else [])))
+    result["dp_capability"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_capability.py")]
+                                                  + (["--repeats", "1", "--heading-step", "30"] if arguments.quick
+                                                     else [])))
     load_out = RESULTS / "load.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "load.py"), "--out", str(load_out)]
                    + (["--seconds", "10"] if arguments.quick else []), check=False)

@@ -11,6 +11,7 @@ from conftest import ROOT, bench_module
 from allocator_pkg import load_vehicle
 from allocator_pkg.solvers import BACKENDS
 
+dp_capability = bench_module("dp_capability")
 idle_core = bench_module("idle_core")
 overhead = bench_module("overhead")
 report = bench_module("report")
@@ -166,6 +167,25 @@ def test_the_report_gives_allocates_cpu_after_each_idle_gap():
     lines = report._idle_core_section(idle)
     assert "| dp_vessel | 0 | 110.0 | 120.0 | 1.00 | 1.00 |" in lines
     assert "| dp_vessel | 10 | 330.0 | 300.0 | 3.00 | 2.50 |" in lines
+
+
+def test_the_dp_capability_bench_times_every_run_and_counts_its_balances():
+    result = dp_capability.measure(repeats=2, step_deg=90.0)
+    assert (result["headings"], result["cases"], result["repeats"]) == (4, 3, 2) and len(result["wall_s"]) == 2
+    assert result["wall_s_median"] == pytest.approx(sum(result["wall_s"]) / 2)
+    assert result["summary"].startswith("DP capability-L1(")
+    # every heading and case balances its number's conditions and then halves 14 times at least
+    assert result["balances"] >= 4 * 3 * 14
+
+
+def test_the_report_gives_the_dp_capability_run_against_its_target():
+    run = {"vessel": "dp_vessel", "heading_step_deg": 10.0, "headings": 36, "cases": 3, "repeats": 3,
+           "wall_s": [7.0, 8.0, 7.5], "wall_s_median": 7.5, "balances": 2500,
+           "summary": "DP capability-L1(10, 8, 8, 6)", "target_s": 10.0}
+    lines = report._dp_capability_section(run)
+    assert lines[0] == "## DP capability Level 1"
+    assert "| dp_vessel | DP capability-L1(10, 8, 8, 6) | 2500 | 7.50 | 3.00 | < 10 | yes |" in lines
+    assert report._dp_capability_section({**run, "wall_s_median": 12.0})[-1].endswith("| no |")
 
 
 def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator():

@@ -8,7 +8,9 @@ balanced by the thrusters. The number of a heading is the highest condition bala
 lower one balanced too; the limiting wind speed the highest wind balanced when the conditions
 between two numbers are interpolated linearly (:func:`condition_at`). This is done intact and
 for each redundancy group of the vehicle file (actuators and power sources lost together; a
-thruster fed in part by a lost source keeps its remaining share of P_B); the worst single
+thruster fed in part by a lost source keeps its remaining share of P_B; the thrusters on a source
+whose usable power, its capacity less the reserve of [3.12.3], is below their P_B share it in
+proportion to their P_B, :meth:`Level1.power_share`); the worst single
 failure is, per heading, the lowest over the groups. :meth:`Level1Result.summary` gives DP capability-L1(A, B, C, D).
 
 Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's thrust from its
@@ -40,6 +42,8 @@ from .dp_particulars import Particulars, particulars_from_mapping
 
 DYNAMIC_FACTOR = 1.25
 """[3.2.2]: on the sum of the environmental loads."""
+POWER_RESERVE = 0.10
+"""[3.12.3]-[3.12.4]: the share of a source's power kept for hotel and non-thruster consumers."""
 BOW_SECTOR_DEG = 30.0
 """A and C are the minima within this many degrees of the bow."""
 MAX_STEP_DEG = 10.0
@@ -48,15 +52,21 @@ INTACT = "intact"
 LOAD_SOURCES = ("wind", "current", "waves")
 WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
-                "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters")
-NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], the power "
-           "balance per switchboard [3.12]")
+                "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters; "
+                "each power source's capacity less the 10 % reserve [3.12.3]-[3.12.4] shared by the thrusters it "
+                "feeds")
+NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], the joint "
+           "thrust-power balance per switchboard [3.12]")
 POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
                  "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
-                 "Table A-5 as transcribed: what it can consume from each source); source capacities are not "
-                 "balanced yet.")
+                 "Table A-5 as transcribed: what it can consume from each source). Each source keeps 10 % of its "
+                 "capacity for hotel and non-thruster consumers [3.12.3]-[3.12.4]; when the working thrusters' "
+                 "P_B (times their feed shares) exceed the rest, they share it in proportion to their P_B, so "
+                 "each runs on its P_B times that fraction (a fixed split, more cautious than balancing the "
+                 "power with the thrust).")
 READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed share s keeps (1 - s) P_B ([3.12], "
-            "Table A-5); the second range of B in [3.9.4] read as the union of "
+            "Table A-5); a board short of power shares its usable power among its thrusters in proportion to "
+            "their P_B [3.12]; the second range of B in [3.9.4] read as the union of "
             "[-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] in N")
 """Where the text cannot be read as it stands, and how it is read here."""
 SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
@@ -140,6 +150,7 @@ class Level1:
         """What each group's loss takes away: its actuators, then its power sources (the vehicle
         file's redundancy groups; without any, each actuator alone)."""
         self.actuators = _actuators(vehicle, particulars)
+        self.capacities = {source.name: source.capacity for source in vehicle.power_sources}
         self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
         self._zones: dict[tuple[str, ...], list[Zone]] = {}
@@ -161,16 +172,35 @@ class Level1:
                 "waves": wave_drift_load(hull, condition.hs, condition.tp, direction)}
 
     def power_share(self, name: str, lost: tuple[str, ...] = ()) -> float:
-        """The share of its P_B a thruster keeps when the sources in ``lost`` are: 1 less the
-        feed shares of the lost feeds (Table A-5)."""
+        """The share of its P_B a thruster can draw when ``lost`` (actuators and sources) are:
+        the sum over its remaining feeds of the feed share (Table A-5) times that source's
+        :meth:`source_factor` ([3.12]); 1 for a thruster without feeds (a vehicle without sources)."""
         actuator = self.actuators[name].config
-        return 1.0 - sum(share for feed, share in zip(actuator.feeds, actuator.feed_shares) if feed in lost)
+        if not actuator.feeds:
+            return 1.0
+        return sum(share * self.source_factor(feed, lost)
+                   for feed, share in zip(actuator.feeds, actuator.feed_shares) if feed not in lost)
+
+    def source_demand(self, source: str, lost: tuple[str, ...] = ()) -> float:
+        """P_demand [kW] of one source: the sum of feed share times P_B over the working thrusters
+        it feeds (Table A-5)."""
+        return sum(share * self.particulars.thrusters[name].power
+                   for name, unit in self.actuators.items() if name not in lost
+                   for feed, share in zip(unit.config.feeds, unit.config.feed_shares) if feed == source)
+
+    def source_factor(self, source: str, lost: tuple[str, ...] = ()) -> float:
+        """min(1, P_usable / P_demand) of one source: P_usable its capacity less the reserve of
+        [3.12.3]-[3.12.4] (POWER_RESERVE of it, for hotel and non-thruster consumers, losses
+        included), P_demand its :meth:`source_demand`. The thrusters on a board short of power
+        share its usable power in proportion to their demand."""
+        usable, demand = (1.0 - POWER_RESERVE) * self.capacities[source], self.source_demand(source, lost)
+        return usable / demand if demand > usable else 1.0
 
     def thrust_range(self, name: str, condition: Condition, direction: float,
                      lost: tuple[str, ...] = ()) -> tuple[float, float]:
         """[low, high] [N] of one thruster: nominal thrust times beta_misc and beta_vent, each way.
-        A thruster fed in part by a source in ``lost`` runs on the P_B of its remaining share
-        (T_nominal times share^(2/3) [3.9.2], beta_vent of that T_nominal)."""
+        A thruster runs on the P_B times its :meth:`power_share` (what its remaining feeds can give
+        it): T_nominal times share^(2/3) [3.9.2], beta_vent of that T_nominal."""
         unit = self.actuators[name]
         data = self.particulars.thrusters[name]
         share = self.power_share(name, lost)
@@ -294,10 +324,20 @@ class Level1:
             "Limiting wind speed: conditions between two numbers interpolated linearly; "
             f"at number {TOP} the table's {CONDITIONS[TOP].wind:g} m/s (held at least that).",
         ]
+        if self.capacities:
+            notes.append("Power sources [3.12] (capacity, usable after the 10 % reserve; per case the P_B its working "
+                         "thrusters ask times their feed shares, and the fraction of it they get): "
+                         + "; ".join(self._source_note(source) for source in self.capacities) + ".")
         if self.uncontrolled:
             lost = ", ".join(DOF_NAMES[i] for i in self.uncontrolled)
             notes.append(f"Not controlled: {lost}; a load there is not held.")
         return notes
+
+    def _source_note(self, source: str) -> str:
+        cases = [(INTACT, ())] + [(g, lost) for g, lost in self.groups.items() if source not in lost]
+        return (f"{source} {self.capacities[source]:g} kW, {(1.0 - POWER_RESERVE) * self.capacities[source]:g} kW "
+                "usable: " + ", ".join(f"{case} {self.source_demand(source, lost):.1f} kW asked, "
+                                       f"{self.source_factor(source, lost):.4f} given" for case, lost in cases))
 
 
 def _hull_note(particulars: Particulars) -> str:

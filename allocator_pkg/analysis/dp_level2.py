@@ -5,8 +5,9 @@ are given.
 - Wind and current: the particulars' coefficient tables over heading
   (:mod:`.dnv_coefficients`) where given, else [3.5] and [3.6];
 - thrust: each thruster's ``thrust_min`` and ``thrust_max`` of the vehicle file, taken as the
-  thrust it delivers (no [3.9.3] or [3.9.4] loss applied); a split-fed thruster that loses the
-  feed share s keeps (1 - s)^(2/3) of it, the power-to-thrust relation of [3.9.2];
+  thrust it delivers (no [3.9.3] or [3.9.4] loss applied), times share^(2/3) (the power-to-thrust
+  relation of [3.9.2]) of the share of its P_B its feeds give it, as in Level 1 (a lost feed share,
+  a board short of power [3.12]);
 - forbidden directions: the vehicle file's ``forbidden_sectors`` instead of the [3.11.3] zones; a
   sector whose race points only at failed thrusters lifts in that case, as a zone does.
 
@@ -28,8 +29,9 @@ from .dp_capability import NOT_YET, Level1
 from .environment_loads import RHO_AIR, RHO_WATER
 
 OWN_DATA = ("wind and current loads from the particulars' coefficient tables over heading where given ([3.5], [3.6] "
-            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4] loss; a "
-            "lost feed share s leaves (1 - s)^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
+            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4] loss; the "
+            "share of its P_B its feeds give it as in Level 1, a lost feed share or a board short of power, leaves "
+            "share^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
             "thruster they protect)")
 KEPT = "the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2], the redundancy groups"
 NOT_YET_L2 = f"a site environment in place of Table 2-1, the vessel's wave drift data, {NOT_YET}"
@@ -62,7 +64,8 @@ class Level2(Level1):
 
     def thrust_range(self, name: str, condition: Condition, direction: float,
                      lost: tuple[str, ...] = ()) -> tuple[float, float]:
-        """[low, high] [N]: the vehicle file's thrust limits, times share^(2/3) after a lost feed."""
+        """[low, high] [N]: the vehicle file's thrust limits, times share^(2/3) of its
+        :meth:`power_share` (a lost feed, a board short of power)."""
         actuator = self.actuators[name].config
         share = self.power_share(name, lost)
         if share <= 0.0:
