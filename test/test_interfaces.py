@@ -1,8 +1,15 @@
 """The generated allocator_msgs interfaces: importable from the venv with no sourcing, with
 the exact fields and constants other packages rely on."""
 
-from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
-from allocator_msgs.srv import GetCapability, SetActuatorFault
+from allocator_msgs.msg import (
+    ActuatorFault,
+    AllocationStatus,
+    ConsequenceAnalysis,
+    GroupConsequence,
+    PowerAvailable,
+    ThrusterCommands,
+)
+from allocator_msgs.srv import GetCapability, SetActuatorFault, SetGroupFault
 
 
 def test_actuator_fault_constants_and_fields():
@@ -23,7 +30,9 @@ def test_allocation_status_fields():
         "saturated": "boolean", "method": "string", "solver_status": "string", "outcome": "uint8",
         "iterations": "uint32",
         "solve_time": "double", "power": "double", "unallocated": "geometry_msgs/Wrench",
-        "at_thrust_limit": "sequence<boolean>", "at_rate_limit": "sequence<boolean>", "voltage": "double"}
+        "at_thrust_limit": "sequence<boolean>", "at_rate_limit": "sequence<boolean>", "voltage": "double",
+        "power_source": "sequence<string>", "source_power": "sequence<double>",
+        "source_available": "sequence<double>", "power_limited": "boolean", "consequence_alarm": "boolean"}
     assert (AllocationStatus.OUTCOME_SOLVED, AllocationStatus.OUTCOME_INACCURATE,
             AllocationStatus.OUTCOME_ITERATION_LIMIT, AllocationStatus.OUTCOME_FALLBACK,
             AllocationStatus.OUTCOME_STOPPED) == (0, 1, 2, 3, 4)
@@ -38,3 +47,21 @@ def test_get_capability_service():
     assert GetCapability.Request.get_fields_and_field_types() == {"direction": "geometry_msgs/Wrench"}
     assert GetCapability.Response.get_fields_and_field_types() == {
         "success": "boolean", "message": "string", "scale": "double", "achieved": "geometry_msgs/Wrench"}
+
+
+def test_power_available_fields():
+    assert PowerAvailable.get_fields_and_field_types() == {
+        "header": "std_msgs/Header", "source": "sequence<string>", "available": "sequence<double>"}
+
+
+def test_consequence_analysis_fields():
+    assert GroupConsequence.get_fields_and_field_types() == {
+        "group": "string", "utilisation": "double", "margin": "double"}
+    assert ConsequenceAnalysis.get_fields_and_field_types() == {
+        "header": "std_msgs/Header", "load": "geometry_msgs/Wrench",
+        "groups": "sequence<allocator_msgs/GroupConsequence>", "alarm": "boolean"}
+
+
+def test_set_group_fault_service():
+    assert SetGroupFault.Request.get_fields_and_field_types() == {"group": "string"}
+    assert SetGroupFault.Response.get_fields_and_field_types() == {"success": "boolean", "message": "string"}
