@@ -36,11 +36,13 @@ class PowerLimit:
     """The power rule at one set of available powers: ``bound`` [N], the largest thrust
     magnitude of every actuator (inf: the power sets none); ``weights`` (r x m), the share of
     actuator i's power drawn from source j (0 from a lost feed); ``limited``, the actuators
-    whose range the bound narrows."""
+    whose range the bound narrows; ``available``, the available power [kW] of every source
+    the rule took."""
 
     bound: np.ndarray
     weights: np.ndarray
     limited: np.ndarray
+    available: np.ndarray
 
     def holds(self, thrust: np.ndarray) -> bool:
         """Whether the power holds some actuator back at ``thrust``: one whose range a bound
@@ -126,7 +128,8 @@ class PowerBudget:
     def limit(self, low: np.ndarray, high: np.ndarray) -> PowerLimit:
         """The power rule's bounds given the static force ranges ``low``/``high`` that faults,
         speed and voltage leave (module docstring)."""
-        available = self.available * KW
+        kilowatts = self.available
+        available = kilowatts * KW
         live = self.shares * (available > 0.0)
         live_share = live.sum(axis=1)
         weights = np.divide(live, live_share[:, None], out=np.zeros_like(live), where=live_share[:, None] > 0.0)
@@ -138,7 +141,7 @@ class PowerBudget:
         scale = np.where((weights > 0.0) & drawing[:, None], rho, 1.0).min(axis=1, initial=1.0)
         bound = np.where(self.fed, np.minimum(derated, largest * scale ** (2.0 / 3.0)), np.inf)
         limited = bound < np.maximum(np.abs(low), np.abs(high))
-        return PowerLimit(bound=bound, weights=weights, limited=limited)
+        return PowerLimit(bound=bound, weights=weights, limited=limited, available=kilowatts)
 
     def draw(self, thrust: np.ndarray, limit: PowerLimit) -> np.ndarray:
         """Power [kW] each source gives at ``thrust``: p_i = P_i |f_i|^(3/2) (1.44) split over
@@ -148,7 +151,7 @@ class PowerBudget:
 
     def reading(self, thrust: np.ndarray, limit: PowerLimit) -> SourcePower:
         """The :class:`SourcePower` of a sample's ``thrust`` under ``limit``."""
-        return SourcePower(self.sources, self.draw(thrust, limit), self.available, limit.holds(thrust))
+        return SourcePower(self.sources, self.draw(thrust, limit), limit.available, limit.holds(thrust))
 
 
 def narrowed(low: np.ndarray, high: np.ndarray, limit: PowerLimit) -> tuple[np.ndarray, np.ndarray]:

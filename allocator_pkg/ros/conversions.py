@@ -105,8 +105,9 @@ def status_message(result: AllocationResult, solver_status: str, header: Header,
     message.at_rate_limit = result.at_rate_limit.tolist()
     message.voltage = math.nan if voltage is None else float(voltage)
     if power is None:
-        message.power_source, message.source_power, message.source_available = [], doubles([]), doubles([])
-        message.power_limited = False
+        if message.power_source:                  # a message that carried power per source before
+            message.power_source, message.source_power, message.source_available = [], [], []
+            message.power_limited = False
     else:
         message.power_source = list(power.source)
         message.source_power, message.source_available = doubles(power.power), doubles(power.available)
