@@ -60,7 +60,8 @@ class AllocationRuntime:
 
     State shared between callbacks sits behind one lock, so that services, parameter changes
     and samples may come from any thread. ``active`` says whether the runtime samples: the
-    timers run and a wrench (input trigger) starts a sample."""
+    timers run and a wrench (input trigger) starts a sample. ``power_input`` is the
+    ``power_available`` input (None without power sources)."""
 
     def __init__(self, node: Node, allocator: Allocator, settings: NodeSettings, geometry: dict[str, list[float]]):
         self._node = node
@@ -91,7 +92,7 @@ class AllocationRuntime:
             if vehicle.has_surfaces else None
         self._battery = BatteryInput(node, self._lock, allocator, self.counters) \
             if vehicle.voltage_range is not None else None
-        self._power = PowerInput(node, self._lock, allocator, self.counters) if vehicle.power_sources else None
+        self.power_input = PowerInput(node, self._lock, allocator, self.counters) if vehicle.power_sources else None
         self._capability: Capability | None = None
         self._period_ns = round(S_TO_NS / vehicle.rate_hz)
         self._timer = node.create_timer(1.0 / vehicle.rate_hz, self._on_timer, autostart=False)
@@ -101,11 +102,6 @@ class AllocationRuntime:
     def period(self) -> float:
         """The allocation period 1 / rate_hz [s]."""
         return self._period_ns * 1e-9
-
-    @property
-    def power_input(self) -> PowerInput | None:
-        """The ``power_available`` input (None: the vehicle has no power sources)."""
-        return self._power
 
     @property
     def statuses_published(self) -> int:
@@ -122,8 +118,8 @@ class AllocationRuntime:
             text += f", speed from {self._odometry.topic_name}"
         if self._battery is not None:
             text += f", supply voltage from {self._battery.topic_name}"
-        if self._power is not None:
-            text += f", available power from {self._power.topic_name}"
+        if self.power_input is not None:
+            text += f", available power from {self.power_input.topic_name}"
         return text + f"; publishing {', '.join(outputs)}"
 
     # -- life cycle ---------------------------------------------------------------------
@@ -170,8 +166,8 @@ class AllocationRuntime:
                     node.destroy_subscription(subscription)
             if self._battery is not None:
                 self._battery.close()
-            if self._power is not None:
-                self._power.close()
+            if self.power_input is not None:
+                self.power_input.close()
             self._outputs.close()
 
     # -- inputs -------------------------------------------------------------------------
@@ -387,7 +383,7 @@ class AllocationRuntime:
             if battery is not None:
                 battery.check(self._clock.now().nanoseconds, self.settings.battery_timeout)
             report = None if battery is None else (battery.topic_name, battery.fallback)
-            power = self._power
+            power = self.power_input
             if power is not None:
                 power.check(self._clock.now().nanoseconds, self.settings.power_timeout)
             statuses = diagnostic_statuses(node.get_fully_qualified_name(), self.allocator, self.counters,
