@@ -144,6 +144,16 @@ def test_an_unknown_group_or_bad_available_power_is_refused_and_nothing_changes(
     assert allocator.power.available.tolist() == [5600.0, 7800.0] and allocator.faults == {}
 
 
+def test_the_same_available_power_again_changes_nothing():
+    allocator = Allocator(split_vessel())
+    allocator.set_available_power({"swbd_a": 1000.0})
+    limit = allocator.power_limit
+    allocator.set_available_power({"swbd_a": 1000.0, "swbd_b": 7800.0})
+    assert allocator.power_limit is limit
+    allocator.set_available_power({"swbd_a": 999.0})
+    assert allocator.power_limit is not limit
+
+
 def test_without_sources_or_at_capacity_nothing_changes():
     assert Allocator(vehicle_from(BLUEROV)).power_limit is None
     parameters = read_parameters(DP_VESSEL)

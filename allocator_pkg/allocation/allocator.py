@@ -274,9 +274,9 @@ class Allocator:
     def set_available_power(self, available: Mapping[str, float]) -> None:
         """Available power [kW] of the sources named, from the next sample (a source a group
         fault took stays at 0). Raises ValueError for an unknown source or a value that is not
-        finite and >= 0; nothing changes then."""
-        self._power.report(available)
-        self._refresh()
+        finite and >= 0; nothing changes then. The same values again change nothing."""
+        if self._power.report(available):
+            self._refresh()
 
     def reset_available_power(self) -> None:
         """Every source back to its configured capacity."""

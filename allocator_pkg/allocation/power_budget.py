@@ -114,10 +114,13 @@ class PowerBudget:
             values[source] = kilowatts
         return values
 
-    def report(self, available: Mapping[str, float]) -> None:
-        """Take the available power [kW] of the sources named (:meth:`checked` first)."""
+    def report(self, available: Mapping[str, float]) -> bool:
+        """Take the available power [kW] of the sources named (:meth:`checked` first); whether
+        any changed."""
+        before = self.reported.copy()
         for source, kilowatts in self.checked(available).items():
             self.reported[self.sources.index(source)] = kilowatts
+        return not np.array_equal(before, self.reported)
 
     def group(self, name: str) -> RedundancyGroup:
         """The redundancy group ``name``; ValueError naming the groups for another name."""
