@@ -250,7 +250,8 @@ class Allocator:
         self._refresh()
 
     def clear_faults(self) -> None:
-        """Every actuator back to NOMINAL."""
+        """Every actuator back to NOMINAL; the sources of failed redundancy groups back to their
+        available power."""
         self._fault_set = self._fault_set.cleared()
         self._power.lost, self._groups = frozenset(), ()
         self._refresh()

@@ -151,7 +151,6 @@ class PowerBudget:
         the live feeds."""
         return (self.coefficient * np.abs(thrust) ** 1.5) @ limit.weights / KW
 
-
     def reading(self, thrust: np.ndarray, limit: PowerLimit) -> SourcePower:
         """The :class:`SourcePower` of a sample's ``thrust`` under ``limit``."""
         return SourcePower(self.sources, self.draw(thrust, limit), limit.available, limit.holds(thrust))
