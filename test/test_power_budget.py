@@ -119,6 +119,7 @@ def test_a_group_fault_fails_its_actuators_and_sources_from_the_next_sample_and_
     tau = [3e5, 1e5, 0.0, 0.0, 0.0, 2e6]
     for _ in range(50):
         allocator.allocate(tau)
+    setups = allocator.stats.solver_setups
     allocator.set_group_fault("switchboard_b")
     result = allocator.allocate(tau)
     assert result.thrust[[1, 3]].tolist() == [0.0, 0.0]
@@ -131,6 +132,8 @@ def test_a_group_fault_fails_its_actuators_and_sources_from_the_next_sample_and_
     allocator.clear_faults()
     assert allocator.group_faults == () and allocator.power.available.tolist() == [5600.0, 7000.0]
     assert not allocator.power_limit.limited.any() and allocator.modes().tolist() == [0, 0, 0, 0]
+    allocator.allocate(tau)
+    assert allocator.stats.solver_setups == setups            # new bounds for the running solver only
 
 
 def test_an_unknown_group_or_bad_available_power_is_refused_and_nothing_changes():
