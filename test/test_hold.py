@@ -104,3 +104,15 @@ def test_a_control_surface_an_inactive_node_and_an_actuator_off_the_dofs_are_ref
     planar, settings = bench(ROOT / "config" / "bluerov2_heavy.yaml", dofs=["surge", "sway", "yaw"])
     assert refusal(planar, settings, "thruster_5", 1.0, 1.0, active=True) == \
         "thruster_5 acts on none of the controlled DOFs (surge, sway, yaw)"
+
+
+def test_a_hold_gives_back_the_failed_redundancy_groups():
+    from allocator_pkg import load_vehicle
+    from allocator_pkg.ros.hold import Hold
+    allocator = Allocator(load_vehicle(ROOT / "config" / "dp_vessel.yaml"))
+    allocator.set_group_fault("switchboard_b")
+    held = Hold.start(allocator, "azimuth_stbd", 1000.0, 0)
+    assert allocator.modes().tolist() == [0, 2, 2, 2]
+    held.release(allocator)
+    assert allocator.group_faults == ("switchboard_b",) and allocator.power.available.tolist() == [5600.0, 0.0]
+    assert allocator.modes().tolist() == [0, 2, 0, 2]

@@ -1,6 +1,7 @@
 """Power sources, feeds and redundancy groups of the vehicle file: read into PowerSource and
-RedundancyGroup, refused naming the key when they do not fit together, and not read by the
-allocation."""
+RedundancyGroup, refused naming the key when they do not fit together; at their capacities
+(which exceed what dp_vessel's thrusters can draw) the allocation is that of the vehicle without
+them (allocation/power_budget.py and test_power_budget.py for the rest)."""
 
 import numpy as np
 import pytest
@@ -27,7 +28,7 @@ def test_dp_vessel_has_two_switchboards_and_two_groups():
         "tunnel_fwd": (("swbd_a",), (1.0,)), "tunnel_aft": (("swbd_b",), (1.0,))}
 
 
-def test_the_keys_do_not_change_the_allocation():
+def test_at_their_capacities_the_keys_do_not_change_the_allocation():
     with_power = Allocator(vehicle_from_parameters(PARAMETERS))
     without = Allocator(vehicle_from_parameters({k: v for k, v in PARAMETERS.items() if k not in POWER_KEYS}))
     assert POWER_KEYS and without.vehicle.power_sources == ()

@@ -244,6 +244,8 @@ def test_allocator_ctl_commands(node_process, tmp_path):
     result = ctl("fault", "main_port", "stuck", "0.3")
     assert result.returncode == 1 and "these can be stuck" in result.stdout
     assert "cleared faults of main_port" in ctl("clear").stdout
+    result = ctl("group", "bus")
+    assert result.returncode == 1 and result.stdout.strip() == "unknown redundancy group 'bus'; groups: none"
     assert ctl("params", "set", "rate_hz=20", "weights.minimax=0.5").stdout.strip() == "applied"
     rejected = ctl("params", "set", "rate_hz=-1")
     assert rejected.returncode == 1 and "rate_hz" in rejected.stdout
@@ -271,6 +273,16 @@ def test_allocator_ctl_commands(node_process, tmp_path):
     assert {"/wrench_command", "/thruster_commands", "/allocation_status"} == set(topics)
     assert topics["/wrench_command"][-1].force.x == 80.0 and topics["/wrench_command"][-1].torque.z == 5.0
     assert len(topics["/thruster_commands"]) == len(rows) - 1
+
+
+def test_allocator_ctl_fails_a_redundancy_group_and_clears_it():
+    with child_process(node_command(ROOT / "config" / "dp_vessel.yaml")):
+        result = ctl("group", "switchboard_a")
+        assert result.returncode == 0, result.stderr
+        assert result.stdout.strip() == ("switchboard_a: azimuth_stbd, tunnel_fwd FAILED and swbd_a at 0 kW from the "
+                                         "next sample")
+        assert ctl("clear").stdout.strip() == ("cleared faults of azimuth_stbd, tunnel_fwd (redundancy groups "
+                                               "switchboard_a)")
 
 
 def test_the_readme_allocator_ctl_lines_run_against_a_node_as_written():

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -42,6 +42,7 @@ from ..vehicle.config import DOF_NAMES, Vehicle
 from .actuation import ActuationStage
 from .conditions import Conditions
 from .limits import LimitsStage
+from .power_budget import PowerBudget, PowerLimit, narrowed
 from .result import AllocationResult, AllocatorStats
 from .solve import MethodStage, check_method
 from .state import ActuatorState
@@ -73,6 +74,8 @@ class Allocator:
         self._voltage: float | None = None
         self._samples = 0
         self._fault_set = FaultSet(vehicle)
+        self._power = PowerBudget(vehicle)
+        self._groups: tuple[str, ...] = ()
         self._configure(vehicle)
         self.reset()
 
@@ -143,6 +146,7 @@ class Allocator:
             self._solver.choose(self._method_override or vehicle.method)
             return
         self._fault_set = self._fault_set.rebound(vehicle)
+        self._power = self._power.rebound(vehicle)
         self._configure(vehicle)
         angle = self._state.angle.copy()
         for state, i in zip(self._state.azimuth, self._model.rot):
@@ -246,17 +250,66 @@ class Allocator:
         self._refresh()
 
     def clear_faults(self) -> None:
-        """Every actuator back to NOMINAL."""
+        """Every actuator back to NOMINAL; the sources of failed redundancy groups back to their
+        available power."""
         self._fault_set = self._fault_set.cleared()
+        self._power.lost, self._groups = frozenset(), ()
         self._refresh()
 
     def modes(self) -> np.ndarray:
         """FaultMode of every actuator, configuration order."""
         return self._fault_set.modes.copy()
 
+    # -- power per source (allocation/power_budget.py, docs/power.md) ---------------------
+
+    @property
+    def power(self) -> PowerBudget:
+        """The power sources, feeds and the available power in force (read-only)."""
+        return self._power
+
+    @property
+    def power_limit(self) -> PowerLimit | None:
+        """The thrust bounds and feed weights of the power rule in force (None: no sources)."""
+        return self._power_limit
+
+    def set_available_power(self, available: Mapping[str, float]) -> None:
+        """Available power [kW] of the sources named, from the next sample (a source a group
+        fault took stays at 0). Raises ValueError for an unknown source or a value that is not
+        finite and >= 0; nothing changes then. The same values again change nothing."""
+        if self._power.report(available):
+            self._refresh()
+
+    def reset_available_power(self) -> None:
+        """Every source back to its configured capacity."""
+        self._power.reported = self._power.capacity.copy()
+        self._refresh()
+
+    @property
+    def group_faults(self) -> tuple[str, ...]:
+        """The redundancy groups failed, in the order they failed."""
+        return self._groups
+
+    def set_group_fault(self, group: str) -> None:
+        """Fail a redundancy group from the next sample: its actuators FAILED, its sources at
+        0 kW until :meth:`clear_faults`. Raises ValueError naming the groups for an unknown one."""
+        members = self._power.group(group)
+        fault_set = self._fault_set
+        for name in members.actuators:
+            fault_set = fault_set.with_fault(name, FaultMode.FAILED)
+        self._fault_set = fault_set
+        self._power.lost |= set(members.sources)
+        self._groups += () if group in self._groups else (group,)
+        self._refresh()
+
     def _refresh(self) -> None:
-        """What faults, speed and voltage decide, computed once and given to every stage."""
-        conditions = self._conditions = Conditions.of(self._model.vehicle, self._fault_set, self._speed, self._voltage)
+        """What faults, speed, voltage and available power decide, computed once and given to
+        every stage."""
+        conditions = Conditions.of(self._model.vehicle, self._fault_set, self._speed, self._voltage)
+        self._power_limit = self._power.limit(conditions.low, conditions.high) if self._power.active else None
+        if self._power_limit is not None and self._power_limit.limited.any():
+            low, high = narrowed(conditions.low, conditions.high, self._power_limit)
+            conditions = replace(conditions, low=low, high=high)
+        self._conditions = conditions
         self._limits.refresh(conditions)
         self._solver.refresh(conditions)
         self._actuation.refresh(conditions)

@@ -11,7 +11,7 @@ from rclpy.parameter import Parameter, parameter_value_to_python
 from std_srvs.srv import Trigger
 
 from allocator_msgs.msg import ActuatorFault
-from allocator_msgs.srv import GetCapability, SetActuatorFault
+from allocator_msgs.srv import GetCapability, SetActuatorFault, SetGroupFault
 
 from ..ros.conversions import array_to_wrench
 from ..vehicle.node_settings import NODE_NAME
@@ -62,6 +62,9 @@ class Controller:
         elif mode == "stuck":
             fault.azimuth = value
         return self.call(SetActuatorFault, "set_actuator_fault", SetActuatorFault.Request(fault=fault))
+
+    def set_group_fault(self, group: str) -> SetGroupFault.Response:
+        return self.call(SetGroupFault, "set_group_fault", SetGroupFault.Request(group=group))
 
     def clear_faults(self) -> Trigger.Response:
         return self.call(Trigger, "clear_faults", Trigger.Request())

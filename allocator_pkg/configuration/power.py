@@ -5,7 +5,8 @@ actuators: a source or group named twice or badly, a feed or group member that n
 or actuator, feed shares that are not one per feed or do not sum to 1, a thruster without feeds
 while sources are set, a group that leaves a thruster outside it with no feed at all. Every
 problem is recorded on the :class:`~allocator_pkg.configuration.values.Reader`, naming the key.
-The allocation does not read them; DNV-ST-0111 capability analysis does.
+The allocation keeps each source's draw within its available power
+(:mod:`allocator_pkg.allocation.power_budget`); DNV-ST-0111 capability analysis reads them too.
 """
 
 from __future__ import annotations

@@ -101,12 +101,14 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         constraint="at least one; unique; letters, digits and '_', starting with a letter"),
     Key("power.sources", STR_LIST, "Power sources of the thrusters (switchboards, prime movers: the columns of "
         "DNV-ST-0111 Table A-5), each with power.<source>.capacity; with any, every thruster names its "
-        "actuators.<name>.feeds. Read by the DP capability analysis, not by the allocation.",
+        "actuators.<name>.feeds. The allocation keeps each source's draw within its available power (the "
+        "power_available topic, else the capacity; docs/power.md), as does the DP capability analysis.",
         default_doc="none", read_only=True,
         constraint="unique; letters, digits and '_', starting with a letter; no actuator's name"),
     Key("redundancy_groups.names", STR_LIST, "Redundancy groups: what one single failure takes away together "
         "(DNV-ST-0111 [2.4.8]; the DP FMEA's redundancy concept), each with redundancy_groups.<group>.sources and "
-        "redundancy_groups.<group>.actuators. Read by the DP capability analysis, not by the allocation.",
+        "redundancy_groups.<group>.actuators. The node's ~/set_group_fault fails one at runtime; the DP capability "
+        "analysis fails each in turn.",
         default_doc="none", read_only=True,
         constraint="unique; letters, digits and '_', starting with a letter"),
 )
@@ -159,6 +161,9 @@ NODE_KEYS: tuple[Key, ...] = (
         choices=GEOMETRY_SOURCES, read_only=True),
     Key("battery_timeout", FLOAT, "With tables measured at several voltages: with no valid sensor_msgs/BatteryState "
         "on battery_state for this long, the thrust limits follow nominal_voltage again (diagnostics say so).",
+        default=5.0, minimum=0.0, exclusive_minimum=True, unit="s"),
+    Key("power_timeout", FLOAT, "With power.sources: with no valid allocator_msgs/PowerAvailable on power_available "
+        "for this long, every source's available power is its capacity again (diagnostics say so).",
         default=5.0, minimum=0.0, exclusive_minimum=True, unit="s"),
     Key("robot_description_file", STR, "URDF file read with geometry_source robot_description; empty: the "
         "robot_description topic (transient local, as robot_state_publisher offers it).", default="",
@@ -251,8 +256,9 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
     Key("reversed", BOOL, "The thruster is wired or propped backwards: its command is mirrored about the "
         "set-point of zero force (0, or a table's neutral), its force model unchanged (ArduSub's MOT_n_DIRECTION).",
         default=False, applies_to=_THR),
-    Key("feeds", STR_LIST, "Power sources this thruster draws from (its row of DNV-ST-0111 Table A-5). Read by the "
-        "DP capability analysis, not by the allocation.", applies_to=_THR, default_doc="none", read_only=True,
+    Key("feeds", STR_LIST, "Power sources this thruster draws from (its row of DNV-ST-0111 Table A-5): the "
+        "allocation and the DP capability analysis draw its power from them (docs/power.md).",
+        applies_to=_THR, default_doc="none", read_only=True,
         constraint="names from power.sources, each at most once; required for every thruster when power.sources "
                    "is set"),
     Key("feed_shares", FLOAT_LIST, "Share of this thruster's power from each of its feeds, in feeds order (a split "

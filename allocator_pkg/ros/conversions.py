@@ -12,6 +12,7 @@ from std_msgs.msg import Header
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 
+from ..allocation.power_budget import SourcePower
 from ..allocation.result import AllocationResult
 from ..solvers.outcome import Outcome
 from ..vehicle.node_settings import FLU, FRD
@@ -82,10 +83,12 @@ def commands_message(result: AllocationResult, names: tuple[str, ...], header: H
 
 
 def status_message(result: AllocationResult, solver_status: str, header: Header, frame: str = FRD,
-                   voltage: float | None = None, message: AllocationStatus | None = None) -> AllocationStatus:
+                   voltage: float | None = None, message: AllocationStatus | None = None,
+                   power: SourcePower | None = None) -> AllocationStatus:
     """Requested, achieved and unallocated wrench (in the body frame convention ``frame``),
-    saturation, per-actuator limit flags, the supply voltage in use (None: NaN) and solver
-    figures of one sample, in ``message`` (every field set) or a new one."""
+    saturation, per-actuator limit flags, the supply voltage in use (None: NaN), the power per
+    source (None: no sources) and solver figures of one sample, in ``message`` (every field
+    set) or a new one."""
     message = AllocationStatus() if message is None else message
     message.header = header
     fill_wrench_in(message.requested, result.requested, frame)
@@ -101,4 +104,12 @@ def status_message(result: AllocationResult, solver_status: str, header: Header,
     message.at_thrust_limit = result.at_thrust_limit.tolist()
     message.at_rate_limit = result.at_rate_limit.tolist()
     message.voltage = math.nan if voltage is None else float(voltage)
+    if power is None:
+        if message.power_source:                  # a message that carried power per source before
+            message.power_source, message.source_power, message.source_available = [], [], []
+            message.power_limited = False
+    else:
+        message.power_source = list(power.source)
+        message.source_power, message.source_available = doubles(power.power), doubles(power.available)
+        message.power_limited = power.limited
     return message

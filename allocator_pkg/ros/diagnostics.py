@@ -19,6 +19,7 @@ from ..allocation.result import AllocationResult
 from ..effectiveness.faults import Fault, FaultMode
 from ..effectiveness.model import AT_LIMIT
 from ..solvers.outcome import Outcome
+from .power_report import power_diagnostics
 
 LOG_THROTTLE = 5.0           # s between two log lines of one kind of rejected input
 ACTUATOR_LEVELS = {FaultMode.NOMINAL: DiagnosticStatus.OK, FaultMode.DEGRADED: DiagnosticStatus.WARN,
@@ -33,6 +34,7 @@ class Counters:
     rejected_frames: int = 0
     rejected_odometry: int = 0
     rejected_battery: int = 0
+    rejected_power: int = 0
     rejected_in_period: int = 0
     samples: int = 0
     saturated: int = 0
@@ -56,9 +58,10 @@ class Counters:
 
 def diagnostic_statuses(node_name: str, allocator: Allocator, counters: Counters, stale: bool,
                         last: AllocationResult | None, foreign: Sequence[str] = (),
-                        battery: tuple[str, bool] | None = None) -> list[DiagnosticStatus]:
+                        battery: tuple[str, bool] | None = None,
+                        power: tuple[str, bool, bool] | None = None) -> list[DiagnosticStatus]:
     """The allocation's status, then one per actuator (:func:`actuator_status`)."""
-    statuses = [allocation_status(node_name, allocator, counters, stale, last, foreign, battery)]
+    statuses = [allocation_status(node_name, allocator, counters, stale, last, foreign, battery, power)]
     if last is not None:
         low, high = allocator.ranges
         faults = allocator.faults
@@ -69,12 +72,14 @@ def diagnostic_statuses(node_name: str, allocator: Allocator, counters: Counters
 
 def allocation_status(node_name: str, allocator: Allocator, counters: Counters, stale: bool,
                       last: AllocationResult | None, foreign: Sequence[str] = (),
-                      battery: tuple[str, bool] | None = None) -> DiagnosticStatus:
+                      battery: tuple[str, bool] | None = None,
+                      power: tuple[str, bool, bool] | None = None) -> DiagnosticStatus:
     """OK while allocating; WARN with faults, saturated samples (and the DOFs short), fallbacks,
     rejected inputs, publishers of the wrong type, unreachable DOFs or no battery voltage (the
     thrust limits at nominal_voltage); ERROR while the input is stale (zero thrust commanded).
     ``battery`` is (topic, whether the nominal voltage stands in) when the thrust tables follow
-    a battery voltage."""
+    a battery voltage; ``power`` the power input's report, with power sources
+    (:func:`~allocator_pkg.ros.power_report.power_diagnostics`)."""
     modes = allocator.modes()
     problems = []
     level = DiagnosticStatus.OK
@@ -94,6 +99,8 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
     if battery is not None and battery[1]:
         warnings.append(f"no valid battery voltage on {battery[0]}: thrust limits at nominal_voltage "
                         f"{allocator.voltage:g} V")
+    power_warnings, power_values = power_diagnostics(allocator, last, power, counters.rejected_power)
+    warnings += power_warnings
     warnings += allocator.warnings
     if warnings and level == DiagnosticStatus.OK:
         level = DiagnosticStatus.WARN
@@ -129,6 +136,7 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
         values["voltage [V]"] = f"{allocator.voltage:g}"
     if battery is not None:
         values["voltage source"] = "nominal_voltage (no battery voltage)" if battery[1] else battery[0]
+    values.update(power_values)
     if allocator.notes:
         values["actuation"] = "; ".join(allocator.notes)
     for actuator, mode in zip(allocator.names, modes):

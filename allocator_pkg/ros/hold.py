@@ -23,12 +23,13 @@ from ..vehicle.node_settings import NodeSettings
 @dataclass
 class Hold:
     """One actuator held (``index``) at ``thrust`` [N] until ``end`` [ns of the node clock]; the
-    faults in force before it."""
+    faults and failed redundancy groups in force before it."""
 
     index: int
     thrust: float
     end: int
     faults: dict[str, Fault]
+    groups: tuple[str, ...] = ()
 
     @classmethod
     def start(cls, allocator: Allocator, actuator: str, thrust: float, end: int) -> Hold:
@@ -38,17 +39,19 @@ class Hold:
         for name in names:
             if name != actuator:
                 allocator.set_fault(name, FaultMode.FAILED)
-        return cls(names.index(actuator), float(thrust), end, saved)
+        return cls(names.index(actuator), float(thrust), end, saved, allocator.group_faults)
 
     def wrench(self, allocator: Allocator) -> np.ndarray:
         """The wrench (FRD) the held thrust gives along the held actuator's current direction."""
         return allocator.configuration_matrix()[:, self.index] * self.thrust
 
     def release(self, allocator: Allocator) -> None:
-        """Put back the faults in force before the hold."""
+        """Put back the faults and failed groups in force before the hold."""
         allocator.clear_faults()
         for name, fault in self.faults.items():
             allocator.set_fault(name, fault.mode, efficiency=fault.efficiency, angle=fault.angle)
+        for group in self.groups:
+            allocator.set_group_fault(group)
 
 
 def refusal(allocator: Allocator, settings: NodeSettings, actuator: str, thrust: float, duration: float,

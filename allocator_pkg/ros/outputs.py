@@ -111,8 +111,10 @@ class Outputs:
         due = always or not period or last is None or not 0 <= now - last < period
         if due and self._status.get_subscription_count():
             self._status_last = now
+            limit = allocator.power_limit
+            power = None if limit is None else allocator.power.reading(result.thrust, limit)
             self._status.publish(status_message(result, status, header, self._settings.frame, allocator.voltage,
-                                                self._status_message))
+                                                self._status_message, power))
             self.statuses_published += 1
         if self._per_actuator is not None:
             self._per_actuator.publish(result)

@@ -27,6 +27,11 @@ def battery() -> QoSProfile:
     return QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
 
 
+def power() -> QoSProfile:
+    """power_available: the latest only (takes best-effort and reliable publishers)."""
+    return QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
+
+
 def output() -> QoSProfile:
     """thruster_commands, allocation_status, per-actuator topics and markers."""
     return QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)

@@ -18,8 +18,11 @@ rate_hz costs no idle wake-ups.
 
 With thrust tables measured at several supply voltages, the runtime follows the voltage of
 ``battery_state`` (:mod:`~allocator_pkg.ros.battery`; its timeout checked with the diagnostics,
-once a second). On the bench, ``~/hold_actuator`` holds one actuator (:meth:`~AllocationRuntime.hold`,
-:mod:`~allocator_pkg.ros.hold`); a stale input still stops it.
+once a second), and with power sources the available power of ``power_available``
+(:mod:`~allocator_pkg.ros.power_input`, the same way); ``~/set_group_fault`` fails a redundancy
+group (:meth:`~AllocationRuntime.set_group_fault`). On the bench, ``~/hold_actuator`` holds one
+actuator (:meth:`~AllocationRuntime.hold`, :mod:`~allocator_pkg.ros.hold`); a stale input still
+stops it.
 """
 
 from __future__ import annotations
@@ -45,6 +48,7 @@ from .battery import BatteryInput
 from .diagnostics import LOG_THROTTLE, Counters, diagnostic_statuses
 from .hold import Hold, refusal
 from .outputs import Outputs
+from .power_input import PowerInput
 from .watchdog import Watchdog
 
 DIAGNOSTICS_PERIOD = 1.0     # s between two reports on /diagnostics
@@ -56,7 +60,8 @@ class AllocationRuntime:
 
     State shared between callbacks sits behind one lock, so that services, parameter changes
     and samples may come from any thread. ``active`` says whether the runtime samples: the
-    timers run and a wrench (input trigger) starts a sample."""
+    timers run and a wrench (input trigger) starts a sample. ``power_input`` is the
+    ``power_available`` input (None without power sources)."""
 
     def __init__(self, node: Node, allocator: Allocator, settings: NodeSettings, geometry: dict[str, list[float]]):
         self._node = node
@@ -87,6 +92,7 @@ class AllocationRuntime:
             if vehicle.has_surfaces else None
         self._battery = BatteryInput(node, self._lock, allocator, self.counters) \
             if vehicle.voltage_range is not None else None
+        self.power_input = PowerInput(node, self._lock, allocator, self.counters) if vehicle.power_sources else None
         self._capability: Capability | None = None
         self._period_ns = round(S_TO_NS / vehicle.rate_hz)
         self._timer = node.create_timer(1.0 / vehicle.rate_hz, self._on_timer, autostart=False)
@@ -112,6 +118,8 @@ class AllocationRuntime:
             text += f", speed from {self._odometry.topic_name}"
         if self._battery is not None:
             text += f", supply voltage from {self._battery.topic_name}"
+        if self.power_input is not None:
+            text += f", available power from {self.power_input.topic_name}"
         return text + f"; publishing {', '.join(outputs)}"
 
     # -- life cycle ---------------------------------------------------------------------
@@ -158,6 +166,8 @@ class AllocationRuntime:
                     node.destroy_subscription(subscription)
             if self._battery is not None:
                 self._battery.close()
+            if self.power_input is not None:
+                self.power_input.close()
             self._outputs.close()
 
     # -- inputs -------------------------------------------------------------------------
@@ -275,13 +285,28 @@ class AllocationRuntime:
                 return False, str(error)
         return True, f"{fault.actuator}: {mode.name} from the next sample"
 
+    def set_group_fault(self, group: str) -> tuple[bool, str]:
+        """Fail a redundancy group from the next sample; (success, message naming the groups)."""
+        with self._lock:
+            self._end_hold()
+            try:
+                self.allocator.set_group_fault(group)
+            except ValueError as error:
+                return False, str(error)
+            members = self.allocator.power.group(group)
+        return True, (f"{group}: {', '.join(members.actuators) or 'no actuators'} FAILED and "
+                      f"{', '.join(members.sources) or 'no sources'} at 0 kW from the next sample")
+
     def clear_faults(self) -> str:
-        """Every actuator back to NOMINAL; what was cleared."""
+        """Every actuator back to NOMINAL, every source back to its available power; what was
+        cleared."""
         with self._lock:
             self._end_hold()
             had = sorted(self.allocator.faults)
+            groups = self.allocator.group_faults
             self.allocator.clear_faults()
-        return f"cleared faults of {', '.join(had)}" if had else "no faults were set"
+        cleared = f"cleared faults of {', '.join(had)}" if had else "no faults were set"
+        return cleared + (f" (redundancy groups {', '.join(groups)})" if groups else "")
 
     def capability(self, direction: np.ndarray) -> tuple[bool, str, float, np.ndarray]:
         """The largest scale along ``direction`` (a wrench in the node's frame) under the faults,
@@ -358,7 +383,11 @@ class AllocationRuntime:
             if battery is not None:
                 battery.check(self._clock.now().nanoseconds, self.settings.battery_timeout)
             report = None if battery is None else (battery.topic_name, battery.fallback)
+            power = self.power_input
+            if power is not None:
+                power.check(self._clock.now().nanoseconds, self.settings.power_timeout)
             statuses = diagnostic_statuses(node.get_fully_qualified_name(), self.allocator, self.counters,
-                                           self.watchdog.stale, self._last, foreign, report)
+                                           self.watchdog.stale, self._last, foreign, report,
+                                           None if power is None else power.report)
             self.counters.reset_period()
         self._outputs.publish_diagnostics(statuses, self._clock.now().to_msg())

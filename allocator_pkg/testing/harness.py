@@ -3,8 +3,9 @@ test of a vehicle's configuration needs before its first assertion.
 
 The probe publishes ``/clock``, so the node's timers fire only when the test steps the clock
 (:meth:`Harness.step`, :meth:`Harness.tick`) and every timing is deterministic. The probe
-sends wrenches and calls the node's services the way any client does (``~/set_actuator_fault``,
-``~/clear_faults``, ``~/set_parameters``, ``~/get_capability``), and keeps every
+sends wrenches and the available power and calls the node's services the way any client does
+(``~/set_actuator_fault``, ``~/set_group_fault``, ``~/clear_faults``, ``~/set_parameters``,
+``~/get_capability``), and keeps every
 ``thruster_commands``, ``allocation_status`` and ``/diagnostics`` message it receives.
 """
 
@@ -27,8 +28,8 @@ from rclpy.parameter import Parameter
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 
-from allocator_msgs.msg import ActuatorFault, AllocationStatus, ThrusterCommands
-from allocator_msgs.srv import GetCapability, SetActuatorFault
+from allocator_msgs.msg import ActuatorFault, AllocationStatus, PowerAvailable, ThrusterCommands
+from allocator_msgs.srv import GetCapability, SetActuatorFault, SetGroupFault
 
 from ..effectiveness.faults import FaultMode
 from ..ros.conversions import array_to_wrench, wrench_to_array
@@ -77,6 +78,8 @@ class Harness:
         services = f"{NODE_NAME}/"
         self.fault_client = probe.create_client(SetActuatorFault, services + "set_actuator_fault")
         self.clear_client = probe.create_client(Trigger, services + "clear_faults")
+        self.group_client = probe.create_client(SetGroupFault, services + "set_group_fault")
+        self.power = probe.create_publisher(PowerAvailable, "power_available", 10)
         self.parameters_client = probe.create_client(SetParameters, services + "set_parameters")
         self.atomic_parameters_client = probe.create_client(SetParametersAtomically,
                                                             services + "set_parameters_atomically")
@@ -189,6 +192,17 @@ class Harness:
             message = wrench
         self.sent(self.wrench, message)
 
+    def send_power(self, available: Mapping[str, float]) -> None:
+        """Send the available power [kW] of the sources named on ``power_available``; returns
+        once the node has taken it (valid or not)."""
+        power_input = self.node.runtime.power_input
+        if power_input is None:
+            raise ValueError("the vehicle has no power.sources")
+        self.spin_until(lambda: self.power.get_subscription_count() > 0)
+        received = power_input.received
+        self.power.publish(PowerAvailable(source=list(available), available=[float(v) for v in available.values()]))
+        self.spin_until(lambda: power_input.received > received)
+
     # -- services -------------------------------------------------------------------------
 
     def call(self, client, request, attempts: int = 3):
@@ -221,8 +235,15 @@ class Harness:
         response = self.call(self.fault_client, SetActuatorFault.Request(fault=fault))
         return response.success, response.message
 
+    def set_group_fault(self, group: str) -> tuple[bool, str]:
+        """Fail a redundancy group through ``~/set_group_fault``: (success, the node's message);
+        its actuators FAILED and its sources at 0 kW from the next sample."""
+        response = self.call(self.group_client, SetGroupFault.Request(group=group))
+        return response.success, response.message
+
     def clear_faults(self) -> str:
-        """Every actuator back to nominal (``~/clear_faults``); the node's message."""
+        """Every actuator back to nominal, every source back to its available power
+        (``~/clear_faults``); the node's message."""
         return self.call(self.clear_client, Trigger.Request()).message
 
     def set_parameters(self, values: Mapping[str, Any]) -> tuple[bool, str]:

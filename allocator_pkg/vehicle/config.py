@@ -108,7 +108,7 @@ class ActuatorConfig:
     range and ``command`` are a thruster's (a control surface has none: zero), ``rotation`` a
     rotatable thruster's and ``surface`` a control surface's. ``feeds`` are the power sources a
     thruster draws from and ``feed_shares`` the share of its power from each (Table A-5 of
-    DNV-ST-0111); the allocation does not read them."""
+    DNV-ST-0111), read by the allocation's power budget and the DP capability analysis."""
 
     name: str
     type: str

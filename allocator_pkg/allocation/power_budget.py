@@ -1,0 +1,162 @@
+"""Power per source in the allocation (docs/power.md): the thrust each actuator may have so
+that no power source is asked for more than it has.
+
+Actuator i draws p_i = P_i |f_i|^(3/2) (1.44); its rated power is R_i = P_i F_i^(3/2), F_i the
+largest magnitude of its configured thrust range. A feed is live while its source has power
+(available > 0); S_i is the sum of the shares of actuator i's live feeds. The actuator's power
+comes from its live feeds in proportion to their shares (feed j gives p_i s_ij / S_i), and no
+feed gives more than s_ij R_i, so p_i <= S_i R_i: with every feed live the power splits by
+the shares and the limit is the rated power; a split-fed actuator that loses a feed runs on the
+rest, derated.
+
+A source j whose consumers could together draw more than it has (D_j > A_j, each consumer at
+the largest thrust faults, voltage and the derating leave it, m_i) is shared in proportion to
+those largest draws: each consumer's power is scaled by rho_j = A_j / D_j, an actuator by the
+smallest rho of its live feeds. That bounds |f_i| <= m_i rho^(2/3), a thrust range for every
+stage of the sample (the optimiser moves the rest to other sources' actuators), and the draw
+on source j is at most rho_j D_j = A_j by construction.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..effectiveness.model import AT_LIMIT
+from ..vehicle.config import RedundancyGroup, Vehicle
+
+KW = 1000.0
+"""Watts in a kilowatt: the configuration and the topic speak kW, the model W (1.44)."""
+
+
+@dataclass(frozen=True)
+class PowerLimit:
+    """The power rule at one set of available powers: ``bound`` [N], the largest thrust
+    magnitude of every actuator (inf: the power sets none); ``weights`` (r x m), the share of
+    actuator i's power drawn from source j (0 from a lost feed); ``limited``, the actuators
+    whose range the bound narrows; ``available``, the available power [kW] of every source
+    the rule took."""
+
+    bound: np.ndarray
+    weights: np.ndarray
+    limited: np.ndarray
+    available: np.ndarray
+
+    def holds(self, thrust: np.ndarray) -> bool:
+        """Whether the power holds some actuator back at ``thrust``: one whose range a bound
+        narrows sits at that bound."""
+        return bool(np.any(self.limited & (np.abs(thrust) >= self.bound * (1.0 - AT_LIMIT))))
+
+
+@dataclass(frozen=True)
+class SourcePower:
+    """One sample's power per source: ``source`` names, ``power`` drawn and ``available`` [kW],
+    and whether the power held some actuator back (``limited``)."""
+
+    source: tuple[str, ...]
+    power: np.ndarray
+    available: np.ndarray
+    limited: bool
+
+
+class PowerBudget:
+    """The sources, feeds and power coefficients of one configuration, and the available
+    power [kW] in force: the topic's (or the capacity), zero for a source a group fault took."""
+
+    def __init__(self, vehicle: Vehicle):
+        actuators = vehicle.actuators
+        self.sources = tuple(s.name for s in vehicle.power_sources)
+        self.capacity = np.array([s.capacity for s in vehicle.power_sources], dtype=float)
+        index = {name: j for j, name in enumerate(self.sources)}
+        self.shares = np.zeros((len(actuators), len(self.sources)))
+        for i, actuator in enumerate(actuators):
+            for feed, share in zip(actuator.feeds, actuator.feed_shares or (1.0,) * len(actuator.feeds)):
+                self.shares[i, index[feed]] = share
+        self.coefficient = np.array([a.power_coefficient for a in actuators], dtype=float)
+        self.rated_thrust = np.array([max(abs(a.thrust_min), abs(a.thrust_max)) for a in actuators], dtype=float)
+        self.fed = self.shares.any(axis=1)
+        self.reported = self.capacity.copy()
+        self.lost: frozenset[str] = frozenset()
+        self.groups: dict[str, RedundancyGroup] = {g.name: g for g in vehicle.redundancy_groups}
+
+    def rebound(self, vehicle: Vehicle) -> PowerBudget:
+        """The budget of a new configuration, the available power reported for the sources it
+        keeps and the losses of the groups it keeps carried over."""
+        budget = PowerBudget(vehicle)
+        for j, source in enumerate(budget.sources):
+            if source in self.sources:
+                budget.reported[j] = self.reported[self.sources.index(source)]
+        budget.lost = self.lost & set(budget.sources)
+        return budget
+
+    @property
+    def active(self) -> bool:
+        """Whether the configuration has power sources at all."""
+        return bool(self.sources)
+
+    @property
+    def available(self) -> np.ndarray:
+        """Available power [kW] of every source in force (a lost source's is 0)."""
+        return np.array([0.0 if s in self.lost else a for s, a in zip(self.sources, self.reported)])
+
+    def checked(self, available: Mapping[str, float]) -> dict[str, float]:
+        """``available`` [kW] by source as floats; ValueError naming the source for an unknown
+        one or a value that is not a finite number >= 0."""
+        values = {}
+        for source, kilowatts in available.items():
+            if source not in self.sources:
+                raise ValueError(f"unknown power source '{source}'; sources: {', '.join(self.sources) or 'none'}")
+            kilowatts = float(kilowatts)
+            if not (np.isfinite(kilowatts) and kilowatts >= 0.0):
+                raise ValueError(f"available power of {source} must be finite and >= 0 kW, got {kilowatts}")
+            values[source] = kilowatts
+        return values
+
+    def report(self, available: Mapping[str, float]) -> bool:
+        """Take the available power [kW] of the sources named (:meth:`checked` first); whether
+        any changed."""
+        before = self.reported.copy()
+        for source, kilowatts in self.checked(available).items():
+            self.reported[self.sources.index(source)] = kilowatts
+        return not np.array_equal(before, self.reported)
+
+    def group(self, name: str) -> RedundancyGroup:
+        """The redundancy group ``name``; ValueError naming the groups for another name."""
+        if name not in self.groups:
+            raise ValueError(f"unknown redundancy group '{name}'; groups: {', '.join(self.groups) or 'none'}")
+        return self.groups[name]
+
+    def limit(self, low: np.ndarray, high: np.ndarray) -> PowerLimit:
+        """The power rule's bounds given the static force ranges ``low``/``high`` that faults,
+        speed and voltage leave (module docstring)."""
+        kilowatts = self.available
+        available = kilowatts * KW
+        live = self.shares * (available > 0.0)
+        live_share = live.sum(axis=1)
+        weights = np.divide(live, live_share[:, None], out=np.zeros_like(live), where=live_share[:, None] > 0.0)
+        derated = np.where(self.fed, live_share ** (2.0 / 3.0) * self.rated_thrust, np.inf)
+        largest = np.minimum(np.maximum(np.abs(low), np.abs(high)), derated)
+        drawing = self.fed & (self.coefficient > 0.0)
+        demand = (self.coefficient * np.where(drawing, largest, 0.0) ** 1.5) @ weights
+        rho = np.minimum(1.0, np.divide(available, demand, out=np.ones_like(demand), where=demand > 0.0))
+        scale = np.where((weights > 0.0) & drawing[:, None], rho, 1.0).min(axis=1, initial=1.0)
+        bound = np.where(self.fed, np.minimum(derated, largest * scale ** (2.0 / 3.0)), np.inf)
+        limited = bound < np.maximum(np.abs(low), np.abs(high))
+        return PowerLimit(bound=bound, weights=weights, limited=limited, available=kilowatts)
+
+    def draw(self, thrust: np.ndarray, limit: PowerLimit) -> np.ndarray:
+        """Power [kW] each source gives at ``thrust``: p_i = P_i |f_i|^(3/2) (1.44) split over
+        the live feeds."""
+        return (self.coefficient * np.abs(thrust) ** 1.5) @ limit.weights / KW
+
+    def reading(self, thrust: np.ndarray, limit: PowerLimit) -> SourcePower:
+        """The :class:`SourcePower` of a sample's ``thrust`` under ``limit``."""
+        return SourcePower(self.sources, self.draw(thrust, limit), limit.available, limit.holds(thrust))
+
+
+def narrowed(low: np.ndarray, high: np.ndarray, limit: PowerLimit) -> tuple[np.ndarray, np.ndarray]:
+    """The static ranges inside the power bounds."""
+    bound = np.where(limit.limited, limit.bound, np.inf)
+    return np.clip(low, -bound, bound), np.clip(high, -bound, bound)

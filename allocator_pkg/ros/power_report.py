@@ -1,0 +1,44 @@
+"""What the diagnostics say about power per source (docs/power.md): the draw of the last sample
+and the available power of every source, where the available power comes from, the actuators
+the power holds back, the redundancy groups failed. Pure functions, as in
+:mod:`~allocator_pkg.ros.diagnostics`."""
+
+from __future__ import annotations
+
+from ..allocation.allocator import Allocator
+from ..allocation.result import AllocationResult
+
+
+def power_diagnostics(allocator: Allocator, last: AllocationResult | None, supply: tuple[str, bool, bool] | None,
+                      rejected: int) -> tuple[list[str], dict[str, str]]:
+    """(warnings, values) of the power per source; none without sources. ``supply`` is the
+    power input's (topic, whether the capacities stand in, whether because its messages
+    stopped), ``rejected`` how many of its messages were rejected. A warning for a failed
+    group, a source at 0 kW, a source drawn to its limit and a stale input."""
+    budget, limit = allocator.power, allocator.power_limit
+    if limit is None:
+        return [], {}
+    warnings: list[str] = []
+    values: dict[str, str] = {}
+    available = budget.available
+    draw = budget.draw(last.thrust, limit) if last is not None else 0.0 * available
+    for source, kilowatts, most in zip(budget.sources, draw.tolist(), available.tolist()):
+        values[f"power {source} [kW]"] = f"{kilowatts:.1f} of {most:g} available"
+    if supply is not None:
+        topic, fallback, stale = supply
+        values["available power from"] = "power.<source>.capacity (no power_available)" if fallback else topic
+        values["rejected power messages"] = str(rejected)
+        if stale:
+            warnings.append(f"no valid available power on {topic}: every source at its capacity")
+    lost = [s for s, most in zip(budget.sources, available.tolist()) if most == 0.0]
+    if lost:
+        warnings.append(f"no power from {', '.join(lost)}")
+    held = [f"{name} {bound:.6g} N" for name, narrowed, bound in
+            zip(allocator.names, limit.limited.tolist(), limit.bound.tolist()) if narrowed]
+    values["thrust limited by power"] = ", ".join(held) or "none"
+    if last is not None and limit.holds(last.thrust):
+        warnings.append("power-limited: thrust held back by the available power")
+    values["failed redundancy groups"] = ", ".join(allocator.group_faults) or "none"
+    if allocator.group_faults:
+        warnings.append(f"redundancy group failed: {', '.join(allocator.group_faults)}")
+    return warnings, values
