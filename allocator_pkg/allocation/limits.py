@@ -4,7 +4,9 @@ The static force ranges that faults, speed and voltage leave (``faults.static_ra
 recomputed only when one of them changes), narrowed by the rate limits around the last
 sample's thrust, and for each rotatable thruster the angles and thrusts ``azimuth.plan``
 allows, toward the convex piece the :class:`~.pieces.PiecePlanner` chose when some
-thruster's side of a forbidden sector is in question."""
+thruster's side of a forbidden sector is in question. The sectors are those in force: a
+flushing zone lifts with the thruster it protects and returns with it, and a thruster pushing
+onto a dead one has its thrust cut by the [3.11.4] loss (:func:`~.azimuth.flushing_loss`)."""
 
 from __future__ import annotations
 
@@ -13,7 +15,7 @@ import numpy as np
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
 from ..effectiveness.sectors import surroundings
 from ..effectiveness.weighted_inverse import PseudoInverseGains
-from .azimuth import piece_in_question, plan
+from .azimuth import flushing_loss, piece_in_question, plan
 from .conditions import Conditions
 from .pieces import PiecePlanner
 from .state import ActuatorState
@@ -39,6 +41,7 @@ class LimitsStage:
         self._rot_pairs = [(int(i), (int(c1), int(c2))) for i, (c1, c2) in zip(model.rot, model.rot_columns)]
         self._rotations = [model.vehicle.actuators[i].rotation for i in model.rot]
         self._around: list = [None] * len(self._rotations)
+        self._losses: list = []
         self._angle_step = model.angle_step.tolist()
         self._thrust_step = model.thrust_step.tolist()
         self._hold = model.hold.tolist()
@@ -53,6 +56,13 @@ class LimitsStage:
         self._low_list, self._high_list = self.low.tolist(), self.high.tolist()
         self._lift = conditions.lift
         self.version += 1
+        rotations = [conditions.rotations[i] for i in model.rot]
+        if rotations != self._rotations:                  # zones lifted or returned: values only
+            self._rotations = rotations
+            self._around = [None] * len(rotations)
+            self.planner.use_rotations(conditions.rotations)
+        self._losses = [(k, conditions.losses[i]) for k, (i, _) in enumerate(self._rot_pairs)
+                        if i in conditions.losses]
         if model.rot.size:
             excluded = (self.low == 0.0) & (self.high == 0.0)
             self._desired_gain = self._inverse.gain(excluded, {})
@@ -92,8 +102,11 @@ class LimitsStage:
                                 self._thrust_step[i], wanted[i], self._hold[i], stuck.get(i), around_k)
                 azimuth.append(limits_k)
                 low[i], high[i] = limits_k.thrust_low, limits_k.thrust_high
+            for k, losses in self._losses:
+                i = self._rot_pairs[k][0]
+                low[i], high[i] = flushing_loss(azimuth[k], losses, self._low_list[i], self._high_list[i])
         return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust, range_low=self.low,
-                            range_high=self.high)
+                            range_high=self.high, rotations=self._rotations)
 
     def _surroundings(self, state: ActuatorState) -> list:
         """Each rotatable thruster's `sectors.surroundings`, kept while its angle stays."""
