@@ -165,6 +165,19 @@ def test_a_zone_lifts_at_the_failure_and_returns_when_it_clears(method):
     assert not in_zone(returned[-1].azimuth[STBD], 1.0, STBD) and returned[-1].thrust[STBD] > 1e3
 
 
+@pytest.mark.parametrize("method", STEADY)
+def test_pushing_onto_a_dead_thruster_gives_at_most_the_loss_factor(method):
+    # More sway than the vessel has: the starboard unit pushes to starboard, onto the dead port
+    # unit, at no more than beta(theta) of its thrust (0.611 T straight at it).
+    allocator = Allocator(vessel(), method=method)
+    allocator.set_fault("azimuth_port", FaultMode.FAILED)
+    results = run(allocator, [0.0, 1.2e6, 0.0, 0.0, 0.0, 0.0], 200)
+    for r in results:
+        assert abs(r.thrust[STBD]) <= notch(r.azimuth[STBD], r.thrust[STBD], STBD) * THRUST_MAX[STBD] + TOLERANCE
+    assert off_centre(results[-1].azimuth[STBD], 1.0, STBD) < DEAD_HALF          # it does push onto it
+    assert results[-1].thrust[STBD] >= BETA * THRUST_MAX[STBD] - TOLERANCE
+
+
 @settings(derandomize=True, max_examples=12, deadline=None, database=None)
 @given(method=st.sampled_from(METHODS),
        steps=st.lists(st.tuples(st.floats(-1.0, 1.0), st.floats(-1.0, 1.0), st.floats(-1.0, 1.0),
