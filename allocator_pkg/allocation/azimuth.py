@@ -21,10 +21,8 @@ clear. Once started, a crossing is finished; the other actuators carry the load 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 
-from ..effectiveness.flushing import DeadFlushing
 from ..effectiveness.model import AzimuthLimits
 from ..effectiveness.sectors import (
     Surroundings,
@@ -233,30 +231,6 @@ def _exit_offset(rotation: RotationConfig, alpha0: float) -> float:
         if lo < 0.0 < hi:
             return hi if hi <= -lo else lo
     return 0.0
-
-
-def flushing_loss(limits: AzimuthLimits, losses: Sequence[DeadFlushing], range_low: float,
-                  range_high: float) -> tuple[float, float]:
-    """Cut a rotatable thruster's thrust this sample, in place, to what it gives pushing onto
-    dead thrusters (DNV-ST-0111 [3.11.4]): its static range ``range_low``/``range_high`` times the
-    least loss factor over the directions it may push along this sample (its angle window, turned
-    by pi on the reverse side). A window already beyond the cut moves to it, as a fault's does.
-    Returns the thrust window (thrust_low, thrust_high)."""
-    if limits.magnitude_max == 0.0:
-        return limits.thrust_low, limits.thrust_high
-    forward = limits.line or limits.sigma > 0
-    reverse = limits.line or limits.sigma < 0
-    if forward:
-        factor = min(loss.lowest(limits.low, limits.high) for loss in losses)
-        limits.thrust_high = min(limits.thrust_high, factor * range_high)
-        limits.thrust_low = min(limits.thrust_low, limits.thrust_high)
-    if reverse:
-        factor = min(loss.lowest(limits.low + math.pi, limits.high + math.pi) for loss in losses)
-        limits.thrust_low = max(limits.thrust_low, factor * range_low)
-        limits.thrust_high = max(limits.thrust_high, limits.thrust_low)
-    if not limits.line and math.isfinite(limits.physical_max):
-        limits.physical_max *= factor
-    return limits.thrust_low, limits.thrust_high
 
 
 def piece_in_question(rotation: RotationConfig, alpha0: float, angle_step: float, desired: tuple[float, float],

@@ -112,6 +112,16 @@ class DeadFlushing:
     half_angle: float
     beta: float
 
+    @property
+    def sector(self) -> tuple[float, float]:
+        """(start, end) [rad], counter-clockwise in the body frame, start in (-pi, pi]."""
+        start = math.remainder(self.centre - self.half_angle, 2.0 * math.pi)
+        return start, start + 2.0 * self.half_angle
+
+    def inside(self, angle: float) -> bool:
+        """Whether a thrust along ``angle`` [rad] is strictly inside the sector."""
+        return abs(math.remainder(angle - self.centre, 2.0 * math.pi)) < self.half_angle - ANGLE_TOLERANCE
+
     def factor(self, angle: float) -> float:
         """beta_T,flushing dead along ``angle``: the radius, along that ray, of the straight line
         from beta (cos c, sin c) to (cos(c +- phi), sin(c +- phi)),
