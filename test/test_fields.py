@@ -45,7 +45,7 @@ NO_KEY = {Vehicle: {"actuators", "weights", "solver", "redundancy_groups"},
 
 DERIVED = {"dofs", "weights.slack", "priorities", "nominal_voltage", "ros2_control.actuators", "position", "direction",
            "thrust_min", "gain_reverse", "command_min", "command_max", "table_command", "table_thrust", "table_voltage",
-           "forbidden_sectors", "power.sources", "feeds", "feed_shares", "sources", "actuators"}
+           "forbidden_sectors", "protects", "power.sources", "feeds", "feed_shares", "sources", "actuators"}
 """Keys whose field the builder derives by hand (an order, a default that depends on other keys,
 a normalised vector, sector pairs, structs or tuples of names); every other key's value is its
 field's as it stands."""
@@ -72,6 +72,7 @@ VEHICLE_VALUES = {
     "nonlinear.max_iterations": 3, "dynamic.gain": 0.25, "svd_filter.time_constant": 0.7,
     "svd_filter.damping_threshold": 0.1, "explicit.regions": "regions.npz", "solver.eps_abs": 1e-4,
     "solver.eps_rel": 2e-4, "solver.max_iter": 500, "solver.time_limit": 0.01, "water_density": 1000.0,
+    "flushing_zones": "dnv",
 }
 NODE_VALUES = {
     "wrench_timeout": 1.5, "per_actuator_topics": True, "frame": "flu", "base_frame": "hull",
@@ -83,8 +84,10 @@ NODE_VALUES = {
 THRUSTER_VALUES = {
     "type": "azimuth", "weight": 2.0, "power_coefficient": 0.5, "thrust_max": 20.0, "thrust_rate_max": 5.0,
     "command_map": "quadratic", "gain": 2.0, "command_deadband": 0.1, "reversed": True, "azimuth_min": -1.0,
-    "azimuth_max": 2.0, "azimuth_rate_max": 0.5, "reversible": True, "azimuth_initial": 0.3,
+    "azimuth_max": 2.0, "azimuth_rate_max": 0.5, "reversible": True, "azimuth_initial": 0.3, "diameter": 0.4,
+    "ducted": True,
 }
+TUNNEL_VALUES = {"type": "fixed", "direction": [0.0, 1.0, 0.0], "thrust_max": 10.0, "tunnel": True}
 SOURCE_VALUES = {"capacity": 1500.0}
 SURFACE_VALUES = {
     "type": "fin", "weight": 0.3, "power_coefficient": 0.2, "area": 0.2, "lift_coefficient": 2.5,
@@ -95,20 +98,24 @@ SURFACE_VALUES = {
 
 def test_every_other_key_is_the_value_of_its_field():
     """Every key but the derived and the hand-read ones, each at a value unlike its default."""
-    parameters = {**VEHICLE_VALUES, **NODE_VALUES, "dofs": ["surge", "heave", "yaw"], "actuators.names": ["azi", "fin"],
-                  "actuators.azi.position": [1.0, 0.0, 0.0], "actuators.fin.position": [-1.0, 0.0, 0.0]}
+    parameters = {**VEHICLE_VALUES, **NODE_VALUES, "dofs": ["surge", "heave", "yaw"],
+                  "actuators.names": ["azi", "fin", "tun"], "actuators.azi.position": [1.0, 0.0, 0.0],
+                  "actuators.fin.position": [-1.0, 0.0, 0.0], "actuators.tun.position": [2.0, 0.0, 0.0],
+                  "actuators.tun.feeds": ["bus"]}
     parameters.update({f"actuators.azi.{key}": value for key, value in THRUSTER_VALUES.items()})
     parameters.update({f"actuators.fin.{key}": value for key, value in SURFACE_VALUES.items()})
+    parameters.update({f"actuators.tun.{key}": value for key, value in TUNNEL_VALUES.items()})
     parameters.update({"power.sources": ["bus"], "actuators.azi.feeds": ["bus"],
                        **{f"power.bus.{key}": value for key, value in SOURCE_VALUES.items()}})
     vehicle, settings = parse_parameters(parameters)
-    azi, fin = vehicle.actuators
+    azi, fin, tun = vehicle.actuators
     owners = {Vehicle: vehicle, Weights: vehicle.weights, SolverSettings: vehicle.solver, NodeSettings: settings}
     per_actuator = schema.ACTUATOR_KEY_BY_NAME.get
     given = [(VEHICLE_VALUES, vehicle_field, schema.key_for, owners), (NODE_VALUES, node_field, schema.key_for, owners),
              (THRUSTER_VALUES, actuator_field, per_actuator, {ActuatorConfig: azi, CommandMapConfig: azi.command,
                                                               RotationConfig: azi.rotation}),
              (SURFACE_VALUES, actuator_field, per_actuator, {ActuatorConfig: fin, SurfaceConfig: fin.surface}),
+             ({"tunnel": True}, actuator_field, per_actuator, {ActuatorConfig: tun}),
              (SOURCE_VALUES, source_field, schema.SOURCE_KEY_BY_NAME.get, {PowerSource: vehicle.power_sources[0]})]
     checked = set()
     for values, field_of, key_of, objects in given:

@@ -6,7 +6,8 @@ Thrust and angle of every actuator inside every limit whatever the solver return
 snapped to zero or the band's edge; command maps to set-points (a reversed thruster's
 mirrored); the achieved wrench from T_e of what is commanded, less the surge drag of the
 control surfaces the method stage fed forward (1.56)-(1.58); the unallocated rest, the DOFs
-short, the limit flags and the power estimate (1.44)."""
+short, the limit flags and the power estimate (1.44). A thruster pushing onto a dead one is
+commanded the thrust that gives its force after the [3.11.4] loss."""
 
 from __future__ import annotations
 
@@ -95,6 +96,7 @@ class ActuationStage:
         self.modes = fault_set.modes
         efficiency = fault_set.command_efficiency
         self._command_efficiency = None if np.all(efficiency == 1.0) else efficiency
+        self._losses = list(conditions.losses.items())
 
     def actuate(self, requested: np.ndarray, tau: np.ndarray, limits: SampleLimits, output: MethodOutput,
                 drag: float, state: ActuatorState, method: str, start: float) -> AllocationResult:
@@ -117,7 +119,8 @@ class ActuationStage:
         else:
             unallocated = np.zeros(6)
             unallocated[self._dof_index] = -miss
-        command = self.maps.commands(thrust, self._command_efficiency, self._lift)
+        efficiency = self._command_efficiency if not self._losses else self._flushing_efficiency(thrust, angle)
+        command = self.maps.commands(thrust, efficiency, self._lift)
         at_thrust, at_rate = self._limit_flags(thrust, angle, state)
         power = sum(p * abs(t) ** 1.5 for p, t in zip(self._power, thrust.tolist()))
         return AllocationResult(thrust=thrust, azimuth=angle, command=command, achieved=achieved, requested=requested,
@@ -126,6 +129,17 @@ class ActuationStage:
                                 available=self.available, unallocated=unallocated, at_thrust_limit=at_thrust,
                                 at_rate_limit=at_rate, drag=drag, outcome=output.outcome, short=short,
                                 residual=output.residual, reason=output.reason)
+
+    def _flushing_efficiency(self, thrust: np.ndarray, angle: np.ndarray) -> np.ndarray:
+        """The command efficiency with each thruster that pushes onto a dead one losing its
+        [3.11.4] factor along the direction it pushes: its command asks for the thrust that
+        still gives the force allocated, as a degraded thruster's does."""
+        base = self._command_efficiency
+        efficiency = np.ones(self.model.r) if base is None else base.copy()
+        for i, losses in self._losses:
+            direction = float(angle[i]) + (math.pi if thrust[i] < 0.0 else 0.0)
+            efficiency[i] *= min(loss.factor(direction) for loss in losses)
+        return efficiency
 
     def stop(self, state: ActuatorState, method: str) -> AllocationResult:
         """Zero thrust, the angles held."""

@@ -4,15 +4,21 @@ The static force ranges that faults, speed and voltage leave (``faults.static_ra
 recomputed only when one of them changes), narrowed by the rate limits around the last
 sample's thrust, and for each rotatable thruster the angles and thrusts ``azimuth.plan``
 allows, toward the convex piece the :class:`~.pieces.PiecePlanner` chose when some
-thruster's side of a forbidden sector is in question."""
+thruster's side of a forbidden sector is in question. The sectors are those in force: a
+flushing zone lifts with the thruster it protects and returns with it, and a thruster pushing
+onto a dead one has its thrust cut by the [3.11.4] loss, or leaves the loss sector alone where
+its edge gives more (:mod:`~.dead_flushing`)."""
 
 from __future__ import annotations
+
+from dataclasses import replace
 
 import numpy as np
 
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
 from ..effectiveness.sectors import surroundings
 from ..effectiveness.weighted_inverse import PseudoInverseGains
+from . import dead_flushing
 from .azimuth import piece_in_question, plan
 from .conditions import Conditions
 from .pieces import PiecePlanner
@@ -38,7 +44,9 @@ class LimitsStage:
         self._rate_limited = bool(np.isfinite(model.thrust_step).any())
         self._rot_pairs = [(int(i), (int(c1), int(c2))) for i, (c1, c2) in zip(model.rot, model.rot_columns)]
         self._rotations = [model.vehicle.actuators[i].rotation for i in model.rot]
+        self._in_force = list(self._rotations)
         self._around: list = [None] * len(self._rotations)
+        self._losses: list = []
         self._angle_step = model.angle_step.tolist()
         self._thrust_step = model.thrust_step.tolist()
         self._hold = model.hold.tolist()
@@ -53,6 +61,12 @@ class LimitsStage:
         self._low_list, self._high_list = self.low.tolist(), self.high.tolist()
         self._lift = conditions.lift
         self.version += 1
+        rotations = [conditions.rotations[i] for i in model.rot]
+        if rotations != self._rotations:                  # zones lifted or returned: values only
+            self._in_force = rotations
+            self._use_rotations(list(rotations))
+        self._losses = [(k, conditions.losses[i], [False] * len(conditions.losses[i]))
+                        for k, (i, _) in enumerate(self._rot_pairs) if i in conditions.losses]
         if model.rot.size:
             excluded = (self.low == 0.0) & (self.high == 0.0)
             self._desired_gain = self._inverse.gain(excluded, {})
@@ -85,6 +99,8 @@ class LimitsStage:
             stuck = self.fault_set.stuck
             desired = (self._desired_gain @ tau).tolist()
             wanted = {i: (desired[c1], desired[c2]) for i, (c1, c2) in self._rot_pairs}
+            if self._losses:
+                self._close_loss_sectors(wanted, stuck)
             around = self._surroundings(state)
             wanted.update(self._planned(tau, state, wanted, stuck, around))
             for state_k, (i, _), rotation, around_k in zip(state.azimuth, self._rot_pairs, self._rotations, around):
@@ -92,8 +108,62 @@ class LimitsStage:
                                 self._thrust_step[i], wanted[i], self._hold[i], stuck.get(i), around_k)
                 azimuth.append(limits_k)
                 low[i], high[i] = limits_k.thrust_low, limits_k.thrust_high
+            for k, losses, closed in self._losses:
+                i = self._rot_pairs[k][0]
+                if any(closed) and i not in stuck:
+                    self._leave_loss_sectors(k, i, losses, closed, state, tau, wanted[i], azimuth)
+                low[i], high[i] = dead_flushing.cut(azimuth[k], losses, self._low_list[i], self._high_list[i])
         return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust, range_low=self.low,
-                            range_high=self.high)
+                            range_high=self.high, rotations=self._rotations)
+
+    def _use_rotations(self, rotations: list) -> None:
+        """Plan with these rotations (per rotatable thruster) from now on: values only."""
+        self._rotations = rotations
+        self._around = [None] * len(rotations)
+        every = [None] * self.model.r
+        for (i, _), rotation in zip(self._rot_pairs, rotations):
+            every[i] = rotation
+        self.planner.use_rotations(every)
+
+    def _close_loss_sectors(self, wanted: dict[int, tuple[float, float]], stuck: dict[int, float]) -> None:
+        """Which [3.11.4] loss sectors each thruster leaves alone this sample
+        (:func:`~.dead_flushing.closed`); a closed one is a forbidden sector of its rotation. A
+        stuck or reversing thruster's stay open."""
+        changed = False
+        for k, losses, closed in self._losses:
+            i = self._rot_pairs[k][0]
+            if i in stuck or (self._in_force[k].reversible and self._low_list[i] < 0.0):
+                continue
+            radius, hold = self._high_list[i], self._hold[i]
+            now = [dead_flushing.closed(loss, wanted[i], radius, hold, was) for loss, was in zip(losses, closed)]
+            if now != closed:
+                closed[:] = now
+                changed = True
+        if changed:
+            rotations = list(self._in_force)
+            for k, losses, closed in self._losses:
+                shut = tuple(loss.sector for loss, flag in zip(losses, closed) if flag)
+                if shut:
+                    rotations[k] = replace(rotations[k], forbidden_sectors=rotations[k].forbidden_sectors + shut)
+            self._use_rotations(rotations)
+
+    def _leave_loss_sectors(self, k: int, i: int, losses, closed: list[bool], state: ActuatorState, tau: np.ndarray,
+                            wanted: tuple[float, float], azimuth: list[AzimuthLimits]) -> None:
+        """A thruster pushing inside a closed loss sector leaves it by rate steps at the thrust
+        the loss leaves (:func:`~.dead_flushing.exit_limits`), not at zero thrust, toward the
+        side the piece planner sends it to (its wanted direction without the planner)."""
+        state_k = state.azimuth[k]
+        if abs(state_k.thrust) <= self._hold[i]:
+            return
+        for loss, flag in zip(losses, closed):
+            if flag and loss.inside(state_k.angle):
+                if self.planner.needed:
+                    wanted = self.planner.targets(tau, self.low, self.high, self.fault_set.stuck,
+                                                  state.angle).get(i, wanted)
+                state_k.turning = 0
+                azimuth[k] = dead_flushing.exit_limits(loss, self._in_force[k], state_k, wanted, self._angle_step[i],
+                                                       (self._low_list[i], self._high_list[i]), self._thrust_step[i])
+                return
 
     def _surroundings(self, state: ActuatorState) -> list:
         """Each rotatable thruster's `sectors.surroundings`, kept while its angle stays."""

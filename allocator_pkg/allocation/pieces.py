@@ -20,12 +20,14 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..effectiveness.model import Model
 from ..effectiveness.sectors import allowed_arcs, in_forbidden_sector
+from ..effectiveness.zones import potential_rotations
 from ..solvers import BACKENDS, BackendFactory
 from ..solvers.problem import Rows, ScaledProblem, block_index, entry_index
 from ..vehicle.config import RotationConfig
@@ -122,8 +124,9 @@ class PiecePlanner:
     def update_model(self, model: Model) -> None:
         old = getattr(self, "model", None)
         self.model = model
-        self.needed = any(not (a.rotation.continuous and not a.rotation.forbidden_sectors)
-                          for a in model.vehicle.actuators if a.rotatable)
+        self.needed = any(not (rotation.continuous and not rotation.forbidden_sectors)
+                          for rotation in potential_rotations(model.vehicle) if rotation is not None)
+        self._rotations = [a.rotation for a in model.vehicle.actuators]
         self._key = None
         self.last_targets = {}
         self._replan = REPLAN_CHANGE * model.dof_scale
@@ -137,6 +140,12 @@ class PiecePlanner:
             values[self._t_ec_index] = model.t_ec.ravel()
             self._problem.update_matrix(values)
             self._problem.update_objective(self._p(model))
+
+    def use_rotations(self, rotations: Sequence[RotationConfig | None]) -> None:
+        """Plan with these rotations (every actuator's; None for those that do not rotate): the
+        sectors in force as flushing zones lift and return. Values only."""
+        self._rotations = list(rotations)
+        self._key = None
 
     @staticmethod
     def _p(model: Model) -> np.ndarray:
@@ -184,10 +193,9 @@ class PiecePlanner:
         if self._key == key and np.all(np.abs(tau - self._tau) <= self._replan):
             return self.last_targets
         model = self.model
-        choices = [convex_pieces(model.vehicle.actuators[i].rotation, low[i], high[i], stuck.get(int(i)))
-                   for i in model.rot]
-        here = [[k for k, piece in enumerate(pieces) if _reachable(piece, model.vehicle.actuators[i].rotation,
-                                                                   float(angles[i]))]
+        rotations = self._rotations
+        choices = [convex_pieces(rotations[i], low[i], high[i], stuck.get(int(i))) for i in model.rot]
+        here = [[k for k, piece in enumerate(pieces) if _reachable(piece, rotations[i], float(angles[i]))]
                 for i, pieces in zip(model.rot, choices)]
         problem = self._problem
         problem.low[:model.n] = problem.up[:model.n] = tau

@@ -194,7 +194,11 @@ def _rotation(reader: Reader, name: str, v: dict[str, Any]) -> RotationConfig | 
         if width < ANGLE_TOLERANCE:
             reader.fail(param("forbidden_sectors"), f"sector [{start:g}, {end:g}] is empty or the whole circle")
             return None
-    rotation = filled(RotationConfig, v, actuator_field, forbidden_sectors=sectors)
+    protects = tuple(v["protects"] or ())
+    if protects and len(protects) != len(sectors):
+        reader.fail(param("protects"), f"needs one name per forbidden sector ({len(sectors)}); got {len(protects)}")
+        return None
+    rotation = filled(RotationConfig, v, actuator_field, forbidden_sectors=sectors, protects=protects)
     allowed = sum(end - start for start, end in allowed_arcs(rotation))
     if allowed < MIN_ALLOWED_ARC:
         key = "forbidden_sectors" if sectors else "azimuth_max"

@@ -28,6 +28,7 @@ from ..vehicle.node_settings import NodeSettings
 from . import schema
 from .actuators import parse_actuator
 from .fields import filled, node_field, vehicle_field
+from .flushing import check_flushing
 from .params_file import read_parameters
 from .power import parse_power
 from .schema import ACTUATOR_KEY_BY_NAME, ACTUATOR_PREFIX, NODE_KEY_BY_NAME, VEHICLE_KEY_BY_NAME
@@ -80,6 +81,8 @@ class _Parser(Reader):
                 self._unknown(name, names if names is not MISSING else [])
 
         values = {key.name: self.value(key) for key in schema.VEHICLE_KEYS if key.name not in BY_HAND}
+        if values["flushing_zones"] is not MISSING:
+            check_flushing(self, values["flushing_zones"], actuators)
         node = {key.name: self.value(key) for key in schema.NODE_KEYS}
         if node["base_frame"] == "":
             self.fail("base_frame", "must not be empty")

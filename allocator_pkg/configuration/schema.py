@@ -23,6 +23,7 @@ from ..vehicle.config import (
     FIN,
     FIXED,
     FLOW_MODELS,
+    FLUSHING_ZONES,
     METHOD_NAMES,
     ROTATABLE_TYPES,
     RUDDER,
@@ -96,6 +97,12 @@ VEHICLE_KEYS: tuple[Key, ...] = (
     Key("solver.time_limit", FLOAT, "OSQP time limit per solve (0: none).", default=0.0, minimum=0.0, unit="s"),
     Key("water_density", FLOAT, "rho_w in the lift and drag of control surfaces (1.48), (1.49).",
         default=1025.0, minimum=0.0, exclusive_minimum=True, unit="kg/m^3"),
+    Key("flushing_zones", STR, "`dnv`: every azimuth thruster with a diameter gets the DNV-ST-0111 [3.11.3] "
+        "zones of the geometry: it may not push its race onto a working thruster (not a tunnel) closer than 15 D, "
+        "within arctan(0.1 + D / s); a zone lifts while the thruster it protects does not work, and pushing onto "
+        "that dead thruster costs thrust instead ([3.11.4]; docs/theory.md). `none`: only the vehicle file's "
+        "forbidden_sectors.", default="none", choices=FLUSHING_ZONES,
+        constraint="dnv: a diameter for every azimuth thruster, no two thrusters at one horizontal position"),
     Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
         required=True, read_only=True,
         constraint="at least one; unique; letters, digits and '_', starting with a letter"),
@@ -273,6 +280,17 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
     Key("forbidden_sectors", FLOAT_LIST, "Flat list of [start, end] pairs: angles, counter-clockwise from start "
         "to end, at which the thruster must not produce thrust (it may turn through them at zero thrust).",
         applies_to=_ROT, default_doc="none", unit="rad", constraint="an even number of angles: [start, end] pairs"),
+    Key("protects", STR_LIST, "The thruster each [start, end] pair of forbidden_sectors keeps this one from "
+        "flushing, in order: the sector is in force only while that thruster works (its force range in force is "
+        "not zero); an empty name keeps its sector always.", applies_to=_ROT,
+        default_doc="none (every sector always in force)",
+        constraint="one per sector; names from actuators.names other than this one, or empty"),
+    Key("diameter", FLOAT, "Propeller diameter D, for the flushing zones of flushing_zones dnv ([3.11.3], "
+        "[3.11.4]).", default=0.0, minimum=0.0, applies_to=_THR, unit="m", default_doc="0 (none)"),
+    Key("ducted", BOOL, "The propeller runs in a nozzle: [3.11.4]'s narrower loss sector, within 4 D instead "
+        "of 8 D (flushing_zones dnv).", default=False, applies_to=_THR),
+    Key("tunnel", BOOL, "A tunnel thruster: others may flush it ([3.11.3], [3.11.4]; flushing_zones dnv).",
+        default=False, applies_to=(FIXED,)),
     Key("reversible", BOOL, "Whether negative thrust along the current angle is allowed.", default=False,
         applies_to=_ROT),
     Key("azimuth_initial", FLOAT, "Angle at start-up; inside the feasible sector, outside forbidden ones.",

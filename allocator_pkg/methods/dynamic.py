@@ -229,8 +229,9 @@ class DynamicAllocation(AllocationMethod):
         """Each rotatable thruster's limits without its rate limits (see :func:`_static`)."""
         range_low = limits.low if limits.range_low is None else limits.range_low
         range_high = limits.high if limits.range_high is None else limits.range_high
+        rotations = self._rotations if limits.rotations is None else limits.rotations
         return [_static(lim, rotation, float(limits.angle[i]), step, float(range_low[i]), float(range_high[i]))
-                for lim, rotation, step, (i, _, _) in zip(limits.azimuth, self._rotations, self._angle_step,
+                for lim, rotation, step, (i, _, _) in zip(limits.azimuth, rotations, self._angle_step,
                                                           self._rot_pairs)]
 
     def _project(self, x: np.ndarray, static: list[AzimuthLimits] | None, limits: SampleLimits) -> np.ndarray:

@@ -17,6 +17,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.zones import potential_rotations
 from ..solvers import BackendFactory
 from ..solvers.problem import Rows, ScaledProblem, entry_index
 from ..vehicle.config import SolverSettings, Vehicle
@@ -104,9 +105,9 @@ class NonlinearAllocation(AllocationMethod):
         share = np.where(self._powered, 0.5 * POWER_CURVATURE, 1.0)
         self._c_gain = 0.75 * model.power * share
         self._q_gain = 2.0 / share
-        rotations = [model.vehicle.actuators[i].rotation for i in rot]
-        self._cut = [(k, int(i)) for k, (i, r) in enumerate(zip(rot.tolist(), rotations))
-                     if not (r.continuous and not r.forbidden_sectors)]
+        rotations = potential_rotations(model.vehicle)
+        self._cut = [(k, i) for k, i in enumerate(rot.tolist())
+                     if not (rotations[i].continuous and not rotations[i].forbidden_sectors)]
         self._hold = model.hold[rot].tolist()
         self._missing = model.dof_tolerance
         self._turning_gain = 1.5 * model.power[rot]
@@ -221,8 +222,9 @@ class NonlinearAllocation(AllocationMethod):
 
     def _idle_turning(self, limits: SampleLimits) -> bool:
         """Whether idle thrusters may be sent turning this sample: when every rotatable
-        thruster whose forces a sector cuts is out of play (failed, its static range zero, or
-        stuck), as the piece planner then has no side to choose."""
+        thruster whose forces a sector cuts (a flushing zone counted even while it is lifted) is
+        out of play (failed, its static range zero, or stuck), as the piece planner then has no
+        side to choose."""
         if not self._cut:
             return True
         range_low = limits.low if limits.range_low is None else limits.range_low

@@ -31,6 +31,7 @@ METHOD_NAMES = ("qp", "pseudoinverse", "nonlinear", "lp", "dynamic", "svd_filter
 SATURATION_MODES = ("weighted", "preserve_direction", "direct")
 COMMAND_MAPS = ("linear", "quadratic", "table")
 FLOW_MODELS = ("free", "propeller_wake")
+FLUSHING_ZONES = ("none", "dnv")
 
 
 class ConfigError(ValueError):
@@ -72,7 +73,9 @@ class CommandMapConfig:
 
 @dataclass(frozen=True)
 class RotationConfig:
-    """Limits of a rotatable thruster; angles in radians."""
+    """Limits of a rotatable thruster; angles in radians. ``protects`` names, per forbidden
+    sector, the thruster it keeps this one from flushing: the sector is in force only while that
+    one works ('' or none: always)."""
 
     azimuth_min: float
     azimuth_max: float
@@ -80,6 +83,7 @@ class RotationConfig:
     forbidden_sectors: tuple[tuple[float, float], ...]
     reversible: bool
     initial: float
+    protects: tuple[str, ...] = ()
 
     @property
     def continuous(self) -> bool:
@@ -108,7 +112,8 @@ class ActuatorConfig:
     range and ``command`` are a thruster's (a control surface has none: zero), ``rotation`` a
     rotatable thruster's and ``surface`` a control surface's. ``feeds`` are the power sources a
     thruster draws from and ``feed_shares`` the share of its power from each (Table A-5 of
-    DNV-ST-0111), read by the allocation's power budget and the DP capability analysis."""
+    DNV-ST-0111), read by the allocation's power budget and the DP capability analysis. ``diameter``,
+    ``ducted`` and ``tunnel`` place it among the flushing zones (DNV-ST-0111 [3.11.3], [3.11.4])."""
 
     name: str
     type: str
@@ -124,6 +129,9 @@ class ActuatorConfig:
     surface: SurfaceConfig | None = None
     feeds: tuple[str, ...] = ()
     feed_shares: tuple[float, ...] = ()
+    diameter: float = 0.0
+    ducted: bool = False
+    tunnel: bool = False
 
     @property
     def rotatable(self) -> bool:
@@ -196,6 +204,7 @@ class Vehicle:
     explicit_regions: str
     power_sources: tuple[PowerSource, ...] = ()
     redundancy_groups: tuple[RedundancyGroup, ...] = ()
+    flushing_zones: str = "none"
 
     @property
     def priority_levels(self) -> tuple[tuple[int, ...], ...]:
