@@ -42,6 +42,7 @@ from ..vehicle.frames import wrench_between
 from ..vehicle.node_settings import INPUT, TIMER, NodeSettings
 from . import qos, wrench_input
 from .battery import BatteryInput
+from .consequence import ConsequenceMonitor
 from .diagnostics import LOG_THROTTLE, Counters, diagnostic_statuses
 from .hold import Hold, refusal
 from .outputs import Outputs
@@ -88,6 +89,8 @@ class AllocationRuntime:
         self._battery = BatteryInput(node, self._lock, allocator, self.counters) \
             if vehicle.voltage_range is not None else None
         self._capability: Capability | None = None
+        self._consequence = ConsequenceMonitor(node, self._lock, allocator, settings, self._outputs) \
+            if vehicle.redundancy_groups else None
         self._period_ns = round(S_TO_NS / vehicle.rate_hz)
         self._timer = node.create_timer(1.0 / vehicle.rate_hz, self._on_timer, autostart=False)
         self._diagnostics_timer = node.create_timer(DIAGNOSTICS_PERIOD, self._on_diagnostics, autostart=False)
@@ -124,6 +127,8 @@ class AllocationRuntime:
             self._last_sample = None
             self._timer.reset()
             self._diagnostics_timer.reset()
+            if self._consequence is not None:
+                self._consequence.activate()
 
     def deactivate(self) -> None:
         """Command zero thrust once, angles held, then stop sampling and reporting. A managed
@@ -136,6 +141,8 @@ class AllocationRuntime:
             self.active = False
             self._timer.cancel()
             self._diagnostics_timer.cancel()
+            if self._consequence is not None:
+                self._consequence.deactivate()
 
     def publish_stop(self, timeout: float) -> bool:
         """One zero-thrust command (shutdown), angles held; waits up to ``timeout`` seconds
@@ -158,6 +165,8 @@ class AllocationRuntime:
                     node.destroy_subscription(subscription)
             if self._battery is not None:
                 self._battery.close()
+            if self._consequence is not None:
+                self._consequence.close()
             self._outputs.close()
 
     # -- inputs -------------------------------------------------------------------------
@@ -254,6 +263,8 @@ class AllocationRuntime:
         self.samples += 1
         self.counters.count(result)
         self._last = result
+        if self._consequence is not None and not stale:
+            self._consequence.observe(result.requested, now)
         self._outputs.publish(result, now, f"stale: no valid wrench for {self.watchdog.timeout:g} s" if stale
                               else result.status)
 
@@ -316,6 +327,8 @@ class AllocationRuntime:
             if settings.trigger == TIMER and self._timer.timer_period_ns != self._period_ns:
                 self._timer.timer_period_ns = self._period_ns
             self._outputs.apply(vehicle, settings, self.active)
+            if self._consequence is not None:
+                self._consequence.apply(settings)
             self.settings = settings
             self.watchdog.timeout = settings.wrench_timeout
 
@@ -360,5 +373,7 @@ class AllocationRuntime:
             report = None if battery is None else (battery.topic_name, battery.fallback)
             statuses = diagnostic_statuses(node.get_fully_qualified_name(), self.allocator, self.counters,
                                            self.watchdog.stale, self._last, foreign, report)
+            if self._consequence is not None:
+                statuses.append(self._consequence.diagnostic(node.get_fully_qualified_name()))
             self.counters.reset_period()
         self._outputs.publish_diagnostics(statuses, self._clock.now().to_msg())
