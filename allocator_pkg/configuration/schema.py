@@ -106,7 +106,8 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         constraint="unique; letters, digits and '_', starting with a letter; no actuator's name"),
     Key("redundancy_groups.names", STR_LIST, "Redundancy groups: what one single failure takes away together "
         "(DNV-ST-0111 [2.4.8]; the DP FMEA's redundancy concept), each with redundancy_groups.<group>.sources and "
-        "redundancy_groups.<group>.actuators. Read by the DP capability analysis, not by the allocation.",
+        "redundancy_groups.<group>.actuators. Read by the DP capability analysis and the node's consequence analysis "
+        "(consequence.rate), not by the allocation.",
         default_doc="none", read_only=True,
         constraint="unique; letters, digits and '_', starting with a letter"),
 )
