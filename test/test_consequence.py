@@ -206,6 +206,17 @@ def test_a_split_fed_thruster_keeps_its_remaining_share_of_power_to_the_two_thir
     assert remaining_share(vehicle, vehicle.redundancy_groups[0], lost_sources=["a"]).tolist() == [0.0, 0.0]
 
 
+def test_a_force_range_without_zero_is_a_fixed_force_whatever_the_utilisation():
+    """A stuck control surface's lift: the others make up the rest."""
+    vehicle = split_fed_vehicle()
+    lose_b = Consequence(vehicle).utilisation([80.0, 0, 0, 0, 0, 0], np.array([-100.0, 30.0]),
+                                              np.array([100.0, 30.0]))[0]
+    assert lose_b.utilisation == pytest.approx(50.0 / (100.0 * 0.5 ** (2 / 3)), abs=1e-9)
+    lose_b = Consequence(vehicle).utilisation([-20.0, 0, 0, 0, 0, 0], np.array([-100.0, 30.0]),
+                                              np.array([100.0, 30.0]))[0]
+    assert lose_b.utilisation == pytest.approx(50.0 / (100.0 * 0.5 ** (2 / 3)), abs=1e-9)
+
+
 def test_faults_in_force_count_on_top_of_the_group_loss():
     vehicle = split_fed_vehicle()
     allocator = Allocator(vehicle)

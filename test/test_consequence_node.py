@@ -115,3 +115,18 @@ def test_the_diagnostic_of_a_direction_nothing_left_gives():
     assert [(v.key, v.value) for v in status.values][:2] == [("utilisation a", "inf"), ("utilisation b", "0.5000")]
     assert consequence_status("/n", 1.0, None).message == "no analysis yet"
     assert np.isinf(float(status.values[0].value))
+
+
+def test_the_managed_node_analyses_while_active_only(allocator_harness):
+    harness = allocator_harness(DP_VESSEL, {"wrench_timeout": 0.0, "consequence.filter_time": 0.0}, node="lifecycle")
+    received = []
+    harness.probe.create_subscription(ConsequenceAnalysis, "thrust_allocator/consequence", received.append, 10)
+    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/consequence") > 0)
+    assert analysis_of(harness, received, BEYOND_B).alarm
+    harness.node.trigger_deactivate()
+    count = len(received)
+    harness.advance(3.0)
+    harness.spin_for(0.3)
+    assert len(received) == count
+    harness.node.trigger_cleanup()
+    assert harness.node.runtime is None

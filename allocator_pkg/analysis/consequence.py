@@ -211,14 +211,14 @@ class _Programme:
                 self._column_low[column] = self._column_up[column] = 0.0
                 continue
             self._scale(int(column), scale)
-            if low[i] > 0.0 or high[i] < 0.0:                 # a fixed force, whatever u
+            pinned = low[i] > 0.0 or high[i] < 0.0             # a fixed force, whatever u
+            self.lp.up[row:row + 2] = np.inf if pinned else 0.0
+            if pinned:
                 self._column_low[column], self._column_up[column] = low[i] / scale, high[i] / scale
-                a = b = 0.0
-            else:
-                self._column_low[column], self._column_up[column] = -np.inf, np.inf
-                a, b = high[i] / scale, -low[i] / scale
-            self.lp.coefficient(row, self.u, -a)
-            self.lp.coefficient(row + 1, self.u, -b)
+                continue
+            self._column_low[column], self._column_up[column] = -np.inf, np.inf
+            self.lp.coefficient(row, self.u, -high[i] / scale)
+            self.lp.coefficient(row + 1, self.u, low[i] / scale)
 
     def _piece(self, index: int, piece: Piece) -> None:
         """The cone and radius of the ``index``-th rotatable thruster's piece."""
