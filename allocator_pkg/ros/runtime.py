@@ -19,7 +19,9 @@ rate_hz costs no idle wake-ups.
 With thrust tables measured at several supply voltages, the runtime follows the voltage of
 ``battery_state`` (:mod:`~allocator_pkg.ros.battery`; its timeout checked with the diagnostics,
 once a second). On the bench, ``~/hold_actuator`` holds one actuator (:meth:`~AllocationRuntime.hold`,
-:mod:`~allocator_pkg.ros.hold`); a stale input still stops it.
+:mod:`~allocator_pkg.ros.hold`); a stale input still stops it. With redundancy groups, each sample
+feeds the consequence analysis' load filter; the analysis runs on a thread of its own
+(:mod:`~allocator_pkg.ros.consequence`).
 """
 
 from __future__ import annotations
