@@ -27,13 +27,17 @@ DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 
 @st.composite
 def powered_vessels(draw):
-    """Two or three azimuths and up to two tunnels, fed by two or three sources (some split),
-    with a group per source (its thrusters fed by it alone listed, maybe one more actuator) and
-    a group of one actuator alone."""
+    """Two or three azimuths (some reversible, with less thrust astern) and up to two tunnels,
+    fed by two or three sources (some split), with a group per source (its thrusters fed by it
+    alone listed, maybe one more actuator) and a group of one actuator alone."""
     vehicle, parameters = draw(azimuth_vessels(units=(2, 3), rates=False))
     names = list(vehicle.names)
     for name in names:             # a lever of a micrometre makes "no yaw" or "a little" a matter of tolerances
         parameters[f"actuators.{name}.position"] = [round(c, 2) for c in parameters[f"actuators.{name}.position"]]
+        if parameters[f"actuators.{name}.type"] == "azimuth" and draw(st.booleans()):
+            parameters[f"actuators.{name}.reversible"] = True
+            parameters[f"actuators.{name}.thrust_min"] = -draw(st.floats(min_value=0.3, max_value=1.0)) * \
+                parameters[f"actuators.{name}.thrust_max"]
     sources = [f"s{k}" for k in range(draw(st.integers(min_value=2, max_value=3)))]
     parameters["power.sources"] = sources
     for source in sources:
@@ -60,8 +64,9 @@ def powered_vessels(draw):
 
 
 def reference_utilisation(vehicle, parameters, group, low, high, stuck, load, lost_sources):
-    """min u with T f = load, |f_i| <= u R_i in the 256-gon and a piece of its allowed arc, for
-    the actuators the group leaves (feed shares' power to the 2/3), by scipy's linprog."""
+    """min u with T f = load, |f_i| <= u R_i in the 256-gon and a piece of its allowed arc (or
+    their reverse, with the reverse radius), for the actuators the group leaves (feed shares'
+    power to the 2/3), by scipy's linprog."""
     lost = set(parameters[f"redundancy_groups.{group}.sources"]) | set(lost_sources)
     members = parameters[f"redundancy_groups.{group}.actuators"]
     names = list(vehicle.names)
@@ -78,11 +83,10 @@ def reference_utilisation(vehicle, parameters, group, low, high, stuck, load, lo
         if parameters[f"actuators.{name}.type"] == "fixed":
             columns.append(("fixed", i, np.array([0.0, rating, x * rating]), high[i] * factor / rating))
         else:
-            radius = high[i] * factor / rating
             columns.append(("azimuth", i, np.array([[rating, 0.0], [0.0, rating], [-y * rating, x * rating]]),
-                            radius))
+                            None))
             unit_choices.append(azimuth_pieces(parameters.get(f"actuators.{name}.forbidden_sectors"), stuck.get(i),
-                                               radius))
+                                               high[i] * factor / rating, -low[i] * factor / rating))
         scale.append(rating)
     dof_scale = np.array([sum(scale), sum(scale), sum(scale) * 40.0])
     best = math.inf
@@ -91,19 +95,23 @@ def reference_utilisation(vehicle, parameters, group, low, high, stuck, load, lo
     return best
 
 
-def azimuth_pieces(sector, stuck, radius):
-    """(start, end) cones of the allowed forces, none wider than WIDEST_PIECE; 'whole'; None: nothing."""
-    if radius <= 0.0:
+def azimuth_pieces(sector, stuck, forward, reverse):
+    """(start, end, radius) cones of the allowed forces, none wider than WIDEST_PIECE, ahead with
+    the radius ``forward`` and astern (the cones turned by pi) with ``reverse``; ("whole",
+    radius) for a free disk; None: nothing."""
+    if max(forward, reverse) <= 0.0:
         return [None]
     if stuck is not None:
         if sector is not None and (stuck - sector[0]) % (2 * math.pi) <= sector[1] - sector[0]:
             return [None]
-        return [(stuck, stuck)]
+        return [(stuck, stuck, forward)] + ([(stuck + math.pi, stuck + math.pi, reverse)] if reverse > 0.0 else [])
     if sector is None:
-        return ["whole"]
+        return [("whole", max(forward, reverse))]
     start, width = sector[1], 2 * math.pi - (sector[1] - sector[0])
     count = math.ceil(width / WIDEST_PIECE)
-    return [(start + k * width / count, start + (k + 1) * width / count) for k in range(count)]
+    cones = [(start + k * width / count, start + (k + 1) * width / count) for k in range(count)]
+    return [(a, b, forward) for a, b in cones] + ([(a + math.pi, b + math.pi, reverse) for a, b in cones]
+                                                  if reverse > 0.0 else [])
 
 
 def solve_reference(columns, pieces, rhs, dof_scale):
@@ -125,17 +133,18 @@ def solve_reference(columns, pieces, rhs, dof_scale):
         piece = pieces[azimuth]
         azimuth += 1
         a_eq[:, column:column + 2] = matrix / dof_scale[:, None]
-        if piece is None:
+        if piece is None or piece[-1] <= 0.0:
             bounds[column] = bounds[column + 1] = (0.0, 0.0)
-        else:
-            for k in range(SIDES):
-                row = np.zeros(size)
-                row[column], row[column + 1] = math.cos(2 * math.pi * k / SIDES), math.sin(2 * math.pi * k / SIDES)
-                row[u] = -radius * APOTHEM
-                a_ub.append(row)
-                b_ub.append(0.0)
-        if isinstance(piece, tuple):
-            start, end = piece                                # left of start, right of end; a ray: along it
+            column += 2
+            continue
+        for k in range(SIDES):
+            row = np.zeros(size)
+            row[column], row[column + 1] = math.cos(2 * math.pi * k / SIDES), math.sin(2 * math.pi * k / SIDES)
+            row[u] = -piece[-1] * APOTHEM
+            a_ub.append(row)
+            b_ub.append(0.0)
+        if len(piece) == 3:
+            start, end, _ = piece                             # left of start, right of end; a ray: along it
             normals = [(math.sin(start), -math.cos(start)), (-math.sin(end), math.cos(end))]
             for normal in normals + ([(-math.cos(start), -math.sin(start))] if start == end else []):
                 row = np.zeros(size)
@@ -160,8 +169,7 @@ def test_each_group_utilisation_is_the_linear_programme_of_what_its_loss_leaves(
                            fault_map[n].efficiency if n in fault_map and fault_map[n].mode == FaultMode.DEGRADED else
                            1.0 for n in vehicle.names])
     high = np.array([parameters[f"actuators.{n}.thrust_max"] for n in vehicle.names]) * efficiency
-    low = np.array([-parameters[f"actuators.{n}.thrust_max"] if parameters[f"actuators.{n}.type"] == "fixed"
-                    else 0.0 for n in vehicle.names]) * efficiency
+    low = np.array([parameters.get(f"actuators.{n}.thrust_min", 0.0) for n in vehicle.names]) * efficiency
     stuck = {vehicle.names.index(n): f.angle for n, f in fault_map.items() if f.mode == FaultMode.STUCK}
     lost_sources = data.draw(st.sampled_from([(), (parameters["power.sources"][-1],)]))
     rated = sum(parameters[f"actuators.{n}.thrust_max"] for n in vehicle.names)
