@@ -80,6 +80,7 @@ NODE_VALUES = {
     "markers_rate_hz": 2.0, "geometry_source": "robot_description", "battery_timeout": 2.0, "power_timeout": 3.0,
     "robot_description_file": "r.urdf", "ros2_control.thrust_topic": "/thrust", "ros2_control.angle_topic": "/angle",
     "step_test.enabled": True, "step_test.thrust_share": 0.3, "step_test.duration_max": 10.0,
+    "consequence.rate": 2.0, "consequence.filter_time": 30.0,
 }
 THRUSTER_VALUES = {
     "type": "azimuth", "weight": 2.0, "power_coefficient": 0.5, "thrust_max": 20.0, "thrust_rate_max": 5.0,

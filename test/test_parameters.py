@@ -112,6 +112,9 @@ def test_dofs_are_kept_in_canonical_order_with_their_slack_weights():
         ({"azimuth_polygon_sides": 2}, "azimuth_polygon_sides", "must be >="),
         ({"azimuth_polygon_sides": 8.5}, "azimuth_polygon_sides", "integer"),
         ({"per_actuator_topics": 1}, "per_actuator_topics", "true or false"),
+        ({"consequence__rate": 0.5}, "consequence.rate", "0 (off) or at least 1 Hz"),
+        ({"consequence__rate": 20.0}, "consequence.rate", "must be <= 10"),
+        ({"consequence__filter_time": -1.0}, "consequence.filter_time", "must be >= 0"),
     ],
 )
 def test_each_invalid_key_is_named_with_its_reason(changes, key, reason):

@@ -86,6 +86,9 @@ class _Parser(Reader):
         node = {key.name: self.value(key) for key in schema.NODE_KEYS}
         if node["base_frame"] == "":
             self.fail("base_frame", "must not be empty")
+        rate = node["consequence.rate"]
+        if rate is not MISSING and 0.0 < rate < 1.0:
+            self.fail("consequence.rate", f"{rate:g} Hz: 0 (off) or at least 1 Hz")
         dofs = self._dofs(values["dofs"])
         if dofs and actuators and len(actuators) == len(names):
             for dof in unreachable_dofs(tuple(actuators), dofs):

@@ -114,8 +114,8 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         constraint="unique; letters, digits and '_', starting with a letter; no actuator's name"),
     Key("redundancy_groups.names", STR_LIST, "Redundancy groups: what one single failure takes away together "
         "(DNV-ST-0111 [2.4.8]; the DP FMEA's redundancy concept), each with redundancy_groups.<group>.sources and "
-        "redundancy_groups.<group>.actuators. The node's ~/set_group_fault fails one at runtime; the DP capability "
-        "analysis fails each in turn.",
+        "redundancy_groups.<group>.actuators. The node's ~/set_group_fault fails one at runtime and its consequence "
+        "analysis (consequence.rate) weighs each one's loss; the DP capability analysis fails each in turn.",
         default_doc="none", read_only=True,
         constraint="unique; letters, digits and '_', starting with a letter"),
 )
@@ -186,6 +186,13 @@ NODE_KEYS: tuple[Key, ...] = (
     Key("ros2_control.actuators", STR_LIST, "The actuators of the ros2_control topics in the controller's joint "
         "order.", default_doc="actuators.names",
         constraint="names from actuators.names, each at most once"),
+    Key("consequence.rate", FLOAT, "Rate of the online consequence analysis on ~/consequence (IMO MSC/Circ.645): "
+        "for each of redundancy_groups, the utilisation the actuators left after its loss would need to hold the "
+        "present load, and an alarm while one exceeds 1 (docs/power.md). 0: off. Without redundancy groups there is "
+        "nothing to analyse.", default=1.0, minimum=0.0, maximum=10.0, unit="Hz", constraint="0 (off) or at least 1"),
+    Key("consequence.filter_time", FLOAT, "Time constant of the first-order low-pass filter of the requested wrench "
+        "that the consequence analysis takes as the present load (0: the last request).", default=10.0,
+        minimum=0.0, maximum=600.0, unit="s"),
     Key("step_test.enabled", BOOL, "Allow ~/hold_actuator (allocator-ctl step-test --actuators): one actuator held "
         "at a small thrust for a bounded time, every other one held out as FAILED. For a vehicle on the bench or "
         "tethered, never in operation (docs/step_test.md).", default=False),

@@ -1,8 +1,9 @@
 """The runtime's outputs and how often each goes out: ``thruster_commands`` every sample,
 ``allocation_status`` while someone subscribes (at most ``status_rate_hz`` times a second),
 ``~/thrust_markers`` while someone subscribes (at most ``markers_rate_hz``), ``/diagnostics``
-when the runtime reports, and the per-actuator (:mod:`~allocator_pkg.ros.actuator_topics`) and
-ros2_control (:mod:`~allocator_pkg.ros.ros2_control`) topics every sample when configured.
+when the runtime reports, ``~/consequence`` when the consequence analysis answers, and the
+per-actuator (:mod:`~allocator_pkg.ros.actuator_topics`) and ros2_control
+(:mod:`~allocator_pkg.ros.ros2_control`) topics every sample when configured.
 
 On a ``LifecycleNode`` every one is a lifecycle publisher: rclpy enables them in the node's
 active state and drops what they are given in any other. On a plain ``Node`` they are plain
@@ -25,7 +26,7 @@ from rclpy.qos import QoSProfile
 from std_msgs.msg import Header
 from visualization_msgs.msg import MarkerArray
 
-from allocator_msgs.msg import AllocationStatus, ThrusterCommands
+from allocator_msgs.msg import AllocationStatus, ConsequenceAnalysis, ThrusterCommands
 
 from ..allocation.allocator import AllocationResult, Allocator
 from ..vehicle.config import Vehicle
@@ -47,7 +48,7 @@ def status_period(settings: NodeSettings) -> int:
 
 class Outputs:
     """The publishers of ``allocator``'s samples on ``node``, until :meth:`close`. Called with
-    the runtime's lock held, except :meth:`publish_diagnostics`."""
+    the runtime's lock held, except :meth:`publish_diagnostics` and :meth:`publish_consequence`."""
 
     def __init__(self, node: Node, allocator: Allocator, vehicle: Vehicle, settings: NodeSettings):
         self._node = node
@@ -65,6 +66,10 @@ class Outputs:
         self._diagnostics = self._create(DiagnosticArray, "/diagnostics", qos.diagnostics())
         self._markers = self._create(MarkerArray, "~/thrust_markers", qos.output())
         self._markers_due = 0
+        self._consequence = self._create(ConsequenceAnalysis, "~/consequence", qos.output()) \
+            if vehicle.redundancy_groups else None
+        self.consequence_alarm = False
+        """Copied into every status: set by the consequence analysis (:mod:`~allocator_pkg.ros.consequence`)."""
         self._per_actuator: ActuatorTopics | None = None
         self._apply_per_actuator(vehicle, settings, self._create)
         self._ros2_control = Ros2ControlOutput(vehicle, settings, self._create, self._destroy)
@@ -72,8 +77,9 @@ class Outputs:
     @property
     def topics(self) -> list[str]:
         """The resolved names of the topics published (the per-actuator ones left out)."""
+        consequence = [self._consequence.topic_name] if self._consequence is not None else []
         return [self._commands.topic_name, self._status.topic_name, self._markers.topic_name,
-                self._diagnostics.topic_name, *self._ros2_control.topics]
+                self._diagnostics.topic_name, *consequence, *self._ros2_control.topics]
 
     def _create(self, message_type: type, topic: str, profile: QoSProfile, enable: bool = False) -> Publisher:
         """A publisher of one output: a lifecycle publisher on a LifecycleNode, a plain one on a
@@ -113,8 +119,10 @@ class Outputs:
             self._status_last = now
             limit = allocator.power_limit
             power = None if limit is None else allocator.power.reading(result.thrust, limit)
-            self._status.publish(status_message(result, status, header, self._settings.frame, allocator.voltage,
-                                                self._status_message, power))
+            message = status_message(result, status, header, self._settings.frame, allocator.voltage,
+                                     self._status_message, power)
+            message.consequence_alarm = self.consequence_alarm
+            self._status.publish(message)
             self.statuses_published += 1
         if self._per_actuator is not None:
             self._per_actuator.publish(result)
@@ -129,6 +137,10 @@ class Outputs:
 
     def publish_diagnostics(self, statuses: list[DiagnosticStatus], stamp: Time) -> None:
         self._diagnostics.publish(DiagnosticArray(header=Header(stamp=stamp), status=statuses))
+
+    def publish_consequence(self, message: ConsequenceAnalysis) -> None:
+        """``~/consequence``, from the analysis' own thread (a vehicle with redundancy groups)."""
+        self._consequence.publish(message)
 
     def wait_for_acknowledgement(self, timeout: float) -> bool:
         """Whether every subscriber of the commands acknowledged what was published, within
@@ -160,5 +172,6 @@ class Outputs:
         if self._per_actuator is not None:
             self._per_actuator.close()
         self._ros2_control.close()
-        for publisher in (self._commands, self._status, self._diagnostics, self._markers):
-            self._destroy(publisher)
+        for publisher in (self._commands, self._status, self._diagnostics, self._markers, self._consequence):
+            if publisher is not None:
+                self._destroy(publisher)

@@ -22,7 +22,8 @@ once a second), and with power sources the available power of ``power_available`
 (:mod:`~allocator_pkg.ros.power_input`, the same way); ``~/set_group_fault`` fails a redundancy
 group (:meth:`~AllocationRuntime.set_group_fault`). On the bench, ``~/hold_actuator`` holds one
 actuator (:meth:`~AllocationRuntime.hold`, :mod:`~allocator_pkg.ros.hold`); a stale input still
-stops it.
+stops it. With redundancy groups, each sample feeds the consequence analysis' load filter; the
+analysis runs on a thread of its own (:mod:`~allocator_pkg.ros.consequence`).
 """
 
 from __future__ import annotations
@@ -45,6 +46,7 @@ from ..vehicle.frames import wrench_between
 from ..vehicle.node_settings import INPUT, TIMER, NodeSettings
 from . import qos, wrench_input
 from .battery import BatteryInput
+from .consequence import ConsequenceMonitor
 from .diagnostics import LOG_THROTTLE, Counters, diagnostic_statuses
 from .hold import Hold, refusal
 from .outputs import Outputs
@@ -94,6 +96,8 @@ class AllocationRuntime:
             if vehicle.voltage_range is not None else None
         self.power_input = PowerInput(node, self._lock, allocator, self.counters) if vehicle.power_sources else None
         self._capability: Capability | None = None
+        self._consequence = ConsequenceMonitor(node, self._lock, allocator, settings, self._outputs) \
+            if vehicle.redundancy_groups else None
         self._period_ns = round(S_TO_NS / vehicle.rate_hz)
         self._timer = node.create_timer(1.0 / vehicle.rate_hz, self._on_timer, autostart=False)
         self._diagnostics_timer = node.create_timer(DIAGNOSTICS_PERIOD, self._on_diagnostics, autostart=False)
@@ -132,6 +136,8 @@ class AllocationRuntime:
             self._last_sample = None
             self._timer.reset()
             self._diagnostics_timer.reset()
+            if self._consequence is not None:
+                self._consequence.activate()
 
     def deactivate(self) -> None:
         """Command zero thrust once, angles held, then stop sampling and reporting. A managed
@@ -144,6 +150,8 @@ class AllocationRuntime:
             self.active = False
             self._timer.cancel()
             self._diagnostics_timer.cancel()
+            if self._consequence is not None:
+                self._consequence.deactivate()
 
     def publish_stop(self, timeout: float) -> bool:
         """One zero-thrust command (shutdown), angles held; waits up to ``timeout`` seconds
@@ -168,6 +176,8 @@ class AllocationRuntime:
                 self._battery.close()
             if self.power_input is not None:
                 self.power_input.close()
+            if self._consequence is not None:
+                self._consequence.close()
             self._outputs.close()
 
     # -- inputs -------------------------------------------------------------------------
@@ -264,6 +274,8 @@ class AllocationRuntime:
         self.samples += 1
         self.counters.count(result)
         self._last = result
+        if self._consequence is not None and not stale:
+            self._consequence.observe(result.requested, now)
         self._outputs.publish(result, now, f"stale: no valid wrench for {self.watchdog.timeout:g} s" if stale
                               else result.status)
 
@@ -341,6 +353,8 @@ class AllocationRuntime:
             if settings.trigger == TIMER and self._timer.timer_period_ns != self._period_ns:
                 self._timer.timer_period_ns = self._period_ns
             self._outputs.apply(vehicle, settings, self.active)
+            if self._consequence is not None:
+                self._consequence.apply(settings)
             self.settings = settings
             self.watchdog.timeout = settings.wrench_timeout
 
@@ -389,5 +403,7 @@ class AllocationRuntime:
             statuses = diagnostic_statuses(node.get_fully_qualified_name(), self.allocator, self.counters,
                                            self.watchdog.stale, self._last, foreign, report,
                                            None if power is None else power.report)
+            if self._consequence is not None:
+                statuses.append(self._consequence.diagnostic(node.get_fully_qualified_name()))
             self.counters.reset_period()
         self._outputs.publish_diagnostics(statuses, self._clock.now().to_msg())

@@ -48,7 +48,8 @@ class NodeSettings:
     topics of thrust and of azimuth angles (empty: none) and the actuators they carry, in the
     controller's joint order (every actuator in configuration order unless the key gives
     them); whether ``~/hold_actuator`` may hold one actuator at a time, at most what share of
-    its largest thrust and for how long. A dotted key fills the field of its name with '_' for
+    its largest thrust and for how long; the rate [Hz] of the consequence analysis (0: off) and
+    the time constant [s] of its load filter. A dotted key fills the field of its name with '_' for
     '.' (``ros2_control.thrust_topic``: ``ros2_control_thrust_topic``;
     :mod:`allocator_pkg.configuration.fields`).
     """
@@ -72,3 +73,5 @@ class NodeSettings:
     executor: str
     step_test_thrust_share: float
     step_test_duration_max: float
+    consequence_rate: float
+    consequence_filter_time: float
