@@ -12,6 +12,7 @@ import numpy as np
 
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
 from ..effectiveness.sectors import surroundings
+from ..effectiveness.thrust_bias import ThrustBias
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from .azimuth import piece_in_question, plan
 from .conditions import Conditions
@@ -25,6 +26,7 @@ class LimitsStage:
 
     def __init__(self, model: Model, inverse: PseudoInverseGains):
         self.planner = PiecePlanner(model)
+        self.bias = ThrustBias()
         self.version = 0
         self.configure(model, inverse)
 
@@ -42,6 +44,7 @@ class LimitsStage:
         self._angle_step = model.angle_step.tolist()
         self._thrust_step = model.thrust_step.tolist()
         self._hold = model.hold.tolist()
+        self.bias.configure(model)
 
     def refresh(self, conditions: Conditions) -> None:
         """What faults, speed and voltage decide, taken when they change (never per sample):
@@ -53,6 +56,7 @@ class LimitsStage:
         self._low_list, self._high_list = self.low.tolist(), self.high.tolist()
         self._lift = conditions.lift
         self.version += 1
+        self.bias.refresh(self.high, self.fault_set.stuck)
         if model.rot.size:
             excluded = (self.low == 0.0) & (self.high == 0.0)
             self._desired_gain = self._inverse.gain(excluded, {})
@@ -81,9 +85,10 @@ class LimitsStage:
         low = np.minimum(np.maximum(previous - step, self.low), self.high)
         high = np.minimum(np.maximum(previous + step, self.low), self.high)
         azimuth: list[AzimuthLimits] = []
+        bias = self.bias.offsets(tau)
         if model.rot.size:
             stuck = self.fault_set.stuck
-            desired = (self._desired_gain @ tau).tolist()
+            desired = (self._desired_gain @ tau if bias is None else self._desired_gain @ tau + bias).tolist()
             wanted = {i: (desired[c1], desired[c2]) for i, (c1, c2) in self._rot_pairs}
             around = self._surroundings(state)
             wanted.update(self._planned(tau, state, wanted, stuck, around))
@@ -93,7 +98,7 @@ class LimitsStage:
                 azimuth.append(limits_k)
                 low[i], high[i] = limits_k.thrust_low, limits_k.thrust_high
         return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust, range_low=self.low,
-                            range_high=self.high)
+                            range_high=self.high, bias=bias)
 
     def _surroundings(self, state: ActuatorState) -> list:
         """Each rotatable thruster's `sectors.surroundings`, kept while its angle stays."""

@@ -228,7 +228,9 @@ class SampleLimits:
     ``low``, ``high`` or ``azimuth`` may have: a method keeps what it derives from them
     (pseudo-inverse gains, the solver's box rows) while it stays; -1 means every sample.
     ``range_low``/``range_high``: the static force ranges that faults and speed leave, before
-    any rate limit (None: the same as ``low``/``high``). Nothing here is changed by a method."""
+    any rate limit (None: the same as ``low``/``high``). ``bias``: the thrust bias's extended
+    force offset b of this sample (:mod:`~.thrust_bias`; None: no bias), about which a method
+    that implements it allocates. Nothing here is changed by a method."""
 
     low: np.ndarray
     high: np.ndarray
@@ -239,6 +241,7 @@ class SampleLimits:
     version: int = -1
     range_low: np.ndarray | None = None
     range_high: np.ndarray | None = None
+    bias: np.ndarray | None = None
 
     def fixed(self) -> np.ndarray:
         """Actuators whose force the limits alone decide this sample (a rotatable thruster:
