@@ -85,7 +85,8 @@ def test_a_thrust_beyond_a_paired_thruster_is_refused(thrust):
 
 
 def test_enabled_needs_pairs_and_a_thrust_and_a_rising_fade():
-    assert problems({"bias.enabled": True, "bias.thrust": 0.0}) == [("bias.thrust", "must be above 0 with bias.enabled")]
+    assert problems({"bias.enabled": True, "bias.thrust": 0.0}) == [
+        ("bias.thrust", "must be above 0 with bias.enabled")]
     found = problems({"bias.enabled": True, "bias.pairs": []})
     assert [name for name, _ in found] == ["bias.enabled"]
     assert problems({"bias.fade_start": 0.3, "bias.fade_end": 0.2}) == [

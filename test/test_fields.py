@@ -32,8 +32,8 @@ from allocator_pkg.vehicle.node_settings import NodeSettings
 
 TABLES = ((schema.VEHICLE_KEYS, vehicle_field), (schema.NODE_KEYS, node_field), (schema.ACTUATOR_KEYS, actuator_field),
           (schema.SOURCE_KEYS, source_field), (schema.GROUP_KEYS, group_field))
-STRUCTS = (Vehicle, Weights, SolverSettings, BiasSettings, NodeSettings, ActuatorConfig, CommandMapConfig, RotationConfig,
-           SurfaceConfig, PowerSource, RedundancyGroup)
+STRUCTS = (Vehicle, Weights, SolverSettings, BiasSettings, NodeSettings, ActuatorConfig, CommandMapConfig,
+           RotationConfig, SurfaceConfig, PowerSource, RedundancyGroup)
 
 NO_FIELD = {"actuators.names", "redundancy_groups.names", "link"}
 """Keys read by hand: the names make Vehicle.actuators and Vehicle.redundancy_groups, a link is

@@ -91,7 +91,8 @@ class LimitsStage:
             desired = (self._desired_gain @ tau if bias is None else self._desired_gain @ tau + bias).tolist()
             wanted = {i: (desired[c1], desired[c2]) for i, (c1, c2) in self._rot_pairs}
             around = self._surroundings(state)
-            wanted.update(self._planned(tau, state, wanted, stuck, around))
+            planned = self._planned(tau, state, wanted, stuck, around)
+            wanted.update(planned if bias is None else biased(planned, bias, self._rot_pairs))
             for state_k, (i, _), rotation, around_k in zip(state.azimuth, self._rot_pairs, self._rotations, around):
                 limits_k = plan(rotation, state_k, self._angle_step[i], (self._low_list[i], self._high_list[i]),
                                 self._thrust_step[i], wanted[i], self._hold[i], stuck.get(i), around_k)
@@ -126,3 +127,9 @@ class LimitsStage:
             return planner.last_targets
         return {}
 
+
+def biased(targets: dict[int, tuple[float, float]], bias: np.ndarray,
+           columns: list[tuple[int, tuple[int, int]]]) -> dict[int, tuple[float, float]]:
+    """The piece planner's force ``targets`` with the thrust bias's offset added: the optimum
+    about b is b plus the optimum about 0 while no limit binds (docs/theory.md, thrust bias)."""
+    return {i: (targets[i][0] + bias[c1], targets[i][1] + bias[c2]) for i, (c1, c2) in columns if i in targets}
