@@ -7,6 +7,7 @@ limits in force; the command line prints the verdict and its exit status follows
 
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -26,7 +27,7 @@ from allocator_pkg.vehicle.angles import wrap
 pytestmark = pytest.mark.slow
 
 SCENARIOS = {"dp_station_keeping": 0.1, "dp_azimuth_failure": 0.1, "rov_thruster_failure": 0.15,
-             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0}
+             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0, "dp_calm_bias": 0.2}
 """The shipped scenarios, each with the scale of its duration here (the set-point change at
 full length: its windows' bounds are for the vessel's own pace)."""
 RESULTS = {}
@@ -139,6 +140,16 @@ def test_the_set_point_step_is_measured(tmp_path_factory):
     assert set(report["windows"]) == {"settled", "moved", "turned"}
     position, heading = result.trace.setpoint[-1], result.trace.setpoint_heading[-1]
     assert position == [10.0, 0.0, 0.0] and heading == pytest.approx(np.radians(15.0))
+
+
+def test_thrust_bias_at_least_halves_the_azimuth_travel_in_calm_weather(tmp_path_factory, tmp_path):
+    case, biased, _ = finished_run("dp_calm_bias", tmp_path_factory)
+    assert case.parameters["bias.enabled"] is True
+    plain = run(replace(case, parameters={**case.parameters, "bias.enabled": False}), tmp_path, log=lambda _: None)
+    assert biased.metrics["azimuth_travel"] <= 0.5 * plain.metrics["azimuth_travel"]
+    assert biased.metrics["energy"] > plain.metrics["energy"]                   # what holding the angles costs
+    for metric in ("position_error_max", "heading_error_max"):
+        assert biased.metrics[metric] <= 1.1 * plain.metrics[metric], metric    # and it holds station as well
 
 
 def bounded_copy(tmp_path, bound: float):
