@@ -181,6 +181,15 @@ def test_compare_gives_a_verdict_per_method(tmp_path, capsys):
     assert "| thrust reversals [count] |" in text
 
 
+def test_compare_leaves_out_a_method_the_scenario_parameters_ask_too_much_of(tmp_path, capsys):
+    path = ROOT / "config" / "scenarios" / "dp_calm_bias.yaml"
+    assert main(["compare", str(path), "--methods", "qp", "lp", "--out", str(tmp_path / "cmp"),
+                 "--duration-scale", "0.02", "--no-baseline"]) == 0
+    text = capsys.readouterr().out
+    assert "sim: lp left out: bias.enabled: method 'lp' does not implement thrust bias" in text
+    assert "sim: qp: PASS" in text and not (tmp_path / "cmp" / "lp").exists()
+
+
 def test_a_bad_scenario_is_refused_with_its_key(tmp_path, capsys):
     bad = tmp_path / "bad.yaml"
     text = (ROOT / "config" / "scenarios" / "dp_station_keeping.yaml").read_text().replace("../", f"{ROOT}/config/")
