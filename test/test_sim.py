@@ -20,7 +20,7 @@ from allocator_pkg.cli.sim import main, run
 from allocator_pkg.cli.sim_metrics import metrics_from_recording
 from allocator_pkg.effectiveness.faults import thrust_limits
 from allocator_pkg.simulation.report import report_checks
-from allocator_pkg.simulation.scenario import load_scenario
+from allocator_pkg.simulation.scenario import Event, load_scenario
 from allocator_pkg.simulation.verdict import broken, verdict_lines
 from allocator_pkg.vehicle.angles import wrap
 
@@ -150,6 +150,21 @@ def test_thrust_bias_at_least_halves_the_azimuth_travel_in_calm_weather(tmp_path
     assert biased.metrics["energy"] > plain.metrics["energy"]                   # what holding the angles costs
     for metric in ("position_error_max", "heading_error_max"):
         assert biased.metrics[metric] <= 1.1 * plain.metrics[metric], metric    # and it holds station as well
+
+
+def test_the_bias_switches_off_and_on_while_the_node_runs(tmp_path):
+    """bias.enabled as a node parameter: off at 20 s, on again at 40 s; the azimuths leave
+    their opposed angles and come back, the wrench met all along."""
+    events = (Event(time=20.0, kind="parameter", name="bias.enabled", value=False),
+              Event(time=40.0, kind="parameter", name="bias.enabled", value=True))
+    result = run(replace(scenario("dp_calm_bias"), events=events), tmp_path, log=lambda _: None)
+    a = result.trace.arrays()
+    stbd, port = np.degrees(a["azimuth"][:, 0]), np.degrees(a["azimuth"][:, 1])
+    for when in (a["time"] < 20.0, a["time"] > 58.0):
+        assert np.all(np.abs(stbd[when] + 82.5) < 7.5) and np.all(np.abs(port[when] - 82.5) < 7.5)
+    off = (a["time"] > 35.0) & (a["time"] < 40.0)
+    assert np.all(np.abs(stbd[off]) < 45.0) and np.all(np.abs(port[off]) < 45.0)
+    assert not a["saturated"].any()
 
 
 def bounded_copy(tmp_path, bound: float):
