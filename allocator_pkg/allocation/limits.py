@@ -4,7 +4,9 @@ The static force ranges that faults, speed and voltage leave (``faults.static_ra
 recomputed only when one of them changes), narrowed by the rate limits around the last
 sample's thrust, and for each rotatable thruster the angles and thrusts ``azimuth.plan``
 allows, toward the convex piece the :class:`~.pieces.PiecePlanner` chose when some
-thruster's side of a forbidden sector is in question."""
+thruster's side of a forbidden sector is in question. With thrust bias, the offset b of
+:class:`~allocator_pkg.effectiveness.thrust_bias.ThrustBias` for the request goes to the method
+in the limits, and the wanted force of every rotatable thruster is moved by it."""
 
 from __future__ import annotations
 

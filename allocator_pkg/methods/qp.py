@@ -3,11 +3,12 @@ solver problem per configuration (:mod:`~.qp_problem`).
 
 Each sample writes values only: the request, the thrust boxes, and for each rotatable thruster
 the polygon of (1.46) turned to the direction it pushes in, the bounds of this sample's angles
-and, at its thrust limit, the circle's curvature. An unattainable request is then answered by
+and, at its thrust limit, the circle's curvature; with thrust bias, the linear term of the
+offset (:mod:`~.bias`). An unattainable request is then answered by
 the scale problem of ``saturation: preserve_direction``, by Durham's direct method for
 ``saturation: direct`` (section 4.3), or by the cascade of DOF priorities, one DAQP stage per
-level. docs/theory.md has the theory (sections `qp`, DOF priorities, and rotatable thrusters
-near their capability); docs/performance.md the cost.
+level. docs/theory.md has the theory (sections `qp`, DOF priorities, thrust bias, and
+rotatable thrusters near their capability); docs/performance.md the cost.
 """
 
 from __future__ import annotations
