@@ -96,25 +96,21 @@ VEHICLE_KEYS: tuple[Key, ...] = (
     Key("solver.time_limit", FLOAT, "OSQP time limit per solve (0: none).", default=0.0, minimum=0.0, unit="s"),
     Key("water_density", FLOAT, "rho_w in the lift and drag of control surfaces (1.48), (1.49).",
         default=1025.0, minimum=0.0, exclusive_minimum=True, unit="kg/m^3"),
-    Key("bias.enabled", BOOL, "Thrust bias, for calm weather: each pair of bias.pairs pushes toward each other "
-        "with bias.thrust on top of what the request needs, so that at low load the thrusters hold their angles "
-        "instead of hunting; the forces cancel, the wrench is the one requested (docs/theory.md, thrust bias). "
-        "Method qp; switched at runtime without a new solver set-up.", default=False,
+    Key("bias.enabled", BOOL, "Thrust bias for calm weather: each pair of bias.pairs pushes toward each other with "
+        "bias.thrust, so that at low load they hold their angles instead of hunting; the forces cancel "
+        "(docs/theory.md, thrust bias). Switched at runtime without a new solver set-up.", default=False,
         constraint="with bias.pairs and bias.thrust > 0; only with method qp"),
-    Key("bias.pairs", STR_LIST, "The pairs of rotatable thrusters that push against each other, as a flat list "
-        "[first, second, first, second, ...] (ROS parameters cannot nest lists).", default_doc="none",
-        constraint="an even number of names from actuators.names: two rotatable thrusters of one type at different "
-                   "positions, each thruster in one pair at most; the direction from each toward the other in its "
-                   "feasible sector, outside forbidden sectors, and the pair's opposed forces free of wrench in "
-                   "the controlled DOFs"),
-    Key("bias.thrust", FLOAT, "The force each thruster of a pair pushes toward the other with at low load. A pair "
-        "whose thruster is failed, stuck or degraded below it pushes none.", default=0.0, minimum=0.0, unit="N",
+    Key("bias.pairs", STR_LIST, "Pairs of rotatable thrusters that push against each other, as a flat list [first, "
+        "second, first, second, ...].", default_doc="none", constraint="names from actuators.names: two rotatable "
+        "thrusters of one type at different positions, each in one pair at most, able to push toward each other, "
+        "their opposed forces free of wrench in the controlled DOFs"),
+    Key("bias.thrust", FLOAT, "Force each thruster of a pair pushes toward the other with; a pair with a thruster "
+        "failed, stuck or degraded to it pushes none.", default=0.0, minimum=0.0, unit="N",
         constraint="below the thrust_max of every thruster in bias.pairs"),
     Key("bias.fade_start", FLOAT, "Load up to which the bias is in full: the largest |tau_k| of the request over "
-        "the authority of its DOF k.", default=0.1, minimum=0.0, maximum=1.0, unit="share"),
-    Key("bias.fade_end", FLOAT, "Load from which there is no bias; between bias.fade_start and it, the bias falls "
-        "linearly.", default=0.2, minimum=0.0, exclusive_minimum=True, maximum=1.0, unit="share",
-        constraint="above bias.fade_start"),
+        "its DOF's authority.", default=0.1, minimum=0.0, maximum=1.0, unit="share"),
+    Key("bias.fade_end", FLOAT, "Load from which there is no bias (linear between).", default=0.2, minimum=0.0,
+        exclusive_minimum=True, maximum=1.0, unit="share", constraint="above bias.fade_start"),
     Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
         required=True, read_only=True,
         constraint="at least one; unique; letters, digits and '_', starting with a letter"),
