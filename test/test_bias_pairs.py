@@ -4,6 +4,7 @@ thruster's limit, the fade is upside down, or the method does not implement the 
 
 import math
 
+import numpy as np
 import pytest
 from conftest import ROOT
 
@@ -26,6 +27,15 @@ def test_a_file_without_the_keys_has_the_bias_off():
     vehicle = vehicle_from_parameters({k: v for k, v in PARAMETERS.items() if k not in BIAS_KEYS})
     assert BIAS_KEYS and vehicle.bias.enabled is False and vehicle.bias.pairs == ()
     assert (vehicle.bias.thrust, vehicle.bias.fade_start, vehicle.bias.fade_end) == (0.0, 0.1, 0.2)
+
+
+def test_the_keys_with_the_bias_off_do_not_change_the_allocation():
+    with_keys = Allocator(vehicle_from_parameters(PARAMETERS))
+    without = Allocator(vehicle_from_parameters({k: v for k, v in PARAMETERS.items() if k not in BIAS_KEYS}))
+    for tau in ([1e4, 2e4, 0, 0, 0, 3e5], [1e5, 2e5, 0, 0, 0, 3e6], [-4e5, 1e5, 0, 0, 0, -1e6]):
+        for _ in range(20):
+            a, b = with_keys.allocate(np.array(tau, float)), without.allocate(np.array(tau, float))
+            assert np.array_equal(a.thrust, b.thrust) and np.array_equal(a.azimuth, b.azimuth)
 
 
 def test_dp_vessel_pairs_its_azimuths_with_the_bias_off():
