@@ -26,7 +26,8 @@ def problems(changes: dict) -> list[tuple[str, str]]:
 def test_a_file_without_the_keys_has_the_bias_off():
     vehicle = vehicle_from_parameters({k: v for k, v in PARAMETERS.items() if k not in BIAS_KEYS})
     assert BIAS_KEYS and vehicle.bias.enabled is False and vehicle.bias.pairs == ()
-    assert (vehicle.bias.thrust, vehicle.bias.fade_start, vehicle.bias.fade_end) == (0.0, 0.1, 0.2)
+    bias = vehicle.bias
+    assert (bias.thrust, bias.fade_start, bias.fade_end, bias.fade_time_constant) == (0.0, 0.03, 0.06, 60.0)
 
 
 def test_the_keys_with_the_bias_off_do_not_change_the_allocation():

@@ -1,5 +1,6 @@
 """The thrust bias offset b: opposed forces of bias.thrust along each pair's line, free of wrench
-in the controlled DOFs, faded by the load, and none for a pair that a fault leaves unable."""
+in the controlled DOFs, faded by the filtered load, and none for a pair that a fault leaves
+unable."""
 
 import numpy as np
 import pytest
@@ -31,10 +32,10 @@ def test_the_bias_is_full_up_to_the_start_and_gone_from_the_end(load, share):
 @settings(deadline=None, max_examples=60)
 @given(tau=st.lists(st.floats(-1.0, 1.0), min_size=3, max_size=3))
 def test_the_offset_is_opposed_by_the_set_thrust_and_free_of_wrench(tau):
-    request = np.array(tau) * 0.25 * MODEL.dof_scale
-    offset = bias().offsets(request)
+    request = np.array(tau) * 0.08 * MODEL.dof_scale
+    offset = bias().offsets(request)                          # a first sample: the load as it is
     load = float(np.max(np.abs(request) / MODEL.dof_scale))
-    share = fade(load, 0.1, 0.2)
+    share = fade(load, 0.03, 0.06)
     if share == 0.0:
         assert offset is None
         return
@@ -56,6 +57,22 @@ def test_a_pair_that_a_fault_leaves_unable_pushes_none():
     assert bias(high=degraded).offsets(np.zeros(3)) is None
     degraded[1] = 0.5 * HIGH[1]
     assert bias(high=degraded).offsets(np.zeros(3)) is not None
+
+
+def test_the_fade_follows_the_load_through_a_first_order_filter():
+    term = bias()
+    gain = 1.0 - np.exp(-0.1 / 60.0)
+    calm, rough = np.zeros(3), np.array([0.0, 0.1 * MODEL.dof_scale[1], 0.0])
+    assert np.linalg.norm(term.offsets(calm)[0:2]) == pytest.approx(60000.0)
+    for k in range(1, 601):                                    # a minute of the rough load
+        offset = term.offsets(rough)
+        assert term.load == pytest.approx(0.1 * (1.0 - (1.0 - gain) ** k))
+        beta = 0.0 if offset is None else np.linalg.norm(offset[0:2])
+        assert beta == pytest.approx(60000.0 * fade(term.load, 0.03, 0.06))
+    assert 0.06 < term.load < 0.065 and offset is None         # 1 - 1/e of the step
+    off = Model.build(vehicle_from_parameters({**PARAMETERS, "bias.enabled": False}), 0.1)
+    term.configure(off)
+    assert term.load is None                                   # off: the filter starts again
 
 
 def test_no_offset_while_the_bias_is_off():

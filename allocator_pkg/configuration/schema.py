@@ -108,9 +108,12 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         "failed, stuck or degraded to it pushes none.", default=0.0, minimum=0.0, unit="N",
         constraint="below the thrust_max of every thruster in bias.pairs"),
     Key("bias.fade_start", FLOAT, "Load up to which the bias is in full: the largest |tau_k| of the request over "
-        "its DOF's authority.", default=0.1, minimum=0.0, maximum=1.0, unit="share"),
-    Key("bias.fade_end", FLOAT, "Load from which there is no bias (linear between).", default=0.2, minimum=0.0,
+        "its DOF's authority, filtered (bias.fade_time_constant).", default=0.03, minimum=0.0, maximum=1.0,
+        unit="share"),
+    Key("bias.fade_end", FLOAT, "Load from which there is no bias (linear between).", default=0.06, minimum=0.0,
         exclusive_minimum=True, maximum=1.0, unit="share", constraint="above bias.fade_start"),
+    Key("bias.fade_time_constant", FLOAT, "Time constant of the low-pass filter on the load the fade follows, so "
+        "that the bias does not follow the gusts (0: none).", default=60.0, minimum=0.0, unit="s"),
     Key("actuators.names", STR_LIST, "Actuator names, in the order of every per-actuator array.",
         required=True, read_only=True,
         constraint="at least one; unique; letters, digits and '_', starting with a letter"),

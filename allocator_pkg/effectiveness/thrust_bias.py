@@ -14,13 +14,17 @@ controlled DOF. The QP is solved about f_e = b instead of 0 (docs/theory.md), so
 thrusters keep most of beta along d and their angles move by about |delta f| / beta where
 without bias a small force swings them across the circle.
 
-beta fades with the load L = max_k |tau_k| / authority_k: beta = bias.thrust for L up to
-``fade_start``, 0 from ``fade_end`` on, linear between. A pair whose thruster is failed, stuck
-or left by a fault with no more than bias.thrust pushes none.
+beta fades with the load L = max_k |tau_k| / authority_k, low-pass filtered with the time
+constant ``fade_time_constant``: beta = bias.thrust for L up to ``fade_start``, 0 from
+``fade_end`` on, linear between. The filter keeps beta from following the gusts: a beta that
+changed with every sample's load would swing the thrusters between the pair's line and the
+load's direction, more than the bias saves. A pair whose thruster is failed, stuck or left by a
+fault with no more than bias.thrust pushes none.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,19 +89,29 @@ def fade(load: float, start: float, end: float) -> float:
 
 class ThrustBias:
     """The extended force offset b of each sample (:meth:`offsets`), from the configuration
-    (:meth:`configure`) and the faults in force (:meth:`refresh`: which pairs can push)."""
+    (:meth:`configure`), the faults in force (:meth:`refresh`: which pairs can push) and the
+    load, low-pass filtered (``load``: its value so far, None before the first sample with the
+    bias on)."""
+
+    def __init__(self) -> None:
+        self.load: float | None = None
 
     def configure(self, model: Model) -> None:
-        """The pairs (none unless bias.enabled), their columns and the yardstick of the load
-        (``Model.dof_scale``)."""
+        """The pairs (none unless bias.enabled), their columns, the yardstick of the load
+        (``Model.dof_scale``) and its filter's gain per sample; the filtered load carries over
+        while the bias stays on."""
         settings = model.vehicle.bias
         self.thrust = settings.thrust
         self.fade_start, self.fade_end = settings.fade_start, settings.fade_end
         self.pairs = bias_pairs(model.vehicle) if settings.enabled else ()
         self._columns = [(int(model.starts[p.first]), int(model.starts[p.second])) for p in self.pairs]
         self._scale = 1.0 / model.dof_scale
+        self._gain = 1.0 - math.exp(-model.dt / settings.fade_time_constant) if settings.fade_time_constant > 0.0 \
+            else 1.0
         self._m = model.m
         self._available: list[int] = []
+        if not self.pairs:
+            self.load = None
 
     def refresh(self, high: np.ndarray, stuck: dict[int, float]) -> None:
         """The pairs that can push under the faults in force: neither thruster stuck, and both
@@ -108,10 +122,14 @@ class ThrustBias:
 
     def offsets(self, tau: np.ndarray) -> np.ndarray | None:
         """b for the controlled request ``tau``: every available pair's opposed forces, faded
-        by the load; None when there is no bias this sample."""
+        by the filtered load; None when there is no bias this sample."""
+        if not self.pairs:
+            return None
+        load = float(np.max(np.abs(tau) * self._scale))
+        self.load = load if self.load is None else self.load + self._gain * (load - self.load)
         if not self._available:
             return None
-        beta = self.thrust * fade(float(np.max(np.abs(tau) * self._scale)), self.fade_start, self.fade_end)
+        beta = self.thrust * fade(self.load, self.fade_start, self.fade_end)
         if beta == 0.0:
             return None
         offset = np.zeros(self._m)

@@ -158,13 +158,15 @@ class BiasSettings:
     """Thrust bias (docs/theory.md, thrust bias): with ``enabled``, each pair of rotatable
     thrusters in ``pairs`` pushes toward each other with ``thrust`` [N] on top of what the
     request needs, in full below a load of ``fade_start`` and not at all above ``fade_end``
-    (shares of the authority of the most loaded DOF)."""
+    (shares of the authority of the most loaded DOF), the load filtered with the time constant
+    ``fade_time_constant`` [s]."""
 
     enabled: bool
     pairs: tuple[tuple[str, str], ...]
     thrust: float
     fade_start: float
     fade_end: float
+    fade_time_constant: float
 
 
 @dataclass(frozen=True)
