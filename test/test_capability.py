@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from conftest import ROOT
 
-from allocator_pkg import METHODS, Allocator, FaultMode, load_vehicle, vehicle_from_parameters
+from allocator_pkg import METHODS, Allocator, FaultMode, load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.analysis.capability import Capability
 
 # A symmetric vessel: surge thrusters at y = -+1 m, sway thrusters at x = -+1 m, +-100 N each.
@@ -142,6 +142,20 @@ def test_all_methods_writes_a_plot_per_group_of_methods_with_another_capability(
                  "--all-methods"]) == 0
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         f"example1_rov{suffix}_capability.{ext}" for suffix in ("", "_lp", "_pseudoinverse") for ext in ("csv", "png")]
+
+
+def test_the_thrust_bias_changes_no_capability_and_is_no_reason_to_refuse_a_method(tmp_path):
+    from allocator_pkg.cli.capability import main
+
+    parameters = read_parameters(ROOT / "config" / "dp_vessel.yaml")
+    biased = vehicle_from_parameters({**parameters, "bias.enabled": True})
+    plain = Capability(vehicle_from_parameters(parameters), "lp", speed=0.0)
+    with_bias = Capability(biased, "lp", speed=0.0)
+    for direction in ([1.0, 0, 0, 0, 0, 0], [0, 1.0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 1.0]):
+        assert with_bias.reach(direction)[0] == plain.reach(direction)[0]
+    text = (ROOT / "config" / "dp_vessel.yaml").read_text().replace("enabled: false", "enabled: true")
+    (tmp_path / "biased.yaml").write_text(text)
+    assert main([str(tmp_path / "biased.yaml"), "--method", "lp", "--out", str(tmp_path), "--step", "90"]) == 0
 
 
 def test_reach_gives_the_wrench_there_and_follows_speed_and_voltage():

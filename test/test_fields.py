@@ -18,6 +18,7 @@ from allocator_pkg.configuration.fields import (
 )
 from allocator_pkg.vehicle.config import (
     ActuatorConfig,
+    BiasSettings,
     CommandMapConfig,
     PowerSource,
     RedundancyGroup,
@@ -31,21 +32,22 @@ from allocator_pkg.vehicle.node_settings import NodeSettings
 
 TABLES = ((schema.VEHICLE_KEYS, vehicle_field), (schema.NODE_KEYS, node_field), (schema.ACTUATOR_KEYS, actuator_field),
           (schema.SOURCE_KEYS, source_field), (schema.GROUP_KEYS, group_field))
-STRUCTS = (Vehicle, Weights, SolverSettings, NodeSettings, ActuatorConfig, CommandMapConfig, RotationConfig,
-           SurfaceConfig, PowerSource, RedundancyGroup)
+STRUCTS = (Vehicle, Weights, SolverSettings, BiasSettings, NodeSettings, ActuatorConfig, CommandMapConfig,
+           RotationConfig, SurfaceConfig, PowerSource, RedundancyGroup)
 
 NO_FIELD = {"actuators.names", "redundancy_groups.names", "link"}
 """Keys read by hand: the names make Vehicle.actuators and Vehicle.redundancy_groups, a link is
 configuration.urdf's."""
 
-NO_KEY = {Vehicle: {"actuators", "weights", "solver", "redundancy_groups"},
+NO_KEY = {Vehicle: {"actuators", "weights", "solver", "bias", "redundancy_groups"},
           ActuatorConfig: {"name", "command", "rotation", "surface"}, PowerSource: {"name"},
           RedundancyGroup: {"name"}}
 """Fields of no key: built from other keys (a source's or group's name is its place in the list)."""
 
 DERIVED = {"dofs", "weights.slack", "priorities", "nominal_voltage", "ros2_control.actuators", "position", "direction",
            "thrust_min", "gain_reverse", "command_min", "command_max", "table_command", "table_thrust", "table_voltage",
-           "forbidden_sectors", "protects", "power.sources", "feeds", "feed_shares", "sources", "actuators"}
+           "forbidden_sectors", "protects", "power.sources", "feeds", "feed_shares", "sources", "actuators",
+           "bias.pairs"}
 """Keys whose field the builder derives by hand (an order, a default that depends on other keys,
 a normalised vector, sector pairs, structs or tuples of names); every other key's value is its
 field's as it stands."""
@@ -73,6 +75,8 @@ VEHICLE_VALUES = {
     "svd_filter.damping_threshold": 0.1, "explicit.regions": "regions.npz", "solver.eps_abs": 1e-4,
     "solver.eps_rel": 2e-4, "solver.max_iter": 500, "solver.time_limit": 0.01, "water_density": 1000.0,
     "flushing_zones": "dnv",
+    "bias.enabled": True, "bias.thrust": 5.0, "bias.fade_start": 0.3, "bias.fade_end": 0.6,
+    "bias.fade_time_constant": 10.0,
 }
 NODE_VALUES = {
     "wrench_timeout": 1.5, "per_actuator_topics": True, "frame": "flu", "base_frame": "hull",
@@ -108,9 +112,14 @@ def test_every_other_key_is_the_value_of_its_field():
     parameters.update({f"actuators.tun.{key}": value for key, value in TUNNEL_VALUES.items()})
     parameters.update({"power.sources": ["bus"], "actuators.azi.feeds": ["bus"],
                        **{f"power.bus.{key}": value for key, value in SOURCE_VALUES.items()}})
+    parameters.update({"actuators.names": ["azi", "fin", "tun", "partner"], "actuators.partner.type": "azimuth",
+                       "actuators.partner.position": [-1.0, 2.0, 0.0], "actuators.partner.thrust_max": 20.0,
+                       "actuators.partner.diameter": 0.5,
+                       "actuators.partner.feeds": ["bus"], "bias.pairs": ["azi", "partner"]})
     vehicle, settings = parse_parameters(parameters)
-    azi, fin, tun = vehicle.actuators
-    owners = {Vehicle: vehicle, Weights: vehicle.weights, SolverSettings: vehicle.solver, NodeSettings: settings}
+    azi, fin, tun, _ = vehicle.actuators
+    owners = {Vehicle: vehicle, Weights: vehicle.weights, SolverSettings: vehicle.solver, BiasSettings: vehicle.bias,
+              NodeSettings: settings}
     per_actuator = schema.ACTUATOR_KEY_BY_NAME.get
     given = [(VEHICLE_VALUES, vehicle_field, schema.key_for, owners), (NODE_VALUES, node_field, schema.key_for, owners),
              (THRUSTER_VALUES, actuator_field, per_actuator, {ActuatorConfig: azi, CommandMapConfig: azi.command,

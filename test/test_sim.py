@@ -7,6 +7,7 @@ limits in force; the command line prints the verdict and its exit status follows
 
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -19,14 +20,14 @@ from allocator_pkg.cli.sim import main, run
 from allocator_pkg.cli.sim_metrics import metrics_from_recording
 from allocator_pkg.effectiveness.faults import thrust_limits
 from allocator_pkg.simulation.report import report_checks
-from allocator_pkg.simulation.scenario import load_scenario
+from allocator_pkg.simulation.scenario import Event, load_scenario
 from allocator_pkg.simulation.verdict import broken, verdict_lines
 from allocator_pkg.vehicle.angles import wrap
 
 pytestmark = pytest.mark.slow
 
 SCENARIOS = {"dp_station_keeping": 0.1, "dp_azimuth_failure": 0.1, "rov_thruster_failure": 0.15,
-             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0}
+             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0, "dp_calm_bias": 0.2}
 """The shipped scenarios, each with the scale of its duration here (the set-point change at
 full length: its windows' bounds are for the vessel's own pace)."""
 RESULTS = {}
@@ -141,6 +142,31 @@ def test_the_set_point_step_is_measured(tmp_path_factory):
     assert position == [10.0, 0.0, 0.0] and heading == pytest.approx(np.radians(15.0))
 
 
+def test_thrust_bias_at_least_halves_the_azimuth_travel_in_calm_weather(tmp_path_factory, tmp_path):
+    case, biased, _ = finished_run("dp_calm_bias", tmp_path_factory)
+    assert case.parameters["bias.enabled"] is True
+    plain = run(replace(case, parameters={**case.parameters, "bias.enabled": False}), tmp_path, log=lambda _: None)
+    assert biased.metrics["azimuth_travel"] <= 0.5 * plain.metrics["azimuth_travel"]
+    assert biased.metrics["energy"] > plain.metrics["energy"]                   # what holding the angles costs
+    for metric in ("position_error_max", "heading_error_max"):
+        assert biased.metrics[metric] <= 1.1 * plain.metrics[metric], metric    # and it holds station as well
+
+
+def test_the_bias_switches_off_and_on_while_the_node_runs(tmp_path):
+    """bias.enabled as a node parameter: off at 20 s, on again at 40 s; the azimuths leave
+    their opposed angles and come back, the wrench met all along."""
+    events = (Event(time=20.0, kind="parameter", name="bias.enabled", value=False),
+              Event(time=40.0, kind="parameter", name="bias.enabled", value=True))
+    result = run(replace(scenario("dp_calm_bias"), events=events), tmp_path, log=lambda _: None)
+    a = result.trace.arrays()
+    stbd, port = np.degrees(a["azimuth"][:, 0]), np.degrees(a["azimuth"][:, 1])
+    for when in (a["time"] < 20.0, a["time"] > 58.0):
+        assert np.all(np.abs(stbd[when] + 82.5) < 7.5) and np.all(np.abs(port[when] - 82.5) < 7.5)
+    off = (a["time"] > 35.0) & (a["time"] < 40.0)
+    assert np.all(np.abs(stbd[off]) < 45.0) and np.all(np.abs(port[off]) < 45.0)
+    assert not a["saturated"].any()
+
+
 def bounded_copy(tmp_path, bound: float):
     """dp_station_keeping with its position bound set to ``bound``."""
     text = (ROOT / "config" / "scenarios" / "dp_station_keeping.yaml").read_text().replace("../", f"{ROOT}/config/")
@@ -168,6 +194,15 @@ def test_compare_gives_a_verdict_per_method(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "sim: qp: FAIL, run position_error_max" in text and "sim: pseudoinverse: FAIL" in text
     assert "| thrust reversals [count] |" in text
+
+
+def test_compare_leaves_out_a_method_the_scenario_parameters_ask_too_much_of(tmp_path, capsys):
+    path = ROOT / "config" / "scenarios" / "dp_calm_bias.yaml"
+    assert main(["compare", str(path), "--methods", "qp", "lp", "--out", str(tmp_path / "cmp"),
+                 "--duration-scale", "0.02", "--no-baseline"]) == 0
+    text = capsys.readouterr().out
+    assert "sim: lp left out: bias.enabled: method 'lp' does not implement thrust bias" in text
+    assert "sim: qp: PASS" in text and not (tmp_path / "cmp" / "lp").exists()
 
 
 def test_a_bad_scenario_is_refused_with_its_key(tmp_path, capsys):

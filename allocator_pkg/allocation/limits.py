@@ -7,7 +7,9 @@ allows, toward the convex piece the :class:`~.pieces.PiecePlanner` chose when so
 thruster's side of a forbidden sector is in question. The sectors are those in force: a
 flushing zone lifts with the thruster it protects and returns with it, and a thruster pushing
 onto a dead one has its thrust cut by the [3.11.4] loss, or leaves the loss sector alone where
-its edge gives more (:mod:`~.dead_flushing`)."""
+its edge gives more (:mod:`~.dead_flushing`). With thrust bias, the offset b of
+:class:`~allocator_pkg.effectiveness.thrust_bias.ThrustBias` for the request goes to the method
+in the limits, and the wanted force of every rotatable thruster is moved by it."""
 
 from __future__ import annotations
 
@@ -17,6 +19,7 @@ import numpy as np
 
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
 from ..effectiveness.sectors import surroundings
+from ..effectiveness.thrust_bias import ThrustBias
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from . import dead_flushing
 from .azimuth import piece_in_question, plan
@@ -31,6 +34,7 @@ class LimitsStage:
 
     def __init__(self, model: Model, inverse: PseudoInverseGains):
         self.planner = PiecePlanner(model)
+        self.bias = ThrustBias()
         self.version = 0
         self.configure(model, inverse)
 
@@ -50,6 +54,7 @@ class LimitsStage:
         self._angle_step = model.angle_step.tolist()
         self._thrust_step = model.thrust_step.tolist()
         self._hold = model.hold.tolist()
+        self.bias.configure(model)
 
     def refresh(self, conditions: Conditions) -> None:
         """What faults, speed and voltage decide, taken when they change (never per sample):
@@ -67,6 +72,7 @@ class LimitsStage:
             self._use_rotations(list(rotations))
         self._losses = [(k, conditions.losses[i], [False] * len(conditions.losses[i]))
                         for k, (i, _) in enumerate(self._rot_pairs) if i in conditions.losses]
+        self.bias.refresh(self.high, self.fault_set.stuck)
         if model.rot.size:
             excluded = (self.low == 0.0) & (self.high == 0.0)
             self._desired_gain = self._inverse.gain(excluded, {})
@@ -95,14 +101,16 @@ class LimitsStage:
         low = np.minimum(np.maximum(previous - step, self.low), self.high)
         high = np.minimum(np.maximum(previous + step, self.low), self.high)
         azimuth: list[AzimuthLimits] = []
+        bias = self.bias.offsets(tau)
         if model.rot.size:
             stuck = self.fault_set.stuck
-            desired = (self._desired_gain @ tau).tolist()
+            desired = (self._desired_gain @ tau if bias is None else self._desired_gain @ tau + bias).tolist()
             wanted = {i: (desired[c1], desired[c2]) for i, (c1, c2) in self._rot_pairs}
             if self._losses:
                 self._close_loss_sectors(wanted, stuck)
             around = self._surroundings(state)
-            wanted.update(self._planned(tau, state, wanted, stuck, around))
+            planned = self._planned(tau, state, wanted, stuck, around)
+            wanted.update(planned if bias is None else biased(planned, bias, self._rot_pairs))
             for state_k, (i, _), rotation, around_k in zip(state.azimuth, self._rot_pairs, self._rotations, around):
                 limits_k = plan(rotation, state_k, self._angle_step[i], (self._low_list[i], self._high_list[i]),
                                 self._thrust_step[i], wanted[i], self._hold[i], stuck.get(i), around_k)
@@ -114,7 +122,7 @@ class LimitsStage:
                     self._leave_loss_sectors(k, i, losses, closed, state, tau, wanted[i], azimuth)
                 low[i], high[i] = dead_flushing.cut(azimuth[k], losses, self._low_list[i], self._high_list[i])
         return SampleLimits(low, high, model.rot, azimuth, state.angle, state.thrust, range_low=self.low,
-                            range_high=self.high, rotations=self._rotations)
+                            range_high=self.high, rotations=self._rotations, bias=bias)
 
     def _use_rotations(self, rotations: list) -> None:
         """Plan with these rotations (per rotatable thruster) from now on: values only."""
@@ -191,3 +199,9 @@ class LimitsStage:
             return planner.last_targets
         return {}
 
+
+def biased(targets: dict[int, tuple[float, float]], bias: np.ndarray,
+           columns: list[tuple[int, tuple[int, int]]]) -> dict[int, tuple[float, float]]:
+    """The piece planner's force ``targets`` with the thrust bias's offset added: the optimum
+    about b is b plus the optimum about 0 while no limit binds (docs/theory.md, thrust bias)."""
+    return {i: (targets[i][0] + bias[c1], targets[i][1] + bias[c2]) for i, (c1, c2) in columns if i in targets}

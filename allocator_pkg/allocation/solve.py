@@ -27,8 +27,8 @@ last pass's deflections, until the drag stops changing (two or three passes in p
 
 
 def check_method(method: str, vehicle: Vehicle) -> None:
-    """Raise ConfigError when ``method`` cannot serve ``vehicle`` (its reasons) or the vehicle
-    orders its DOFs and the method does not implement it."""
+    """Raise ConfigError when ``method`` cannot serve ``vehicle`` (its reasons), or the vehicle
+    orders its DOFs or asks for thrust bias and the method does not implement it."""
     unfit = METHODS[method].problems(vehicle)
     if unfit:
         raise ConfigError([("method", f"'{method}' cannot serve this vehicle: {'; '.join(unfit)}")])
@@ -36,6 +36,10 @@ def check_method(method: str, vehicle: Vehicle) -> None:
         able = ", ".join(name for name, kind in METHODS.items() if kind.implements_priorities)
         raise ConfigError([("priorities", f"method '{method}' does not implement DOF priorities; methods that do: "
                                           f"{able}")])
+    if vehicle.bias.enabled and not METHODS[method].implements_bias:
+        able = ", ".join(name for name, kind in METHODS.items() if kind.implements_bias)
+        raise ConfigError([("bias.enabled", f"method '{method}' does not implement thrust bias; methods that do: "
+                                            f"{able}")])
 
 
 class MethodStage:

@@ -300,10 +300,10 @@ def region(vehicle: Vehicle, method: str) -> tuple:
 
 def reachable(vehicle: Vehicle) -> Vehicle:
     """``vehicle`` as far as what it can attain goes: the saturation mode and DOF priorities
-    decide how an unattainable request is answered, not what can be attained, so they are not
-    held against a method here (a pseudo-inverse's reach with ``saturation: direct`` is
-    :func:`region`'s)."""
-    return replace(vehicle, saturation="weighted", priorities=())
+    decide how an unattainable request is answered, and the thrust bias how an attainable one
+    is, not what can be attained, so they are not held against a method here (a
+    pseudo-inverse's reach with ``saturation: direct`` is :func:`region`'s)."""
+    return replace(vehicle, saturation="weighted", priorities=(), bias=replace(vehicle.bias, enabled=False))
 
 
 def unmodelled(method: str, vehicle: Vehicle) -> list[str]:

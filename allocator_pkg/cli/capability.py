@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from ..allocation.allocator import Allocator
-from ..analysis.capability import FORCE_DOFS, Capability, Envelope, differing_methods
+from ..analysis.capability import FORCE_DOFS, Capability, Envelope, differing_methods, reachable
 from ..configuration.parameters import load_vehicle
 from ..effectiveness.faults import FaultMode
 from ..methods import METHODS
@@ -117,7 +117,7 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2
-    for warning in Allocator(vehicle, method=capability.method).warnings:
+    for warning in Allocator(reachable(vehicle), method=capability.method).warnings:
         print(f"allocator-capability: warning: {warning}", file=sys.stderr)
     stem = Path(arguments.config).stem
     _write(capability, Path(arguments.out), stem, "", capability.method, arguments.step, arguments.yaw_moment)

@@ -87,11 +87,16 @@ def main(argv: list[str] | None = None) -> int:
                 if unfit:
                     print(f"sim: {method} left out: it cannot serve this vehicle: {'; '.join(unfit)}", flush=True)
                     continue
+                try:
+                    chosen = scenario.with_method(method)
+                except ScenarioError as error:               # the scenario's parameters ask what it lacks
+                    print(f"sim: {method} left out: {error}", flush=True)
+                    continue
                 print(f"sim: {scenario.name} with {method}", flush=True)
-                result = run(scenario.with_method(method), out / method)
+                result = run(chosen, out / method)
                 nominal = None if arguments.no_baseline else \
-                    sim_plots.nominal_run(scenario.with_method(method), out / method / "nominal", run)
-                sim_plots.plot_run(out / method, result, scenario.with_method(method), nominal)
+                    sim_plots.nominal_run(chosen, out / method / "nominal", run)
+                sim_plots.plot_run(out / method, result, chosen, nominal)
                 results[method] = result
                 if nominal is not None:
                     nominals[method] = nominal

@@ -24,6 +24,7 @@ from typing import Any, TypeVar
 
 from ..vehicle.config import (
     ActuatorConfig,
+    BiasSettings,
     CommandMapConfig,
     PowerSource,
     RedundancyGroup,
@@ -35,7 +36,7 @@ from ..vehicle.config import (
 )
 from ..vehicle.node_settings import NodeSettings
 
-NESTED: dict[str, type] = {"weights": Weights, "solver": SolverSettings}
+NESTED: dict[str, type] = {"weights": Weights, "solver": SolverSettings, "bias": BiasSettings}
 """Fields of a Vehicle that are structs of their own, filled by the keys ``<field>.<name>``."""
 
 ACTUATOR_STRUCTS: tuple[type, ...] = (ActuatorConfig, CommandMapConfig, RotationConfig, SurfaceConfig)

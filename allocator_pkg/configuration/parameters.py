@@ -19,6 +19,7 @@ from ..effectiveness.reach import unreachable_dofs
 from ..vehicle.config import (
     DOF_NAMES,
     ActuatorConfig,
+    BiasSettings,
     ConfigError,
     SolverSettings,
     Vehicle,
@@ -27,6 +28,7 @@ from ..vehicle.config import (
 from ..vehicle.node_settings import NodeSettings
 from . import schema
 from .actuators import parse_actuator
+from .bias_pairs import parse_bias_pairs
 from .fields import filled, node_field, vehicle_field
 from .flushing import check_flushing
 from .params_file import read_parameters
@@ -97,12 +99,14 @@ class _Parser(Reader):
         slack = self._slack(values["weights.slack"], values["dofs"], dofs)
         priorities = self._priorities(values, dofs)
         nominal_voltage = self._nominal_voltage(values["nominal_voltage"], actuators)
+        bias_pairs = parse_bias_pairs(self, values, actuators, dofs)
         if self.problems:
             raise ConfigError(self.problems)
         vehicle = filled(Vehicle, values, vehicle_field, actuators=tuple(actuators), dofs=dofs,
                          weights=filled(Weights, values, vehicle_field, slack=slack),
                          solver=filled(SolverSettings, values, vehicle_field),
-                         priorities=priorities, nominal_voltage=nominal_voltage, power_sources=sources,
+                         priorities=priorities, nominal_voltage=nominal_voltage,
+                         bias=filled(BiasSettings, values, vehicle_field, pairs=bias_pairs), power_sources=sources,
                          redundancy_groups=groups)
         ros2_control_actuators = self._ros2_control(node, vehicle)
         if self.problems:

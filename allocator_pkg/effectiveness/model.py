@@ -230,7 +230,9 @@ class SampleLimits:
     ``range_low``/``range_high``: the static force ranges that faults and speed leave, before
     any rate limit (None: the same as ``low``/``high``). ``rotations``: each rotatable thruster's
     rotation with the sectors in force, flushing zones included (None: the configuration's).
-    Nothing here is changed by a method."""
+    ``bias``: the thrust bias's extended force offset b of this sample (:mod:`~.thrust_bias`;
+    None: no bias), about which a method that implements it allocates. Nothing here is changed
+    by a method."""
 
     low: np.ndarray
     high: np.ndarray
@@ -242,6 +244,7 @@ class SampleLimits:
     range_low: np.ndarray | None = None
     range_high: np.ndarray | None = None
     rotations: list[RotationConfig] | None = None
+    bias: np.ndarray | None = None
 
     def fixed(self) -> np.ndarray:
         """Actuators whose force the limits alone decide this sample (a rotatable thruster:

@@ -66,6 +66,9 @@ class AllocationMethod(ABC):
     is refused when it is parsed (:meth:`problems`)."""
 
     implements_priorities: ClassVar[bool] = False
+    implements_bias: ClassVar[bool] = False
+    """Whether :meth:`solve` honours the thrust bias of ``SampleLimits.bias`` (docs/theory.md,
+    thrust bias); the configuration check refuses ``bias.enabled`` with a method that does not."""
 
     def __init_subclass__(cls, **kwargs) -> None:
         """A subclass declares priorities itself: one that overrides a method that implements

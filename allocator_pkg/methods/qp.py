@@ -3,11 +3,12 @@ solver problem per configuration (:mod:`~.qp_problem`).
 
 Each sample writes values only: the request, the thrust boxes, and for each rotatable thruster
 the polygon of (1.46) turned to the direction it pushes in, the bounds of this sample's angles
-and, at its thrust limit, the circle's curvature. An unattainable request is then answered by
+and, at its thrust limit, the circle's curvature; with thrust bias, the linear term of the
+offset (:mod:`~.bias`). An unattainable request is then answered by
 the scale problem of ``saturation: preserve_direction``, by Durham's direct method for
 ``saturation: direct`` (section 4.3), or by the cascade of DOF priorities, one DAQP stage per
-level. docs/theory.md has the theory (sections `qp`, DOF priorities, and rotatable thrusters
-near their capability); docs/performance.md the cost.
+level. docs/theory.md has the theory (sections `qp`, DOF priorities, thrust bias, and
+rotatable thrusters near their capability); docs/performance.md the cost.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from ..solvers import BACKENDS, BackendFactory
 from ..solvers.backend import NO_BOUND
 from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod, MethodOutput
+from .bias import biased_objective
 from .direct import DirectSolution
 from .qp_problem import QPProblem, build, constant_bounds, objective
 
@@ -48,6 +50,7 @@ class QPAllocation(AllocationMethod):
     name = "qp"
     saturation_modes = ("weighted", "preserve_direction", "direct")
     implements_priorities = True
+    implements_bias = True
 
     def __init__(self, model: Model, backend: BackendFactory):
         super().__init__(model, backend)
@@ -95,7 +98,7 @@ class QPAllocation(AllocationMethod):
             problem.qp.update_matrix(values)
             problem.qp.update_objective(p, q)
             problem.qp.update_settings(model.vehicle.solver)
-            problem.p_diagonal = p
+            problem.p_diagonal, problem.q, problem.biased = p, q, False
             problem.directions, problem.edges = [], []
             problem.multiplier, problem.curvature = [0.0] * len(model.rot), [0.0] * len(model.rot)
             problem.version = -1
@@ -201,6 +204,7 @@ class QPAllocation(AllocationMethod):
             problem.version = limits.version
         if model.rot.size:
             self._azimuth_rows(problem, limits)
+            biased_objective(problem, limits.bias, self._rot_columns)
 
     def _azimuth_rows(self, problem: QPProblem, limits: SampleLimits) -> None:
         """Each rotatable thruster in its own frame (u along the direction d it pushes in, v

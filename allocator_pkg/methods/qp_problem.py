@@ -24,7 +24,8 @@ from ..solvers.problem import Entries, Rows, ScaledProblem, block_index, entry_i
 @dataclass
 class QPProblem:
     """One solver problem and the rows a sample writes (indices into its rows, and into the
-    stored entries of A for the values that follow the thrusters' directions)."""
+    stored entries of A for the values that follow the thrusters' directions); ``q`` its own
+    linear term, ``biased`` whether the solver holds the thrust bias's instead (:mod:`~.bias`)."""
 
     qp: ScaledProblem
     equality: np.ndarray
@@ -43,6 +44,8 @@ class QPProblem:
     moving: Entries
     index: dict
     t_ec_index: np.ndarray
+    q: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    biased: bool = False
     slack: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
     rotated: np.ndarray = field(default_factory=lambda: np.zeros(0))
     directions: list[float] = field(default_factory=list)
@@ -160,7 +163,7 @@ def build(model: Model, scale: bool, backend: Backend, stages: bool = False) -> 
                      polygon_minimax=index["polygon_minimax"], along=index["along"],
                      across=index["across"], edge_low=index["edge_low"], edge_high=index["edge_high"],
                      rotated_index=rotated_index.reshape(-1), edge_index=edge_index.reshape(-1),
-                     scale_index=scale_index, p_diagonal=p, rows=per_thruster,
+                     scale_index=scale_index, p_diagonal=p, q=q, rows=per_thruster,
                      moving=qp.entries(np.concatenate((rotated_index.reshape(-1), edge_index.reshape(-1)))),
                      index=index, t_ec_index=block_index(a, rows, model.m),
                      multiplier=[0.0] * rotatable, curvature=[0.0] * rotatable, slack=index["slack"])

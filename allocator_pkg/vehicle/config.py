@@ -162,6 +162,22 @@ class SolverSettings:
 
 
 @dataclass(frozen=True)
+class BiasSettings:
+    """Thrust bias (docs/theory.md, thrust bias): with ``enabled``, each pair of rotatable
+    thrusters in ``pairs`` pushes toward each other with ``thrust`` [N] on top of what the
+    request needs, in full below a load of ``fade_start`` and not at all above ``fade_end``
+    (shares of the authority of the most loaded DOF), the load filtered with the time constant
+    ``fade_time_constant`` [s]."""
+
+    enabled: bool
+    pairs: tuple[tuple[str, str], ...]
+    thrust: float
+    fade_start: float
+    fade_end: float
+    fade_time_constant: float
+
+
+@dataclass(frozen=True)
 class PowerSource:
     """A switchboard or prime mover that feeds thrusters (a column of DNV-ST-0111 Table A-5):
     ``capacity`` [kW] the power it can deliver."""
@@ -202,6 +218,7 @@ class Vehicle:
     priorities: tuple[int, ...]
     nominal_voltage: float | None
     explicit_regions: str
+    bias: BiasSettings
     power_sources: tuple[PowerSource, ...] = ()
     redundancy_groups: tuple[RedundancyGroup, ...] = ()
     flushing_zones: str = "none"
