@@ -63,18 +63,21 @@ def test_thrust_is_the_vehicle_files_and_a_lost_feed_share_derates_it():
     level2 = Level2(load_vehicle(DP_VESSEL), PARTICULARS)
     assert level2.thrust_range("azimuth_port", CONDITIONS[9], 1.0) == (0.0, 655000.0)
     assert level2.thrust_range("tunnel_aft", CONDITIONS[9], 1.0) == (-300000.0, 300000.0)
-    # swbd_a gives 5040 kW of the 5045.5 kW its thrusters ask [3.12]: tunnel_fwd keeps (5040 / 5045.5)^(2/3).
-    low, high = level2.thrust_range("tunnel_fwd", CONDITIONS[9], 1.0)
-    assert high == pytest.approx(300000.0 * (5040.0 / 5045.5) ** (2 / 3), rel=1e-12) and low == -high
+    # swbd_a (5040 kW usable) is short of the 5045.5 kW its thrusters draw at full thrust: that is the
+    # balance's power row [3.12]; the range stays the vehicle file's.
+    assert level2.thrust_range("tunnel_fwd", CONDITIONS[9], 1.0) == (-300000.0, 300000.0)
+    assert level2.power_limits().sources == ("swbd_a",)
     split = {**read_parameters(DP_VESSEL), "actuators.tunnel_fwd.feeds": ["swbd_a", "swbd_b"],
              "actuators.tunnel_fwd.feed_shares": [0.25, 0.75],
              "redundancy_groups.switchboard_a.actuators": ["azimuth_stbd"]}
     level2 = Level2(vehicle_from_parameters(split), PARTICULARS)
     low, high = level2.thrust_range("tunnel_fwd", CONDITIONS[9], 1.0, level2.groups["switchboard_a"])
-    # It keeps the 0.75 share of swbd_b, which now feeds 4033 + 2974.5 + 0.75 2974.5 = 9238.375 kW of
-    # P_B from 7020 kW usable [3.12.3]: 0.75 7020 / 9238.375 = 0.56991 of its P_B, 0.68738 of its thrust.
-    share = 0.75 * 7020.0 / 9238.375
-    assert high == pytest.approx(300000.0 * share ** (2 / 3), rel=1e-12) and low == pytest.approx(-high)
+    # It keeps the 0.75 share of swbd_b: 0.75^(2/3) = 0.82548 of its thrust. swbd_b now feeds
+    # 4033 + 2974.5 + 0.75 2974.5 = 9238.375 kW at full thrust from 7020 kW usable [3.12.3]: a power row.
+    assert high == pytest.approx(300000.0 * 0.75 ** (2 / 3), rel=1e-12) and low == pytest.approx(-high)
+    limits = level2.power_limits(level2.groups["switchboard_a"])
+    assert limits.sources == ("swbd_b",) and level2.source_demand("swbd_b", level2.groups["switchboard_a"]) == \
+        pytest.approx(9238.375, rel=1e-12)
 
 
 def test_the_vehicle_files_sectors_lift_with_the_thruster_they_protect():
@@ -102,7 +105,7 @@ def test_cli_writes_the_level_2_report_with_level_1_against_it(tmp_path, capsys)
 def test_bad_level2_data_is_refused_naming_the_key():
 
     data = yaml.safe_load(DP_PARTICULARS.read_text())
-    with pytest.raises(ValueError, match=r"level2: a mapping with wind_coefficients and/or current_coefficients"):
+    with pytest.raises(ValueError, match=r"level2: a mapping with wind_coefficients, current_coefficients, site"):
         particulars_from_mapping({**data, "level2": {"waves": {}}})
     with pytest.raises(ValueError, match=r"level2\.current_coefficients\.cx"):
         particulars_from_mapping({**data, "level2": {"current_coefficients": {
