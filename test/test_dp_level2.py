@@ -14,7 +14,7 @@ from conftest import ROOT
 from allocator_pkg import load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.analysis.dnv_coefficients import coefficient_table
 from allocator_pkg.analysis.dnv_loads import current_load, wave_drift_load, wind_load
-from allocator_pkg.analysis.dp_capability import CONDITIONS, Level1, load_particulars
+from allocator_pkg.analysis.dp_capability import CONDITIONS, WORST, Level1, load_particulars
 from allocator_pkg.analysis.dp_level2 import SCOPE_L2, Level2
 from allocator_pkg.analysis.dp_particulars import particulars_from_mapping
 from allocator_pkg.cli.capability import main
@@ -110,3 +110,53 @@ def test_bad_level2_data_is_refused_naming_the_key():
     with pytest.raises(ValueError, match=r"level2\.current_coefficients\.cx"):
         particulars_from_mapping({**data, "level2": {"current_coefficients": {
             "heading_deg": [0, 180], "cx": [1], "cy": [0, 0], "cn": [0, 0]}}})
+
+
+# -- a site environment in place of Table 2-1 ---------------------------------------------------
+
+TABLE_2_1 = {"wind": [c.wind for c in CONDITIONS[1:]], "hs": [c.hs for c in CONDITIONS[1:]],
+             "tp": [c.tp for c in CONDITIONS[1:]], "current": [c.current for c in CONDITIONS[1:]]}
+
+
+def with_site(site: dict):
+    return particulars_from_mapping({**yaml.safe_load(DP_PARTICULARS.read_text()), "level2": {"site": site}})
+
+
+def test_a_site_equal_to_table_2_1_changes_nothing_and_says_so():
+    plain = Level2(load_vehicle(DP_VESSEL), PARTICULARS).run(45.0)
+    same = Level2(load_vehicle(DP_VESSEL), with_site({"name": "as Table 2-1", **TABLE_2_1})).run(45.0)
+    for case in plain.numbers:
+        assert np.array_equal(plain.numbers[case], same.numbers[case])
+        assert np.array_equal(plain.wind_limits[case], same.wind_limits[case])
+    assert "Environment: Table 2-1 (no site environment given)." in plain.notes
+    assert any(note.startswith("Environment: the site 'as Table 2-1' (the particulars' level2.site)")
+               for note in same.notes)
+
+
+def test_a_sites_conditions_are_the_numbers():
+    """Four site conditions: numbers 0 to 4, the top held at the site's 20 m/s. A stronger current
+    at every number holds less somewhere."""
+    site = {"wind": [5.0, 10.0, 15.0, 20.0], "hs": [0.5, 1.0, 1.5, 2.0], "tp": 7.0, "current": 0.2}
+    small = Level2(load_vehicle(DP_VESSEL), with_site(site)).run(45.0)
+    assert small.conditions[-1].wind == 20.0 and np.max(small.numbers["intact"]) == 4
+    assert np.all(small.wind_limits["intact"][small.numbers["intact"] == 4] == 20.0)
+    plain = Level2(load_vehicle(DP_VESSEL), PARTICULARS).run(45.0)
+    strong = Level2(load_vehicle(DP_VESSEL), with_site({"current": 1.5})).run(45.0)
+    assert np.any(strong.wind_limits[WORST] < plain.wind_limits[WORST])
+
+
+def test_cli_takes_a_site_file_over_the_particulars_site(tmp_path, capsys):
+    site = tmp_path / "bank.yaml"
+    site.write_text("name: bank\ncurrent: 1.0\n")
+    assert main(["--dnv-level2", str(DP_VESSEL), str(DP_PARTICULARS), "--out", str(tmp_path),
+                 "--heading-step", "90", "--site", str(site)]) == 0
+    capsys.readouterr()
+    notes = (tmp_path / "dp_vessel_dp_l2.txt").read_text()
+    assert f"Environment: the site 'bank' ({site}) in place of Table 2-1" in notes
+    assert "given: current; Table 2-1's wind, hs, tp" in notes
+    site.write_text("current: [1.0, 2.0]\nwind: [3.0]\n")
+    assert main(["--dnv-level2", str(DP_VESSEL), str(DP_PARTICULARS), "--out", str(tmp_path), "--site",
+                 str(site)]) == 2
+    assert "site.current: 2 entries" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["--dnv-level1", str(DP_VESSEL), str(DP_PARTICULARS), "--site", str(site)])
