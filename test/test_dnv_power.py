@@ -13,7 +13,9 @@ from scipy.optimize import minimize
 from allocator_pkg import vehicle_from_parameters
 from allocator_pkg.analysis.capability import Capability
 from allocator_pkg.analysis.dnv_power import (
+    R_SIDES,
     PoweredCapability,
+    _faces,
     demand,
     feed_share,
     part_load_power,
@@ -131,3 +133,26 @@ def test_the_joint_balance_matches_an_independent_programme(angle, yaw, capacity
     # The chords and nothing else overstate the power: the balance holds a little less, never more.
     assert most <= expected * (1 + 1e-6) + 1e-6
     assert most >= expected * (1 - 5e-3)
+
+
+@settings(max_examples=50, deadline=None)
+@given(start=st.floats(-4.0, 4.0), width=st.floats(0.0, math.pi), where=st.floats(0.0, 1.0))
+def test_the_faces_next_to_a_cone_bound_its_forces_as_the_whole_polygon(start, width, where):
+    # A force in the cone is farthest along a face within half a face of the cone (the rows kept).
+    angle = start + where * width
+    every = [2.0 * math.pi * k / R_SIDES for k in range(R_SIDES)]
+    kept = _faces(start, start + width)
+    assert max(math.cos(angle - face) for face in kept) == pytest.approx(max(math.cos(angle - face) for face in every),
+                                                                         abs=1e-12)
+    assert len(kept) <= R_SIDES // 2 + 3
+
+
+@settings(max_examples=15, deadline=None)
+@given(angle=st.floats(0.0, 2.0 * math.pi), yaw=st.floats(-1.0, 1.0), capacity_a=st.floats(300.0, 1200.0),
+       factor=st.sampled_from([0.5, 0.99, 1.01, 2.0]))
+def test_attains_answers_as_the_whole_programme(angle, yaw, capacity_a, factor):
+    # attains solves without the power rows first where that decides; reach always with them.
+    capability = powered(box(capacity_a, 2500.0, 1000.0), dict.fromkeys(BOX_NAMES, 1000.0))
+    tau = np.array([math.cos(angle), math.sin(angle), 0.0, 0.0, 0.0, yaw])
+    most = capability.reach(tau)[0]
+    assert capability.attains(tau, factor * most)[0] == (factor < 1.0)

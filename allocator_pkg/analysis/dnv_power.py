@@ -119,18 +119,75 @@ class PoweredCapability(Capability):
     def __init__(self, vehicle: Vehicle, method: str, limits: PowerLimits):
         super().__init__(vehicle, method, speed=0.0)
         self.limits = limits
+        self._rows: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
+        self._enough: float | None = None
+
+    def attains(self, tau, multiple: float, first: int = 0) -> tuple[bool, int]:
+        """:meth:`Capability.attains` with the power: each combination of pieces is first solved
+        without the power rows; when that falls short of ``multiple``, or its forces scaled to
+        ``multiple`` keep every source within its power, it answers as the whole programme would."""
+        self._enough = multiple
+        try:
+            return super().attains(tau, multiple, first)
+        finally:
+            self._enough = None
 
     def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces):
         """The programme with the columns r_i, q_i of each powered thruster after the others,
-        their rows, and one row per source; the solution cut back to the programme's columns."""
+        their rows, and one row per source; the solution cut back to the programme's columns.
+        Within :meth:`attains`, the programme without the power rows where it decides the answer."""
+        if self._enough is not None and not np.any(b_eq):
+            plain = super()._programme(cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces)
+            if plain.status != 0 or plain.x[-1] < self._enough or self._within(
+                    plain.x[:-1] * (self._enough / plain.x[-1]), pieces):
+                return plain
+        base, extra = len(cost), 2 * len(self.limits.thrusters)
+        key = (base, tuple(pieces))
+        if key not in self._rows:
+            self._rows[key] = self._power_rows(base, pieces)
+        rows, right = self._rows[key]
+        head = np.array(a_ub).reshape(-1, base) if a_ub else np.zeros((0, base))
+        a_all = np.vstack([np.hstack([head, np.zeros((len(head), extra))]), rows])
+        result = super()._programme(np.concatenate([cost, np.zeros(extra)]), list(a_all), [*b_ub, *right],
+                                    np.hstack([a_eq, np.zeros((a_eq.shape[0], extra))]), b_eq,
+                                    [*bounds, *[(0.0, None)] * extra], pieces)
+        if result.status == 0:
+            result.x = result.x[:base]
+        return result
+
+    def _within(self, force: np.ndarray, pieces) -> bool:
+        """Whether the extended forces keep every source within its usable power, with r and q
+        as the rows bound them."""
+        model, vehicle = self.model, self.vehicle
+        names = [a.name for a in vehicle.actuators]
+        rot, scalar = list(model.rot), list(model.scalar)
+        fractions = []
+        for name in self.limits.thrusters:
+            index = names.index(name)
+            if index in rot:
+                position = rot.index(index)
+                c1, c2 = model.rot_columns[position]
+                start, end, radius, _ = pieces[position]
+                fraction = 0.0 if radius <= 0.0 else max(
+                    (math.cos(a) * force[c1] + math.sin(a) * force[c2]) for a in _faces(start, end)) / (
+                    radius * math.cos(math.pi / R_SIDES))
+            else:
+                value, actuator = force[model.scalar_columns[scalar.index(index)]], vehicle.actuators[index]
+                fraction = max(value / actuator.thrust_max if actuator.thrust_max > 0.0 else 0.0,
+                               value / actuator.thrust_min if actuator.thrust_min < 0.0 else 0.0)
+            fractions.append(max(0.0, *(slope * fraction + intercept for slope, intercept in CHORDS)))
+        return bool(np.all(self.limits.load @ np.array(fractions) <= 1.0))
+
+    def _power_rows(self, base: int, pieces) -> tuple[np.ndarray, np.ndarray]:
+        """(rows, right-hand sides) of the power: r_i above each force over its range (a
+        rotatable thruster's over the 72-gon's faces next to its piece's cone, the only ones its
+        force can reach), q_i above the chords, and the sources."""
         model, limits = self.model, self.limits
-        base = len(cost)
         count = len(limits.thrusters)
-        columns = base + 2 * count
         rows, right = [], []
 
         def row(entries: dict[int, float], value: float) -> None:
-            line = np.zeros(columns)
+            line = np.zeros(base + 2 * count)
             for column, coefficient in entries.items():
                 line[column] += coefficient
             rows.append(line)
@@ -144,9 +201,8 @@ class PoweredCapability(Capability):
             if index in rot:
                 position = rot.index(index)
                 c1, c2 = model.rot_columns[position]
-                radius = pieces[position][2]
-                for side in range(R_SIDES) if radius > 0.0 else ():
-                    angle = 2.0 * math.pi * side / R_SIDES
+                start, end, radius, _ = pieces[position]
+                for angle in _faces(start, end) if radius > 0.0 else ():
                     row({c1: math.cos(angle) / radius, c2: math.sin(angle) / radius,
                          r: -math.cos(math.pi / R_SIDES)}, 0.0)
             else:
@@ -160,12 +216,19 @@ class PoweredCapability(Capability):
                 row({r: slope, q: -1.0}, -intercept)
         for j in range(len(limits.sources)):
             row({base + count + i: limits.load[j, i] for i in range(count)}, 1.0)
-        head = np.array(a_ub).reshape(-1, base) if a_ub else np.zeros((0, base))
-        a_all = np.vstack([np.hstack([head, np.zeros((len(head), 2 * count))]), np.array(rows)])
-        a_eq_all = np.hstack([a_eq, np.zeros((a_eq.shape[0], 2 * count))])
-        result = super()._programme(np.concatenate([cost, np.zeros(2 * count)]), list(a_all),
-                                    [*b_ub, *right], a_eq_all, b_eq, [*bounds, *[(0.0, None)] * (2 * count)],
-                                    pieces)
-        if result.status == 0:
-            result.x = result.x[:base]
-        return result
+        return np.array(rows), np.array(right)
+
+
+def _faces(start: float, end: float) -> list[float]:
+    """The face normals [rad] of the 72-gon within half a face of the cone [start, end]: a force
+    in the cone is farthest along one of them."""
+    half = math.pi / R_SIDES + 1e-12
+    faces = []
+    for side in range(R_SIDES):
+        angle = 2.0 * math.pi * side / R_SIDES
+        offset = (angle - start) % (2.0 * math.pi)
+        inside = offset <= end - start
+        near = min(abs(offset - (end - start)), 2.0 * math.pi - offset) <= half
+        if inside or near:
+            faces.append(angle)
+    return faces
