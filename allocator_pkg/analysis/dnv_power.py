@@ -19,7 +19,8 @@ that could be short, r_i above its force over its range (for a rotatable thruste
 r^(3/2) at r = 0, 0.05, ..., 1 (at most 0.002 high), and one row per such source,
 sum_i s_ji P_B,i q_i <= P_usable,j. Both approximations overstate the power: the balance is
 conservative. A source that can give every thruster it feeds its full P_B share cannot bind and
-has no rows. Not verified by DNV.
+has no rows. :meth:`PoweredCapability.attains` solves without the rows first, where that decides
+the answer. Not verified by DNV.
 """
 
 from __future__ import annotations
