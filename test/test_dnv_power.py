@@ -156,3 +156,9 @@ def test_attains_answers_as_the_whole_programme(angle, yaw, capacity_a, factor):
     tau = np.array([math.cos(angle), math.sin(angle), 0.0, 0.0, 0.0, yaw])
     most = capability.reach(tau)[0]
     assert capability.attains(tau, factor * most)[0] == (factor < 1.0)
+
+
+def test_a_method_without_a_thrust_region_is_refused():
+    vehicle = vehicle_from_parameters(azimuth_on_board(1000.0))
+    with pytest.raises(ValueError, match="method pseudoinverse cannot redistribute force, so the power of swbd"):
+        PoweredCapability(vehicle, "pseudoinverse", power_limits(vehicle, {"az": 1000.0}))

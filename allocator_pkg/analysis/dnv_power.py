@@ -119,6 +119,10 @@ class PoweredCapability(Capability):
 
     def __init__(self, vehicle: Vehicle, method: str, limits: PowerLimits):
         super().__init__(vehicle, method, speed=0.0)
+        if self.sides is None:
+            raise ValueError(f"method {method} cannot redistribute force, so the power of "
+                             f"{', '.join(limits.sources)} [3.12] cannot be balanced with it; choose a method with a "
+                             "thrust region (--method qp or lp)")
         self.limits = limits
         self._rows: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
         self._enough: float | None = None
