@@ -317,7 +317,7 @@ def test_a_board_short_of_power_limits_the_balance_not_the_thrust_ranges():
     full, short = plain.run(30.0), board.run(30.0)
     assert np.all(short.wind_limits["intact"] <= full.wind_limits["intact"])
     assert np.any(short.wind_limits["intact"] < full.wind_limits["intact"])
-    assert any("bus 0.2 kW, 0.18 kW usable: intact 0.3 kW at full thrust (limits the balance)" in note
+    assert any("bus 0.2 kW, 0.18 kW usable: intact 0.3 kW at full thrust (can limit the balance)" in note
                for note in short.notes)
 
 

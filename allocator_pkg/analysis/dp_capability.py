@@ -332,7 +332,7 @@ class Level1:
         if self.capacities:
             cases = {INTACT: (), **self.groups}
             notes.append("Power sources [3.12] (capacity, usable after the 10 % reserve; per case what its working "
-                         "thrusters draw at full thrust, s P_B, and whether the balance is limited by it): "
+                         "thrusters draw at full thrust, s P_B, and whether it can limit the balance): "
                          + "; ".join(source_note(source, self.capacities[source], {
                              case: self.source_demand(source, lost) for case, lost in cases.items()
                              if source not in lost}) for source in self.capacities) + ".")

@@ -40,4 +40,4 @@ def source_note(source: str, capacity: float, demands: Mapping[str, float]) -> s
     limit = usable(capacity)
     return (f"{source} {capacity:g} kW, {limit:g} kW usable: "
             + ", ".join(f"{case} {value:.1f} kW at full thrust"
-                        + (" (limits the balance)" if value > limit else "") for case, value in demands.items()))
+                        + (" (can limit the balance)" if value > limit else "") for case, value in demands.items()))
