@@ -149,17 +149,16 @@ def dp_level1():
 
 def test_thrust_ranges_by_hand(dp_level1):
     # azimuth_stbd: ducted FPP, D 3.4 m, P_B 2071 kW: 1200 (3.4 2071 0.93)^(2/3) = 420.03 kN forward,
-    # no reverse (the vehicle file's azimuth does not reverse). Its swbd_a (5600 kW, 5040 kW usable
-    # [3.12.3]) feeds it and tunnel_fwd (2974.5 kW): 5045.5 kW asked, so it runs on 2071 5040 / 5045.5
-    # = 2068.742 kW: 1200 (3.4 2068.742 0.93)^(2/3) = 419.720 kN. Condition 6 head on: Tz = 8.5 / 1.4049
-    # = 6.05025 s, T0 = 0.64 sqrt(83) / 6.05025 = 0.963708; A = 0.85 1 (1 - 0.4 41.5 / 83) = 0.68;
-    # load factor sqrt(419720.4 / 3.4^3) / 15.2 = 6.79858; sigma = 0.25 (0.68 3.1 0.963708 + 5.79858)
-    # = 1.957519; beta_vent = Phi(2 2 4.5 / 3.4 - 1.5 1.957519) = Phi(2.357840) = 0.990809.
-    assert pytest.approx(420025.7, rel=1e-6) == 1200.0 * (3.4 * 2071.0 * 0.93) ** (2.0 / 3.0)
-    nominal = 1200.0 * (3.4 * 2071.0 * 5040.0 / 5045.5 * 0.93) ** (2.0 / 3.0)
-    assert nominal == pytest.approx(419720.4, rel=1e-6)
+    # no reverse (the vehicle file's azimuth does not reverse). Its swbd_a (5040 kW usable) is short of
+    # the 5045.5 kW it and tunnel_fwd draw at full thrust, but that is the balance's power rows, not its
+    # range. Condition 6 head on: Tz = 8.5 / 1.4049 = 6.05025 s, T0 = 0.64 sqrt(83) / 6.05025 = 0.963708;
+    # A = 0.85 1 (1 - 0.4 41.5 / 83) = 0.68; load factor sqrt(420025.7 / 3.4^3) / 15.2 = 6.80105;
+    # sigma = 0.25 (0.68 3.1 0.963708 + 5.80105) = 1.958137; beta_vent = Phi(2 2 4.5 / 3.4 - 1.5 1.958137)
+    # = Phi(2.356913) = 0.990786.
+    nominal = 1200.0 * (3.4 * 2071.0 * 0.93) ** (2.0 / 3.0)
+    assert nominal == pytest.approx(420025.7, rel=1e-6)
     low, high = dp_level1.thrust_range("azimuth_stbd", CONDITIONS[6], 0.0)
-    assert low == 0.0 and high == pytest.approx(nominal * 0.9 * 0.990809, rel=1e-6)
+    assert low == 0.0 and high == pytest.approx(nominal * 0.9 * 0.990786, rel=1e-6)
     # The tunnels push either way with the same nominal thrust (Table 3-2).
     low, high = dp_level1.thrust_range("tunnel_fwd", CONDITIONS[6], 0.0)
     assert low == pytest.approx(-high) and high < 0.9 * 300000.5
@@ -298,43 +297,43 @@ def test_feeds_do_not_change_the_intact_numbers_and_a_derated_group_holds_less()
     assert np.any(split.wind_limits["bus_a"] < plain.wind_limits["bus_a"])
 
 
-def test_a_board_short_of_power_shares_it_in_proportion_to_p_b():
+def test_a_board_short_of_power_limits_the_balance_not_the_thrust_ranges():
     """[3.12.3]-[3.12.4]: bus (0.2 kW) feeds both surge tunnels (P_B 0.13 kW each): usable
-    0.9 0.2 = 0.18 kW < 0.26 kW, so each runs on 0.13 0.18 / 0.26 = 0.09 kW and its T_nominal is
-    (0.09 / 0.13)^(2/3) = 0.7827 of its own; aux (1 kW, usable 0.9 kW) covers the sway tunnels."""
+    0.9 0.2 = 0.18 kW < 0.26 kW at full thrust, so the balance has its row, each tunnel drawing
+    0.13 / 0.18 = 0.7222 of it at full thrust; aux (1 kW, usable 0.9 kW) cannot bind. The thrust
+    ranges stay the full ones; the holdable loads shrink."""
     board = Level1(vehicle_from_parameters({
         **BOX, "power.sources": ["bus", "aux"], "power.bus.capacity": 0.2, "power.aux.capacity": 1.0,
         "actuators.surge_port.feeds": ["bus"], "actuators.surge_stbd.feeds": ["bus"],
         "actuators.sway_aft.feeds": ["aux"], "actuators.sway_fwd.feeds": ["aux"]}), SMALL)
-    assert board.source_factor("bus") == pytest.approx(0.18 / 0.26, rel=1e-12)
-    assert board.power_share("surge_stbd") == pytest.approx(0.18 / 0.26, rel=1e-12)
-    assert board.source_factor("aux") == 1.0 and board.power_share("sway_fwd") == 1.0
-    assert board.source_factor("bus", ("surge_port",)) == 1.0          # 0.13 kW fits in 0.18 kW
-    condition, direction = CONDITIONS[5], 0.0
-    limited = replace(SMALL.thrusters["surge_stbd"], power=0.09)
-    unit = board.actuators["surge_stbd"]
-    assert nominal_thrust(limited) == pytest.approx((0.09 / 0.13) ** (2 / 3) * nominal_thrust(
-        SMALL.thrusters["surge_stbd"]), rel=1e-12)
-    expected = 0.9 * nominal_thrust(limited) * ventilation_factor(limited, unit.x, unit.submergence, 2.0,
-                                                                   condition.hs, condition.tp, direction, False)
-    assert board.thrust_range("surge_stbd", condition, direction)[1] == pytest.approx(expected, rel=1e-12)
-    full = Level1(vehicle_from_parameters(BOX), SMALL).run(30.0)
-    short = board.run(30.0)
+    limits = board.power_limits()
+    assert limits.sources == ("bus",) and limits.thrusters == ("surge_port", "surge_stbd")
+    np.testing.assert_allclose(limits.load, [[0.13 / 0.18, 0.13 / 0.18]], rtol=1e-12)
+    assert board.source_demand("bus") == pytest.approx(0.26, rel=1e-12)
+    assert board.power_limits(("surge_port",)) is None                 # 0.13 kW fits in 0.18 kW
+    plain = Level1(vehicle_from_parameters(BOX), SMALL)
+    condition = CONDITIONS[5]
+    assert board.thrust_range("surge_stbd", condition, 0.0) == plain.thrust_range("surge_stbd", condition, 0.0)
+    full, short = plain.run(30.0), board.run(30.0)
     assert np.all(short.wind_limits["intact"] <= full.wind_limits["intact"])
     assert np.any(short.wind_limits["intact"] < full.wind_limits["intact"])
+    assert any("bus 0.2 kW, 0.18 kW usable: intact 0.3 kW at full thrust (can limit the balance)" in note
+               for note in short.notes)
 
 
 def test_a_split_fed_thruster_draws_its_shares_from_each_board():
     """SPLIT with bus_a at 0.2 kW: bus_a feeds sway_aft (0.13 kW) and half of surge_port
-    (0.065 kW), 0.195 kW > 0.18 kW usable: factor 0.18 / 0.195 = 0.92308. bus_b (0.9 kW usable,
-    0.325 kW asked) gives in full. surge_port: 0.5 0.92308 + 0.5 = 0.96154 of P_B (0.125 kW);
-    sway_aft 0.92308 (0.12 kW). Losing bus_a with sway_aft leaves surge_port 0.5 (bus_b's half)."""
+    (0.065 kW), 0.195 kW > 0.18 kW usable: a row with 0.065 / 0.18 and 0.13 / 0.18. bus_b (0.9 kW
+    usable, 0.325 kW at full thrust) cannot bind. Losing bus_a with sway_aft leaves no row, and
+    surge_port 0.5 of its P_B (bus_b's half)."""
     split = Level1(vehicle_from_parameters({**SPLIT, "power.bus_a.capacity": 0.2}), SMALL)
-    assert split.power_share("surge_port") == pytest.approx(0.5 * 0.18 / 0.195 + 0.5, rel=1e-12)
-    assert split.power_share("surge_port") * 0.13 == pytest.approx(0.125, rel=1e-12)
-    assert split.power_share("sway_aft") * 0.13 == pytest.approx(0.12, rel=1e-12)
-    assert split.power_share("surge_stbd") == 1.0
+    limits = split.power_limits()
+    assert limits.sources == ("bus_a",) and limits.thrusters == ("surge_port", "sway_aft")
+    np.testing.assert_allclose(limits.load, [[0.065 / 0.18, 0.13 / 0.18]], rtol=1e-12)
+    assert split.source_demand("bus_b") == pytest.approx(0.325, rel=1e-12)
+    assert split.power_share("surge_port") == 1.0 and split.power_share("surge_stbd") == 1.0
     assert split.power_share("surge_port", split.groups["bus_a"]) == 0.5
+    assert split.power_limits(split.groups["bus_a"]) is None
 
 
 def test_a_thruster_left_without_any_feed_is_refused():

@@ -14,7 +14,7 @@ from conftest import ROOT
 from allocator_pkg import load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.analysis.dnv_coefficients import coefficient_table
 from allocator_pkg.analysis.dnv_loads import current_load, wave_drift_load, wind_load
-from allocator_pkg.analysis.dp_capability import CONDITIONS, Level1, load_particulars
+from allocator_pkg.analysis.dp_capability import CONDITIONS, WORST, Level1, load_particulars
 from allocator_pkg.analysis.dp_level2 import SCOPE_L2, Level2
 from allocator_pkg.analysis.dp_particulars import particulars_from_mapping
 from allocator_pkg.cli.capability import main
@@ -63,18 +63,21 @@ def test_thrust_is_the_vehicle_files_and_a_lost_feed_share_derates_it():
     level2 = Level2(load_vehicle(DP_VESSEL), PARTICULARS)
     assert level2.thrust_range("azimuth_port", CONDITIONS[9], 1.0) == (0.0, 655000.0)
     assert level2.thrust_range("tunnel_aft", CONDITIONS[9], 1.0) == (-300000.0, 300000.0)
-    # swbd_a gives 5040 kW of the 5045.5 kW its thrusters ask [3.12]: tunnel_fwd keeps (5040 / 5045.5)^(2/3).
-    low, high = level2.thrust_range("tunnel_fwd", CONDITIONS[9], 1.0)
-    assert high == pytest.approx(300000.0 * (5040.0 / 5045.5) ** (2 / 3), rel=1e-12) and low == -high
+    # swbd_a (5040 kW usable) is short of the 5045.5 kW its thrusters draw at full thrust: that is the
+    # balance's power row [3.12]; the range stays the vehicle file's.
+    assert level2.thrust_range("tunnel_fwd", CONDITIONS[9], 1.0) == (-300000.0, 300000.0)
+    assert level2.power_limits().sources == ("swbd_a",)
     split = {**read_parameters(DP_VESSEL), "actuators.tunnel_fwd.feeds": ["swbd_a", "swbd_b"],
              "actuators.tunnel_fwd.feed_shares": [0.25, 0.75],
              "redundancy_groups.switchboard_a.actuators": ["azimuth_stbd"]}
     level2 = Level2(vehicle_from_parameters(split), PARTICULARS)
     low, high = level2.thrust_range("tunnel_fwd", CONDITIONS[9], 1.0, level2.groups["switchboard_a"])
-    # It keeps the 0.75 share of swbd_b, which now feeds 4033 + 2974.5 + 0.75 2974.5 = 9238.375 kW of
-    # P_B from 7020 kW usable [3.12.3]: 0.75 7020 / 9238.375 = 0.56991 of its P_B, 0.68738 of its thrust.
-    share = 0.75 * 7020.0 / 9238.375
-    assert high == pytest.approx(300000.0 * share ** (2 / 3), rel=1e-12) and low == pytest.approx(-high)
+    # It keeps the 0.75 share of swbd_b: 0.75^(2/3) = 0.82548 of its thrust. swbd_b now feeds
+    # 4033 + 2974.5 + 0.75 2974.5 = 9238.375 kW at full thrust from 7020 kW usable [3.12.3]: a power row.
+    assert high == pytest.approx(300000.0 * 0.75 ** (2 / 3), rel=1e-12) and low == pytest.approx(-high)
+    limits = level2.power_limits(level2.groups["switchboard_a"])
+    assert limits.sources == ("swbd_b",) and level2.source_demand("swbd_b", level2.groups["switchboard_a"]) == \
+        pytest.approx(9238.375, rel=1e-12)
 
 
 def test_the_vehicle_files_sectors_lift_with_the_thruster_they_protect():
@@ -102,8 +105,58 @@ def test_cli_writes_the_level_2_report_with_level_1_against_it(tmp_path, capsys)
 def test_bad_level2_data_is_refused_naming_the_key():
 
     data = yaml.safe_load(DP_PARTICULARS.read_text())
-    with pytest.raises(ValueError, match=r"level2: a mapping with wind_coefficients and/or current_coefficients"):
+    with pytest.raises(ValueError, match=r"level2: a mapping with wind_coefficients, current_coefficients, site"):
         particulars_from_mapping({**data, "level2": {"waves": {}}})
     with pytest.raises(ValueError, match=r"level2\.current_coefficients\.cx"):
         particulars_from_mapping({**data, "level2": {"current_coefficients": {
             "heading_deg": [0, 180], "cx": [1], "cy": [0, 0], "cn": [0, 0]}}})
+
+
+# -- a site environment in place of Table 2-1 ---------------------------------------------------
+
+TABLE_2_1 = {"wind": [c.wind for c in CONDITIONS[1:]], "hs": [c.hs for c in CONDITIONS[1:]],
+             "tp": [c.tp for c in CONDITIONS[1:]], "current": [c.current for c in CONDITIONS[1:]]}
+
+
+def with_site(site: dict):
+    return particulars_from_mapping({**yaml.safe_load(DP_PARTICULARS.read_text()), "level2": {"site": site}})
+
+
+def test_a_site_equal_to_table_2_1_changes_nothing_and_says_so():
+    plain = Level2(load_vehicle(DP_VESSEL), PARTICULARS).run(45.0)
+    same = Level2(load_vehicle(DP_VESSEL), with_site({"name": "as Table 2-1", **TABLE_2_1})).run(45.0)
+    for case in plain.numbers:
+        assert np.array_equal(plain.numbers[case], same.numbers[case])
+        assert np.array_equal(plain.wind_limits[case], same.wind_limits[case])
+    assert "Environment: Table 2-1 (no site environment given)." in plain.notes
+    assert any(note.startswith("Environment: the site 'as Table 2-1' (the particulars' level2.site)")
+               for note in same.notes)
+
+
+def test_a_sites_conditions_are_the_numbers():
+    """Four site conditions: numbers 0 to 4, the top held at the site's 20 m/s. A stronger current
+    at every number holds less somewhere."""
+    site = {"wind": [5.0, 10.0, 15.0, 20.0], "hs": [0.5, 1.0, 1.5, 2.0], "tp": 7.0, "current": 0.2}
+    small = Level2(load_vehicle(DP_VESSEL), with_site(site)).run(45.0)
+    assert small.conditions[-1].wind == 20.0 and np.max(small.numbers["intact"]) == 4
+    assert np.all(small.wind_limits["intact"][small.numbers["intact"] == 4] == 20.0)
+    plain = Level2(load_vehicle(DP_VESSEL), PARTICULARS).run(45.0)
+    strong = Level2(load_vehicle(DP_VESSEL), with_site({"current": 1.5})).run(45.0)
+    assert np.any(strong.wind_limits[WORST] < plain.wind_limits[WORST])
+
+
+def test_cli_takes_a_site_file_over_the_particulars_site(tmp_path, capsys):
+    site = tmp_path / "bank.yaml"
+    site.write_text("name: bank\ncurrent: 1.0\n")
+    assert main(["--dnv-level2", str(DP_VESSEL), str(DP_PARTICULARS), "--out", str(tmp_path),
+                 "--heading-step", "90", "--site", str(site)]) == 0
+    capsys.readouterr()
+    notes = (tmp_path / "dp_vessel_dp_l2.txt").read_text()
+    assert f"Environment: the site 'bank' ({site}) in place of Table 2-1" in notes
+    assert "given: current; Table 2-1's wind, hs, tp" in notes
+    site.write_text("current: [1.0, 2.0]\nwind: [3.0]\n")
+    assert main(["--dnv-level2", str(DP_VESSEL), str(DP_PARTICULARS), "--out", str(tmp_path), "--site",
+                 str(site)]) == 2
+    assert "site.current: 2 entries" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["--dnv-level1", str(DP_VESSEL), str(DP_PARTICULARS), "--site", str(site)])

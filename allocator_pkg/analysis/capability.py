@@ -216,11 +216,15 @@ class Capability:
         a_eq = np.hstack([model.t_ec, -unit.reshape(-1, 1)])
         cost = np.zeros(columns)
         cost[-1] = -1.0
-        result = linprog(cost, A_ub=np.array(a_ub) if a_ub else None, b_ub=np.array(b_ub) if b_ub else None,
-                         A_eq=a_eq, b_eq=fixed, bounds=bounds, method="highs")
+        result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
         if result.status != 0:
             return 0.0, np.zeros(model.m)
         return float(result.x[-1]), result.x[:model.m]
+
+    def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces):
+        """linprog of :meth:`_solve`'s programme (a subclass may add rows, and columns after its own)."""
+        return linprog(cost, A_ub=np.array(a_ub) if a_ub else None, b_ub=np.array(b_ub) if b_ub else None,
+                       A_eq=a_eq, b_eq=b_eq, bounds=bounds, method="highs")
 
     def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet, low: np.ndarray,
                               high: np.ndarray) -> tuple[float, np.ndarray]:

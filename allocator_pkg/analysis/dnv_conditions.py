@@ -43,27 +43,29 @@ CONDITIONS = (
 TOP = len(CONDITIONS) - 1
 
 
-def condition_at(level: float) -> Condition:
-    """The condition at a fractional capability number in [0, 11], each quantity linear between
-    the two numbers around it."""
-    if not 0.0 <= level <= TOP:
-        raise ValueError(f"a capability number between 0 and {TOP}, not {level}")
-    low = min(math.floor(level), TOP - 1)
+def condition_at(level: float, conditions: tuple[Condition, ...] = CONDITIONS) -> Condition:
+    """The condition at a fractional capability number in [0, top] of ``conditions`` (Table 2-1
+    unless a site's), each quantity linear between the two numbers around it."""
+    top = len(conditions) - 1
+    if not 0.0 <= level <= top:
+        raise ValueError(f"a capability number between 0 and {top}, not {level}")
+    low = min(math.floor(level), top - 1)
     t = level - low
-    a, b = CONDITIONS[low], CONDITIONS[low + 1]
+    a, b = conditions[low], conditions[low + 1]
     return Condition(*((1.0 - t) * getattr(a, f.name) + t * getattr(b, f.name) for f in fields(Condition)))
 
 
-def limit(balanced: Callable[[float], bool]) -> tuple[int, float]:
+def limit(balanced: Callable[[float], bool], conditions: tuple[Condition, ...] = CONDITIONS) -> tuple[int, float]:
     """(capability number, limiting wind speed) from a test of a fractional number: the highest
-    number held with every lower one, then bisection toward the next."""
+    number held with every lower one, then bisection toward the next (over ``conditions``)."""
+    top = len(conditions) - 1
     number = 0
-    while number < TOP and balanced(number + 1):
+    while number < top and balanced(number + 1):
         number += 1
-    if number == TOP:
-        return number, CONDITIONS[TOP].wind
+    if number == top:
+        return number, conditions[top].wind
     low, high = float(number), float(number + 1)
     for _ in range(BISECTION_STEPS):
         middle = 0.5 * (low + high)
         low, high = (middle, high) if balanced(middle) else (low, middle)
-    return number, condition_at(low).wind
+    return number, condition_at(low, conditions).wind

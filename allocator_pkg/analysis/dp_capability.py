@@ -8,10 +8,9 @@ balanced by the thrusters. The number of a heading is the highest condition bala
 lower one balanced too; the limiting wind speed the highest wind balanced when the conditions
 between two numbers are interpolated linearly (:func:`condition_at`). This is done intact and
 for each redundancy group of the vehicle file (actuators and power sources lost together; a
-thruster fed in part by a lost source keeps its remaining share of P_B; the thrusters on a source
-whose usable power, its capacity less the reserve of [3.12.3], is below their P_B share it in
-proportion to their P_B, :meth:`Level1.power_share`); the worst single
-failure is, per heading, the lowest over the groups. :meth:`Level1Result.summary` gives DP capability-L1(A, B, C, D).
+thruster fed in part by a lost source keeps its remaining share of P_B, :meth:`Level1.power_share`);
+the worst single failure is, per heading, the lowest over the groups. :meth:`Level1Result.summary`
+gives DP capability-L1(A, B, C, D).
 
 Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's thrust from its
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
@@ -20,7 +19,8 @@ beta_vent [3.9.4] of the condition and heading (:mod:`.dnv_thrust`); the forbidd
 file's forbidden sectors. Per (condition, heading, case) a variant of the vehicle, its working
 thrusters with those thrust ranges and zones, is balanced by :meth:`Capability.reach
 <allocator_pkg.analysis.capability.Capability.reach>` (a linear programme with the configured
-method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
+method's constraints), jointly with the power of each source that could be short
+([3.12.3]-[3.12.5], :mod:`.dnv_power`). Not yet: :data:`NOT_YET`. Not verified by DNV.
 """
 
 from __future__ import annotations
@@ -34,16 +34,16 @@ import yaml
 
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability import Capability
-from .dnv_conditions import CONDITIONS, TOP, Condition, condition_at, limit
-from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, current_load, wave_drift_load, wind_load
-from .dnv_thrust import BETA_MISC, ThrusterData, nominal_thrust, ventilation_factor
+from .dnv_conditions import CONDITIONS, Condition, condition_at, limit
+from .dnv_loads import LoadComponents, current_load, wave_drift_load, wind_load
+from .dnv_power import PoweredCapability, PowerLimits, demand, feed_share, power_limits
+from .dnv_thrust import BETA_MISC, nominal_thrust, ventilation_factor
 from .dnv_zones import Unit, Zone, flushing_zones
+from .dp_notes import hull_note, source_note, thruster_note
 from .dp_particulars import Particulars, particulars_from_mapping
 
 DYNAMIC_FACTOR = 1.25
 """[3.2.2]: on the sum of the environmental loads."""
-POWER_RESERVE = 0.10
-"""[3.12.3]-[3.12.4]: the share of a source's power kept for hotel and non-thruster consumers."""
 BOW_SECTOR_DEG = 30.0
 """A and C are the minima within this many degrees of the bow."""
 MAX_STEP_DEG = 10.0
@@ -53,21 +53,18 @@ LOAD_SOURCES = ("wind", "current", "waves")
 WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
                 "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters; "
-                "each power source's capacity less the 10 % reserve [3.12.3]-[3.12.4] shared by the thrusters it "
-                "feeds")
-NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], the joint "
-           "thrust-power balance per switchboard [3.12]")
+                "the power balance per source [3.12.3]-[3.12.5] jointly with the thrust: each source's capacity "
+                "less the 10 % reserve against the power its thrusters draw at the thrust the balance needs")
+NOT_YET = "rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5]"
 POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
                  "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
                  "Table A-5 as transcribed: what it can consume from each source). Each source keeps 10 % of its "
-                 "capacity for hotel and non-thruster consumers [3.12.3]-[3.12.4]; when the working thrusters' "
-                 "P_B (times their feed shares) exceed the rest, they share it in proportion to their P_B, so "
-                 "each runs on its P_B times that fraction (a fixed split, more cautious than balancing the "
-                 "power with the thrust).")
+                 "capacity for hotel and non-thruster consumers [3.12.3]-[3.12.4]; in each balance the power its "
+                 "working thrusters draw, s P_B r^(3/2) at the thrust fraction r, stays within the rest.")
 READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed share s keeps (1 - s) P_B ([3.12], "
-            "Table A-5); a board short of power shares its usable power among its thrusters in proportion to "
-            "their P_B [3.12]; the second range of B in [3.9.4] read as the union of "
-            "[-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] in N")
+            "Table A-5); the power at part thrust P_B r^(3/2), [3.9.2] turned around ([3.12] gives none); the "
+            "second range of B in [3.9.4] read as the union of [-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] "
+            "in N")
 """Where the text cannot be read as it stands, and how it is read here."""
 SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
          f"unclear: {READINGS}. Not verified by DNV.")
@@ -100,6 +97,8 @@ class Level1Result:
     """The standard's level of the analysis (1, or 2 with the vessel's own data)."""
     scope: str = SCOPE
     """What is per the standard and what is not, for every output."""
+    conditions: tuple[Condition, ...] = CONDITIONS
+    """The condition of each number (Table 2-1, or a site's at Level 2)."""
 
     def summary(self) -> tuple[int, int, int, int]:
         """(A, B, C, D): intact minimum within +-30 deg of the bow and over every heading, the
@@ -151,11 +150,14 @@ class Level1:
         file's redundancy groups; without any, each actuator alone)."""
         self.actuators = _actuators(vehicle, particulars)
         self.capacities = {source.name: source.capacity for source in vehicle.power_sources}
+        self.conditions = CONDITIONS
+        """The condition of each capability number: Table 2-1."""
         self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
         self._zones: dict[tuple[str, ...], list[Zone]] = {}
         self._capabilities: dict[tuple, Capability] = {}
         self._winners: dict[tuple[str, ...], int] = {}
+        self._power: dict[tuple[str, ...], PowerLimits | None] = {}
         self.capability(vehicle)                               # the method can serve the vehicle
 
     def loads(self, condition: Condition, direction: float) -> LoadComponents:
@@ -172,35 +174,33 @@ class Level1:
                 "waves": wave_drift_load(hull, condition.hs, condition.tp, direction)}
 
     def power_share(self, name: str, lost: tuple[str, ...] = ()) -> float:
-        """The share of its P_B a thruster can draw when ``lost`` (actuators and sources) are:
-        the sum over its remaining feeds of the feed share (Table A-5) times that source's
-        :meth:`source_factor` ([3.12]); 1 for a thruster without feeds (a vehicle without sources)."""
-        actuator = self.actuators[name].config
-        if not actuator.feeds:
-            return 1.0
-        return sum(share * self.source_factor(feed, lost)
-                   for feed, share in zip(actuator.feeds, actuator.feed_shares) if feed not in lost)
+        """The share of its P_B a thruster keeps when ``lost`` (actuators and sources) are: the
+        sum of its remaining feed shares (Table A-5); 1 for a thruster without feeds."""
+        return feed_share(self.vehicle, name, lost)
 
     def source_demand(self, source: str, lost: tuple[str, ...] = ()) -> float:
-        """P_demand [kW] of one source: the sum of feed share times P_B over the working thrusters
-        it feeds (Table A-5)."""
-        return sum(share * self.particulars.thrusters[name].power
-                   for name, unit in self.actuators.items() if name not in lost
-                   for feed, share in zip(unit.config.feeds, unit.config.feed_shares) if feed == source)
+        """[kW] what the working thrusters a source feeds draw from it at full thrust: the sum of
+        feed share times P_B (Table A-5)."""
+        return demand(self.vehicle, self.powers, source, lost)
 
-    def source_factor(self, source: str, lost: tuple[str, ...] = ()) -> float:
-        """min(1, P_usable / P_demand) of one source: P_usable its capacity less the reserve of
-        [3.12.3]-[3.12.4] (POWER_RESERVE of it, for hotel and non-thruster consumers, losses
-        included), P_demand its :meth:`source_demand`. The thrusters on a board short of power
-        share its usable power in proportion to their demand."""
-        usable, demand = (1.0 - POWER_RESERVE) * self.capacities[source], self.source_demand(source, lost)
-        return usable / demand if demand > usable else 1.0
+    @property
+    def powers(self) -> dict[str, float]:
+        """P_B [kW] by thruster (the particulars')."""
+        return {name: self.particulars.thrusters[name].power for name in self.actuators}
+
+    def power_limits(self, lost: tuple[str, ...] = ()) -> PowerLimits | None:
+        """The power rows of a case ([3.12.3]-[3.12.5], :func:`.dnv_power.power_limits`); None when
+        no working source could be short."""
+        if lost not in self._power:
+            self._power[lost] = power_limits(self.vehicle, self.powers, lost)
+        return self._power[lost]
 
     def thrust_range(self, name: str, condition: Condition, direction: float,
                      lost: tuple[str, ...] = ()) -> tuple[float, float]:
         """[low, high] [N] of one thruster: nominal thrust times beta_misc and beta_vent, each way.
         A thruster runs on the P_B times its :meth:`power_share` (what its remaining feeds can give
-        it): T_nominal times share^(2/3) [3.9.2], beta_vent of that T_nominal."""
+        it): T_nominal times share^(2/3) [3.9.2], beta_vent of that T_nominal. What a source short of
+        power allows is the balance's (:meth:`capability`)."""
         unit = self.actuators[name]
         data = self.particulars.thrusters[name]
         share = self.power_share(name, lost)
@@ -251,12 +251,15 @@ class Level1:
             actuators.append(replace(actuator, thrust_min=low, thrust_max=high))
         return replace(self.vehicle, actuators=tuple(actuators))
 
-    def capability(self, variant: Vehicle) -> Capability:
-        """The capability analysis of a variant, kept by its thrust ranges and zones."""
-        key = tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else ())
-                    for a in variant.actuators)
+    def capability(self, variant: Vehicle, failed: tuple[str, ...] | None = None) -> Capability:
+        """The capability analysis of a variant, kept by its thrust ranges and zones; with the power
+        rows of the case that loses ``failed`` (None: without power rows)."""
+        limits = None if failed is None else self.power_limits(failed)
+        key = (tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else ())
+                     for a in variant.actuators), limits.key() if limits else None)
         if key not in self._capabilities:
-            self._capabilities[key] = Capability(variant, self.method, speed=0.0)
+            self._capabilities[key] = (Capability(variant, self.method, speed=0.0) if limits is None
+                                       else PoweredCapability(variant, self.method, limits))
         return self._capabilities[key]
 
     def required(self, condition: Condition, direction: float) -> np.ndarray:
@@ -267,7 +270,7 @@ class Level1:
 
     def balanced(self, level: float, direction: float, failed: tuple[str, ...] = ()) -> bool:
         """Whether the thrusters hold the condition at ``level`` from ``direction`` [rad]."""
-        condition = condition_at(level)
+        condition = condition_at(level, self.conditions)
         tau = self.required(condition, direction)
         if not np.any(tau):
             return True
@@ -276,7 +279,7 @@ class Level1:
         variant = self.variant(condition, direction, failed)
         if not variant.actuators:
             return False
-        capability = self.capability(variant)
+        capability = self.capability(variant, failed)
         scale = float(np.max(np.abs(tau[capability.model.dof_index]) / np.maximum(capability.model.authority, 1e-12)))
         held, winner = capability.attains(tau / scale, scale * (1.0 - 1e-9), self._winners.get(failed, 0))
         if held:                                # in units of authority; the pieces that held first next time
@@ -285,7 +288,7 @@ class Level1:
 
     def heading(self, direction: float, failed: tuple[str, ...] = ()) -> tuple[int, float]:
         """(capability number, limiting wind speed [m/s]) of one heading."""
-        return limit(lambda level: self.balanced(level, direction, failed))
+        return limit(lambda level: self.balanced(level, direction, failed), self.conditions)
 
     def run(self, step_deg: float = 10.0) -> Level1Result:
         if not 0.0 < step_deg <= 90.0 or not math.isclose(360.0 / step_deg, round(360.0 / step_deg)):
@@ -302,7 +305,7 @@ class Level1:
         notes = self.notes()
         if step_deg > MAX_STEP_DEG:
             notes.append(f"Headings every {step_deg:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
-        return Level1Result(headings, numbers, winds, tuple(notes), self.level, self.scope)
+        return Level1Result(headings, numbers, winds, tuple(notes), self.level, self.scope, self.conditions)
 
     def notes(self) -> list[str]:
         """What the numbers rest on, for the output."""
@@ -311,9 +314,10 @@ class Level1:
             f"Method {self.method}. The vehicle file gives each thruster's position, type and azimuth range; its "
             "thrust limits and forbidden sectors are replaced by the standard's thrust and [3.11.3] zones (a zone "
             "lifts when the thruster it protects has failed).",
-            _hull_note(self.particulars),
+            hull_note(self.particulars),
             "Thrusters (nominal thrust forward / reversed [kN], x [m] from Lpp/2, submergence [m]): "
-            + "; ".join(_thruster_note(self.particulars.thrusters[name], unit) for name, unit in self.actuators.items())
+            + "; ".join(thruster_note(self.particulars.thrusters[name], u.forward, u.reverse, u.x, u.submergence)
+                        for name, u in self.actuators.items())
             + ".",
             "Zones intact: " + ("; ".join(f"{z.thruster} {math.degrees(z.sector[0]):.1f} to "
                                           f"{math.degrees(z.sector[1]):.1f} deg (flushing {z.flushed})"
@@ -322,41 +326,20 @@ class Level1:
             "Redundancy groups (lost together: actuators, then power sources): "
             + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ". " + POWER_READING,
             "Limiting wind speed: conditions between two numbers interpolated linearly; "
-            f"at number {TOP} the table's {CONDITIONS[TOP].wind:g} m/s (held at least that).",
+            f"at number {len(self.conditions) - 1} the table's {self.conditions[-1].wind:g} m/s (held at least "
+            "that).",
         ]
         if self.capacities:
-            notes.append("Power sources [3.12] (capacity, usable after the 10 % reserve; per case the P_B its working "
-                         "thrusters ask times their feed shares, and the fraction of it they get): "
-                         + "; ".join(self._source_note(source) for source in self.capacities) + ".")
+            cases = {INTACT: (), **self.groups}
+            notes.append("Power sources [3.12] (capacity, usable after the 10 % reserve; per case what its working "
+                         "thrusters draw at full thrust, s P_B, and whether it can limit the balance): "
+                         + "; ".join(source_note(source, self.capacities[source], {
+                             case: self.source_demand(source, lost) for case, lost in cases.items()
+                             if source not in lost}) for source in self.capacities) + ".")
         if self.uncontrolled:
             lost = ", ".join(DOF_NAMES[i] for i in self.uncontrolled)
             notes.append(f"Not controlled: {lost}; a load there is not held.")
         return notes
-
-    def _source_note(self, source: str) -> str:
-        cases = [(INTACT, ())] + [(g, lost) for g, lost in self.groups.items() if source not in lost]
-        return (f"{source} {self.capacities[source]:g} kW, {(1.0 - POWER_RESERVE) * self.capacities[source]:g} kW "
-                "usable: " + ", ".join(f"{case} {self.source_demand(source, lost):.1f} kW asked, "
-                                       f"{self.source_factor(source, lost):.4f} given" for case, lost in cases))
-
-
-def _hull_note(particulars: Particulars) -> str:
-    hull, frame = particulars.hull, particulars.frame
-    c_wl = hull.waterplane_coefficient_aft
-    clipped = not C_WL_AFT_RANGE[0] <= c_wl <= C_WL_AFT_RANGE[1]
-    return (f"Hull (standard's frame, x from Lpp/2): Lpp {hull.lpp:g} m, B {hull.beam:g} m, T {hull.draught:g} m, "
-            f"Los {hull.los:g} m at x {hull.los_centre_x:g} m, bow angle {math.degrees(hull.bow_angle):g} deg, "
-            f"A_WLaft {hull.waterplane_area_aft:g} m^2 (C_WLaft {c_wl:.3f}"
-            + (f", clipped to [{C_WL_AFT_RANGE[0]:g}, {C_WL_AFT_RANGE[1]:g}] by [3.7]" if clipped else "")
-            + f"), wind areas {hull.wind_area_frontal:g} and {hull.wind_area_lateral:g} m^2 "
-            f"(centre x {hull.wind_centre_x:g} m), A_L,current {hull.current_area_lateral:g} m^2 "
-            f"(centre x {hull.current_centre_x:g} m); the vehicle file's body origin at x {frame.origin_x:g} m, "
-            f"{frame.origin_height:g} m above the keel; Tz = Tp / {TZ_FROM_TP}.")
-
-
-def _thruster_note(data: ThrusterData, unit: _Actuator) -> str:
-    return (f"{data.name} {data.kind} D {data.diameter:g} m P_B {data.power:g} kW: {unit.forward / 1e3:.1f} / "
-            f"{unit.reverse / 1e3:.1f}, x {unit.x:g}, {unit.submergence:g}")
 
 
 def _actuators(vehicle: Vehicle, particulars: Particulars) -> dict[str, _Actuator]:

@@ -9,10 +9,13 @@ are given.
   relation of [3.9.2]) of the share of its P_B its feeds give it, as in Level 1 (a lost feed share,
   a board short of power [3.12]);
 - forbidden directions: the vehicle file's ``forbidden_sectors`` instead of the [3.11.3] zones; a
-  sector whose race points only at failed thrusters lifts in that case, as a zone does.
+  sector whose race points only at failed thrusters lifts in that case, as a zone does;
+- environment: a site's (:mod:`.dnv_site`: its own condition table, or Table 2-1 with the site's
+  current, waves or periods) where given, in a file of its own or the particulars'
+  ``level2.site``, else Table 2-1.
 
-Kept from Level 1: the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2],
-the search and the redundancy groups. The public transcription of the standard has no Level 2
+Kept from Level 1: wave drift [3.7], the dynamic factor 1.25 [3.2.2], the joint power balance
+[3.12], the search and the redundancy groups. The public transcription of the standard has no Level 2
 text: what is replaced, and how, is this package's reading (:data:`SCOPE_L2` says so on every
 output). Not verified by DNV.
 """
@@ -23,18 +26,21 @@ import math
 
 import numpy as np
 
+from ..vehicle.config import Vehicle
 from .dnv_conditions import Condition
+from .dnv_site import SiteEnvironment
 from .dnv_zones import Zone
 from .dp_capability import NOT_YET, Level1
+from .dp_particulars import Particulars
 from .environment_loads import RHO_AIR, RHO_WATER
 
 OWN_DATA = ("wind and current loads from the particulars' coefficient tables over heading where given ([3.5], [3.6] "
-            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4] loss; the "
-            "share of its P_B its feeds give it as in Level 1, a lost feed share or a board short of power, leaves "
-            "share^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
-            "thruster they protect)")
-KEPT = "the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2], the redundancy groups"
-NOT_YET_L2 = f"a site environment in place of Table 2-1, the vessel's wave drift data, {NOT_YET}"
+            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4] loss; a "
+            "lost feed share s leaves (1 - s)^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
+            "thruster they protect); a site environment in place of Table 2-1 where given")
+KEPT = ("wave drift [3.7], the dynamic factor 1.25 [3.2.2], the power balance per source [3.12], the redundancy "
+        "groups")
+NOT_YET_L2 = f"the vessel's wave drift data, {NOT_YET}"
 SCOPE_L2 = (f"DNV-ST-0111 (Dec 2021) Level 2 as read here (the transcription used has no Level 2 text): the Level 1 "
             f"balance with the vessel's own data: {OWN_DATA}. Kept from Level 1: {KEPT}. Not yet: {NOT_YET_L2}. "
             "Not verified by DNV.")
@@ -48,6 +54,14 @@ class Level2(Level1):
 
     level = 2
     scope = SCOPE_L2
+
+    def __init__(self, vehicle: Vehicle, particulars: Particulars, method: str | None = None,
+                 site: SiteEnvironment | None = None):
+        super().__init__(vehicle, particulars, method)
+        self.site = site or particulars.site
+        """The site environment in force (a file's, else the particulars' ``level2.site``; None: Table 2-1)."""
+        if self.site is not None:
+            self.conditions = self.site.conditions
 
     def standard_loads(self, condition: Condition, direction: float) -> dict[str, np.ndarray]:
         """[Fx, Fy, Mz] per source [N, N m], the standard's frame: the vessel's coefficients where given."""
@@ -65,7 +79,7 @@ class Level2(Level1):
     def thrust_range(self, name: str, condition: Condition, direction: float,
                      lost: tuple[str, ...] = ()) -> tuple[float, float]:
         """[low, high] [N]: the vehicle file's thrust limits, times share^(2/3) of its
-        :meth:`power_share` (a lost feed, a board short of power)."""
+        :meth:`power_share` (a lost feed share; a board short of power is the balance's)."""
         actuator = self.actuators[name].config
         share = self.power_share(name, lost)
         if share <= 0.0:
@@ -105,4 +119,5 @@ class Level2(Level1):
         notes[4] = "Forbidden sectors (vehicle file): " + ("; ".join(
             f"{z.thruster} {math.degrees(z.sector[0]):.1f} to {math.degrees(z.sector[1]):.1f} deg"
             for z in self.zones()) or "none") + " (thrust angle in the body frame, 0 forward, 90 to starboard)."
+        notes.insert(2, self.site.describe() if self.site else "Environment: Table 2-1 (no site environment given).")
         return notes

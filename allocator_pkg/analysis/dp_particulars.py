@@ -16,7 +16,8 @@ Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, fo
   ``ducted``, ``contra_rotating``, ``permanent_magnet``, ``tunnel_inlet``);
 - ``level2`` (optional): the vessel's own data for Level 2, ``wind_coefficients`` and
   ``current_coefficients`` (:class:`~.dnv_coefficients.CoefficientTable`: ``heading_deg``,
-  ``cx``, ``cy``, ``cn``);
+  ``cx``, ``cy``, ``cn``), and ``site``: a site environment in place of Table 2-1
+  (:mod:`.dnv_site`);
 - ``name``. The redundancy groups are the vehicle file's (``redundancy_groups.*``, with
   ``power.*`` and each thruster's ``feeds``): a ``failure_groups`` key is refused, saying so.
 """
@@ -30,6 +31,7 @@ from typing import Any
 
 from .dnv_coefficients import CoefficientTable, coefficient_table
 from .dnv_loads import BodyFrame, DnvHull
+from .dnv_site import SiteEnvironment, site_from_mapping
 from .dnv_thrust import ThrusterData
 from .environment_loads import LoadCoefficients, VesselParticulars
 
@@ -56,6 +58,8 @@ class Particulars:
     """Level 2: the vessel's wind coefficients over heading (None: [3.5])."""
     current_coefficients: CoefficientTable | None = None
     """Level 2: the vessel's current coefficients over heading (None: [3.6])."""
+    site: SiteEnvironment | None = None
+    """Level 2: the site environment in place of Table 2-1 (None: Table 2-1)."""
 
 
 def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particulars:
@@ -123,10 +127,14 @@ def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
     return result
 
 
-def _level2(level2: Any) -> dict[str, CoefficientTable]:
+def _level2(level2: Any) -> dict[str, CoefficientTable | SiteEnvironment]:
     if level2 is None:
         return {}
-    keys = ("wind_coefficients", "current_coefficients")
+    keys = ("wind_coefficients", "current_coefficients", "site")
     if not isinstance(level2, Mapping) or set(level2) - set(keys):
-        raise ValueError(f"level2: a mapping with {' and/or '.join(keys)}")
-    return {key: coefficient_table(level2[key], f"level2.{key}") for key in keys if key in level2}
+        raise ValueError(f"level2: a mapping with {', '.join(keys)} (each optional)")
+    result: dict[str, CoefficientTable | SiteEnvironment] = {
+        key: coefficient_table(level2[key], f"level2.{key}") for key in keys[:2] if key in level2}
+    if "site" in level2:
+        result["site"] = site_from_mapping(level2["site"], "level2.site", "the particulars' level2.site")
+    return result

@@ -9,7 +9,7 @@ analysis and its :class:`~.dp_capability.Level1Result`.
   frame [2.8.2] (x forward, y to port, moment about Lpp/2 positive bow to port);
 - :func:`table_a8`: per case, heading and thruster the thrust at the number's condition and its
   share of the thrust available in that direction (the "utilisation" of Table A-8);
-- :func:`load_table`: the loads per source for every heading and number 1 to 11, same frame.
+- :func:`load_table`: the loads per source for every heading and number from 1, same frame.
 
 Forces in kN, moments in kN m. The utilisation of Table A-8 is that of one allocation which holds
 the load: the forces of the largest multiple of the load the balance finds, scaled down to the
@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .dp_capability import CONDITIONS, DYNAMIC_FACTOR, INTACT, LOAD_SOURCES, TOP, WORST, Level1, Level1Result
+from .dp_capability import DYNAMIC_FACTOR, INTACT, LOAD_SOURCES, WORST, Level1, Level1Result
 
 KILO = 1e3
 A1_FIXED = ("heading_deg", INTACT)
@@ -76,19 +76,19 @@ def table_a7(analysis: Level1, result: Level1Result) -> list[tuple]:
     for case in result.numbers:
         for k, heading in enumerate(result.headings_deg):
             number = int(result.numbers[case][k])
-            loads = analysis.standard_loads(CONDITIONS[number], math.radians(heading))
+            loads = analysis.standard_loads(analysis.conditions[number], math.radians(heading))
             rows.append((case, float(heading), number, float(result.wind_limits[case][k]),
                          *(float(value) / KILO for source in LOAD_SOURCES for value in loads[source])))
     return rows
 
 
 def load_table(analysis: Level1, result: Level1Result) -> list[tuple]:
-    """Per heading and number 1 to 11: the condition, then [Fx, Fy, Mz] of each source and of
+    """Per heading and number from 1 (to 11 with Table 2-1): the condition, then [Fx, Fy, Mz] of each source and of
     ``total x 1.25`` (the load to balance), kN and kN m, the standard's frame."""
     rows = []
     for heading in result.headings_deg:
-        for number in range(1, TOP + 1):
-            condition = CONDITIONS[number]
+        for number in range(1, len(analysis.conditions)):
+            condition = analysis.conditions[number]
             loads = analysis.standard_loads(condition, math.radians(heading))
             loads[f"total x {DYNAMIC_FACTOR:g}"] = DYNAMIC_FACTOR * sum(loads.values())
             rows.extend((float(heading), number, condition.wind, condition.hs, condition.tp, condition.current,
@@ -114,9 +114,9 @@ class ThrusterUse:
 def thruster_use(analysis: Level1, number: int, direction: float, failed: tuple[str, ...] = ()) -> list[ThrusterUse]:
     """Each working thruster's thrust in an allocation that holds the condition of ``number`` from
     ``direction``: the forces of the largest multiple of the load, scaled to the load."""
-    condition = CONDITIONS[number]
+    condition = analysis.conditions[number]
     variant = analysis.variant(condition, direction, failed)
-    capability = analysis.capability(variant)
+    capability = analysis.capability(variant, failed)
     model = capability.model
     tau = analysis.required(condition, direction)
     force = np.zeros(model.m)

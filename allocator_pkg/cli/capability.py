@@ -9,7 +9,8 @@ file's method. The numbers come from :class:`~allocator_pkg.analysis.capability.
 
 ``allocator-capability --dnv-level1 VESSEL.yaml PARTICULARS.yaml [--out folder]`` writes the
 DNV-ST-0111 Level 1 DP capability report of :mod:`.dp_capability` (plots, tables, summary);
-``--dnv-level2`` the same at Level 2 with a plot of Level 1 against it.
+``--dnv-level2`` the same at Level 2 with a plot of Level 1 against it; ``--site SITE.yaml`` gives
+Level 2 a site environment in place of Table 2-1 (:mod:`~allocator_pkg.analysis.dnv_site`).
 """
 
 from __future__ import annotations
@@ -103,9 +104,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--dnv-level2", nargs=2, metavar=("VESSEL", "PARTICULARS"),
                         help="the same at Level 2 with the vessel's own data (<vehicle>_dp_l2...), and a plot of "
                              "Level 1 against Level 2")
+    parser.add_argument("--site", metavar="SITE",
+                        help="with --dnv-level2: a site environment file (wind, hs, tp or tz, current over the "
+                             "capability numbers) in place of Table 2-1 and of the particulars' level2.site")
     parser.add_argument("--heading-step", type=float, default=10.0,
                         help="degrees between headings for --dnv-level1/2 (default %(default)s)")
     arguments = parser.parse_args(argv)
+    if arguments.site and not arguments.dnv_level2:
+        parser.error("--site goes with --dnv-level2")
     if arguments.dnv_level1 or arguments.dnv_level2:
         return _dnv(arguments)
     if arguments.config is None:
@@ -152,7 +158,7 @@ def _dnv(arguments: argparse.Namespace) -> int:
     vessel, particulars = arguments.dnv_level1 or arguments.dnv_level2
     try:
         result, paths = write_report(vessel, particulars, arguments.out, arguments.heading_step, arguments.method,
-                                     level)
+                                     level, arguments.site)
     except ValueError as error:                 # a ConfigError too
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2

@@ -27,6 +27,7 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
+from ..analysis.dnv_site import load_site
 from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result, load_particulars
 from ..analysis.dp_level2 import Level2
 from ..analysis.dp_tables import groups_of
@@ -44,11 +45,16 @@ def write_level1(vehicle_path: str | Path, particulars_path: str | Path, out: st
 
 
 def write_report(vehicle_path: str | Path, particulars_path: str | Path, out: str | Path, step_deg: float = 10.0,
-                 method: str | None = None, level: int = 1) -> tuple[Level1Result, list[Path]]:
-    """Run Level 1 or 2 on the two files and write the report; (result, paths written)."""
+                 method: str | None = None, level: int = 1,
+                 site_path: str | Path | None = None) -> tuple[Level1Result, list[Path]]:
+    """Run Level 1 or 2 on the two files (Level 2: with the site environment file ``site_path``
+    if given) and write the report; (result, paths written)."""
     vehicle_path, particulars_path = Path(vehicle_path), Path(particulars_path)
     vehicle, particulars = load_vehicle(vehicle_path), load_particulars(particulars_path)
-    analysis = (Level1 if level == 1 else Level2)(vehicle, particulars, method)
+    if level == 1:
+        analysis = Level1(vehicle, particulars, method)
+    else:
+        analysis = Level2(vehicle, particulars, method, load_site(site_path) if site_path else None)
     result = analysis.run(step_deg)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)

@@ -14,15 +14,15 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.dp_capability import CONDITIONS, INTACT, NOT_YET, TOP, WORST, Level1, Level1Result
+from ..analysis.dp_capability import INTACT, NOT_YET, WORST, Level1, Level1Result
 from ..analysis.dp_level2 import NOT_YET_L2
 from ..analysis.dp_tables import groups_of, worst_groups
 
 FOOTERS = {
-    1: f"Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones.\nNot yet: {NOT_YET}.\n"
+    1: f"Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones, power per source.\nNot yet: {NOT_YET}.\n"
        "Unclear clauses read as the report says. Not verified by DNV.",
     2: "DNV-ST-0111 Level 2 as read here (no Level 2 text in the transcription used): the vessel's coefficients, "
-       f"thrust limits and sectors.\nNot yet: {NOT_YET_L2}.\nNot verified by DNV.",
+       f"thrust limits, sectors and site where given.\nNot yet: {NOT_YET_L2}.\nNot verified by DNV.",
 }
 CASE_STYLE = {INTACT: dict(color="tab:blue", linewidth=2.4), WORST: dict(color="tab:red", linewidth=1.8,
                                                                          linestyle="--")}
@@ -95,12 +95,13 @@ def polar_figure(result: Level1Result, title: str, caption: str, wind: bool, cas
                              zorder=5, label=f"worst here: {group}")
     axes.set_theta_zero_location("N")
     axes.set_theta_direction(-1)
+    top = len(result.conditions) - 1
     if wind:
-        axes.set_ylim(0.0, CONDITIONS[TOP].wind)
+        axes.set_ylim(0.0, result.conditions[top].wind)
         quantity = "limiting wind speed [m/s]"
     else:
-        axes.set_ylim(0, TOP)
-        axes.set_yticks(range(TOP + 1))
+        axes.set_ylim(0, top)
+        axes.set_yticks(range(top + 1))
         quantity = "DP capability number"
     axes.set_rlabel_position(22.5)
     axes.set_title(f"{title}: {result.summary_line()}\n{caption}: {quantity}\nenvironment from heading "
@@ -127,6 +128,8 @@ def comparison_plot(path: Path, level1: Level1Result, level2: Level1Result, titl
     for case, colour in ((INTACT, "tab:cyan"), (WORST, "tab:orange")):
         axes.plot(angles, np.append(values[case], values[case][0]), color=colour, linewidth=1.4, linestyle=":",
                   label=f"Level 1 {case}")
+    tops = (level1.conditions[-1], level2.conditions[-1])
+    axes.set_ylim(0.0, max(c.wind for c in tops) if wind else max(len(level1.conditions), len(level2.conditions)) - 1)
     for legend in figure.legends:
         legend.remove()
     figure.legend(loc="lower center", bbox_to_anchor=(0.5, 0.065), ncol=4, fontsize=8.5, frameon=False)

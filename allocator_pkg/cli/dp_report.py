@@ -1,9 +1,10 @@
 """The tables and the one-page summary of a DNV-ST-0111 Level 1 report (App. A.3).
 
-:func:`write_tables` writes the CSV tables of :mod:`allocator_pkg.analysis.dp_tables`, each after
-two ``#`` lines (what the table is, with its units; the scope); :func:`write_summary` the Markdown
-summary: the vessel, the inputs and where they come from, the DP capability-L1 notation, the
-tables' headlines, the scope and "Not verified by DNV".
+:func:`write_tables` writes the CSV tables of :mod:`allocator_pkg.analysis.dp_input_tables` (A-2 to
+A-5) and :mod:`allocator_pkg.analysis.dp_tables`, each after two ``#`` lines (what the table is,
+with its units; the scope); :func:`write_summary` the Markdown summary: the vessel, the inputs and
+where they come from, Tables A-2 to A-5, the DP capability-L1 notation, the tables' headlines, the
+scope and "Not verified by DNV".
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result
+from ..analysis.dp_input_tables import A2_COLUMNS, A3_COLUMNS, A4_COLUMNS, a5_columns, table_a2, table_a3, table_a5
 from ..analysis.dp_tables import (
     A6_COLUMNS,
     A7_COLUMNS,
@@ -30,6 +32,16 @@ from ..analysis.dp_tables import (
 )
 
 TABLES = {
+    "table_a2": "Table A-2: hull data; x [m] forward of Lpp/2 (the frame of [2.8.2]); from the particulars file",
+    "table_a3": "Table A-3: actuator data; position [3.8.3] in the frame of [2.8.2] (x [m] forward of Lpp/2, y [m] "
+                "to port, z [m] above the keel) from the vehicle file; type, D [m], P_B [kW], pitch, duct, "
+                "contra-rotation, permanent magnet, tunnel inlet from the particulars file; nominal thrust [3.9.2] "
+                "forward and reversed [kN] (0: the vehicle file does not reverse it)",
+    "table_a4": "Table A-4: rudder data (profile, A_r [m^2], k1, k2, maximum angle [deg], maximum side force [kN]); "
+                "none: this Level 1 takes no rudders ([3.10] not computed; a control surface is refused)",
+    "table_a5": "Table A-5: thruster power configuration from the vehicle file: per thruster its P_B [kW] and, per "
+                "switchboard or prime mover, its share [%] and the power it can consume from there [kW]; then "
+                "each source's available power [kW] and its usable power after the 10 % reserve [3.12.3] [kW]",
     "table_a1": "Table A-1: capability number per heading (deg, environment from; 0 ahead, 90 from starboard) "
                 "intact, after the loss of each redundancy group, combined (the lowest over the groups) and "
                 "the group whose loss is worst there",
@@ -63,9 +75,10 @@ def write_table(path: Path, what: str, scope: str, columns, rows) -> None:
 
 
 def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result) -> list[Path]:
-    """The five CSV tables, ``<stem>_<table>.csv``; the paths written."""
+    """The CSV tables, ``<stem>_<table>.csv``; the paths written."""
     a1_columns, a1_rows = table_a1(result)
-    contents = {"table_a1": (a1_columns, a1_rows), "table_a6": (A6_COLUMNS, table_a6(analysis)),
+    contents = {**input_tables(analysis),
+                "table_a1": (a1_columns, a1_rows), "table_a6": (A6_COLUMNS, table_a6(analysis)),
                 "table_a7": (A7_COLUMNS, table_a7(analysis, result)),
                 "table_a8": (A8_COLUMNS, table_a8(analysis, result)),
                 "loads": (LOAD_COLUMNS, load_table(analysis, result))}
@@ -75,6 +88,18 @@ def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result) -
         write_table(path, TABLES[key], result.scope, columns, rows)
         paths.append(path)
     return paths
+
+
+def input_tables(analysis: Level1) -> dict[str, tuple[tuple[str, ...], list[tuple]]]:
+    """(columns, rows) of Tables A-2 to A-5 by key."""
+    return {"table_a2": (A2_COLUMNS, table_a2(analysis)), "table_a3": (A3_COLUMNS, table_a3(analysis)),
+            "table_a4": (A4_COLUMNS, []), "table_a5": (a5_columns(analysis), table_a5(analysis))}
+
+
+def markdown_table(columns, rows) -> list[str]:
+    """A Markdown table of the CSV cells."""
+    return [f"| {' | '.join(columns)} |", "|" + "---|" * len(columns),
+            *(f"| {' | '.join(_cell(value) for value in row)} |" for row in rows)]
 
 
 def input_sources(particulars_path: Path) -> list[tuple[str, str, str]]:
@@ -121,6 +146,10 @@ def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_pa
     if sources:
         lines += ["| input | value | unit, source (as the particulars file states) |", "|---|---|---|",
                   *(f"| `{key}` | {value} | {comment} |" for key, value, comment in sources), ""]
+    for key, (columns, rows) in input_tables(analysis).items():
+        title, what = TABLES[key].split(": ", 1)
+        lines += [f"## {title}", "", what[0].upper() + what[1:] + ".", "",
+                  *(markdown_table(columns, rows) if rows else ["(none)"]), ""]
     lines += [f"## Results (headings every {_step(result):g} deg, environment from)", "",
               "| case | lowest number | at heading [deg] | lowest limiting wind [m/s] |", "|---|---|---|---|"]
     for case in (INTACT, *groups, WORST):
