@@ -9,11 +9,15 @@ Two real-time factors (simulated seconds per wall second) per run:
   ``realtime_factor``);
 - ``run``: the duration over the whole run's wall time, set-up, the warm-up (20 s of
   equilibrium wrench for the DP vessel) and ``metrics.json`` included: what a batch of seeded
-  runs gets.
+  runs gets;
+- ``run_cpu``: the same over the CPU time this process spent, what one core gives when other
+  processes share it.
 
 Each is the median over the repeats. In the same run, one node-in-the-loop run (``allocator-sim``
-with the real ``allocator_node`` as a process) gives its factors, and the ratio in-process /
-node of each. The in-process target is at least ``TARGET`` times real time (loop) on one core.
+with the real ``allocator_node`` as a process) gives its wall-clock factors, and the ratio
+in-process / node of each. The in-process target is at least ``TARGET`` times real time on one
+core, judged on ``run_cpu`` (the whole run; wall-clock figures drop when other processes share
+the cores, and the output gives the load average).
 
     .venv/bin/python bench/inprocess_sim.py [--scenario FILE] [--repeats 5] [--no-node]
 """
@@ -37,16 +41,18 @@ from allocator_pkg.simulation.scenario import Scenario, load_scenario
 ROOT = Path(__file__).resolve().parents[1]
 SCENARIO = ROOT / "config" / "scenarios" / "dp_station_keeping.yaml"
 TARGET = 300.0
-"""[x real time] The in-process loop on the DP vessel should run at least this fast."""
+"""[x real time] A whole in-process run of the DP vessel should run at least this fast on one core."""
 
 
 def timed(scenario: Scenario, runner: Callable[[Path], RunResult]) -> dict[str, float]:
-    """The loop and whole-run real-time factors of one run into a folder of its own."""
+    """The loop and whole-run real-time factors of one run into a folder of its own (the
+    CPU time is this process's: the node's own process is not in it)."""
     with tempfile.TemporaryDirectory() as folder:
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         result = runner(Path(folder))
-        wall = time.perf_counter() - start
-    return {"loop": result.metrics["realtime_factor"], "run": scenario.duration / wall, "wall_s": wall}
+        wall, cpu = time.perf_counter() - start, time.process_time() - cpu
+    return {"loop": result.metrics["realtime_factor"], "run": scenario.duration / wall,
+            "run_cpu": scenario.duration / cpu, "wall_s": wall}
 
 
 def measure(path: Path = SCENARIO, repeats: int = 5, node: bool = True) -> dict:
@@ -54,12 +60,13 @@ def measure(path: Path = SCENARIO, repeats: int = 5, node: bool = True) -> dict:
     scenario = load_scenario(path)
     quiet = {"log": lambda _: None}
     runs = [timed(scenario, lambda out: run(scenario, out, in_process=True, **quiet)) for _ in range(repeats)]
-    in_process = {kind: statistics.median(r[kind] for r in runs) for kind in ("loop", "run")}
+    in_process = {kind: statistics.median(r[kind] for r in runs) for kind in ("loop", "run", "run_cpu")}
     result = {"scenario": scenario.name, "duration_s": scenario.duration, "method": scenario.method,
-              "cpu_count": os.cpu_count(), "repeats": repeats, "in_process_runs": runs,
-              "in_process": in_process, "target": TARGET, "meets_target": in_process["loop"] >= TARGET}
+              "cpu_count": os.cpu_count(), "load_average": os.getloadavg(), "repeats": repeats, "in_process_runs": runs,
+              "in_process": in_process, "target": TARGET, "meets_target": in_process["run_cpu"] >= TARGET}
     if node:
         factors = timed(scenario, lambda out: run(scenario, out, **quiet))
+        del factors["run_cpu"]
         result["node"] = factors
         result["ratio"] = {kind: in_process[kind] / factors[kind] for kind in ("loop", "run")}
     return result
