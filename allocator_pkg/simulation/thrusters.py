@@ -36,9 +36,8 @@ class Thrusters:
         self._rotatable = [i for i, a in enumerate(actuators) if a.rotatable]
         self._matrix = configuration_matrix(actuators, self.angle)
         self._matrix_angles = self.angle.tolist()
-        self._voltage: float | None = None
-        self.low, self.high = thrust_limits(vehicle, voltage)
         self._voltage = voltage
+        self.low, self.high = thrust_limits(vehicle, voltage)
 
     def set_voltage(self, voltage: float | None) -> None:
         """The supply voltage the force ranges follow (None: nominal)."""
