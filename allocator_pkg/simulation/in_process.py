@@ -7,8 +7,8 @@ a run gives the same trace and metrics as with the node in the loop
 What the node does, and so what this does:
 
 - configuration: the vehicle file's node section with ``trigger: input``, the scenario's
-  ``method`` and ``parameters`` over it, parsed and checked as a whole
-  (``parse_parameters``; the geometry of a ``robot_description_file`` merged in), and the
+  ``method`` and ``parameters`` over it, parsed and checked as a whole (``parse_parameters``;
+  a scenario's vehicle file holds its own geometry, as :mod:`.scenario` requires), and the
   allocator built on it;
 - supply voltage (``battery_state``, a float32 field): with thrust tables at several voltages,
   each step's voltage, rounded to float32, sets the thrust limits; one the allocator refuses
@@ -37,7 +37,6 @@ import numpy as np
 
 from ..allocation.allocator import Allocator
 from ..allocation.result import AllocationResult
-from ..configuration import urdf
 from ..configuration.declared import declared, declared_keys, typed_value
 from ..configuration.parameters import parse_parameters
 from ..configuration.params_file import read_parameters
@@ -45,7 +44,7 @@ from ..configuration.schema import key_for
 from ..effectiveness.faults import FaultMode
 from ..vehicle.config import ConfigError
 from ..vehicle.frames import wrench_between
-from ..vehicle.node_settings import INPUT, NODE_NAME, ROBOT_DESCRIPTION
+from ..vehicle.node_settings import INPUT, NODE_NAME
 from .closed_loop import Answer
 from .plant import Pose
 from .run_setup import SimulationError
@@ -69,8 +68,7 @@ class InProcessLink:
     def __init__(self, scenario: Scenario) -> None:
         given = node_parameters(scenario)
         try:
-            self.geometry = self._geometry(given)
-            vehicle, self.settings = parse_parameters({**given, **self.geometry})
+            vehicle, self.settings = parse_parameters(given)
             self.allocator = Allocator(vehicle)
         except ConfigError as error:
             raise SimulationError(f"{scenario.vehicle}: {error}") from error
@@ -80,17 +78,6 @@ class InProcessLink:
         self.follows_speed = vehicle.has_surfaces
         self.rejected_voltages = 0
         self._last: AllocationResult | None = None
-
-    @staticmethod
-    def _geometry(parameters: dict[str, Any]) -> dict[str, list[float]]:
-        """The flat parameters a ``robot_description_file`` supplies (none with geometry_source params)."""
-        if parameters.get("geometry_source") != ROBOT_DESCRIPTION:
-            return {}
-        path = parameters.get("robot_description_file")
-        if not path:
-            raise SimulationError("geometry_source robot_description needs robot_description_file in process "
-                                  "(no robot_description topic)")
-        return urdf.geometry_parameters(Path(path).read_text(), parameters)
 
     # -- the samples ----------------------------------------------------------------------
 
@@ -170,9 +157,7 @@ class InProcessLink:
             raise SimulationError(f"parameter {name} refused: it is read-only")
         candidate = {**self.parameters, name: typed_value(name, value)}
         try:
-            if name in self.geometry:
-                raise ConfigError([(name, "comes from the robot description (geometry_source: robot_description)")])
-            vehicle, settings = parse_parameters({**candidate, **self.geometry})
+            vehicle, settings = parse_parameters(candidate)
             self.allocator.check_reconfigure(vehicle)
         except ValueError as error:
             raise SimulationError(f"parameter {name} refused: {error}") from error
