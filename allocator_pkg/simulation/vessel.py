@@ -106,22 +106,25 @@ class Vessel:
         drag = -self._strip_factor * np.abs(local) * local
         return np.array([0.0, _sum(drag), _sum(drag * self._strips)])
 
-    def damping(self, nu_r: np.ndarray) -> np.ndarray:
-        """Every damping force on the hull (to the right-hand side): the linear damping -D nu_r
-        (D diagonal) with the blended surge damping in surge, and the cross-flow drag."""
-        linear = self._negative_linear * nu_r
-        u_r, v_r, r = nu_r.tolist()
-        linear[0] = self.surge_damping(u_r)
-        return linear + self.crossflow(v_r, r)
-
     def derivative(self, eta: np.ndarray, nu: np.ndarray, tau: np.ndarray,
                    current: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(eta', nu') under the body force ``tau`` [X, Y, N] and a current [north, east] [m/s]."""
+        """(eta', nu') under the body force ``tau`` [X, Y, N] and a current [north, east] [m/s]:
+        M nu_r' = tau - C(nu_r) nu_r + d(nu_r), d the linear damping -D nu_r (D diagonal) with
+        the blended surge damping in surge, plus the cross-flow drag. Written on floats where
+        that does each operation as the vector form would (the products with M and C stay
+        matrix products)."""
         c, s = math.cos(eta[2]), math.sin(eta[2])
         north, east = current.tolist()
         u, v, r = nu.tolist()
         nu_c = (c * north + s * east, -s * north + c * east)
-        nu_r = nu - np.array([nu_c[0], nu_c[1], 0.0])
-        force = tau - coriolis_planar(self.mass, nu_r) @ nu_r + self.damping(nu_r)
+        nu_r = np.array([u - nu_c[0], v - nu_c[1], r])
+        u_r, v_r, _ = nu_r.tolist()
+        coriolis = (coriolis_planar(self.mass, nu_r) @ nu_r).tolist()
+        _, cross_y, cross_n = self.crossflow(v_r, r).tolist()
+        _, sway, yaw = self._negative_linear.tolist()
+        x, y, n = tau.tolist()
+        force = np.array([x - coriolis[0] + (self.surge_damping(u_r) + 0.0),
+                          y - coriolis[1] + (sway * v_r + cross_y),
+                          n - coriolis[2] + (yaw * r + cross_n)])
         eta_dot = np.array([c * u - s * v, s * u + c * v, r])
         return eta_dot, np.array([r * nu_c[1], -r * nu_c[0], 0.0]) + self.mass_inverse @ force
