@@ -211,3 +211,14 @@ def test_a_bad_scenario_is_refused_with_its_key(tmp_path, capsys):
     bad.write_text(text.replace("thruster_time_constant: 2.0", "thruster_time_constant: -1.0"))
     assert main([str(bad), "--out", str(tmp_path / "out")]) == 1
     assert "thruster_time_constant" in capsys.readouterr().err
+
+
+def test_the_command_line_runs_the_allocator_in_process(tmp_path, capsys):
+    path = bounded_copy(tmp_path, 1e-4)
+    out = tmp_path / "in_process"
+    assert main([str(path), "--out", str(out), "--duration-scale", "0.02", "--in-process"]) == 1
+    assert "verdict: FAIL, 1 of 2 bounds broken" in capsys.readouterr().out
+    assert {p.name for p in out.iterdir()} == {"metrics.json", "footprint.png", "timeline.png"}   # no node, no MCAP
+    assert main(["compare", str(bounded_copy(tmp_path, 3.0)), "--methods", "qp", "lp", "--out", str(tmp_path / "cmp"),
+                 "--duration-scale", "0.02", "--no-baseline", "--in-process"]) == 0
+    assert (tmp_path / "cmp" / "compare.md").exists() and (tmp_path / "cmp" / "lp" / "metrics.json").exists()

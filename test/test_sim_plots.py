@@ -17,7 +17,6 @@ from matplotlib.quiver import Quiver
 
 from allocator_pkg.cli import sim_plots
 from allocator_pkg.cli.sim_footprint import arrow_interval, footprint_figure
-from allocator_pkg.cli.sim_setup import RunResult
 from allocator_pkg.cli.sim_style import (
     FAULT_COLOUR,
     LIMIT_COLOUR,
@@ -33,6 +32,7 @@ from allocator_pkg.cli.sim_timeline import POWER_LABEL, thrust_limits_over_time,
 from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.effectiveness.faults import thrust_limits
 from allocator_pkg.simulation.report import run_report
+from allocator_pkg.simulation.run_setup import RunResult
 from allocator_pkg.simulation.scenario import Event, load_scenario
 from allocator_pkg.simulation.trace import Trace
 

@@ -118,3 +118,31 @@ def test_a_beam_current_loads_the_hull_at_rest_with_the_analysis_drag_plus_the_l
     linear = (4.977e6 + 3e6) / 100.0 * 0.75           # (m + MA22) / T2 times the current, by hand
     assert felt[1] == pytest.approx(-balance + linear, rel=1e-3)
     assert (felt[1], -balance) == pytest.approx((143.6e3, 83.8e3), abs=0.1e3)
+
+
+def test_the_vessel_derivative_is_fossens_planar_model():
+    """(eta', nu') against the model written out plainly: eta' = R(psi) nu; M (nu - nu_c)' =
+    tau - C(nu_r) nu_r - D nu_r + surge and cross-flow damping, nu_c' = -S(r) nu_c."""
+    vessel = Vessel()
+    rng = np.random.default_rng(11)
+    for _ in range(50):
+        eta, nu = rng.normal(size=3), rng.normal(size=3) * [2.0, 1.0, 0.05]
+        tau, current = rng.normal(size=3) * [1e5, 1e5, 1e7], rng.normal(size=2) * 0.5
+        c, s = math.cos(eta[2]), math.sin(eta[2])
+        nu_c = np.array([c * current[0] + s * current[1], -s * current[0] + c * current[1], 0.0])
+        nu_r = nu - nu_c
+        m = vessel.mass
+        coriolis = np.array([[0.0, 0.0, -m[1] @ nu_r], [0.0, 0.0, m[0] @ nu_r], [m[1] @ nu_r, -m[0] @ nu_r, 0.0]])
+        damping = -vessel.linear_damping @ nu_r
+        damping[0] = vessel.surge_damping(nu_r[0])
+        p = vessel.parameters
+        dx = p.length / 20
+        x = -p.length / 2 + (np.arange(20) + 0.5) * dx                     # the 20 strips
+        local = nu_r[1] + x * nu_r[2]
+        drag = -0.5 * p.water_density * p.draught * p.coefficients.current_sway * dx * np.abs(local) * local
+        damping += [0.0, drag.sum(), (drag * x).sum()]
+        force = tau - coriolis @ nu_r + damping
+        nu_dot = np.array([nu[2] * nu_c[1], -nu[2] * nu_c[0], 0.0]) + np.linalg.solve(m, force)
+        eta_dot, got = vessel.derivative(eta, nu, tau, current)
+        assert eta_dot == pytest.approx([c * nu[0] - s * nu[1], s * nu[0] + c * nu[1], nu[2]], rel=1e-12)
+        assert got == pytest.approx(nu_dot, rel=1e-9, abs=1e-12)

@@ -8,6 +8,8 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg.configuration.parameters import load_vehicle
+from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
+from allocator_pkg.effectiveness.faults import thrust_limits
 from allocator_pkg.simulation.thrusters import Thrusters
 
 VESSEL = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
@@ -96,3 +98,21 @@ def test_the_thrusters_start_where_the_commands_hold_them():
     before = thrusters.wrench()
     run(thrusters, [1e5, 2e5, 5e4, 9e9], angles, 1.0)                # held by the same commands: nothing moves
     assert thrusters.wrench() == pytest.approx(before)
+
+
+def test_the_wrench_follows_every_change_of_angle_and_the_ranges_every_change_of_voltage():
+    thrusters = Thrusters(VESSEL, time_constant=2.0)
+    rng = np.random.default_rng(7)
+    for k in range(60):
+        if k == 20:
+            thrusters.set_fault("azimuth_stbd", "stuck", 0.7)
+        if k == 40:
+            thrusters.start_at(rng.uniform(-1e5, 1e5, 4), rng.uniform(-3.0, 3.0, 4))
+        thrusters.step(rng.uniform(-3e5, 3e5, 4), rng.uniform(-3.0, 3.0, 4), 0.05)
+        expected = configuration_matrix(VESSEL.actuators, thrusters.angle) @ thrusters.thrust
+        assert np.array_equal(thrusters.wrench(), expected), k
+    rov = Thrusters(ROV, time_constant=0.1, voltage=16.0)
+    for voltage in (16.0, 12.0, 12.0, None, 14.5):
+        rov.set_voltage(voltage)
+        low, high = thrust_limits(ROV, voltage)
+        assert np.array_equal(rov.low, low) and np.array_equal(rov.high, high), voltage

@@ -2,9 +2,9 @@
 lock-step on ROS 2 sim time.
 
     allocator-sim SCENARIO --out DIR [--seed N] [--method M] [--duration-scale S] [--live [SECONDS]]
-                  [--no-verdict]
+                  [--no-verdict] [--in-process]
     allocator-sim compare SCENARIO --methods qp lp ... --out DIR [--duration-scale S] [--no-verdict]
-                  [--no-baseline]
+                  [--no-baseline] [--in-process]
 
 The node runs as its own process, unchanged, with ``use_sim_time`` and ``trigger: input``.
 This process publishes ``/clock``, the vehicle's ``odometry``, its ``battery_state`` and the
@@ -21,9 +21,13 @@ play``), ``footprint.png`` and ``timeline.png`` into DIR; ``compare`` writes one
 per method, ``compare.md`` and ``compare.png``. Frames: odometry and set-point in NED (frame_id
 ``ned``), the body in FRD (``base_link``), as the models are written.
 
-``sim_loop`` runs the loop, ``sim_link`` is its ROS side, ``sim_setup`` builds the plant and
-the node's command line from the scenario, ``sim_metrics`` recomputes the metrics from
-``run.mcap``, ``sim_report`` writes the text and ``sim_plots`` draws the figures.
+``--in-process`` puts the allocator library in the loop in place of the node, in this process
+and without ROS (:mod:`allocator_pkg.simulation.in_process`): the same trace, metrics and
+figures, hundreds of times faster than real time, and no ``run.mcap`` or ``node.log``.
+
+The loop is :mod:`allocator_pkg.simulation.closed_loop`; ``sim_loop`` starts the node and
+``sim_link`` is its ROS side, ``sim_metrics`` recomputes the metrics from ``run.mcap``,
+``sim_report`` writes the text and ``sim_plots`` draws the figures.
 """
 
 from __future__ import annotations
@@ -38,18 +42,33 @@ from pathlib import Path
 from ..configuration.parameters import load_vehicle
 from ..methods import METHODS
 from ..ros.process import dds_environment
+from ..simulation.closed_loop import ClosedLoop
+from ..simulation.in_process import in_process_link
+from ..simulation.run_setup import RunResult, SimulationError
 from ..simulation.scenario import Scenario, ScenarioError, load_scenario
 from . import sim_plots, sim_report
-from .sim_setup import RunResult, SimulationError
 
 
-def run(scenario: Scenario, out: Path, live: float = 0.0, log: Callable[[str], None] = print) -> RunResult:
-    """One closed-loop run of ``scenario`` with the node as a process; outputs into ``out``;
-    with ``live`` > 0 a line of the live table every ``live`` simulated seconds."""
+def run(scenario: Scenario, out: Path, live: float = 0.0, log: Callable[[str], None] = print,
+        in_process: bool = False) -> RunResult:
+    """One closed-loop run of ``scenario`` with the node as a process (``in_process``: the
+    allocator library in this process); outputs into ``out``; with ``live`` > 0 a line of the
+    live table every ``live`` simulated seconds."""
+    if in_process:
+        return ClosedLoop(scenario, out, in_process_link, log).run(live)
     os.environ.update(dds_environment())
-    from .sim_loop import ClosedLoop  # rclpy loads here, in the DDS environment just set
+    from .sim_loop import node_link  # rclpy loads here, in the DDS environment just set
 
-    return ClosedLoop(scenario, out, log).run(live)
+    return ClosedLoop(scenario, out, node_link, log).run(live)
+
+
+def in_process_run(scenario: Scenario, out: Path, live: float = 0.0,
+                   log: Callable[[str], None] = print) -> RunResult:
+    """:func:`run` with the allocator library in the loop."""
+    return run(scenario, out, live, log, in_process=True)
+
+
+IN_PROCESS_HELP = "the allocator library in the loop, in this process, in place of the node (no run.mcap)"
 
 
 def _scenario(arguments: argparse.Namespace) -> Scenario:
@@ -74,7 +93,9 @@ def main(argv: list[str] | None = None) -> int:
         parser.add_argument("--no-baseline", action="store_true",
                             help="skip each method's nominal run (same seed, no failure; doubles the run time)")
         parser.add_argument("--no-verdict", action="store_true", help="no verdict against the bounds")
+        parser.add_argument("--in-process", action="store_true", help=IN_PROCESS_HELP)
         arguments = parser.parse_args(argv[1:])
+        runner = in_process_run if arguments.in_process else run
         try:
             scenario = _scenario(arguments)
             out = Path(arguments.out)
@@ -93,9 +114,9 @@ def main(argv: list[str] | None = None) -> int:
                     print(f"sim: {method} left out: {error}", flush=True)
                     continue
                 print(f"sim: {scenario.name} with {method}", flush=True)
-                result = run(chosen, out / method)
+                result = runner(chosen, out / method)
                 nominal = None if arguments.no_baseline else \
-                    sim_plots.nominal_run(chosen, out / method / "nominal", run)
+                    sim_plots.nominal_run(chosen, out / method / "nominal", runner)
                 sim_plots.plot_run(out / method, result, chosen, nominal)
                 results[method] = result
                 if nominal is not None:
@@ -127,6 +148,7 @@ def main(argv: list[str] | None = None) -> int:
                         help="a live table, one line every SECONDS of simulated time (default 1)")
     parser.add_argument("--no-verdict", action="store_true",
                         help="no verdict against the scenario's bounds (exit status 0 whatever the run did)")
+    parser.add_argument("--in-process", action="store_true", help=IN_PROCESS_HELP)
     arguments = parser.parse_args(argv)
     try:
         scenario = _scenario(arguments)
@@ -134,7 +156,8 @@ def main(argv: list[str] | None = None) -> int:
             scenario = scenario.with_method(arguments.method)
         out = Path(arguments.out)
         print(f"sim: {scenario.name}, {scenario.method}, {scenario.duration:g} s, seed {scenario.seed}", flush=True)
-        result = run(scenario, out, live=arguments.live, log=lambda text: print(text, flush=True))
+        result = run(scenario, out, live=arguments.live, log=lambda text: print(text, flush=True),
+                     in_process=arguments.in_process)
     except (ScenarioError, SimulationError, ValueError) as error:
         print(f"allocator-sim: {error}", file=sys.stderr)
         return 1

@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 
+from ..simulation.run_setup import RunResult
 from ..simulation.scenario import Scenario
-from .sim_setup import RunResult
 from .sim_style import FAULT_COLOUR, NOMINAL, NOMINAL_LABEL, pyplot
 
 ARROWS = 12

@@ -1,7 +1,7 @@
-"""This process's ROS side of an ``allocator-sim`` run: ``/clock``, the vehicle's ``odometry``
-and ``battery_state`` and the controller's ``wrench_command`` out, the node's
-``allocation_status`` and ``thruster_commands`` in, its services, and the recording of every
-step into ``run.mcap``.
+"""The node's link of an ``allocator-sim`` run (a :class:`~allocator_pkg.simulation.closed_loop.Link`):
+``/clock``, the vehicle's ``odometry`` and ``battery_state`` and the controller's
+``wrench_command`` out, the node's ``allocation_status`` and ``thruster_commands`` in, its
+services, and the recording of every step into ``run.mcap``.
 
 The clock advances only when the node has answered the step's wrench: its status stamped with
 the step's time and echoing the wrench, and its commands of the same stamp. Before the run,
@@ -29,11 +29,13 @@ from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 
 from ..ros import qos
 from ..ros.conversions import array_to_wrench, wrench_to_array
+from ..simulation.closed_loop import Answer
 from ..simulation.kinematics import quaternion
 from ..simulation.plant import Pose
+from ..simulation.run_setup import SimulationError
 from .controller import Controller
+from .echo import format_sample
 from .sim_recording import RunRecording
-from .sim_setup import SimulationError
 
 START_TIMEOUT = 30.0
 """[s] of wall time the node has to subscribe to the wrench and the clock."""
@@ -60,6 +62,11 @@ def _nanoseconds(message) -> int:
     return message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec
 
 
+def _answer(status: AllocationStatus, commands: ThrusterCommands) -> Answer:
+    return Answer(np.array(commands.thrust), np.array(commands.azimuth), status.saturated, status.power,
+                  status.voltage, wrench_to_array(status.unallocated))
+
+
 class NodeLink:
     """The link to the node of one run, in a rclpy context of its own; ``close`` ends it."""
 
@@ -75,6 +82,7 @@ class NodeLink:
         self.odometry = self.node.create_publisher(Odometry, "odometry", 10)
         self.battery = self.node.create_publisher(BatteryState, "battery_state", 10)
         self.answers: dict[str, Any] = {}
+        self.last: tuple[AllocationStatus, ThrusterCommands] | None = None
         self.node.create_subscription(AllocationStatus, "allocation_status",
                                       lambda m: self.answers.__setitem__("status", m), 10)
         self.node.create_subscription(ThrusterCommands, "thruster_commands",
@@ -100,6 +108,10 @@ class NodeLink:
             self.executor.spin_once(timeout_sec=0.05)
             if not running() or time.monotonic() - started > START_TIMEOUT:
                 raise SimulationError(f"allocator_node did not start (see {self.node_log})")
+
+    def begin(self, t_ns: int, period_ns: int, supply: float | None, wrench: np.ndarray) -> tuple[int, Answer]:
+        """:meth:`synchronise` from ``t_ns``, then :meth:`first_sample` of ``wrench``."""
+        return self.first_sample(self.synchronise(t_ns, period_ns, supply), period_ns, wrench, supply)
 
     def synchronise(self, t_ns: int, period_ns: int, voltage: float | None) -> int:
         """Clock steps from ``t_ns``, no wrench, until the node has stopped (its watchdog's zero
@@ -127,12 +139,12 @@ class NodeLink:
                                                   or abs(status.voltage - voltage) <= 1e-9 * abs(voltage))
 
     def first_sample(self, t_ns: int, period_ns: int, wrench: np.ndarray,
-                     voltage: float | None) -> tuple[int, ThrusterCommands]:
+                     voltage: float | None) -> tuple[int, Answer]:
         """The node's first allocation, after :meth:`synchronise` ended at ``t_ns``: the wrench
         is sent before the next clock step, so that it waits in the node (its last sample, a
         stop, is less than a period old) and is allocated at that step. Should it come after
         the step, the node stops once more and allocates it at the step after. The time of
-        the step that allocated it, and the node's commands."""
+        the step that allocated it, and the node's answer."""
         self.services.wrench.publish(array_to_wrench(wrench))
         deadline = time.monotonic() + FIRST_WRENCH_DELAY
         while time.monotonic() < deadline:
@@ -149,7 +161,8 @@ class NodeLink:
                 if self._answered(t_ns, wrench) or self._stopped_at(t_ns, None):
                     break
             if self._answered(t_ns, wrench):
-                return t_ns, self.answers["commands"]
+                self.last = self.answers["status"], self.answers["commands"]
+                return t_ns, _answer(*self.last)
         raise SimulationError(f"allocator_node did not allocate the first wrench (see {self.node_log})")
 
     def _answered(self, t_ns: int, wrench: np.ndarray) -> bool:
@@ -168,11 +181,11 @@ class NodeLink:
         return message
 
     def step(self, t_ns: int, pose: Pose, voltage: float | None, wrench: np.ndarray, setpoint_position,
-             setpoint_heading: float, record: bool = True) -> tuple[AllocationStatus, ThrusterCommands]:
+             setpoint_heading: float, record: bool = True) -> Answer:
         """One step at ``t_ns``: battery_state (when there is a voltage), the odometry of
         ``pose``, then the clock and the wrench until the node answers; with ``record``, every
         message of the step and the set-point in force (``setpoint_position`` NED [m],
-        ``setpoint_heading`` [rad]) recorded. The node's status and commands."""
+        ``setpoint_heading`` [rad]) recorded. The node's answer."""
         battery = self.publish_battery(t_ns, voltage)
         odometry = Odometry()
         odometry.header.stamp.sec, odometry.header.stamp.nanosec = divmod(t_ns, 1_000_000_000)
@@ -190,8 +203,9 @@ class NodeLink:
         g = goal.pose.orientation
         g.x, g.y, g.z, g.w = quaternion(0.0, 0.0, setpoint_heading)
         status, commands, clock, message = self.exchange(t_ns, wrench)
+        self.last = status, commands
         if not record:
-            return status, commands
+            return _answer(status, commands)
         for topic, item in (("clock", clock), ("battery", battery), ("odometry", odometry),
                             ("setpoint", goal), ("wrench", message), ("commands", commands),
                             ("status", status)):
@@ -199,7 +213,27 @@ class NodeLink:
                 if TOPICS[topic] not in self.recording:
                     self.recording.add_topic(TOPICS[topic], type(item), self.offered[topic])
                 self.recording.write(TOPICS[topic], item, t_ns)
-        return status, commands
+        return _answer(status, commands)
+
+    def live_line(self) -> str:
+        return format_sample(self.last[1], self.last[0]) if self.last is not None else ""
+
+    def set_fault(self, actuator: str, mode: str, value: float) -> str:
+        """``~/set_actuator_fault``; its message, or SimulationError when the node refuses it."""
+        response = self.services.set_fault(actuator, mode, value)
+        if not response.success:
+            raise SimulationError(f"set_actuator_fault refused: {response.message}")
+        return response.message
+
+    def clear_faults(self) -> str:
+        return self.services.clear_faults().message
+
+    def set_parameter(self, name: str, value: Any) -> str:
+        """``~/set_parameters_atomically`` of one parameter; SimulationError when the node refuses it."""
+        result = self.services.set_parameters({name: value})
+        if not result.successful:
+            raise SimulationError(f"parameter {name} refused: {result.reason}")
+        return f"{name} = {value}"
 
     def exchange(self, t_ns: int, wrench: np.ndarray) -> tuple:
         """Publish the clock at ``t_ns`` and the wrench; (status, commands, clock, wrench) once the

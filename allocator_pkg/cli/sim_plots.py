@@ -9,9 +9,9 @@ from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
+from ..simulation.run_setup import RunResult
 from ..simulation.scenario import Scenario
 from .sim_footprint import footprint_figure
-from .sim_setup import RunResult
 from .sim_style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, pyplot, shade_faults
 from .sim_timeline import timeline_figure
 

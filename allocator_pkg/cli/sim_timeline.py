@@ -14,9 +14,9 @@ import numpy as np
 
 from ..effectiveness.faults import thrust_limits
 from ..simulation.metrics import heading_errors
+from ..simulation.run_setup import RunResult
 from ..simulation.scenario import Scenario
 from ..vehicle.config import Vehicle
-from .sim_setup import RunResult
 from .sim_style import (
     FAULT_COLOUR,
     LABEL_SIZE,

@@ -21,6 +21,7 @@ from rclpy.parameter import Parameter
 from rclpy.qos import qos_profile_parameters
 
 from ..configuration import schema
+from ..configuration.declared import declared_keys
 from ..configuration.schema import FLOAT, FLOAT_LIST, INT, Key
 from ..vehicle.config import Vehicle
 
@@ -96,8 +97,7 @@ def declare(node: Node, vehicle: Vehicle) -> None:
     """Declare every schema key of this vehicle, its actuators, power sources and redundancy
     groups (those the params file set already are), each with its descriptor, so that
     ``ros2 param list/describe`` shows all of them."""
-    keys = [(key.name, key) for key in schema.VEHICLE_KEYS + schema.NODE_KEYS] + schema.instance_keys(vehicle)
-    for name, key in keys:
+    for name, key in declared_keys(vehicle):
         if node.has_parameter(name) and node.describe_parameter(name).read_only:
             continue                                 # described by an earlier configure (lifecycle)
         if node.has_parameter(name):

@@ -61,6 +61,8 @@ def coriolis(mass: np.ndarray, nu: np.ndarray) -> np.ndarray:
 
 def coriolis_planar(mass: np.ndarray, nu: np.ndarray) -> np.ndarray:
     """C(nu) of a symmetric 3 x 3 mass matrix in surge, sway, yaw (Fossen 2021, (6.46))."""
-    sway = mass[1] @ nu
-    surge = mass[0] @ nu
+    u, v, r = nu.tolist()
+    (m11, m12, m16), (m21, m22, m26) = mass[0].tolist(), mass[1].tolist()
+    sway = m21 * u + m22 * v + m26 * r
+    surge = m11 * u + m12 * v + m16 * r
     return np.array([[0.0, 0.0, -sway], [0.0, 0.0, surge], [sway, -surge, 0.0]])

@@ -45,11 +45,12 @@ class Plant:
     def planar(self) -> bool:
         return self.hull.dofs == 3
 
-    def body_wrench(self) -> np.ndarray:
-        """The force on the hull in its own DOFs: thrusters plus wind and wave drift."""
+    def body_wrench(self, load: np.ndarray | None = None) -> np.ndarray:
+        """The force on the hull in its own DOFs: thrusters plus wind and wave drift (``load``:
+        the environment's hull load at the heading now, when known)."""
         wrench = self.thrusters.wrench()
         if self.planar:
-            return wrench[PLANAR] + self.environment.hull_load(self.eta[2])
+            return wrench[PLANAR] + (self.environment.hull_load(self.eta[2]) if load is None else load)
         return wrench
 
     def environment_force(self) -> np.ndarray:
@@ -75,11 +76,12 @@ class Plant:
         current = self.environment.current()
         if self.planar:
             current = current[:2]
+        load = self.environment.hull_load(self.eta[2]) if self.planar else None    # the same in every sub-step
         h = dt / self.substeps
         state = np.concatenate([self.eta, self.nu])
         for _ in range(self.substeps):
             self.thrusters.step(thrust, angle, h)
-            tau = self.body_wrench()
+            tau = self.body_wrench(load)
             k1 = self._derivative(state, tau, current)
             k2 = self._derivative(state + 0.5 * h * k1, tau, current)
             k3 = self._derivative(state + 0.5 * h * k2, tau, current)

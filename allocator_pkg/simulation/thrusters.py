@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from ..effectiveness.configuration_matrix import configuration_matrix
+from ..effectiveness.configuration_matrix import actuator_direction, configuration_matrix, force_column
 from ..effectiveness.faults import thrust_limits
 from ..vehicle.angles import wrap
 from ..vehicle.config import Vehicle
@@ -33,11 +33,17 @@ class Thrusters:
         self.turn_rate = np.array([a.rotation.rate_max if a.rotatable else 0.0 for a in actuators])
         self.efficiency = np.ones(len(actuators))
         self.stuck = np.zeros(len(actuators), dtype=bool)
-        self.set_voltage(voltage)
+        self._rotatable = [i for i, a in enumerate(actuators) if a.rotatable]
+        self._matrix = configuration_matrix(actuators, self.angle)
+        self._matrix_angles = self.angle.tolist()
+        self._voltage = voltage
+        self.low, self.high = thrust_limits(vehicle, voltage)
 
     def set_voltage(self, voltage: float | None) -> None:
         """The supply voltage the force ranges follow (None: nominal)."""
-        self.low, self.high = thrust_limits(self.vehicle, voltage)
+        if voltage != self._voltage:
+            self.low, self.high = thrust_limits(self.vehicle, voltage)
+            self._voltage = voltage
 
     def set_fault(self, name: str, mode: str, value: float = 0.0) -> None:
         """What an actuator physically does: ``nominal``, ``failed``, ``stuck`` (at its angle
@@ -67,13 +73,25 @@ class Thrusters:
 
     def step(self, thrust: np.ndarray, angle: np.ndarray, dt: float) -> None:
         """Move ``dt`` [s] toward the commanded thrust and angles."""
-        target = np.clip(thrust, self.low, self.high) * self.efficiency
+        target = _clip(thrust, self.low, self.high) * self.efficiency
         change = (target - self.thrust) * (1.0 - math.exp(-dt / self.time_constant))
-        self.thrust += np.clip(change, -self.rate * dt, self.rate * dt)
-        turn = np.array([wrap(a - b) for a, b in zip(angle, self.angle)])
-        turn = np.clip(turn, -self.turn_rate * dt, self.turn_rate * dt)
+        self.thrust += _clip(change, -self.rate * dt, self.rate * dt)
+        turn = np.array([wrap(a - b) for a, b in zip(np.asarray(angle, dtype=float).tolist(), self.angle.tolist())])
+        turn = _clip(turn, -self.turn_rate * dt, self.turn_rate * dt)
         self.angle = np.where(self.stuck, self.angle, self.angle + turn)
 
     def wrench(self) -> np.ndarray:
-        """[X, Y, Z, K, M, N] of the actuators in body FRD."""
-        return configuration_matrix(self.vehicle.actuators, self.angle) @ self.thrust
+        """[X, Y, Z, K, M, N] of the actuators in body FRD: T(alpha) f, the column of each
+        rotatable actuator made again when its angle has changed."""
+        actuators, matrix, known = self.vehicle.actuators, self._matrix, self._matrix_angles
+        angles = self.angle.tolist()
+        for i in self._rotatable:
+            if angles[i] != known[i]:
+                matrix[:, i] = force_column(actuators[i].position, actuator_direction(actuators[i], angles[i]))
+                known[i] = angles[i]
+        return matrix @ self.thrust
+
+
+def _clip(values: np.ndarray, low, high) -> np.ndarray:
+    """``np.clip`` (the same values) without its wrapper's overhead."""
+    return np.minimum(np.maximum(values, low), high)

@@ -34,6 +34,8 @@ from .kinematics import coriolis_planar
 
 STRIPS = 20
 """Hull strips of the cross-flow drag integral."""
+_sum = np.add.reduce
+"""``ndarray.sum`` of a vector without its method's overhead (the same pairwise sum)."""
 
 
 @dataclass(frozen=True)
@@ -85,6 +87,8 @@ class Vessel:
         self.mass_inverse = np.linalg.inv(self.mass)
         t1, t2, t6 = p.time_constants
         self.linear_damping = np.diag([self.mass[0, 0] / t1, self.mass[1, 1] / t2, self.mass[2, 2] / t6])
+        self._negative_linear = -np.diag(self.linear_damping)
+        self._surge_linear = float(self.linear_damping[0, 0])
         dx = p.length / STRIPS
         self._strips = -p.length / 2.0 + (np.arange(STRIPS) + 0.5) * dx
         self._strip_factor = 0.5 * p.water_density * p.draught * p.coefficients.current_sway * dx
@@ -94,28 +98,33 @@ class Vessel:
         |u_r| u_r, sigma = 1 - tanh(|u_r| / crossover)."""
         p = self.parameters
         sigma = 1.0 - math.tanh(abs(u_r) / p.crossover_speed)
-        return -sigma * self.linear_damping[0, 0] * u_r + (1.0 - sigma) * p.surge_quadratic * abs(u_r) * u_r
+        return -sigma * self._surge_linear * u_r + (1.0 - sigma) * p.surge_quadratic * abs(u_r) * u_r
 
     def crossflow(self, v_r: float, r: float) -> np.ndarray:
         """[0, Y, N] of the cross-flow drag: -1/2 rho T Cd |v_r + x r| (v_r + x r) dx over the strips."""
         local = v_r + self._strips * r
         drag = -self._strip_factor * np.abs(local) * local
-        return np.array([0.0, drag.sum(), (drag * self._strips).sum()])
-
-    def damping(self, nu_r: np.ndarray) -> np.ndarray:
-        """Every damping force on the hull (to the right-hand side)."""
-        linear = -self.linear_damping @ nu_r
-        linear[0] = self.surge_damping(nu_r[0])
-        return linear + self.crossflow(nu_r[1], nu_r[2])
+        return np.array([0.0, _sum(drag), _sum(drag * self._strips)])
 
     def derivative(self, eta: np.ndarray, nu: np.ndarray, tau: np.ndarray,
                    current: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(eta', nu') under the body force ``tau`` [X, Y, N] and a current [north, east] [m/s]."""
-        psi = eta[2]
-        c, s = math.cos(psi), math.sin(psi)
-        nu_c = np.array([c * current[0] + s * current[1], -s * current[0] + c * current[1], 0.0])
-        nu_r = nu - nu_c
-        nu_c_dot = np.array([nu[2] * nu_c[1], -nu[2] * nu_c[0], 0.0])
-        force = tau - coriolis_planar(self.mass, nu_r) @ nu_r + self.damping(nu_r)
-        eta_dot = np.array([c * nu[0] - s * nu[1], s * nu[0] + c * nu[1], nu[2]])
-        return eta_dot, nu_c_dot + self.mass_inverse @ force
+        """(eta', nu') under the body force ``tau`` [X, Y, N] and a current [north, east] [m/s]:
+        M nu_r' = tau - C(nu_r) nu_r + d(nu_r), d the linear damping -D nu_r (D diagonal) with
+        the blended surge damping in surge, plus the cross-flow drag. Written on floats where
+        that does each operation as the vector form would (the products with M and C stay
+        matrix products)."""
+        c, s = math.cos(eta[2]), math.sin(eta[2])
+        north, east = current.tolist()
+        u, v, r = nu.tolist()
+        nu_c = (c * north + s * east, -s * north + c * east)
+        nu_r = np.array([u - nu_c[0], v - nu_c[1], r])
+        u_r, v_r, _ = nu_r.tolist()
+        coriolis = (coriolis_planar(self.mass, nu_r) @ nu_r).tolist()
+        _, cross_y, cross_n = self.crossflow(v_r, r).tolist()
+        _, sway, yaw = self._negative_linear.tolist()
+        x, y, n = tau.tolist()
+        force = np.array([x - coriolis[0] + (self.surge_damping(u_r) + 0.0),
+                          y - coriolis[1] + (sway * v_r + cross_y),
+                          n - coriolis[2] + (yaw * r + cross_n)])
+        eta_dot = np.array([c * u - s * v, s * u + c * v, r])
+        return eta_dot, np.array([r * nu_c[1], -r * nu_c[0], 0.0]) + self.mass_inverse @ force

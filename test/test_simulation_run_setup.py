@@ -1,4 +1,4 @@
-"""allocator_pkg.cli.sim_setup: the warm-up's length for a vehicle, the controller's
+"""allocator_pkg.simulation.run_setup: the warm-up's length for a vehicle, the controller's
 set-point vector and the supply voltage over a ramp."""
 
 import math
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from conftest import ROOT
 
-from allocator_pkg.cli.sim_setup import WARM_UP_MARGIN, Voltage, setpoint_vector, warm_up_steps
 from allocator_pkg.configuration.parameters import load_vehicle
+from allocator_pkg.simulation.run_setup import WARM_UP_MARGIN, Voltage, setpoint_vector, warm_up_steps
 from allocator_pkg.simulation.scenario import load_scenario
 
 

@@ -1,23 +1,21 @@
-"""What a closed-loop run of ``allocator-sim`` is made of, without ROS: a scenario's plant,
-set-point and supply voltage, the node's command line, and the run's result and error."""
+"""What a closed-loop run is made of, whichever allocator answers it: a scenario's plant,
+set-point and supply voltage, the warm-up's length, and the run's result and error."""
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..ros.process import node_command
-from ..simulation.environment import Environment
-from ..simulation.plant import Plant
-from ..simulation.rov import Rov
-from ..simulation.scenario import Scenario
-from ..simulation.thrusters import Thrusters
-from ..simulation.trace import Trace
-from ..simulation.vessel import Vessel, VesselParameters
 from ..vehicle.config import Vehicle
+from .environment import Environment
+from .plant import Plant
+from .rov import Rov
+from .scenario import Scenario
+from .thrusters import Thrusters
+from .trace import Trace
+from .vessel import Vessel, VesselParameters
 
 WARM_UP_MARGIN = 5.0
 """[s] of equilibrium wrench beyond what the rate limits need (a method's own dynamics, as
@@ -69,15 +67,6 @@ def warm_up_steps(vehicle: Vehicle, period: float) -> int:
         if actuator.rotatable and actuator.rotation.rate_max > 0.0:
             longest = max(longest, math.pi / actuator.rotation.rate_max)
     return math.ceil((longest + WARM_UP_MARGIN) / period)
-
-
-def scenario_command(scenario: Scenario, log_level: str = "warn") -> list[str]:
-    """``allocator_node`` on the scenario's vehicle, on sim time, allocating each wrench on
-    arrival with the scenario's method and parameters."""
-    parameters = ["use_sim_time:=true", "trigger:=input", f"method:={scenario.method}"]
-    parameters += [f"{name}:={json.dumps(value) if not isinstance(value, str) else value}"
-                   for name, value in scenario.parameters.items()]
-    return node_command(scenario.vehicle, "--log-level", log_level, parameters=parameters)
 
 
 class Voltage:

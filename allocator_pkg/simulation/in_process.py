@@ -1,0 +1,172 @@
+"""The allocator library in the closed loop, in this process, without a node or ROS: a
+:class:`~allocator_pkg.simulation.closed_loop.Link` that does per sample what
+``allocator_node`` does between the wrench it receives and the commands it publishes, so that
+a run gives the same trace and metrics as with the node in the loop
+(``allocator_pkg.cli.sim_loop``), thousands of times faster to repeat.
+
+What the node does, and so what this does:
+
+- configuration: the vehicle file's node section with ``trigger: input``, the scenario's
+  ``method`` and ``parameters`` over it, parsed and checked as a whole (``parse_parameters``;
+  a scenario's vehicle file holds its own geometry, as :mod:`.scenario` requires), and the
+  allocator built on it;
+- supply voltage (``battery_state``, a float32 field): with thrust tables at several voltages,
+  each step's voltage, rounded to float32, sets the thrust limits; one the allocator refuses
+  leaves the last (``ros/battery.py``);
+- speed (``odometry``): with control surfaces, each step's surge speed;
+- the wrench: taken in the node's ``frame`` (FLU turned to FRD), allocated; the unallocated
+  wrench given back in that frame (``ros/wrench_input.py``, ``ros/conversions.py``);
+- before the first wrench, the watchdog's zero thrust (``Allocator.stop``), angles held;
+- a fault: ``set_fault`` with the efficiency (DEGRADED) or angle (STUCK) and 0 otherwise, as
+  ``~/set_actuator_fault`` carries it; ``clear_faults``;
+- a parameter: refused when read-only or not declared; else checked with the node's declared
+  values and the change over them, and the running allocator reconfigured
+  (``check_reconfigure``, ``reconfigure``), as the node's parameter callbacks do
+  (``ros/node_base.py``).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..allocation.allocator import Allocator
+from ..allocation.result import AllocationResult
+from ..configuration.declared import declared, declared_keys, typed_value
+from ..configuration.parameters import parse_parameters
+from ..configuration.params_file import read_parameters
+from ..configuration.schema import key_for
+from ..effectiveness.faults import FaultMode
+from ..vehicle.config import ConfigError
+from ..vehicle.frames import wrench_between
+from ..vehicle.node_settings import INPUT, NODE_NAME
+from .closed_loop import Answer
+from .plant import Pose
+from .run_setup import SimulationError
+from .scenario import Scenario
+
+STOPS = 3
+"""Zero-thrust samples before the first wrench, as the node's link waits for three in a row."""
+
+
+def node_parameters(scenario: Scenario) -> dict[str, Any]:
+    """The parameters the node of ``scenario`` starts with: its vehicle file's section, then
+    ``trigger``, ``method`` and the scenario's ``parameters`` (``allocator_pkg.cli.sim_loop``'s
+    command line)."""
+    return {**read_parameters(scenario.vehicle, NODE_NAME), "trigger": INPUT, "method": scenario.method,
+            **scenario.parameters}
+
+
+class InProcessLink:
+    """The allocator of ``scenario``'s node, stepped in this process."""
+
+    def __init__(self, scenario: Scenario) -> None:
+        given = node_parameters(scenario)
+        try:
+            vehicle, self.settings = parse_parameters(given)
+            self.allocator = Allocator(vehicle)
+        except ConfigError as error:
+            raise SimulationError(f"{scenario.vehicle}: {error}") from error
+        self.parameters = declared(given, vehicle)
+        self.declared_names = {name for name, _ in declared_keys(vehicle)} | set(given)
+        self.follows_battery = vehicle.voltage_range is not None
+        self.follows_speed = vehicle.has_surfaces
+        self.rejected_voltages = 0
+        self._last: AllocationResult | None = None
+
+    # -- the samples ----------------------------------------------------------------------
+
+    def begin(self, t_ns: int, period_ns: int, supply: float | None, wrench: np.ndarray) -> tuple[int, Answer]:
+        """The node's zero thrust while no wrench has come (its watchdog on), at ``supply``,
+        then the first sample of ``wrench`` at the step after."""
+        if self.settings.wrench_timeout > 0.0:
+            for _ in range(STOPS):
+                t_ns += period_ns
+                self._supply(supply)
+                self.allocator.stop()
+        t_ns += period_ns
+        self._supply(supply)
+        return t_ns, self._allocate(wrench)
+
+    def step(self, t_ns: int, pose: Pose, supply: float | None, wrench: np.ndarray, setpoint_position,
+             setpoint_heading: float, record: bool = True) -> Answer:
+        """One sample: the battery's voltage, the odometry's surge speed, then ``wrench``."""
+        self._supply(supply)
+        if self.follows_speed:
+            speed = float(pose.velocity[0])
+            if math.isfinite(speed):
+                self.allocator.set_speed(speed)
+        return self._allocate(wrench)
+
+    def _supply(self, volts: float | None) -> None:
+        """``battery_state``'s voltage (float32) to the allocator, when it follows one."""
+        if volts is None or not self.follows_battery:
+            return
+        try:
+            self.allocator.set_voltage(float(np.float32(volts)))
+        except ValueError:
+            self.rejected_voltages += 1
+
+    def _allocate(self, wrench: np.ndarray) -> Answer:
+        frame = self.settings.frame
+        allocator = self.allocator
+        result = self._last = allocator.allocate(wrench_between(wrench, frame))
+        voltage = allocator.voltage
+        return Answer(result.thrust.copy(), result.azimuth.copy(), bool(result.saturated), float(result.power),
+                      math.nan if voltage is None else float(voltage), wrench_between(result.unallocated, frame))
+
+    def live_line(self) -> str:
+        """Every actuator's thrust [N] and angle [deg], then the solver's figures."""
+        result = self._last
+        if result is None:
+            return ""
+        parts = [f"{name} {thrust:9.1f} N" + (f" @{math.degrees(angle):6.1f}" if angle != 0.0 else "")
+                 for name, thrust, angle in zip(self.allocator.names, result.thrust, result.azimuth)]
+        return (" | ".join(parts) + f" || sat {'YES' if result.saturated else 'no '} "
+                f"{result.iterations:5d} it {result.status}")
+
+    # -- faults and parameters ------------------------------------------------------------
+
+    def set_fault(self, actuator: str, mode: str, value: float) -> str:
+        fault = FaultMode[mode.upper()]
+        efficiency = value if fault == FaultMode.DEGRADED else 0.0
+        angle = value if fault == FaultMode.STUCK else 0.0
+        try:
+            self.allocator.set_fault(actuator, fault, efficiency=efficiency, angle=angle)
+        except ValueError as error:
+            raise SimulationError(f"set_actuator_fault refused: {error}") from error
+        return f"{actuator}: {fault.name} from the next sample"
+
+    def clear_faults(self) -> str:
+        had = sorted(self.allocator.faults)
+        self.allocator.clear_faults()
+        return f"cleared faults of {', '.join(had)}" if had else "no faults were set"
+
+    def set_parameter(self, name: str, value: Any) -> str:
+        """One parameter changed as the node changes it, from the next sample; SimulationError
+        when the node would refuse it (nothing changes then)."""
+        key = key_for(name)
+        if name not in self.declared_names:
+            raise SimulationError(f"parameter {name} refused: it is not declared")
+        if key is not None and key.read_only:
+            raise SimulationError(f"parameter {name} refused: it is read-only")
+        candidate = {**self.parameters, name: typed_value(name, value)}
+        try:
+            vehicle, settings = parse_parameters(candidate)
+            self.allocator.check_reconfigure(vehicle)
+        except ValueError as error:
+            raise SimulationError(f"parameter {name} refused: {error}") from error
+        self.allocator.reconfigure(vehicle)
+        self.settings, self.parameters = settings, candidate
+        return f"{name} = {value}"
+
+
+@contextlib.contextmanager
+def in_process_link(scenario: Scenario, out: Path) -> Iterator[InProcessLink]:
+    """The in-process link of ``scenario`` (a :data:`~.closed_loop.Connect`; it writes nothing into ``out``)."""
+    yield InProcessLink(scenario)
