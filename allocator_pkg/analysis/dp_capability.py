@@ -17,28 +17,30 @@ Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's 
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
 beta_vent [3.9.4] of the condition and heading (:mod:`.dnv_thrust`); the forbidden zones of
 [3.11.3] among the thrusters working in the case (:mod:`.dnv_zones`), in place of the vehicle
-file's forbidden sectors. Per (condition, heading, case) a variant of the vehicle, its working
-thrusters with those thrust ranges and zones, is balanced by :meth:`Capability.reach
-<allocator_pkg.analysis.capability.Capability.reach>` (a linear programme with the configured
-method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
+file's forbidden sectors; the losses flushing the case's dead thrusters [3.11.4] and skegs
+[3.11.5] over the thrust direction (:mod:`.dnv_losses`). Per (condition, heading, case) a
+variant of the vehicle, its working thrusters with those thrust ranges, zones and losses, is
+balanced by :meth:`Capability.reach <allocator_pkg.analysis.capability.Capability.reach>` (a
+linear programme with the configured method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 import numpy as np
-import yaml
 
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability import Capability
 from .dnv_conditions import CONDITIONS, TOP, Condition, condition_at, limit
 from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, current_load, wave_drift_load, wind_load
+from .dnv_losses import case_profiles, describe_losses, loss_units
 from .dnv_thrust import BETA_MISC, ThrusterData, nominal_thrust, ventilation_factor
 from .dnv_zones import Unit, Zone, flushing_zones
-from .dp_particulars import Particulars, particulars_from_mapping
+from .dp_particulars import Particulars
+from .dp_particulars import load_particulars as load_particulars
+from .thrust_profile import ThrustProfile
 
 DYNAMIC_FACTOR = 1.25
 """[3.2.2]: on the sum of the environmental loads."""
@@ -52,11 +54,11 @@ INTACT = "intact"
 LOAD_SOURCES = ("wind", "current", "waves")
 WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
-                "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters; "
+                "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters; the "
+                "thrust loss flushing a dead thruster [3.11.4] and a skeg [3.11.5] by thrust direction [3.11.6]; "
                 "each power source's capacity less the 10 % reserve [3.12.3]-[3.12.4] shared by the thrusters it "
                 "feeds")
-NOT_YET = ("rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5], the joint "
-           "thrust-power balance per switchboard [3.12]")
+NOT_YET = "rudders [3.10], the joint thrust-power balance per switchboard [3.12]"
 POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
                  "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
                  "Table A-5 as transcribed: what it can consume from each source). Each source keeps 10 % of its "
@@ -72,19 +74,6 @@ READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed sha
 SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
          f"unclear: {READINGS}. Not verified by DNV.")
 """What every output says about itself."""
-
-
-def load_particulars(path: str | Path) -> Particulars:
-    """Read a particulars file (YAML)."""
-    path = Path(path)
-    try:
-        data = yaml.safe_load(path.read_text())
-    except (OSError, yaml.YAMLError) as error:
-        raise ValueError(f"{path}: {error}") from error
-    try:
-        return particulars_from_mapping(data, path.stem)
-    except ValueError as error:
-        raise ValueError(f"{path}: {error}") from error
 
 
 @dataclass(frozen=True)
@@ -150,10 +139,12 @@ class Level1:
         """What each group's loss takes away: its actuators, then its power sources (the vehicle
         file's redundancy groups; without any, each actuator alone)."""
         self.actuators = _actuators(vehicle, particulars)
+        self.loss_units = loss_units(vehicle.actuators, particulars.thrusters, particulars.frame)
         self.capacities = {source.name: source.capacity for source in vehicle.power_sources}
         self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
         self._zones: dict[tuple[str, ...], list[Zone]] = {}
+        self._profiles: dict[tuple[str, ...], dict[str, ThrustProfile]] = {}
         self._capabilities: dict[tuple, Capability] = {}
         self._winners: dict[tuple[str, ...], int] = {}
         self.capability(vehicle)                               # the method can serve the vehicle
@@ -229,10 +220,18 @@ class Level1:
                 for name, unit in self.actuators.items() if name not in failed])
         return self._zones[failed]
 
+    def thrust_profiles(self, failed: tuple[str, ...] = ()) -> dict[str, ThrustProfile]:
+        """Per working thruster with a loss, the thrust factor over its direction: flushing the
+        ``failed`` thrusters [3.11.4] and the skegs [3.11.5] (:mod:`.dnv_losses`)."""
+        dead = tuple(name for name in self.actuators if name in failed)
+        if dead not in self._profiles:
+            self._profiles[dead] = case_profiles(self.loss_units, dead, self.particulars.skegs)
+        return self._profiles[dead]
+
     def variant(self, condition: Condition, direction: float, failed: tuple[str, ...] = ()) -> Vehicle:
         """The vehicle's working thrusters (the failed ones left out) with Level 1's thrust ranges and
-        zones for the condition, heading and case."""
-        zones = self.zones(failed)
+        zones for the condition, heading and case (a fixed thruster's range times its loss factors)."""
+        zones, profiles = self.zones(failed), self.thrust_profiles(failed)
         actuators = []
         for actuator in self.vehicle.actuators:
             if actuator.name in failed:
@@ -244,6 +243,9 @@ class Level1:
                 rotation = replace(actuator.rotation, forbidden_sectors=tuple(zone.sector for zone in own))
                 actuators.append(replace(actuator, thrust_min=low, thrust_max=high, rotation=rotation))
                 continue
+            if actuator.name in profiles:
+                low, high = (low * profiles[actuator.name].factor(unit.angle + math.pi),
+                             high * profiles[actuator.name].factor(unit.angle))
             if any(zone.forbids(unit.angle) for zone in own):
                 high = 0.0
             if any(zone.forbids(unit.angle + math.pi) for zone in own):
@@ -252,11 +254,14 @@ class Level1:
         return replace(self.vehicle, actuators=tuple(actuators))
 
     def capability(self, variant: Vehicle) -> Capability:
-        """The capability analysis of a variant, kept by its thrust ranges and zones."""
-        key = tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else ())
-                    for a in variant.actuators)
+        """The capability analysis of a variant with its case's :meth:`thrust_profiles`, kept by its ranges,
+        zones and profiles (the case: the thrusters it leaves out)."""
+        dead = tuple(set(self.actuators) - {a.name for a in variant.actuators})
+        profiles = {name: p for name, p in self.thrust_profiles(dead).items() if variant.actuator(name).rotatable}
+        key = tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else (),
+                     profiles.get(a.name)) for a in variant.actuators)
         if key not in self._capabilities:
-            self._capabilities[key] = Capability(variant, self.method, speed=0.0)
+            self._capabilities[key] = Capability(variant, self.method, speed=0.0, profiles=profiles)
         return self._capabilities[key]
 
     def required(self, condition: Condition, direction: float) -> np.ndarray:
@@ -319,6 +324,7 @@ class Level1:
                                           f"{math.degrees(z.sector[1]):.1f} deg (flushing {z.flushed})"
                                           for z in self.zones()) or "none")
             + " (thrust angle in the body frame, 0 forward, 90 to starboard).",
+            describe_losses({case: self.thrust_profiles(lost) for case, lost in {INTACT: (), **self.groups}.items()}),
             "Redundancy groups (lost together: actuators, then power sources): "
             + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ". " + POWER_READING,
             "Limiting wind speed: conditions between two numbers interpolated linearly; "

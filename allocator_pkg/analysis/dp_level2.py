@@ -5,7 +5,7 @@ are given.
 - Wind and current: the particulars' coefficient tables over heading
   (:mod:`.dnv_coefficients`) where given, else [3.5] and [3.6];
 - thrust: each thruster's ``thrust_min`` and ``thrust_max`` of the vehicle file, taken as the
-  thrust it delivers (no [3.9.3] or [3.9.4] loss applied), times share^(2/3) (the power-to-thrust
+  thrust it delivers (no [3.9.3], [3.9.4], [3.11.4] or [3.11.5] loss applied), times share^(2/3) (the power-to-thrust
   relation of [3.9.2]) of the share of its P_B its feeds give it, as in Level 1 (a lost feed share,
   a board short of power [3.12]);
 - forbidden directions: the vehicle file's ``forbidden_sectors`` instead of the [3.11.3] zones; a
@@ -29,9 +29,9 @@ from .dp_capability import NOT_YET, Level1
 from .environment_loads import RHO_AIR, RHO_WATER
 
 OWN_DATA = ("wind and current loads from the particulars' coefficient tables over heading where given ([3.5], [3.6] "
-            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4] loss; the "
-            "share of its P_B its feeds give it as in Level 1, a lost feed share or a board short of power, leaves "
-            "share^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
+            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4]/[3.11.4]/"
+            "[3.11.5] loss; the share of its P_B its feeds give it as in Level 1, a lost feed share or a board "
+            "short of power, leaves share^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
             "thruster they protect)")
 KEPT = "the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2], the redundancy groups"
 NOT_YET_L2 = f"a site environment in place of Table 2-1, the vessel's wave drift data, {NOT_YET}"
@@ -73,6 +73,10 @@ class Level2(Level1):
                              "list it in the redundancy group's actuators")
         factor = share ** (2.0 / 3.0)
         return actuator.thrust_min * factor, actuator.thrust_max * factor
+
+    def thrust_profiles(self, failed: tuple[str, ...] = ()) -> dict:
+        """None: the vehicle file's thrust limits hold in every direction."""
+        return {}
 
     def zones(self, failed: tuple[str, ...] = ()) -> list[Zone]:
         """The vehicle file's forbidden sectors of the working thrusters, but those whose race

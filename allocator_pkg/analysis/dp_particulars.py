@@ -17,6 +17,8 @@ Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, fo
 - ``level2`` (optional): the vessel's own data for Level 2, ``wind_coefficients`` and
   ``current_coefficients`` (:class:`~.dnv_coefficients.CoefficientTable`: ``heading_deg``,
   ``cx``, ``cy``, ``cn``);
+- ``skegs`` (optional): the aft most point of each skeg or gondola, ``x`` and ``y`` [m] in the
+  body frame (Table A-2), for the skeg loss of [3.11.5] (:func:`~.dnv_losses.skegs_from_list`);
 - ``name``. The redundancy groups are the vehicle file's (``redundancy_groups.*``, with
   ``power.*`` and each thruster's ``feeds``): a ``failure_groups`` key is refused, saying so.
 """
@@ -26,10 +28,14 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, fields
+from pathlib import Path
 from typing import Any
+
+import yaml
 
 from .dnv_coefficients import CoefficientTable, coefficient_table
 from .dnv_loads import BodyFrame, DnvHull
+from .dnv_losses import Skeg, skegs_from_list
 from .dnv_thrust import ThrusterData
 from .environment_loads import LoadCoefficients, VesselParticulars
 
@@ -56,6 +62,21 @@ class Particulars:
     """Level 2: the vessel's wind coefficients over heading (None: [3.5])."""
     current_coefficients: CoefficientTable | None = None
     """Level 2: the vessel's current coefficients over heading (None: [3.6])."""
+    skegs: tuple[Skeg, ...] = ()
+    """The aft most point of each skeg or gondola (body frame) for [3.11.5]."""
+
+
+def load_particulars(path: str | Path) -> Particulars:
+    """Read a particulars file (YAML)."""
+    path = Path(path)
+    try:
+        data = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError) as error:
+        raise ValueError(f"{path}: {error}") from error
+    try:
+        return particulars_from_mapping(data, path.stem)
+    except ValueError as error:
+        raise ValueError(f"{path}: {error}") from error
 
 
 def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particulars:
@@ -64,7 +85,7 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
         raise ValueError("a particulars file is a mapping of keys to values")
     if "failure_groups" in data:
         raise ValueError(MOVED_GROUPS)
-    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2"}
+    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2", "skegs"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ValueError(f"unknown key(s): {', '.join(unknown)}; known: {', '.join(sorted(known))}")
@@ -85,7 +106,8 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
                    current_area_lateral=numbers["current_area_lateral"],
                    current_centre_x=frame.standard_x(vessel.underwater_centre_x))
     return Particulars(vessel=vessel, hull=hull, frame=frame, thrusters=_thrusters(data["thrusters"]),
-                       name=str(data.get("name", name)), **_level2(data.get("level2")))
+                       name=str(data.get("name", name)), skegs=skegs_from_list(data.get("skegs")),
+                       **_level2(data.get("level2")))
 
 
 def _number(data: Mapping[str, Any], key: str, prefix: str = "") -> float:
