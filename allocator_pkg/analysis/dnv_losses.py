@@ -105,7 +105,7 @@ class DeadLoss:
     def factor(self, angle: float) -> float:
         """Figure 3-6: beta sin(phi) / (sin(phi - |delta|) + beta sin|delta|) inside, 1 outside."""
         delta = abs(math.remainder(angle - self.centre, TWO_PI))
-        if delta >= self.half_angle:
+        if delta >= self.half_angle - 1e-9:                            # the edges (to rounding)
             return 1.0
         phi, beta = self.half_angle, self.beta
         return beta * math.sin(phi) / (math.sin(phi - delta) + beta * math.sin(delta))

@@ -45,6 +45,9 @@ class ThrustProfile:
             raise ValueError("profile corners: factors in [0, 1]")
         if len(self.corners) == 1:
             raise ValueError("profile corners: none, or at least two")
+        factors = [factor for _, factor in self.corners]
+        if any(a == b == 0.0 for a, b in zip(factors, factors[1:] + factors[:1])):
+            raise ValueError("profile corners: no two neighbours at 0")
 
     def factor(self, angle: float) -> float:
         """beta at the thrust direction ``angle`` [rad]: where the ray meets the boundary, over T."""
