@@ -17,8 +17,8 @@ Rotatable thrusters may turn to any allowed angle (steady state: rate limits do 
 A forbidden sector makes the set of forces a thruster can give non-convex; it is split into
 convex pieces (cones at most pi wide) and every combination of pieces is solved, keeping the
 best. A thrust limit that depends on the thrust direction (``profiles``: a
-:class:`~.thrust_profile.ThrustProfile` per rotatable thruster, e.g. a loss sector) splits each
-piece further into convex pieces bounded by the profile's chords. Control surfaces give the lift
+:class:`~.thrust_profile.ForceProfile` per rotatable thruster: a loss sector, a propeller with
+its rudder) gives the thruster's convex pieces itself, bounded by half-planes. Control surfaces give the lift
 of the given speed, thrusters with voltage-indexed tables the thrust of the given supply voltage.
 
 :func:`region`, :func:`unmodelled` and :func:`differing_methods` tell which registered
@@ -44,7 +44,7 @@ from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import ActuatorConfig, Vehicle
-from .thrust_profile import ThrustProfile
+from .thrust_profile import ForceProfile
 
 FORCE_DOFS = ("surge", "sway", "heave")
 
@@ -65,7 +65,7 @@ class Capability:
     """Capability of one vehicle in a plane of two controlled DOFs."""
 
     def __init__(self, vehicle: Vehicle, method: str | None = None, speed: float = 2.0,
-                 plane: tuple[str, str] | None = None, profiles: Mapping[str, ThrustProfile] | None = None):
+                 plane: tuple[str, str] | None = None, profiles: Mapping[str, ForceProfile] | None = None):
         self.vehicle = vehicle
         self.profiles = dict(profiles or {})
         """A direction-dependent thrust limit per rotatable thruster, by name (none: its limit every way)."""
@@ -278,7 +278,7 @@ class Capability:
 
 
 def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float,
-            profile: ThrustProfile | None = None) -> list[tuple]:
+            profile: ForceProfile | None = None) -> list[tuple]:
     """Convex pieces (start, end, radius, line, chords) of the forces a rotatable thruster can
     give: ``chords`` the half-planes of its ``profile`` that bound the piece (radius the limit
     before the profile's factor, which the half-planes apply)."""
@@ -291,14 +291,13 @@ def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: flo
             pieces.append((angle + math.pi, angle + math.pi, -low * share(angle + math.pi), True, ()))
         return pieces or [(angle, angle, 0.0, True, ())]
     arcs = allowed_arcs(rotation)
+    if profile is not None:
+        return profile.force_pieces(arcs, low, high)
     pieces = [(start, end, high) for start, end in arcs]
     if low < 0.0:
         pieces += [(start + math.pi, end + math.pi, -low) for start, end in arcs]
     split = []
     for start, end, radius in pieces:
-        if profile is not None:
-            split += [(a, b, radius, False, chords) for a, b, chords in profile.pieces(start, end)]
-            continue
         while end - start > math.pi:
             split.append((start, start + math.pi, radius, False, ()))
             start += math.pi

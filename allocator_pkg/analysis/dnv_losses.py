@@ -224,9 +224,11 @@ def thrust_profile(dead_losses: Sequence[DeadLoss], skeg_losses: Sequence[SkegLo
 
 def loss_units(actuators: Iterable[ActuatorConfig], thrusters: Mapping[str, ThrusterData],
                frame: BodyFrame) -> list[LossUnit]:
-    """The thrusters of the vehicle file (positions) with their particulars (Table A-3)."""
+    """The thrusters of the vehicle file (positions) with their particulars (Table A-3); control
+    surfaces left out."""
     return [LossUnit(a.name, a.position[0], a.position[1], thrusters[a.name].diameter, thrusters[a.name].ducted,
-                     thrusters[a.name].kind == "tunnel", frame.height(a.position[2])) for a in actuators]
+                     thrusters[a.name].kind == "tunnel", frame.height(a.position[2])) for a in actuators
+            if not a.is_surface]
 
 
 def describe_losses(cases: Mapping[str, Mapping[str, ThrustProfile]]) -> str:

@@ -18,10 +18,10 @@ type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the vent
 beta_vent [3.9.4] of the condition and heading (:mod:`.dnv_thrust`); the forbidden zones of
 [3.11.3] among the thrusters working in the case (:mod:`.dnv_zones`), in place of the vehicle
 file's forbidden sectors; the losses flushing the case's dead thrusters [3.11.4] and skegs
-[3.11.5] over the thrust direction (:mod:`.dnv_losses`). Per (condition, heading, case) a
-variant of the vehicle, its working thrusters with those thrust ranges, zones and losses, is
-balanced by :meth:`Capability.reach <allocator_pkg.analysis.capability.Capability.reach>` (a
-linear programme with the configured method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
+[3.11.5] by thrust direction (:mod:`.dnv_losses`); a shaft line's rudder [3.10] (:mod:`.dnv_rudders`).
+Per (condition, heading, case) a variant of the vehicle, its working thrusters with those thrust
+ranges, zones and losses, is balanced by :meth:`~.capability.Capability.reach` (a linear
+programme with the configured method's constraints). Not yet: :data:`NOT_YET`. Not verified by DNV.
 """
 
 from __future__ import annotations
@@ -36,6 +36,7 @@ from .capability import Capability
 from .dnv_conditions import CONDITIONS, TOP, Condition, condition_at, limit
 from .dnv_loads import C_WL_AFT_RANGE, TZ_FROM_TP, LoadComponents, current_load, wave_drift_load, wind_load
 from .dnv_losses import case_profiles, describe_losses, loss_units
+from .dnv_rudders import describe_rudders, force_profiles, rudder_pairs
 from .dnv_thrust import BETA_MISC, ThrusterData, nominal_thrust, ventilation_factor
 from .dnv_zones import Unit, Zone, flushing_zones
 from .dp_particulars import Particulars
@@ -56,9 +57,10 @@ WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
                 "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters; the "
                 "thrust loss flushing a dead thruster [3.11.4] and a skeg [3.11.5] by thrust direction [3.11.6]; "
+                "rudders behind shaft lines [3.10]; "
                 "each power source's capacity less the 10 % reserve [3.12.3]-[3.12.4] shared by the thrusters it "
                 "feeds")
-NOT_YET = "rudders [3.10], the joint thrust-power balance per switchboard [3.12]"
+NOT_YET = "the joint thrust-power balance per switchboard [3.12]"
 POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
                  "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
                  "Table A-5 as transcribed: what it can consume from each source). Each source keeps 10 % of its "
@@ -140,6 +142,7 @@ class Level1:
         file's redundancy groups; without any, each actuator alone)."""
         self.actuators = _actuators(vehicle, particulars)
         self.loss_units = loss_units(vehicle.actuators, particulars.thrusters, particulars.frame)
+        self.rudders = rudder_pairs(vehicle, particulars.thrusters, particulars.rudders)
         self.capacities = {source.name: source.capacity for source in vehicle.power_sources}
         self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
@@ -221,8 +224,7 @@ class Level1:
         return self._zones[failed]
 
     def thrust_profiles(self, failed: tuple[str, ...] = ()) -> dict[str, ThrustProfile]:
-        """Per working thruster with a loss, the thrust factor over its direction: flushing the
-        ``failed`` thrusters [3.11.4] and the skegs [3.11.5] (:mod:`.dnv_losses`)."""
+        """Per working thruster with a loss, its [3.11.4] and [3.11.5] factor by direction (:mod:`.dnv_losses`)."""
         dead = tuple(name for name in self.actuators if name in failed)
         if dead not in self._profiles:
             self._profiles[dead] = case_profiles(self.loss_units, dead, self.particulars.skegs)
@@ -234,7 +236,7 @@ class Level1:
         zones, profiles = self.zones(failed), self.thrust_profiles(failed)
         actuators = []
         for actuator in self.vehicle.actuators:
-            if actuator.name in failed:
+            if actuator.name in failed or actuator.is_surface:
                 continue
             unit = self.actuators[actuator.name]
             low, high = self.thrust_range(actuator.name, condition, direction, failed)
@@ -250,14 +252,15 @@ class Level1:
                 high = 0.0
             if any(zone.forbids(unit.angle + math.pi) for zone in own):
                 low = 0.0
-            actuators.append(replace(actuator, thrust_min=low, thrust_max=high))
+            pair, fixed = self.rudders.get(actuator.name), replace(actuator, thrust_min=low, thrust_max=high)
+            actuators.append(pair.turned(fixed) if pair and pair.rudder not in failed else fixed)
         return replace(self.vehicle, actuators=tuple(actuators))
 
     def capability(self, variant: Vehicle) -> Capability:
         """The capability analysis of a variant with its case's :meth:`thrust_profiles`, kept by its ranges,
         zones and profiles (the case: the thrusters it leaves out)."""
         dead = tuple(set(self.actuators) - {a.name for a in variant.actuators})
-        profiles = {name: p for name, p in self.thrust_profiles(dead).items() if variant.actuator(name).rotatable}
+        profiles = force_profiles(variant, self.thrust_profiles(dead), self.rudders)
         key = tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else (),
                      profiles.get(a.name)) for a in variant.actuators)
         if key not in self._capabilities:
@@ -325,6 +328,7 @@ class Level1:
                                           for z in self.zones()) or "none")
             + " (thrust angle in the body frame, 0 forward, 90 to starboard).",
             describe_losses({case: self.thrust_profiles(lost) for case, lost in {INTACT: (), **self.groups}.items()}),
+            describe_rudders(self.rudders),
             "Redundancy groups (lost together: actuators, then power sources): "
             + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ". " + POWER_READING,
             "Limiting wind speed: conditions between two numbers interpolated linearly; "
@@ -373,9 +377,7 @@ def _actuators(vehicle: Vehicle, particulars: Particulars) -> dict[str, _Actuato
         if name not in known:
             raise ValueError(f"thrusters.{name}: no actuator of that name; the vehicle has {', '.join(vehicle.names)}")
     result = {}
-    for actuator in vehicle.actuators:
-        if actuator.is_surface:
-            raise ValueError(f"{actuator.name}: a control surface; rudders [3.10] are not in this Level 1")
+    for actuator in (a for a in vehicle.actuators if not a.is_surface):          # rudders: rudder_pairs
         data = particulars.thrusters.get(actuator.name)
         if data is None:
             raise ValueError(f"thrusters.{actuator.name}: missing; Level 1 needs every thruster's Table A-3 data")

@@ -19,6 +19,9 @@ Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, fo
   ``cx``, ``cy``, ``cn``);
 - ``skegs`` (optional): the aft most point of each skeg or gondola, ``x`` and ``y`` [m] in the
   body frame (Table A-2), for the skeg loss of [3.11.5] (:func:`~.dnv_losses.skegs_from_list`);
+- ``rudders`` (optional): per rudder of the vehicle file, by its name, its Table A-4 row for
+  [3.10] (:class:`~.dnv_rudders.RudderData`: ``propeller``, ``profile``, ``area`` A_r [m^2],
+  ``behind_fixed_nozzle``);
 - ``name``. The redundancy groups are the vehicle file's (``redundancy_groups.*``, with
   ``power.*`` and each thruster's ``feeds``): a ``failure_groups`` key is refused, saying so.
 """
@@ -27,7 +30,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
@@ -36,6 +39,7 @@ import yaml
 from .dnv_coefficients import CoefficientTable, coefficient_table
 from .dnv_loads import BodyFrame, DnvHull
 from .dnv_losses import Skeg, skegs_from_list
+from .dnv_rudders import RudderData, rudders_from_mapping
 from .dnv_thrust import ThrusterData
 from .environment_loads import LoadCoefficients, VesselParticulars
 
@@ -64,6 +68,8 @@ class Particulars:
     """Level 2: the vessel's current coefficients over heading (None: [3.6])."""
     skegs: tuple[Skeg, ...] = ()
     """The aft most point of each skeg or gondola (body frame) for [3.11.5]."""
+    rudders: Mapping[str, RudderData] = field(default_factory=dict)
+    """Table A-4 per rudder of the vehicle file, by name, for [3.10]."""
 
 
 def load_particulars(path: str | Path) -> Particulars:
@@ -85,7 +91,7 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
         raise ValueError("a particulars file is a mapping of keys to values")
     if "failure_groups" in data:
         raise ValueError(MOVED_GROUPS)
-    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2", "skegs"}
+    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2", "skegs", "rudders"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ValueError(f"unknown key(s): {', '.join(unknown)}; known: {', '.join(sorted(known))}")
@@ -107,6 +113,7 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
                    current_centre_x=frame.standard_x(vessel.underwater_centre_x))
     return Particulars(vessel=vessel, hull=hull, frame=frame, thrusters=_thrusters(data["thrusters"]),
                        name=str(data.get("name", name)), skegs=skegs_from_list(data.get("skegs")),
+                       rudders=rudders_from_mapping(data.get("rudders")),
                        **_level2(data.get("level2")))
 
 

@@ -21,13 +21,29 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 TWO_PI = 2.0 * math.pi
 _TOLERANCE = 1e-12
 
 HalfPlane = tuple[float, float, float]
 """(n_x, n_y, c): the force f of a thruster of limit T keeps n . f <= c T."""
+ForcePiece = tuple[float, float, float, bool, tuple[HalfPlane, ...]]
+"""(start, end, radius, line, half-planes): a convex piece of a thruster's forces, the cone
+[start, end] (a ray when start == end; ``line``: both ways along it) within the radius and the
+half-planes (their offsets per unit of radius)."""
+
+
+class ForceProfile(Protocol):
+    """What the capability analysis asks of a direction-dependent thrust limit."""
+
+    def factor(self, angle: float) -> float:
+        """The share of the thrust limit along ``angle`` [rad]."""
+
+    def force_pieces(self, arcs: Sequence[tuple[float, float]], low: float, high: float) -> list[ForcePiece]:
+        """Convex pieces of the forces of a thruster of range [low, high] turning over ``arcs``."""
 
 
 @dataclass(frozen=True)
@@ -97,6 +113,15 @@ class ThrustProfile:
                 planes = tuple(plane for c_start, c_end, plane in chords if _overlaps(a, b, c_start, c_end))
                 pieces.append((a, b, planes))
         return pieces
+
+    def force_pieces(self, arcs: Sequence[tuple[float, float]], low: float, high: float) -> list[ForcePiece]:
+        """The convex :meth:`pieces` of each allowed arc at the radius ``high``, and when the
+        thruster reverses (low < 0) of each arc turned by pi at the radius -low."""
+        turned = [(start, end, high) for start, end in arcs]
+        if low < 0.0:
+            turned += [(start + math.pi, end + math.pi, -low) for start, end in arcs]
+        return [(a, b, radius, False, planes)
+                for start, end, radius in turned for a, b, planes in self.pieces(start, end)]
 
     def _points(self) -> list[tuple[float, tuple[float, float]]]:
         return [(angle, (factor * math.cos(angle), factor * math.sin(angle))) for angle, factor in self.corners]
