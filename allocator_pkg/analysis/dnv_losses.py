@@ -67,6 +67,13 @@ SKEG_DISTANCE = {False: 15.0, True: 8.0}
 """[3.11.5], in diameters of the thruster: open and ducted."""
 CHORD_STEP = math.radians(1.0)
 """The largest angle between two corners of a loss that is not straight in Cartesian coordinates."""
+READINGS = ("[3.11.4]/[3.11.5] read as the public transcription reads them: the dead sector centred on the "
+            "vector from the dead thruster to the flushing one; open or ducted by the flushing thruster (a tunnel "
+            "open); several dead thrusters, or skegs, the lowest factor per direction, the two kinds multiplied "
+            "[3.11.6]; port or starboard of the skeg by y; level with the skeg is 'directly behind'; 'above the "
+            "base line' a height above the keel > 0; the skeg's polar interpolation drawn by chords every 1 deg "
+            "(inside it); a fixed thruster takes the factor of its direction")
+"""How the clauses are read where the text leaves it open, for the output."""
 
 
 @dataclass(frozen=True)
@@ -239,7 +246,7 @@ def describe_losses(cases: Mapping[str, Mapping[str, ThrustProfile]]) -> str:
         sectors = [f"{name} {sector}" for name, profile in profiles.items() for sector in _sectors(profile)]
         parts.append(f"{case}: " + ("; ".join(sectors) if sectors else "none"))
     return ("Thrust losses by direction ([3.11.4] flushing a dead thruster, [3.11.5] a skeg; from, to, lowest "
-            "factor at [deg], thrust angle in the body frame): " + ". ".join(parts) + ".")
+            "factor at [deg], thrust angle in the body frame): " + ". ".join(parts) + f". {READINGS}.")
 
 
 def _sectors(profile: ThrustProfile) -> list[str]:

@@ -50,6 +50,11 @@ K2_FIXED_NOZZLE = 1.15
 ANGLE_STEP_DEG = 1.0
 """The fan's corners: every this many degrees of rudder angle."""
 RUDDER_KEYS = ("propeller", "profile", "area", "behind_fixed_nozzle")
+READINGS = ("[3.10] read as the public transcription reads it: behind shaft lines only; A_r as given (the chord "
+            "limit of 1.0 D is the user's); the largest rudder angle the vehicle file's deflection_max, at most "
+            "30 deg; the fan drawn by chords every 1 deg of rudder angle (inside it); the [3.11] zones and losses "
+            "of the shaft direction")
+"""How the clause is read where the text leaves it open, for the output."""
 
 
 @dataclass(frozen=True)
@@ -203,7 +208,7 @@ def describe_rudders(pairs: Mapping[str, RudderPair]) -> str:
     return "Rudders behind propellers [3.10]: " + ("; ".join(
         f"{pair.rudder} behind {name}: C_Y {pair.fan.c_y:.5f}/deg, C_x {pair.fan.c_x:.7f}/deg^2, alpha up to "
         f"{min(pair.fan.max_angle_deg, RUDDER_ANGLE_CAP_DEG):g} deg, force at x {pair.position[0]:g} m"
-        for name, pair in pairs.items()) or "none") + "."
+        for name, pair in pairs.items()) or "none") + (f". {READINGS}." if pairs else ".")
 
 
 def rudders_from_mapping(data: Any) -> dict[str, RudderData]:

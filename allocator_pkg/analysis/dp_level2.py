@@ -109,4 +109,5 @@ class Level2(Level1):
         notes[4] = "Forbidden sectors (vehicle file): " + ("; ".join(
             f"{z.thruster} {math.degrees(z.sector[0]):.1f} to {math.degrees(z.sector[1]):.1f} deg"
             for z in self.zones()) or "none") + " (thrust angle in the body frame, 0 forward, 90 to starboard)."
+        notes[5] = "Thrust losses by direction ([3.11.4], [3.11.5]): not applied (the vehicle file's thrust limits)."
         return notes
