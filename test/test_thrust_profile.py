@@ -150,6 +150,8 @@ def test_a_profile_on_a_fixed_thruster_is_refused():
     vehicle = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
     with pytest.raises(ValueError, match="tunnel_fwd is fixed"):
         Capability(vehicle, profiles={"tunnel_fwd": thrust_profile([NOTCH], [])})
+    with pytest.raises(ValueError, match="'pseudoinverse' cannot redistribute force"):
+        Capability(vehicle, "pseudoinverse", profiles={"azimuth_stbd": thrust_profile([NOTCH], [])})
 
 
 @settings(max_examples=25, deadline=None)

@@ -77,6 +77,9 @@ class Capability:
             raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
         check_method(self.method, reachable(vehicle))
         self.sides = METHODS[self.method].thrust_region_sides(vehicle)
+        if self.profiles and self.sides is None:
+            raise ValueError(f"method '{self.method}' cannot redistribute force, so it has no thrust profiles "
+                             f"({', '.join(self.profiles)}); choose a method that can (e.g. qp or lp)")
         self.apothem = METHODS[self.method].thrust_region_apothem(vehicle)
         self.speed = speed
         self.model = Model.build(vehicle, 1.0 / vehicle.rate_hz)
