@@ -5,16 +5,16 @@ are given.
 - Wind and current: the particulars' coefficient tables over heading
   (:mod:`.dnv_coefficients`) where given, else [3.5] and [3.6];
 - thrust: each thruster's ``thrust_min`` and ``thrust_max`` of the vehicle file, taken as the
-  thrust it delivers (no [3.9.3], [3.9.4], [3.11.4] or [3.11.5] loss applied), times share^(2/3) (the power-to-thrust
-  relation of [3.9.2]) of the share of its P_B its feeds give it, as in Level 1 (a lost feed share,
-  a board short of power [3.12]);
+  thrust it delivers in every direction (no [3.9.3], [3.9.4], [3.11.4] or [3.11.5] loss applied),
+  times share^(2/3) (the power-to-thrust relation of [3.9.2]) of the share of its P_B its feeds
+  give it, as in Level 1 (a lost feed share, a board short of power [3.12]);
 - forbidden directions: the vehicle file's ``forbidden_sectors`` instead of the [3.11.3] zones; a
   sector whose race points only at failed thrusters lifts in that case, as a zone does.
 
 Kept from Level 1: the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2],
-the search and the redundancy groups. The public transcription of the standard has no Level 2
-text: what is replaced, and how, is this package's reading (:data:`SCOPE_L2` says so on every
-output). Not verified by DNV.
+a shaft line's rudder [3.10], the search and the redundancy groups. The public transcription of
+the standard has no Level 2 text: what is replaced, and how, is this package's reading
+(:data:`SCOPE_L2` says so on every output). Not verified by DNV.
 """
 
 from __future__ import annotations
@@ -33,7 +33,8 @@ OWN_DATA = ("wind and current loads from the particulars' coefficient tables ove
             "[3.11.5] loss; the share of its P_B its feeds give it as in Level 1, a lost feed share or a board "
             "short of power, leaves share^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
             "thruster they protect)")
-KEPT = "the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2], the redundancy groups"
+KEPT = ("the Table 2-1 conditions, wave drift [3.7], the dynamic factor 1.25 [3.2.2], rudders behind shaft lines "
+        "[3.10], the redundancy groups")
 NOT_YET_L2 = f"a site environment in place of Table 2-1, the vessel's wave drift data, {NOT_YET}"
 SCOPE_L2 = (f"DNV-ST-0111 (Dec 2021) Level 2 as read here (the transcription used has no Level 2 text): the Level 1 "
             f"balance with the vessel's own data: {OWN_DATA}. Kept from Level 1: {KEPT}. Not yet: {NOT_YET_L2}. "
