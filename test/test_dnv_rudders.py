@@ -59,6 +59,9 @@ def test_one_shaft_line_with_its_rudder():
     for direction in (math.pi / 2, edge + 0.01, math.pi - 0.1, -math.pi / 2):
         assert capability.max_force(direction) == pytest.approx(0.0, abs=1e-6)
     assert capability.max_force(math.pi) == pytest.approx(900.0, rel=1e-4)
+    # what Table A-8 calls the thrust available that way
+    assert capability.available("p", edge) == pytest.approx(858.0, rel=5e-4)
+    assert capability.available("p", math.pi) == 900.0 and capability.available("p", math.pi / 2) == 0.0
 
 
 def test_the_fan_s_factor_is_its_chords_and_the_reach_follows_it():

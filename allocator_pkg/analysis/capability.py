@@ -187,10 +187,14 @@ class Capability:
                 best, force = magnitude, solution
         return best, force
 
-    def thrust_factor(self, name: str, angle: float) -> float:
-        """The share of its thrust limit a thruster has along ``angle`` [rad] (its profile; 1 without)."""
+    def available(self, name: str, angle: float) -> float:
+        """The thrust [N] a rotatable thruster can give along ``angle`` [rad]: its profile's
+        :meth:`~.thrust_profile.ForceProfile.available` of its range, else its ``thrust_max``."""
+        actuator = self.vehicle.actuator(name)
         profile = self.profiles.get(name)
-        return 1.0 if profile is None else profile.factor(angle)
+        if profile is None:
+            return actuator.thrust_max
+        return profile.available(angle, actuator.thrust_min, actuator.thrust_max)
 
     def _pieces(self, index: int, fault: Fault | None, low: float, high: float) -> list[tuple]:
         actuator = self.vehicle.actuators[index]

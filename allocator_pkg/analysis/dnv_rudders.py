@@ -126,6 +126,12 @@ class RudderFan:
                 return cross / denominator if denominator > 0.0 else min(ra, rb)
         return 1.0 if abs(abs(offset) - math.pi) < 1e-9 else 0.0
 
+    def available(self, angle: float, low: float, high: float) -> float:
+        """The thrust along ``angle`` [rad] of a propeller of range [low, high] with its rudder: the
+        forward thrust times :meth:`factor` in the fan, -low straight back, else nothing."""
+        backwards = abs(math.remainder(angle - self.shaft, 2.0 * math.pi)) > math.pi / 2
+        return (-low if backwards else high) * self.factor(angle)
+
     def force_pieces(self, arcs: Sequence[tuple[float, float]], low: float, high: float) -> list[ForcePiece]:
         """The fan at the forward thrust ``high`` (the chords' half-planes and its edges) and the
         ray backwards along the shaft at -``low``; ``arcs`` do not apply (the rudder turns the

@@ -42,6 +42,9 @@ class ForceProfile(Protocol):
     def factor(self, angle: float) -> float:
         """The share of the thrust limit along ``angle`` [rad]."""
 
+    def available(self, angle: float, low: float, high: float) -> float:
+        """The thrust a thruster of range [low, high] can give along ``angle`` [rad]."""
+
     def force_pieces(self, arcs: Sequence[tuple[float, float]], low: float, high: float) -> list[ForcePiece]:
         """Convex pieces of the forces of a thruster of range [low, high] turning over ``arcs``."""
 
@@ -74,6 +77,10 @@ class ThrustProfile:
                 along = normal[0] * math.cos(angle) + normal[1] * math.sin(angle)
                 return offset / along if along > _TOLERANCE else 1.0
         return 1.0
+
+    def available(self, angle: float, low: float, high: float) -> float:
+        """``high`` times :meth:`factor`: the limit along ``angle`` pushing ahead."""
+        return high * self.factor(angle)
 
     def chords(self) -> list[tuple[float, float, HalfPlane]]:
         """(start, end, half-plane) of every straight piece of the boundary."""
