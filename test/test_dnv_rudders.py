@@ -6,6 +6,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+import yaml
 from conftest import ROOT
 
 from allocator_pkg import vehicle_from_parameters
@@ -112,7 +113,6 @@ def twin_screw(rudders: bool = True):
 
 
 def load_yaml_particulars() -> dict:
-    import yaml
     return yaml.safe_load(DP_PARTICULARS.read_text())
 
 

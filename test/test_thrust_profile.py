@@ -109,31 +109,28 @@ def _search(vehicle, factors, direction: float, step_deg: float = 0.01) -> float
 
 
 LOSSES = {
-    "notch and dip": ((DeadLoss("azimuth_stbd", "x", math.radians(175.0), math.radians(25.0), 0.3).factor,),
-                      (SkegLoss("azimuth_port", ((-2 * math.pi, 1.0), (math.radians(-175.0), 1.0),
-                                                 (math.radians(-160.0), 0.4), (math.radians(-130.0), 1.0),
-                                                 (0.0, 1.0))).factor,)),
-    "two notches": ((DeadLoss("azimuth_stbd", "x", math.radians(170.0), math.radians(20.0), 0.3).factor,
-                     DeadLoss("azimuth_stbd", "y", math.radians(-150.0), math.radians(9.0), 0.6).factor),
-                    (DeadLoss("azimuth_port", "x", math.radians(80.0), math.radians(15.0), 0.5).factor,)),
+    "notch and dip": (([DeadLoss("azimuth_stbd", "x", math.radians(175.0), math.radians(25.0), 0.3)], []),
+                      ([], [SkegLoss("azimuth_port", ((-2 * math.pi, 1.0), (math.radians(-175.0), 1.0),
+                                                      (math.radians(-160.0), 0.4), (math.radians(-130.0), 1.0),
+                                                      (0.0, 1.0)))])),
+    "two notches": (([DeadLoss("azimuth_stbd", "x", math.radians(170.0), math.radians(20.0), 0.3),
+                      DeadLoss("azimuth_stbd", "y", math.radians(-150.0), math.radians(9.0), 0.6)], []),
+                    ([DeadLoss("azimuth_port", "x", math.radians(80.0), math.radians(15.0), 0.5)], [])),
 }
+"""Per case, (dead losses, skeg losses) of each azimuth."""
 
 
-def _exact(parts):
-    return lambda angle: min(part(angle) for part in parts)
-
-
-def _profile(parts):
-    losses = [part.__self__ for part in parts]
-    return thrust_profile([loss for loss in losses if isinstance(loss, DeadLoss)],
-                          [loss for loss in losses if isinstance(loss, SkegLoss)])
+def _exact(losses):
+    """The exact factor of (dead losses, skeg losses): Figure 3-6 and the polar ramps, no chords."""
+    return lambda angle: direction_factor(*losses, angle)
 
 
 @pytest.mark.parametrize("case", sorted(LOSSES))
 def test_capability_with_profiles_matches_a_search_over_angles(case):
     vehicle = _two_azimuths()
     parts = LOSSES[case]
-    capability = Capability(vehicle, "qp", speed=0.0, profiles=dict(zip(AZIMUTHS, map(_profile, parts))))
+    capability = Capability(vehicle, "qp", speed=0.0,
+                            profiles={name: thrust_profile(*losses) for name, losses in zip(AZIMUTHS, parts)})
     plain = Capability(vehicle, "qp", speed=0.0)
     lowered = 0
     for degrees in range(0, 360, 15):
