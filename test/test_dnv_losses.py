@@ -222,7 +222,7 @@ def test_no_loss_applies_on_the_shipped_dp_vessel(dp_vessel):
 def test_a_skeg_lowers_numbers_only_where_a_thruster_pushes_into_its_race(dp_vessel):
     # A centreline skeg ending 11.5 m forward of the azimuths: each azimuth loses thrust pushing
     # aft and outboard (down to 0.748 at 157.3 deg from the bow on its side). With swbd_a lost,
-    # azimuth_port alone holds the load from 190 deg pushing into that sector: 11 before, 10 now.
+    # azimuth_port alone holds the load from 190 deg pushing into that sector: 11 without the loss, 10 with it.
     vehicle, particulars = dp_vessel
     skegged = replace(particulars, skegs=(Skeg(-30.0, 0.0),))
     analysis, plain = Level1(vehicle, skegged), WithoutLosses(vehicle, skegged)

@@ -288,7 +288,7 @@ def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: flo
             profile: ForceProfile | None = None) -> list[tuple]:
     """Convex pieces (start, end, radius, line, chords) of the forces a rotatable thruster can
     give: ``chords`` the half-planes of its ``profile`` that bound the piece (radius the limit
-    before the profile's factor, which the half-planes apply)."""
+    without the profile's factor, which the half-planes apply)."""
     rotation = actuator.rotation
     if fault is not None and fault.mode == FaultMode.STUCK:
         angle = fault.angle
