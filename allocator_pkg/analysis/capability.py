@@ -286,9 +286,9 @@ class Capability:
 
 def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float,
             profile: ForceProfile | None = None) -> list[tuple]:
-    """Convex pieces (start, end, radius, line, chords) of the forces a rotatable thruster can
-    give: ``chords`` the half-planes of its ``profile`` that bound the piece (radius the limit
-    without the profile's factor, which the half-planes apply)."""
+    """Convex pieces (start, end, radius, line, half-planes) of the forces a rotatable thruster
+    can give (:data:`~.thrust_profile.ForcePiece`): with a ``profile`` those it gives, stuck its
+    limit times the profile's factor at that angle; without, cones of the allowed arcs."""
     rotation = actuator.rotation
     if fault is not None and fault.mode == FaultMode.STUCK:
         angle = fault.angle
