@@ -19,7 +19,8 @@ import time
 from pathlib import Path
 
 from allocator_pkg import load_vehicle
-from allocator_pkg.analysis.dp_capability import Level1, load_particulars
+from allocator_pkg.analysis.dp_capability import Level1
+from allocator_pkg.analysis.dp_particulars import load_particulars
 
 ROOT = Path(__file__).resolve().parents[1]
 VESSEL = "dp_vessel"

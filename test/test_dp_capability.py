@@ -21,9 +21,8 @@ from allocator_pkg.analysis.dp_capability import (
     Level1,
     condition_at,
     level1,
-    load_particulars,
 )
-from allocator_pkg.analysis.dp_particulars import particulars_from_mapping
+from allocator_pkg.analysis.dp_particulars import load_particulars, particulars_from_mapping
 from allocator_pkg.analysis.environment_loads import LoadCoefficients
 from allocator_pkg.cli.capability import main
 from allocator_pkg.cli.dp_capability import write_level1

@@ -7,7 +7,7 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg import load_vehicle, read_parameters, vehicle_from_parameters
-from allocator_pkg.analysis.dp_capability import Level1, load_particulars
+from allocator_pkg.analysis.dp_capability import Level1
 from allocator_pkg.analysis.dp_input_tables import (
     A2_COLUMNS,
     A3_COLUMNS,
@@ -19,6 +19,7 @@ from allocator_pkg.analysis.dp_input_tables import (
     table_a3,
     table_a5,
 )
+from allocator_pkg.analysis.dp_particulars import load_particulars
 from allocator_pkg.cli.dp_capability import write_level1
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"

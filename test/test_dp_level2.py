@@ -14,9 +14,9 @@ from conftest import ROOT
 from allocator_pkg import load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.analysis.dnv_coefficients import coefficient_table
 from allocator_pkg.analysis.dnv_loads import current_load, wave_drift_load, wind_load
-from allocator_pkg.analysis.dp_capability import CONDITIONS, WORST, Level1, load_particulars
+from allocator_pkg.analysis.dp_capability import CONDITIONS, WORST, Level1
 from allocator_pkg.analysis.dp_level2 import SCOPE_L2, Level2
-from allocator_pkg.analysis.dp_particulars import particulars_from_mapping
+from allocator_pkg.analysis.dp_particulars import load_particulars, particulars_from_mapping
 from allocator_pkg.cli.capability import main
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"

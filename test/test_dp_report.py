@@ -11,7 +11,8 @@ from conftest import ROOT
 
 from allocator_pkg import load_vehicle
 from allocator_pkg.analysis.dnv_loads import current_load, wave_drift_load, wind_load
-from allocator_pkg.analysis.dp_capability import CONDITIONS, INTACT, SCOPE, WORST, Level1, load_particulars
+from allocator_pkg.analysis.dp_capability import CONDITIONS, INTACT, SCOPE, WORST, Level1
+from allocator_pkg.analysis.dp_particulars import load_particulars
 from allocator_pkg.analysis.dp_tables import (
     A7_COLUMNS,
     A8_COLUMNS,

@@ -16,8 +16,10 @@ pseudo-inverse gives within every limit count, found by bisection on the pseudo-
 Rotatable thrusters may turn to any allowed angle (steady state: rate limits do not apply).
 A forbidden sector makes the set of forces a thruster can give non-convex; it is split into
 convex pieces (cones at most pi wide) and every combination of pieces is solved, keeping the
-best. Control surfaces give the lift of the given speed, thrusters with voltage-indexed
-tables the thrust of the given supply voltage.
+best. A thrust limit that depends on the thrust direction (``profiles``: a
+:class:`~.thrust_profile.ForceProfile` per rotatable thruster: a loss sector, a propeller with
+its rudder) gives the thruster's convex pieces itself, bounded by half-planes. Control surfaces give the lift
+of the given speed, thrusters with voltage-indexed tables the thrust of the given supply voltage.
 
 :func:`region`, :func:`unmodelled` and :func:`differing_methods` tell which registered
 methods can serve a vehicle and which of them share a capability.
@@ -42,6 +44,7 @@ from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import ActuatorConfig, Vehicle
+from .thrust_profile import ForceProfile
 
 FORCE_DOFS = ("surge", "sway", "heave")
 
@@ -62,13 +65,21 @@ class Capability:
     """Capability of one vehicle in a plane of two controlled DOFs."""
 
     def __init__(self, vehicle: Vehicle, method: str | None = None, speed: float = 2.0,
-                 plane: tuple[str, str] | None = None):
+                 plane: tuple[str, str] | None = None, profiles: Mapping[str, ForceProfile] | None = None):
         self.vehicle = vehicle
+        self.profiles = dict(profiles or {})
+        """A direction-dependent thrust limit per rotatable thruster, by name (none: its limit every way)."""
+        fixed = [name for name in self.profiles if not vehicle.actuator(name).rotatable]
+        if fixed:
+            raise ValueError(f"thrust profiles are for rotatable thrusters; {', '.join(fixed)} is fixed")
         self.method = method or vehicle.method
         if self.method not in METHODS:
             raise ValueError(f"unknown method '{self.method}'; choose from {', '.join(METHODS)}")
         check_method(self.method, reachable(vehicle))
         self.sides = METHODS[self.method].thrust_region_sides(vehicle)
+        if self.profiles and self.sides is None:
+            raise ValueError(f"method '{self.method}' cannot redistribute force, so it has no thrust profiles "
+                             f"({', '.join(self.profiles)}); choose a method that can (e.g. qp or lp)")
         self.apothem = METHODS[self.method].thrust_region_apothem(vehicle)
         self.speed = speed
         self.model = Model.build(vehicle, 1.0 / vehicle.rate_hz)
@@ -128,8 +139,7 @@ class Capability:
             return self.reach(tau)[0] >= multiple, -1
         faults = FaultSet.of(self.vehicle, None)
         low, high = static_ranges(self.vehicle, faults, self.speed)
-        combinations = list(itertools.product(*(_pieces(self.vehicle.actuators[i], None, low[i], high[i])
-                                                for i in self.model.rot)))
+        combinations = list(itertools.product(*(self._pieces(i, None, low[i], high[i]) for i in self.model.rot)))
         order = sorted(range(len(combinations)), key=lambda k: k != first)          # ``first`` first
         zero = np.zeros(self.model.n)
         for k in order:
@@ -168,14 +178,27 @@ class Capability:
                           high: np.ndarray) -> tuple[float, np.ndarray]:
         """The largest magnitude over every combination of convex pieces, and its extended forces."""
         model = self.model
-        choices = [_pieces(self.vehicle.actuators[i], faults.faults.get(self.vehicle.actuators[i].name), low[i],
-                           high[i]) for i in model.rot]
+        choices = [self._pieces(i, faults.faults.get(self.vehicle.actuators[i].name), low[i], high[i])
+                   for i in model.rot]
         best, force = 0.0, np.zeros(model.m)
         for combination in itertools.product(*choices):
             magnitude, solution = self._solve(unit, fixed, low, high, combination, self.sides)
             if magnitude > best:
                 best, force = magnitude, solution
         return best, force
+
+    def available(self, name: str, angle: float) -> float:
+        """The thrust [N] a rotatable thruster can give along ``angle`` [rad]: its profile's
+        :meth:`~.thrust_profile.ForceProfile.available` of its range, else its ``thrust_max``."""
+        actuator = self.vehicle.actuator(name)
+        profile = self.profiles.get(name)
+        if profile is None:
+            return actuator.thrust_max
+        return profile.available(angle, actuator.thrust_min, actuator.thrust_max)
+
+    def _pieces(self, index: int, fault: Fault | None, low: float, high: float) -> list[tuple]:
+        actuator = self.vehicle.actuators[index]
+        return _pieces(actuator, fault, low, high, self.profiles.get(actuator.name))
 
     def _solve(self, unit, fixed, low, high, pieces, sides) -> tuple[float, np.ndarray]:
         """max F s.t. T_e f = F unit + fixed, boxes, and each rotatable force in its piece."""
@@ -191,7 +214,7 @@ class Capability:
         faces = [(math.cos(TWO_PI * k / count), math.sin(TWO_PI * k / count), apothem)
                  for count, apothem in polygons for k in range(count)]
         for (c1, c2), piece in zip(model.rot_columns, pieces):
-            start, end, radius, line = piece
+            start, end, radius, line, chords = piece
             if radius <= 0.0:
                 bounds[c1] = bounds[c2] = (0.0, 0.0)
                 continue
@@ -208,6 +231,11 @@ class Capability:
                 if line:
                     a_ub.append(-row)
                     b_ub.append(0.0)
+            for nx, ny, offset in chords:                          # the profile's chords
+                row = np.zeros(columns)
+                row[c1], row[c2] = nx, ny
+                a_ub.append(row)
+                b_ub.append(radius * offset)
             middle = 0.5 * (start + end)
             row = np.zeros(columns)
             row[c1], row[c2] = -math.cos(middle), -math.sin(middle)
@@ -260,25 +288,31 @@ class Capability:
         return lower, gain @ (lower * unit + fixed)
 
 
-def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float) -> list[tuple]:
-    """Convex pieces (start, end, radius, line) of the forces a rotatable thruster can give."""
+def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float,
+            profile: ForceProfile | None = None) -> list[tuple]:
+    """Convex pieces (start, end, radius, line, half-planes) of the forces a rotatable thruster
+    can give (:data:`~.thrust_profile.ForcePiece`): with a ``profile`` those it gives, stuck its
+    limit times the profile's factor at that angle; without, cones of the allowed arcs."""
     rotation = actuator.rotation
     if fault is not None and fault.mode == FaultMode.STUCK:
         angle = fault.angle
-        pieces = [] if in_forbidden_sector(rotation, angle) else [(angle, angle, high, True)]
+        share = (lambda a: 1.0) if profile is None else profile.factor
+        pieces = [] if in_forbidden_sector(rotation, angle) else [(angle, angle, high * share(angle), True, ())]
         if low < 0.0 and not in_forbidden_sector(rotation, angle):
-            pieces.append((angle + math.pi, angle + math.pi, -low, True))
-        return pieces or [(angle, angle, 0.0, True)]
+            pieces.append((angle + math.pi, angle + math.pi, -low * share(angle + math.pi), True, ()))
+        return pieces or [(angle, angle, 0.0, True, ())]
     arcs = allowed_arcs(rotation)
-    pieces = [(start, end, high, False) for start, end in arcs]
+    if profile is not None:
+        return profile.force_pieces(arcs, low, high)
+    pieces = [(start, end, high) for start, end in arcs]
     if low < 0.0:
-        pieces += [(start + math.pi, end + math.pi, -low, False) for start, end in arcs]
+        pieces += [(start + math.pi, end + math.pi, -low) for start, end in arcs]
     split = []
-    for start, end, radius, line in pieces:
+    for start, end, radius in pieces:
         while end - start > math.pi:
-            split.append((start, start + math.pi, radius, line))
+            split.append((start, start + math.pi, radius, False, ()))
             start += math.pi
-        split.append((start, end, radius, line))
+        split.append((start, end, radius, False, ()))
     return split
 
 

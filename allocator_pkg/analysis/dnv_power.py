@@ -34,6 +34,7 @@ import numpy as np
 
 from ..vehicle.config import Vehicle
 from .capability import Capability
+from .thrust_profile import ForceProfile
 
 POWER_RESERVE = 0.10
 """[3.12.3]-[3.12.4]: the share of a source's power kept for hotel and non-thruster consumers."""
@@ -117,8 +118,9 @@ CHORDS = _chords()
 class PoweredCapability(Capability):
     """The capability of a Level 1 variant with its sources' power limits (the rows above)."""
 
-    def __init__(self, vehicle: Vehicle, method: str, limits: PowerLimits):
-        super().__init__(vehicle, method, speed=0.0)
+    def __init__(self, vehicle: Vehicle, method: str, limits: PowerLimits,
+                 profiles: Mapping[str, ForceProfile] | None = None):
+        super().__init__(vehicle, method, speed=0.0, profiles=profiles)
         if self.sides is None:
             raise ValueError(f"method {method} cannot redistribute force, so the power of "
                              f"{', '.join(limits.sources)} [3.12] cannot be balanced with it; choose a method with a "
@@ -172,7 +174,7 @@ class PoweredCapability(Capability):
             if index in rot:
                 position = rot.index(index)
                 c1, c2 = model.rot_columns[position]
-                start, end, radius, _ = pieces[position]
+                start, end, radius = pieces[position][:3]
                 fraction = 0.0 if radius <= 0.0 else max(
                     (math.cos(a) * force[c1] + math.sin(a) * force[c2]) for a in _faces(start, end)) / (
                     radius * math.cos(math.pi / R_SIDES))
@@ -206,7 +208,7 @@ class PoweredCapability(Capability):
             if index in rot:
                 position = rot.index(index)
                 c1, c2 = model.rot_columns[position]
-                start, end, radius, _ = pieces[position]
+                start, end, radius = pieces[position][:3]
                 for angle in _faces(start, end) if radius > 0.0 else ():
                     row({c1: math.cos(angle) / radius, c2: math.sin(angle) / radius,
                          r: -math.cos(math.pi / R_SIDES)}, 0.0)

@@ -16,31 +16,33 @@ Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's 
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
 beta_vent [3.9.4] of the condition and heading (:mod:`.dnv_thrust`); the forbidden zones of
 [3.11.3] among the thrusters working in the case (:mod:`.dnv_zones`), in place of the vehicle
-file's forbidden sectors. Per (condition, heading, case) a variant of the vehicle, its working
-thrusters with those thrust ranges and zones, is balanced by :meth:`Capability.reach
-<allocator_pkg.analysis.capability.Capability.reach>` (a linear programme with the configured
-method's constraints), jointly with the power of each source that could be short
-([3.12.3]-[3.12.5], :mod:`.dnv_power`). Not yet: :data:`NOT_YET`. Not verified by DNV.
+file's forbidden sectors; the losses flushing the case's dead thrusters [3.11.4] and skegs
+[3.11.5] by thrust direction (:mod:`.dnv_losses`); a shaft line's rudder [3.10] (:mod:`.dnv_rudders`).
+Per (condition, heading, case) a variant of the vehicle, its working thrusters with those thrust
+ranges, zones and losses, is balanced by :meth:`~.capability.Capability.reach` (a linear
+programme with the configured method's constraints), jointly with the power of each source that
+could be short ([3.12.3]-[3.12.5], :mod:`.dnv_power`). Not yet: :data:`NOT_YET`. Not verified by DNV.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 import numpy as np
-import yaml
 
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability import Capability
 from .dnv_conditions import CONDITIONS, Condition, condition_at, limit
 from .dnv_loads import LoadComponents, current_load, wave_drift_load, wind_load
+from .dnv_losses import case_profiles, describe_losses, loss_units
 from .dnv_power import PoweredCapability, PowerLimits, demand, feed_share, power_limits
+from .dnv_rudders import describe_rudders, force_profiles, rudder_pairs
 from .dnv_thrust import BETA_MISC, nominal_thrust, ventilation_factor
 from .dnv_zones import Unit, Zone, flushing_zones
 from .dp_notes import hull_note, source_note, thruster_note
-from .dp_particulars import Particulars, particulars_from_mapping
+from .dp_particulars import Particulars
+from .thrust_profile import ThrustProfile
 
 DYNAMIC_FACTOR = 1.25
 """[3.2.2]: on the sum of the environmental loads."""
@@ -52,10 +54,12 @@ INTACT = "intact"
 LOAD_SOURCES = ("wind", "current", "waves")
 WORST = "worst single failure"
 PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
-                "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters; "
-                "the power balance per source [3.12.3]-[3.12.5] jointly with the thrust: each source's capacity "
-                "less the 10 % reserve against the power its thrusters draw at the thrust the balance needs")
-NOT_YET = "rudders [3.10], thrust loss flushing a dead thruster [3.11.4], skeg loss [3.11.5]"
+                "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters; the "
+                "thrust loss flushing a dead thruster [3.11.4] and a skeg [3.11.5] by thrust direction [3.11.6]; "
+                "rudders behind shaft lines [3.10]; the power balance per source [3.12.3]-[3.12.5] jointly with the "
+                "thrust: each source's capacity less the 10 % reserve against the power its thrusters draw at the "
+                "thrust the balance needs")
+NOT_YET = "no clause of [3.2]-[3.12] that the transcription gives; Tables A-9 and A-10 (power per switchboard)"
 POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
                  "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
                  "Table A-5 as transcribed: what it can consume from each source). Each source keeps 10 % of its "
@@ -69,19 +73,6 @@ READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed sha
 SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
          f"unclear: {READINGS}. Not verified by DNV.")
 """What every output says about itself."""
-
-
-def load_particulars(path: str | Path) -> Particulars:
-    """Read a particulars file (YAML)."""
-    path = Path(path)
-    try:
-        data = yaml.safe_load(path.read_text())
-    except (OSError, yaml.YAMLError) as error:
-        raise ValueError(f"{path}: {error}") from error
-    try:
-        return particulars_from_mapping(data, path.stem)
-    except ValueError as error:
-        raise ValueError(f"{path}: {error}") from error
 
 
 @dataclass(frozen=True)
@@ -149,12 +140,15 @@ class Level1:
         """What each group's loss takes away: its actuators, then its power sources (the vehicle
         file's redundancy groups; without any, each actuator alone)."""
         self.actuators = _actuators(vehicle, particulars)
+        self.loss_units = loss_units(vehicle.actuators, particulars.thrusters, particulars.frame)
+        self.rudders = rudder_pairs(vehicle, particulars.thrusters, particulars.rudders)
         self.capacities = {source.name: source.capacity for source in vehicle.power_sources}
         self.conditions = CONDITIONS
         """The condition of each capability number: Table 2-1."""
         self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
         self._zones: dict[tuple[str, ...], list[Zone]] = {}
+        self._profiles: dict[tuple[str, ...], dict[str, ThrustProfile]] = {}
         self._capabilities: dict[tuple, Capability] = {}
         self._winners: dict[tuple[str, ...], int] = {}
         self._power: dict[tuple[str, ...], PowerLimits | None] = {}
@@ -229,13 +223,20 @@ class Level1:
                 for name, unit in self.actuators.items() if name not in failed])
         return self._zones[failed]
 
+    def thrust_profiles(self, failed: tuple[str, ...] = ()) -> dict[str, ThrustProfile]:
+        """Per working thruster with a loss, its [3.11.4] and [3.11.5] factor by direction (:mod:`.dnv_losses`)."""
+        dead = tuple(name for name in self.actuators if name in failed)
+        if dead not in self._profiles:
+            self._profiles[dead] = case_profiles(self.loss_units, dead, self.particulars.skegs)
+        return self._profiles[dead]
+
     def variant(self, condition: Condition, direction: float, failed: tuple[str, ...] = ()) -> Vehicle:
         """The vehicle's working thrusters (the failed ones left out) with Level 1's thrust ranges and
-        zones for the condition, heading and case."""
-        zones = self.zones(failed)
+        zones for the condition, heading and case (a fixed thruster's range times its loss factors)."""
+        zones, profiles = self.zones(failed), self.thrust_profiles(failed)
         actuators = []
         for actuator in self.vehicle.actuators:
-            if actuator.name in failed:
+            if actuator.name in failed or actuator.is_surface:
                 continue
             unit = self.actuators[actuator.name]
             low, high = self.thrust_range(actuator.name, condition, direction, failed)
@@ -244,22 +245,29 @@ class Level1:
                 rotation = replace(actuator.rotation, forbidden_sectors=tuple(zone.sector for zone in own))
                 actuators.append(replace(actuator, thrust_min=low, thrust_max=high, rotation=rotation))
                 continue
+            if actuator.name in profiles:
+                low, high = (low * profiles[actuator.name].factor(unit.angle + math.pi),
+                             high * profiles[actuator.name].factor(unit.angle))
             if any(zone.forbids(unit.angle) for zone in own):
                 high = 0.0
             if any(zone.forbids(unit.angle + math.pi) for zone in own):
                 low = 0.0
-            actuators.append(replace(actuator, thrust_min=low, thrust_max=high))
+            pair, fixed = self.rudders.get(actuator.name), replace(actuator, thrust_min=low, thrust_max=high)
+            actuators.append(pair.turned(fixed) if pair and pair.rudder not in failed else fixed)
         return replace(self.vehicle, actuators=tuple(actuators))
 
     def capability(self, variant: Vehicle, failed: tuple[str, ...] | None = None) -> Capability:
-        """The capability analysis of a variant, kept by its thrust ranges and zones; with the power
-        rows of the case that loses ``failed`` (None: without power rows)."""
+        """The capability analysis of a variant with its case's :meth:`thrust_profiles` (the case:
+        the thrusters it leaves out), kept by its ranges, zones and profiles; with the power rows of
+        the case that loses ``failed`` (None: without power rows)."""
+        dead = tuple(sorted(set(self.actuators) - {a.name for a in variant.actuators}))
+        profiles = force_profiles(variant, self.thrust_profiles(dead), self.rudders)
         limits = None if failed is None else self.power_limits(failed)
-        key = (tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else ())
-                     for a in variant.actuators), limits.key() if limits else None)
+        key = (tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else (),
+                      profiles.get(a.name)) for a in variant.actuators), limits.key() if limits else None)
         if key not in self._capabilities:
-            self._capabilities[key] = (Capability(variant, self.method, speed=0.0) if limits is None
-                                       else PoweredCapability(variant, self.method, limits))
+            self._capabilities[key] = (Capability(variant, self.method, speed=0.0, profiles=profiles) if limits is None
+                                       else PoweredCapability(variant, self.method, limits, profiles))
         return self._capabilities[key]
 
     def required(self, condition: Condition, direction: float) -> np.ndarray:
@@ -323,6 +331,8 @@ class Level1:
                                           f"{math.degrees(z.sector[1]):.1f} deg (flushing {z.flushed})"
                                           for z in self.zones()) or "none")
             + " (thrust angle in the body frame, 0 forward, 90 to starboard).",
+            describe_losses({case: self.thrust_profiles(lost) for case, lost in {INTACT: (), **self.groups}.items()}),
+            describe_rudders(self.rudders),
             "Redundancy groups (lost together: actuators, then power sources): "
             + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ". " + POWER_READING,
             "Limiting wind speed: conditions between two numbers interpolated linearly; "
@@ -350,9 +360,7 @@ def _actuators(vehicle: Vehicle, particulars: Particulars) -> dict[str, _Actuato
         if name not in known:
             raise ValueError(f"thrusters.{name}: no actuator of that name; the vehicle has {', '.join(vehicle.names)}")
     result = {}
-    for actuator in vehicle.actuators:
-        if actuator.is_surface:
-            raise ValueError(f"{actuator.name}: a control surface; rudders [3.10] are not in this Level 1")
+    for actuator in (a for a in vehicle.actuators if not a.is_surface):          # rudders: rudder_pairs
         data = particulars.thrusters.get(actuator.name)
         if data is None:
             raise ValueError(f"thrusters.{actuator.name}: missing; Level 1 needs every thruster's Table A-3 data")

@@ -5,19 +5,19 @@ are given.
 - Wind and current: the particulars' coefficient tables over heading
   (:mod:`.dnv_coefficients`) where given, else [3.5] and [3.6];
 - thrust: each thruster's ``thrust_min`` and ``thrust_max`` of the vehicle file, taken as the
-  thrust it delivers (no [3.9.3] or [3.9.4] loss applied), times share^(2/3) (the power-to-thrust
-  relation of [3.9.2]) of the share of its P_B its feeds give it, as in Level 1 (a lost feed share,
-  a board short of power [3.12]);
+  thrust it delivers in every direction (no [3.9.3], [3.9.4], [3.11.4] or [3.11.5] loss applied),
+  times share^(2/3) (the power-to-thrust relation of [3.9.2]) of the share of its P_B its feeds
+  give it, as in Level 1 (a lost feed share, a board short of power [3.12]);
 - forbidden directions: the vehicle file's ``forbidden_sectors`` instead of the [3.11.3] zones; a
   sector whose race points only at failed thrusters lifts in that case, as a zone does;
 - environment: a site's (:mod:`.dnv_site`: its own condition table, or Table 2-1 with the site's
   current, waves or periods) where given, in a file of its own or the particulars'
   ``level2.site``, else Table 2-1.
 
-Kept from Level 1: wave drift [3.7], the dynamic factor 1.25 [3.2.2], the joint power balance
-[3.12], the search and the redundancy groups. The public transcription of the standard has no Level 2
-text: what is replaced, and how, is this package's reading (:data:`SCOPE_L2` says so on every
-output). Not verified by DNV.
+Kept from Level 1: wave drift [3.7], the dynamic factor 1.25 [3.2.2], a shaft line's rudder
+[3.10], the joint power balance [3.12], the search and the redundancy groups. The public
+transcription of the standard has no Level 2 text: what is replaced, and how, is this package's
+reading (:data:`SCOPE_L2` says so on every output). Not verified by DNV.
 """
 
 from __future__ import annotations
@@ -35,12 +35,12 @@ from .dp_particulars import Particulars
 from .environment_loads import RHO_AIR, RHO_WATER
 
 OWN_DATA = ("wind and current loads from the particulars' coefficient tables over heading where given ([3.5], [3.6] "
-            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4] loss; a "
-            "lost feed share s leaves (1 - s)^(2/3) of it); the vehicle file's forbidden sectors (lifted with the "
-            "thruster they protect); a site environment in place of Table 2-1 where given")
-KEPT = ("wave drift [3.7], the dynamic factor 1.25 [3.2.2], the power balance per source [3.12], the redundancy "
-        "groups")
-NOT_YET_L2 = f"the vessel's wave drift data, {NOT_YET}"
+            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4]/[3.11.4]/"
+            "[3.11.5] loss; a lost feed share s leaves (1 - s)^(2/3) of it); the vehicle file's forbidden sectors "
+            "(lifted with the thruster they protect); a site environment in place of Table 2-1 where given")
+KEPT = ("wave drift [3.7], the dynamic factor 1.25 [3.2.2], rudders behind shaft lines [3.10], the power balance "
+        "per source [3.12], the redundancy groups")
+NOT_YET_L2 = f"the vessel's wave drift data; {NOT_YET}"
 SCOPE_L2 = (f"DNV-ST-0111 (Dec 2021) Level 2 as read here (the transcription used has no Level 2 text): the Level 1 "
             f"balance with the vessel's own data: {OWN_DATA}. Kept from Level 1: {KEPT}. Not yet: {NOT_YET_L2}. "
             "Not verified by DNV.")
@@ -88,6 +88,10 @@ class Level2(Level1):
         factor = share ** (2.0 / 3.0)
         return actuator.thrust_min * factor, actuator.thrust_max * factor
 
+    def thrust_profiles(self, failed: tuple[str, ...] = ()) -> dict:
+        """None: the vehicle file's thrust limits hold in every direction."""
+        return {}
+
     def zones(self, failed: tuple[str, ...] = ()) -> list[Zone]:
         """The vehicle file's forbidden sectors of the working thrusters, but those whose race
         points at a failed thruster only (the bearing from it to the thruster inside the sector):
@@ -119,5 +123,6 @@ class Level2(Level1):
         notes[4] = "Forbidden sectors (vehicle file): " + ("; ".join(
             f"{z.thruster} {math.degrees(z.sector[0]):.1f} to {math.degrees(z.sector[1]):.1f} deg"
             for z in self.zones()) or "none") + " (thrust angle in the body frame, 0 forward, 90 to starboard)."
+        notes[5] = "Thrust losses by direction ([3.11.4], [3.11.5]): not applied (the vehicle file's thrust limits)."
         notes.insert(2, self.site.describe() if self.site else "Environment: Table 2-1 (no site environment given).")
         return notes

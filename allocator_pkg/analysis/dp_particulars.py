@@ -18,6 +18,11 @@ Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, fo
   ``current_coefficients`` (:class:`~.dnv_coefficients.CoefficientTable`: ``heading_deg``,
   ``cx``, ``cy``, ``cn``), and ``site``: a site environment in place of Table 2-1
   (:mod:`.dnv_site`);
+- ``skegs`` (optional): the aft most point of each skeg or gondola, ``x`` and ``y`` [m] in the
+  body frame (Table A-2), for the skeg loss of [3.11.5] (:func:`~.dnv_losses.skegs_from_list`);
+- ``rudders`` (optional): per rudder of the vehicle file, by its name, its Table A-4 row for
+  [3.10] (:class:`~.dnv_rudders.RudderData`: ``propeller``, ``profile``, ``area`` A_r [m^2],
+  ``behind_fixed_nozzle``);
 - ``name``. The redundancy groups are the vehicle file's (``redundancy_groups.*``, with
   ``power.*`` and each thruster's ``feeds``): a ``failure_groups`` key is refused, saying so.
 """
@@ -26,11 +31,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
+from pathlib import Path
 from typing import Any
+
+import yaml
 
 from .dnv_coefficients import CoefficientTable, coefficient_table
 from .dnv_loads import BodyFrame, DnvHull
+from .dnv_losses import Skeg, skegs_from_list
+from .dnv_rudders import RudderData, rudders_from_mapping
 from .dnv_site import SiteEnvironment, site_from_mapping
 from .dnv_thrust import ThrusterData
 from .environment_loads import LoadCoefficients, VesselParticulars
@@ -60,6 +70,23 @@ class Particulars:
     """Level 2: the vessel's current coefficients over heading (None: [3.6])."""
     site: SiteEnvironment | None = None
     """Level 2: the site environment in place of Table 2-1 (None: Table 2-1)."""
+    skegs: tuple[Skeg, ...] = ()
+    """The aft most point of each skeg or gondola (body frame) for [3.11.5]."""
+    rudders: Mapping[str, RudderData] = field(default_factory=dict)
+    """Table A-4 per rudder of the vehicle file, by name, for [3.10]."""
+
+
+def load_particulars(path: str | Path) -> Particulars:
+    """Read a particulars file (YAML)."""
+    path = Path(path)
+    try:
+        data = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError) as error:
+        raise ValueError(f"{path}: {error}") from error
+    try:
+        return particulars_from_mapping(data, path.stem)
+    except ValueError as error:
+        raise ValueError(f"{path}: {error}") from error
 
 
 def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particulars:
@@ -68,7 +95,7 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
         raise ValueError("a particulars file is a mapping of keys to values")
     if "failure_groups" in data:
         raise ValueError(MOVED_GROUPS)
-    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2"}
+    known = {*SHARED_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2", "skegs", "rudders"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ValueError(f"unknown key(s): {', '.join(unknown)}; known: {', '.join(sorted(known))}")
@@ -89,7 +116,9 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
                    current_area_lateral=numbers["current_area_lateral"],
                    current_centre_x=frame.standard_x(vessel.underwater_centre_x))
     return Particulars(vessel=vessel, hull=hull, frame=frame, thrusters=_thrusters(data["thrusters"]),
-                       name=str(data.get("name", name)), **_level2(data.get("level2")))
+                       name=str(data.get("name", name)), skegs=skegs_from_list(data.get("skegs")),
+                       rudders=rudders_from_mapping(data.get("rudders")),
+                       **_level2(data.get("level2")))
 
 
 def _number(data: Mapping[str, Any], key: str, prefix: str = "") -> float:

@@ -130,7 +130,7 @@ def thruster_use(analysis: Level1, number: int, direction: float, failed: tuple[
         if actuator.rotatable:
             fx, fy = force[start], force[start + 1]
             thrust, angle = float(math.hypot(fx, fy)), math.degrees(math.atan2(fy, fx))
-            available = actuator.thrust_max
+            available = capability.available(actuator.name, math.atan2(fy, fx))
         else:
             thrust = float(force[start])
             angle = math.degrees(math.atan2(actuator.direction[1], actuator.direction[0]))

@@ -28,8 +28,9 @@ import csv
 from pathlib import Path
 
 from ..analysis.dnv_site import load_site
-from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result, load_particulars
+from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result
 from ..analysis.dp_level2 import Level2
+from ..analysis.dp_particulars import load_particulars
 from ..analysis.dp_tables import groups_of
 from ..configuration.parameters import load_vehicle
 from .dp_plots import Outline, comparison_plot, polar_plot

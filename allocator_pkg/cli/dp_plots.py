@@ -19,7 +19,8 @@ from ..analysis.dp_level2 import NOT_YET_L2
 from ..analysis.dp_tables import groups_of, worst_groups
 
 FOOTERS = {
-    1: f"Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones, power per source.\nNot yet: {NOT_YET}.\n"
+    1: f"Per DNV-ST-0111 Level 1: loads, thrust, ventilation, [3.11.3] zones, [3.11.4]-[3.11.5] losses, [3.10] "
+       f"rudders, power per source.\nNot yet: {NOT_YET}.\n"
        "Unclear clauses read as the report says. Not verified by DNV.",
     2: "DNV-ST-0111 Level 2 as read here (no Level 2 text in the transcription used): the vessel's coefficients, "
        f"thrust limits, sectors and site where given.\nNot yet: {NOT_YET_L2}.\nNot verified by DNV.",

@@ -16,7 +16,7 @@ from typing import Any
 
 import yaml
 
-from ..analysis.dp_capability import load_particulars
+from ..analysis.dp_particulars import load_particulars
 from ..analysis.environment_loads import VesselParticulars
 from ..configuration.parameters import vehicle_from_parameters
 from ..configuration.params_file import read_parameters
