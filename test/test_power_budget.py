@@ -254,7 +254,7 @@ def test_no_source_is_asked_for_more_than_it_has_and_every_command_is_within_its
         low, high = static_ranges(vehicle, allocator.fault_set, allocator.speed, allocator.voltage)
         slack = 1e-9 * np.maximum(1.0, np.abs(high - low))
         assert np.all(result.thrust >= low - slack) and np.all(result.thrust <= high + slack)
-        assert np.all(np.abs(result.thrust) <= limit.bound * (1 + 1e-9))
+        assert np.all(np.abs(result.thrust) <= limit.largest * (1 + 1e-9))      # the feed limit: derated
         for actuator, command in zip(vehicle.actuators, result.command.tolist()):
             lowest, highest = sorted((actuator.command.command_min, actuator.command.command_max))
             assert lowest - 1e-9 <= command <= highest + 1e-9

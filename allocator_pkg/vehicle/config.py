@@ -196,6 +196,7 @@ class Vehicle:
     explicit_regions: str
     power_sources: tuple[PowerSource, ...] = ()
     redundancy_groups: tuple[RedundancyGroup, ...] = ()
+    power_phase_back: bool = True
 
     @property
     def priority_levels(self) -> tuple[tuple[int, ...], ...]:
