@@ -1,6 +1,7 @@
 """Power per source in the allocation (allocation/power_budget.py, docs/power.md): the derating
 of a split-fed thruster worked by hand, a source's budget shared by its consumers, the next
-sample inside a drop of available power, redundancy groups failed and cleared, and properties
+sample inside a drop of available power (or, without phase-back, the thrust down at its rate
+limit), a short source's unused power shared again, redundancy groups failed and cleared, and properties
 over random requests, available power, faults and methods: no source asked for more than it
 has, every command within its limits."""
 
@@ -8,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import ROOT, vehicle_from
+from conftest import ROOT, bench_module, vehicle_from
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -96,6 +97,61 @@ def test_the_next_sample_respects_a_drop_of_available_power_faster_than_the_rate
     assert np.all(draw <= np.array([300.0, 500.0]) * (1 + OVER))
     assert np.max(before - result.thrust) > allocator.vehicle.actuators[0].thrust_rate_max * allocator.dt
     assert allocator.power.reading(result.thrust, allocator.power_limit).limited
+
+
+def test_without_phase_back_the_thrust_comes_down_at_its_rate_limit_and_the_status_says_so():
+    allocator = Allocator(vehicle_from(DP_VESSEL, power__phase_back=False))
+    tau = [4e5, 0.0, 0.0, 0.0, 0.0, 0.0]
+    for _ in range(100):
+        result = allocator.allocate(tau)
+    step = np.array([a.thrust_rate_max for a in allocator.vehicle.actuators]) * allocator.dt
+    allocator.set_available_power({"swbd_a": 300.0, "swbd_b": 500.0})
+    has = np.array([300.0, 500.0])
+    over = []
+    for _ in range(60):
+        before = result.thrust
+        result = allocator.allocate(tau)
+        assert np.all(np.abs(result.thrust - before) <= step * (1 + 1e-9))
+        draw = allocator.power.draw(result.thrust, allocator.power_limit)
+        over.append(bool(np.any(draw > has * (1 + OVER))))
+        if over[-1]:
+            assert allocator.power.reading(result.thrust, allocator.power_limit).limited
+    assert over[0] and not over[-1]                      # over while it comes down, then inside
+    assert over == sorted(over, reverse=True)            # and never over again
+
+
+def test_a_short_sources_unused_power_goes_to_its_consumers_at_their_bound_by_hand():
+    """dp_vessel, switchboard B failed, switchboard A at 1000 kW: azimuth_stbd at its bound
+    170.36 kN draws 0.0074 * 170360^1.5 = 520.3 kW, tunnel_fwd at 20 kN 0.0113 * 20000^1.5 =
+    32.0 kW: 552.3 kW of 1000. Both may grow by g = (1000 / 552.3)^(2/3) = 1.4855: 253.1 kN and
+    29.71 kN, 1000 kW together."""
+    allocator = Allocator(vehicle_from(DP_VESSEL))
+    allocator.set_group_fault("switchboard_b")
+    allocator.set_available_power({"swbd_a": 1000.0})
+    budget, limit = allocator.power, allocator.power_limit
+    thrust = np.array([limit.bound[0], 0.0, 20000.0, 0.0])
+    assert budget.draw(thrust, limit)[0] == pytest.approx(552.3, abs=0.05)
+    bound = budget.shared(limit, limit.bound, thrust, np.ones(4, dtype=bool))
+    assert bound[[0, 2]] == pytest.approx([253.08e3, 29.711e3], rel=1e-4)
+    assert budget.draw(bound * [1, 0, 1, 0], limit)[0] == pytest.approx(1000.0)
+    assert budget.shared(limit, limit.bound, thrust * [0.5, 0, 1, 0], np.ones(4, dtype=bool)) is None  # none at its bound
+
+
+def test_a_saturated_surge_uses_the_power_the_source_has_as_far_as_the_exact_optimum():
+    """The same vessel asked for 400 kN of surge, more than it can give: the proportional
+    bounds alone draw 539 kW of switchboard A's 1000; shared again, the settled sample draws the
+    1000 kW and reaches the surge of the exact optimum under the power constraint (scipy SLSQP
+    over thrust and angle, bench/power_use.py) to 1 %."""
+    allocator = Allocator(vehicle_from(DP_VESSEL))
+    allocator.set_group_fault("switchboard_b")
+    allocator.set_available_power({"swbd_a": 1000.0})
+    for _ in range(150):
+        result = allocator.allocate([4e5, 0.0, 0.0, 0.0, 0.0, 0.0])
+    draw = allocator.power.draw(result.thrust, allocator.power_limit)[0]
+    assert 990.0 <= draw <= 1000.0 * (1 + OVER)
+    best = bench_module("power_use").reference_scale(allocator, np.array([1.0, 0.0, 0.0])) * 1e6
+    assert best == pytest.approx(255.5e3, rel=2e-3)
+    assert result.achieved[0] >= 0.99 * best
 
 
 def test_thrust_moves_to_the_other_sources_actuators():
