@@ -134,7 +134,8 @@ def test_a_short_sources_unused_power_goes_to_its_consumers_at_their_bound_by_ha
     bound = budget.shared(limit, limit.bound, thrust, np.ones(4, dtype=bool))
     assert bound[[0, 2]] == pytest.approx([253.08e3, 29.711e3], rel=1e-4)
     assert budget.draw(bound * [1, 0, 1, 0], limit)[0] == pytest.approx(1000.0)
-    assert budget.shared(limit, limit.bound, thrust * [0.5, 0, 1, 0], np.ones(4, dtype=bool)) is None  # none at its bound
+    none_at_its_bound = thrust * [0.5, 0, 1, 0]
+    assert budget.shared(limit, limit.bound, none_at_its_bound, np.ones(4, dtype=bool)) is None
 
 
 def test_a_saturated_surge_uses_the_power_the_source_has_as_far_as_the_exact_optimum():

@@ -6,6 +6,7 @@ the power holds back, the redundancy groups failed. Pure functions, as in
 from __future__ import annotations
 
 from ..allocation.allocator import Allocator
+from ..allocation.power_budget import PowerBudget
 from ..allocation.result import AllocationResult
 
 
@@ -42,3 +43,9 @@ def power_diagnostics(allocator: Allocator, last: AllocationResult | None, suppl
     if allocator.group_faults:
         warnings.append(f"redundancy group failed: {', '.join(allocator.group_faults)}")
     return warnings, values
+
+
+def available_text(budget: PowerBudget) -> str:
+    """The available power in force, in words: ``swbd_a 1000 kW, swbd_b 0 kW``."""
+    return ", ".join(f"{source} {kilowatts:g} kW"
+                     for source, kilowatts in zip(budget.sources, budget.available.tolist()))
