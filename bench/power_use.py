@@ -127,18 +127,27 @@ def allocator_static_ranges(allocator: Allocator) -> tuple[np.ndarray, np.ndarra
     return static_ranges(allocator.vehicle, allocator.fault_set, allocator.speed, allocator.voltage)
 
 
-def settled(allocator: Allocator, tau: np.ndarray, samples: int) -> tuple[object, float]:
-    """The last of ``samples`` allocations of ``tau`` from rest, and the mean time of the
-    power-limited ones [s]."""
+def settled(allocator: Allocator, tau: np.ndarray, samples: int) -> tuple[object, float, int, float]:
+    """The last of ``samples`` allocations of ``tau`` from rest; the mean time of the
+    power-limited ones [s]; how many samples cut some thrust by more than its rate step (the
+    power's ranges win over the rate limit); and the largest change of thrust over the last
+    fifth of the samples, as a share of the rated thrust (0 when it has settled)."""
     allocator.reset()
-    spent, limited = 0.0, 0
-    for _ in range(samples):
+    step = np.array([a.thrust_rate_max for a in allocator.vehicle.actuators]) * allocator.dt
+    rated = allocator.power.rated_thrust
+    spent, limited, cuts, wobble, previous = 0.0, 0, 0, 0.0, np.zeros(len(step))
+    for k in range(samples):
         start = time.perf_counter()
         result = allocator.allocate(tau)
         elapsed = time.perf_counter() - start
         if allocator.power.reading(result.thrust, allocator.power_limit).limited:
             spent, limited = spent + elapsed, limited + 1
-    return result, spent / max(limited, 1)
+        change = np.abs(result.thrust - previous)
+        cuts += bool(np.any(change > step * (1 + 1e-6)))
+        if k >= samples - samples // 5:
+            wobble = max(wobble, float(np.max(change / rated)))
+        previous = result.thrust
+    return result, spent / limited if limited else math.nan, cuts, wobble
 
 
 def run(samples: int, methods: list[str]) -> None:
@@ -152,14 +161,16 @@ def run(samples: int, methods: list[str]) -> None:
             short = [j for j, a in enumerate(allocator.power.available)
                      if a > 0 and np.any(limit.limited & (limit.weights[:, j] > 0))]
             used, along, times = {k: [] for k in MAGNITUDES}, {k: [] for k in MAGNITUDES}, []
+            cut, wobbles = 0, []
             for direction in directions():
                 s_star = reference_scale(allocator, direction)
                 for k in MAGNITUDES:
                     tau = np.zeros(6)
                     for dof, v in zip(allocator.vehicle.dofs, direction):
                         tau[DOF_NAMES.index(dof)] = k * s_star * v * SCALE[dof]
-                    result, spent = settled(allocator, tau, samples)
+                    result, spent, cuts, wobble = settled(allocator, tau, samples)
                     times.append(spent)
+                    cut, wobbles = cut + cuts, wobbles + [wobble]
                     draw = allocator.power.draw(result.thrust, allocator.power_limit)
                     if result.saturated:
                         used[k] += [draw[j] / allocator.power.available[j] for j in short]
@@ -169,7 +180,7 @@ def run(samples: int, methods: list[str]) -> None:
             print(f"{name:26s} {method:10s} " + "  ".join(
                 f"k={k}: used {np.mean(used[k]) if used[k] else float('nan'):.3f} (n={len(used[k])}) "
                 f"along {np.mean(along[k]):.3f} (min {np.min(along[k]):.3f})" for k in MAGNITUDES)
-                + f"  limited sample {1e3 * np.mean(times):.3f} ms")
+                + f"  limited sample {1e3 * np.nanmean(times):.3f} ms, cuts {cut}, wobble {max(wobbles):.4f}")
 
 
 def main() -> None:

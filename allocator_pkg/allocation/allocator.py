@@ -343,15 +343,20 @@ class Allocator:
             self._limits.refresh(conditions)
             self._actuation.refresh(conditions)
         limits = self._limits.sample(controlled, state)
+        sharing = share.sharing and not ramping
+        if sharing:                                     # a short source: its power shared as last sample
+            limits = share.carried(limits)
         output, drag = self._solver.solve(controlled, limits)
         name = self._solver.method.name
         result = self._actuation.actuate(requested, controlled, limits, output, drag, state, name, start)
-        for _ in range(SHARE_PASSES if share.sharing and not ramping else 0):
+        for _ in range(SHARE_PASSES if sharing else 0):
             limits = share.widened(limits, result.thrust)
             if limits is None:
                 break
             output, drag = self._solver.solve(controlled, limits)
             result = self._actuation.actuate(requested, controlled, limits, output, drag, state, name, start)
+        if sharing:
+            share.commit()
         state.commit(model, result.thrust, result.azimuth, self._conditions.lift)
         self._samples += 1
         return result

@@ -27,8 +27,13 @@ from .azimuth import thrust_window
 from .conditions import Conditions
 from .power_budget import PowerBudget, PowerLimit, narrowed
 
-SHARE_PASSES = 2
+SHARE_PASSES = 1
 """Extra solves a power-limited sample may make to share a short source's unused power again."""
+
+RELAX = 0.1
+"""How far each sample's bounds start from the last sample's toward the proportional ones (in
+power): what a consumer gave up comes back to it over some samples, so that no sharing holds
+once the request has moved on."""
 
 
 class PowerStage:
@@ -39,8 +44,8 @@ class PowerStage:
         self.limit: PowerLimit | None = None
         self.ramping: np.ndarray | None = None
         self.sharing = False
-        self._widened: SampleLimits | None = None
         self._bound = np.zeros(0)
+        self._last: np.ndarray | None = None
         self.configure(model)
 
     def configure(self, model: Model) -> None:
@@ -58,7 +63,7 @@ class PowerStage:
         previous, ramping, self.budget, self.base = self.limit, self.ramping, budget, base
         limit = self.limit = budget.limit(base.low, base.high) if budget.active else None
         self.sharing = limit is not None and bool(limit.limited.any())
-        self.ramping = None
+        self.ramping, self._last = None, None
         if not self.sharing:
             return base
         if not phase_back and thrust is not None:
@@ -82,37 +87,69 @@ class PowerStage:
         return replace(self.base, low=np.clip(self.base.low, -ceiling, ceiling),
                        high=np.clip(self.base.high, -ceiling, ceiling))
 
+    def carried(self, limits: SampleLimits) -> SampleLimits:
+        """This sample's ``limits`` (built inside the proportional bounds) inside the bounds the
+        last sample ended with, relaxed toward the proportional ones: per actuator
+        p = RELAX P b_prop^(3/2) + (1 - RELAX) P b_last^(3/2), a mean of two sets of bounds that
+        each keep every source within its available power, so this one does too."""
+        proportional = self.limit.bound
+        last = self._last if self._last is not None else proportional
+        with np.errstate(invalid="ignore"):
+            bound = np.where(np.isfinite(proportional), (RELAX * proportional ** 1.5 + (1.0 - RELAX) * last ** 1.5)
+                             ** (2.0 / 3.0), proportional)
+        self._bound = bound
+        return self._within(limits, proportional, bound)
+
     def widened(self, limits: SampleLimits, thrust: np.ndarray) -> SampleLimits | None:
-        """The limits of a second solve that shares a short source's unused power again, from
-        this sample's ``limits`` and the ``thrust`` its first solve gave; None when no source
-        has power to share."""
-        movable = np.ones(thrust.size, dtype=bool)
-        for k, i in enumerate(limits.rot):
-            lim = limits.azimuth[k]
-            movable[i] = lim.line or lim.high > lim.low      # not turning through, nor ramping to turn
-        old = self._bound if limits is self._widened else self.limit.bound
-        bound = self.budget.shared(self.limit, old, thrust, movable)
+        """The limits of one more solve that shares a short source's unused power again, from
+        this sample's ``limits`` and the ``thrust`` the last solve gave; None when no source has
+        power to share."""
+        bound = self.budget.shared(self.limit, self._bound, thrust, self._movable(limits))
         if bound is None:
             return None
-        self._bound = bound
+        old, self._bound = self._bound, bound
+        return self._within(limits, old, bound)
+
+    def commit(self) -> None:
+        """The bounds this sample ended with are the next one's start."""
+        self._last = self._bound
+
+    @staticmethod
+    def _movable(limits: SampleLimits) -> np.ndarray:
+        """The actuators whose thrust window may move with their bound: every one but a
+        rotatable thruster turning through a forbidden sector or ramping to zero to turn."""
+        movable = np.ones(limits.low.size, dtype=bool)
+        for k, i in enumerate(limits.rot):
+            lim = limits.azimuth[k]
+            movable[i] = lim.line or lim.high > lim.low
+        return movable
+
+    def _within(self, limits: SampleLimits, old: np.ndarray, bound: np.ndarray) -> SampleLimits:
+        """``limits``, built inside the bounds ``old``, inside ``bound``: the window of each
+        actuator whose bound changed is the rate limit's around the state the sample starts
+        from, inside its new range (a range that has come down wins over the rate limit); a
+        thruster turning through keeps its window, inside the bound."""
+        changed = np.flatnonzero(bound != old).tolist()
+        if not changed:
+            return limits
+        movable = self._movable(limits)
         range_low, range_high = np.maximum(self.base.low, -bound), np.minimum(self.base.high, bound)
         low, high, azimuth = limits.low.copy(), limits.high.copy(), list(limits.azimuth)
-        for i in np.flatnonzero(bound != old).tolist():
-            if bound[i] > old[i]:
+        for i in changed:
+            if movable[i]:
                 window = thrust_window(float(limits.thrust[i]), float(self._step[i]), range_low[i], range_high[i])
             else:
-                window = (max(low[i], -bound[i]), min(high[i], bound[i]))
+                window = (min(max(low[i], -bound[i]), bound[i]), min(max(high[i], -bound[i]), bound[i]))
             k = self._rotatable.get(i)
             if k is None:
                 low[i], high[i] = window
                 continue
             lim = azimuth[k]
-            if not lim.line:
+            if movable[i] and not lim.line:
                 window = (max(window[0], 0.0), max(window[1], 0.0)) if lim.sigma > 0 else \
                     (min(window[0], 0.0), min(window[1], 0.0))
             physical = lim.physical_max if lim.line else (range_high[i] if lim.sigma > 0 else -range_low[i])
             azimuth[k] = replace(lim, thrust_low=window[0], thrust_high=window[1], physical_max=physical)
             low[i], high[i] = window
-        self._widened = SampleLimits(low, high, limits.rot, azimuth, limits.angle, limits.thrust,
-                                     range_low=range_low, range_high=range_high)
-        return self._widened
+        return SampleLimits(low, high, limits.rot, azimuth, limits.angle, limits.thrust, range_low=range_low,
+                            range_high=range_high)
