@@ -164,6 +164,8 @@ def run(samples: int, methods: list[str]) -> None:
             cut, wobbles = 0, []
             for direction in directions():
                 s_star = reference_scale(allocator, direction)
+                if s_star < 1e-6:                           # the direction is out of reach
+                    continue
                 for k in MAGNITUDES:
                     tau = np.zeros(6)
                     for dof, v in zip(allocator.vehicle.dofs, direction):
@@ -176,7 +178,7 @@ def run(samples: int, methods: list[str]) -> None:
                         used[k] += [draw[j] / allocator.power.available[j] for j in short]
                     achieved = np.array([result.achieved[DOF_NAMES.index(d)] / SCALE[d]
                                          for d in allocator.vehicle.dofs])
-                    along[k].append(min(float(achieved @ direction) / (s_star * min(k, 1.0)), 1.0) if s_star else 1.0)
+                    along[k].append(min(float(achieved @ direction) / (s_star * min(k, 1.0)), 1.0))
             print(f"{name:26s} {method:10s} " + "  ".join(
                 f"k={k}: used {np.mean(used[k]) if used[k] else float('nan'):.3f} (n={len(used[k])}) "
                 f"along {np.mean(along[k]):.3f} (min {np.min(along[k]):.3f})" for k in MAGNITUDES)
