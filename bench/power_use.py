@@ -172,7 +172,7 @@ def run(samples: int, methods: list[str]) -> None:
                         tau[DOF_NAMES.index(dof)] = k * s_star * v * SCALE[dof]
                     result, spent, cuts, wobble = settled(allocator, tau, samples)
                     times.append(spent)
-                    cut, wobbles = cut + cuts, wobbles + [wobble]
+                    cut, wobbles = cut + cuts, [*wobbles, wobble]
                     draw = allocator.power.draw(result.thrust, allocator.power_limit)
                     if result.saturated:
                         used[k] += [draw[j] / allocator.power.available[j] for j in short]
