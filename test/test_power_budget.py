@@ -1,15 +1,14 @@
 """Power per source in the allocation (allocation/power_budget.py, docs/power.md): the derating
-of a split-fed thruster worked by hand, a source's budget shared by its consumers, the next
-sample inside a drop of available power (or, without phase-back, the thrust down at its rate
-limit), a short source's unused power shared again, redundancy groups failed and cleared, and properties
-over random requests, available power, faults and methods: no source asked for more than it
-has, every command within its limits."""
+of a split-fed thruster worked by hand, a source's budget shared by its consumers and its unused
+power shared again (by hand), redundancy groups failed and cleared, and properties over random
+requests, available power, faults and methods: no source asked for more than it has, every
+command within its limits (test_power_stage.py: the rule in a sample)."""
 
 import math
 
 import numpy as np
 import pytest
-from conftest import ROOT, bench_module, vehicle_from
+from conftest import ROOT, vehicle_from
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -85,41 +84,6 @@ def test_a_short_source_is_shared_by_its_consumers_in_proportion_to_their_larges
     assert allocator.power.draw(bound * [1, 0, 1, 0], allocator.power_limit) == pytest.approx([1000.0, 0.0])
 
 
-def test_the_next_sample_respects_a_drop_of_available_power_faster_than_the_rate_limit():
-    allocator = Allocator(vehicle_from(DP_VESSEL))
-    tau = [4e5, 0.0, 0.0, 0.0, 0.0, 0.0]
-    for _ in range(100):
-        result = allocator.allocate(tau)
-    before = result.thrust.copy()
-    allocator.set_available_power({"swbd_a": 300.0, "swbd_b": 500.0})
-    result = allocator.allocate(tau)
-    draw = allocator.power.draw(result.thrust, allocator.power_limit)
-    assert np.all(draw <= np.array([300.0, 500.0]) * (1 + OVER))
-    assert np.max(before - result.thrust) > allocator.vehicle.actuators[0].thrust_rate_max * allocator.dt
-    assert allocator.power.reading(result.thrust, allocator.power_limit).limited
-
-
-def test_without_phase_back_the_thrust_comes_down_at_its_rate_limit_and_the_status_says_so():
-    allocator = Allocator(vehicle_from(DP_VESSEL, power__phase_back=False))
-    tau = [4e5, 0.0, 0.0, 0.0, 0.0, 0.0]
-    for _ in range(100):
-        result = allocator.allocate(tau)
-    step = np.array([a.thrust_rate_max for a in allocator.vehicle.actuators]) * allocator.dt
-    allocator.set_available_power({"swbd_a": 300.0, "swbd_b": 500.0})
-    has = np.array([300.0, 500.0])
-    over = []
-    for _ in range(60):
-        before = result.thrust
-        result = allocator.allocate(tau)
-        assert np.all(np.abs(result.thrust - before) <= step * (1 + 1e-9))
-        draw = allocator.power.draw(result.thrust, allocator.power_limit)
-        over.append(bool(np.any(draw > has * (1 + OVER))))
-        if over[-1]:
-            assert allocator.power.reading(result.thrust, allocator.power_limit).limited
-    assert over[0] and not over[-1]                      # over while it comes down, then inside
-    assert over == sorted(over, reverse=True)            # and never over again
-
-
 def test_a_short_sources_unused_power_goes_to_its_consumers_at_their_bound_by_hand():
     """dp_vessel, switchboard B failed, switchboard A at 1000 kW: azimuth_stbd at its bound
     170.36 kN draws 0.0074 * 170360^1.5 = 520.3 kW, tunnel_fwd at 20 kN 0.0113 * 20000^1.5 =
@@ -136,31 +100,6 @@ def test_a_short_sources_unused_power_goes_to_its_consumers_at_their_bound_by_ha
     assert budget.draw(bound * [1, 0, 1, 0], limit)[0] == pytest.approx(1000.0)
     none_at_its_bound = thrust * [0.5, 0, 1, 0]
     assert budget.shared(limit, limit.bound, none_at_its_bound, np.ones(4, dtype=bool)) is None
-
-
-def test_a_saturated_surge_uses_the_power_the_source_has_as_far_as_the_exact_optimum():
-    """The same vessel asked for 400 kN of surge, more than it can give: the proportional
-    bounds alone draw 539 kW of switchboard A's 1000; shared again, the settled sample draws the
-    1000 kW and reaches the surge of the exact optimum under the power constraint (scipy SLSQP
-    over thrust and angle, bench/power_use.py) to 1 %. By hand: pure surge from azimuth_stbd
-    (x = -41.5 m, y = 7 m) and tunnel_fwd (x = 37 m) needs the tunnel's T = -F_y of the azimuth
-    and -41.5 F_y - 7 F_x + 37 T = 0, so F_y = -7 F_x / 78.5; the 1000 kW then give
-    F_x^1.5 (0.0074 (1 + (7 / 78.5)^2)^0.75 + 0.0113 (7 / 78.5)^1.5) = 1e6 W: F_x = 255.5 kN."""
-    allocator = Allocator(vehicle_from(DP_VESSEL))
-    allocator.set_group_fault("switchboard_b")
-    allocator.set_available_power({"swbd_a": 1000.0})
-    settled = []
-    for _ in range(150):
-        result = allocator.allocate([4e5, 0.0, 0.0, 0.0, 0.0, 0.0])
-        settled = [*settled[-19:], result.thrust]
-    assert np.ptp(settled, axis=0) == pytest.approx(np.zeros(4), abs=1.0)         # steady: no hunting
-    draw = allocator.power.draw(result.thrust, allocator.power_limit)[0]
-    assert 990.0 <= draw <= 1000.0 * (1 + OVER)
-    best = bench_module("power_use").reference_scale(allocator, np.array([1.0, 0.0, 0.0])) * 1e6
-    lever = 7.0 / 78.5
-    assert best == pytest.approx((1e6 / (0.0074 * (1 + lever ** 2) ** 0.75 + 0.0113 * lever ** 1.5)) ** (2 / 3),
-                                 rel=1e-4)
-    assert result.achieved[0] >= 0.99 * best
 
 
 def test_thrust_moves_to_the_other_sources_actuators():
