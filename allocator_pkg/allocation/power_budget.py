@@ -39,6 +39,10 @@ SPARE = 1e-3
 """A short source whose draw falls below its available power by more than this share has power
 to share again."""
 
+PATTERN = 1e-9
+"""A short source drawn below this share of its available power has no thrust pattern to scale
+up: its consumers keep their bounds."""
+
 
 @dataclass(frozen=True)
 class PowerLimit:
@@ -179,10 +183,11 @@ class PowerBudget:
         draw = (self.coefficient * np.where(drawing, magnitude, 0.0) ** 1.5) @ limit.weights
         at_bound = limit.limited & movable & (magnitude >= bound * (1.0 - AT_LIMIT))
         short = limit.rho < 1.0
-        sharing = short & (draw < available * (1.0 - SPARE)) & (consumers & at_bound[:, None]).any(axis=0)
+        sharing = (short & (draw < available * (1.0 - SPARE)) & (draw > available * PATTERN)
+                   & (consumers & at_bound[:, None]).any(axis=0))
         if not sharing.any():
             return None
-        growth = np.divide(available, draw, out=np.ones_like(draw), where=draw > 0.0) ** (2.0 / 3.0)
+        growth = np.divide(available, draw, out=np.ones_like(draw), where=sharing) ** (2.0 / 3.0)
         grown = np.where(consumers & sharing, growth * magnitude[:, None], np.inf).min(axis=1, initial=np.inf)
         held = (consumers & short & ~sharing).any(axis=1)
         new = np.minimum(np.where(held, np.minimum(grown, bound), grown), limit.largest)
