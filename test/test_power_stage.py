@@ -99,3 +99,17 @@ def test_the_bounds_carried_to_the_next_sample_keep_every_source_within_its_avai
         thrust = allocator.allocate([4e5, 0.0, 0.0, 0.0, 0.0, 0.0]).thrust
         assert abs(thrust[0] - previous[0]) <= step * (1 + 1e-9)
         previous = thrust
+
+
+def test_what_does_not_change_the_power_keeps_the_shares_carried_over():
+    """A speed sent every sample (as odometry does) changes neither the available power nor
+    the feeds: the sharing carried from sample to sample goes on as without it."""
+    plain, with_speed = (Allocator(vehicle_from(DP_VESSEL)) for _ in range(2))
+    for allocator in (plain, with_speed):
+        allocator.set_group_fault("switchboard_b")
+        allocator.set_available_power({"swbd_a": 1000.0})
+    for k in range(120):
+        tau = [4e5, 1e5 * np.sin(0.05 * k), 0.0, 0.0, 0.0, 2e6]
+        with_speed.set_speed(0.0)
+        a, b = plain.allocate(tau), with_speed.allocate(tau)
+        assert np.array_equal(a.thrust, b.thrust) and np.array_equal(a.azimuth, b.azimuth)

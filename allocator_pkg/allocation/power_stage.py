@@ -1,21 +1,26 @@
 """The power rule in a sample (docs/power.md): the thrust ranges the available power leaves,
-a short source's unused power shared again within the sample, and the phase-back of a drop.
+a short source's power shared again within the sample and carried to the next, and the
+phase-back of a drop.
 
 - **Ranges.** When faults, speed, voltage or the available power change,
-  :meth:`PowerStage.refresh` narrows the static ranges to the power bounds of
+  :meth:`PowerStage.refresh` narrows the static ranges to the proportional power bounds of
   :meth:`~.power_budget.PowerBudget.limit`, never per sample.
-- **Sharing again.** A sample whose thrust leaves a short source's power unused while some of
-  its consumers sit at their bound is solved once more (warm-started, values only) inside the
-  bounds of :meth:`~.power_budget.PowerBudget.shared`: :meth:`PowerStage.widened` gives the
-  second solve this sample's limits with the windows of those consumers opened toward their
-  new bound (from the state the sample starts from, at their rate limit) and the others'
-  narrowed to the thrust they use.
+- **Carried over.** A power-limited sample starts from the bounds the last one ended with,
+  relaxed toward the proportional ones (:meth:`PowerStage.carried`); a refresh that changes
+  neither the available power nor the feeds keeps them.
+- **Sharing again.** When that solve's thrust leaves a short source's power unused while one of
+  its consumers sits at its bound, the sample is solved once more (warm-started, values only)
+  inside the bounds of :meth:`~.power_budget.PowerBudget.shared`, the sample's own thrust
+  pattern scaled until the source is full (:meth:`PowerStage.widened`).
 - **Phase-back.** With ``power.phase_back`` (the default) a drop of available power holds from
   the next sample, faster than the rate limit allows. Without it, an actuator above its new
   bound comes down at its rate limit (:meth:`PowerStage.ramp`): this sample's ceiling is
   max(bound, |f_prev| - step), until it is inside; meanwhile its source may be over.
-"""
 
+Every set of bounds here keeps every source within its available power on its own; the windows
+of a sample inside new bounds are the rate limit's around the state it starts from, inside the
+new ranges (a range that has come down wins over the rate limit, as a fault's does).
+"""
 from __future__ import annotations
 
 from dataclasses import replace
@@ -63,7 +68,9 @@ class PowerStage:
         previous, ramping, self.budget, self.base = self.limit, self.ramping, budget, base
         limit = self.limit = budget.limit(base.low, base.high) if budget.active else None
         self.sharing = limit is not None and bool(limit.limited.any())
-        self.ramping, self._last = None, None
+        same_power = (previous is not None and limit is not None and np.array_equal(previous.available, limit.available)
+                      and np.array_equal(previous.weights, limit.weights))
+        self.ramping, self._last = None, self._last if same_power else None
         if not self.sharing:
             return base
         if not phase_back and thrust is not None:
