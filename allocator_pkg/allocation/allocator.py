@@ -272,7 +272,8 @@ class Allocator:
 
     @property
     def power_limit(self) -> PowerLimit | None:
-        """The thrust bounds and feed weights of the power rule in force (None: no sources)."""
+        """The proportional thrust bounds and feed weights of the power rule in force (None: no
+        sources); a power-limited sample may share a short source's power again beyond them."""
         return self._share.limit
 
     def set_available_power(self, available: Mapping[str, float]) -> None:
