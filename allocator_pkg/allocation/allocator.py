@@ -276,6 +276,12 @@ class Allocator:
         sources); a power-limited sample may share a short source's power again beyond them."""
         return self._share.limit
 
+    @property
+    def power_bounds(self) -> np.ndarray | None:
+        """The thrust bounds [N] the power left the last sample, shared again where a short
+        source had power to spare (the proportional ones before; None: no sources)."""
+        return self._share.bound
+
     def set_available_power(self, available: Mapping[str, float]) -> None:
         """Available power [kW] of the sources named, from the next sample (a source a group
         fault took stays at 0). Raises ValueError for an unknown source or a value that is not

@@ -117,6 +117,14 @@ class PowerStage:
         old, self._bound = self._bound, bound
         return self._within(limits, old, bound)
 
+    @property
+    def bound(self) -> np.ndarray | None:
+        """The thrust bounds the last sample ended with [N] (the proportional ones before any
+        sample has shared; None without sources)."""
+        if self.limit is None:
+            return None
+        return self._last if self._last is not None else self.limit.bound
+
     def commit(self) -> None:
         """The bounds this sample ended with are the next one's start."""
         self._last = self._bound

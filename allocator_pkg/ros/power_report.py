@@ -35,7 +35,7 @@ def power_diagnostics(allocator: Allocator, last: AllocationResult | None, suppl
     if lost:
         warnings.append(f"no power from {', '.join(lost)}")
     held = [f"{name} {bound:.6g} N" for name, narrowed, bound in
-            zip(allocator.names, limit.limited.tolist(), limit.bound.tolist()) if narrowed]
+            zip(allocator.names, limit.limited.tolist(), allocator.power_bounds.tolist()) if narrowed]
     values["thrust limited by power"] = ", ".join(held) or "none"
     if last is not None and limit.holds(last.thrust):
         warnings.append("power-limited: thrust held back by the available power")
