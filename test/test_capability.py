@@ -186,3 +186,27 @@ def test_attains_answers_as_reach_whichever_pieces_it_tries_first(method):
                 held, winner = capability.attains(tau, multiple, first)
                 assert held == (reach >= multiple), (tau, multiple, first)
                 assert (winner >= 0) == (held and method != "pseudoinverse")
+
+
+def test_under_the_power_in_force_the_capability_is_the_exact_optimums():
+    """dp_vessel, switchboard B failed, switchboard A at 1000 kW: the surge the proportional
+    bounds allow (170.4 kN of azimuth_stbd, less its share of holding the yaw moment) is raised
+    by sharing A's unused power again up to the exact optimum under the power constraint
+    (scipy SLSQP, bench/power_use.py), and never beyond it; the answer draws at most 1000 kW."""
+    from conftest import bench_module
+    vessel = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
+    allocator = Allocator(vessel)
+    allocator.set_group_fault("switchboard_b")
+    allocator.set_available_power({"swbd_a": 1000.0})
+    capability = Capability(vessel, speed=0.0)
+    surge = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+    faults = allocator.faults
+    without = capability.reach(surge, faults)[0]
+    budget, limit = allocator.power, allocator.power_limit
+    proportional = capability.reach_forces(surge, faults, power=(budget, replace(limit, rho=limit.rho * 0 + 1)))[0]
+    scale, force = capability.reach_forces(surge, faults, power=(budget, limit))
+    best = bench_module("power_use").reference_scale(allocator, np.array([1.0, 0.0, 0.0])) * 1e6
+    assert proportional < 0.7 * best and without > 1.5 * best
+    assert scale == pytest.approx(best, rel=5e-3)
+    thrust = np.sqrt(np.bincount(capability.model.extended_owner, force ** 2, capability.model.r))
+    assert budget.draw(thrust, limit)[0] <= 1000.0 * 1.01

@@ -38,6 +38,18 @@ def test_a_sample_line_shows_the_unallocated_wrench_the_actuators_at_a_limit_and
     assert not format_sample(commands, status).endswith(" V")
 
 
+def test_a_sample_line_shows_the_power_per_source_when_the_vehicle_has_sources():
+    commands = ThrusterCommands(name=["a", "b"], thrust=[10.0, 20.0], command=[1.0, 2.0], azimuth=[0.0, 0.0],
+                                mode=[0, 0])
+    status = AllocationStatus(solver_status="solved", power_source=["swbd_a", "swbd_b"],
+                              source_power=[998.7, 12.25], source_available=[1000.0, 7800.0], power_limited=True)
+    assert format_sample(commands, status).endswith("| power swbd_a 999/1000 kW, swbd_b 12/7800 kW LIMITED")
+    status.power_limited = False
+    assert format_sample(commands, status).endswith("swbd_b 12/7800 kW")
+    status.power_source, status.source_power, status.source_available = [], [], []
+    assert "power" not in format_sample(commands, status)
+
+
 def csv_rows(harness, samples: int, **settings) -> list[dict[str, str]]:
     from allocator_pkg.cli.controller import Controller
     from allocator_pkg.cli.echo import Echo

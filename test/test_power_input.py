@@ -82,3 +82,14 @@ def test_a_vehicle_without_sources_leaves_the_power_fields_empty(harness):
     assert list(status.power_source) == [] and list(status.source_power) == [] and not status.power_limited
     assert harness.set_group_fault("any") == (False, "unknown redundancy group 'any'; groups: none")
     assert "available power from" not in harness.diagnostics_after_a_second()
+
+
+@pytest.mark.params(DP_VESSEL, wrench_timeout=0.0, power_timeout=60.0)
+def test_get_capability_answers_under_the_power_in_force(harness):
+    """Switchboard B failed, A at 1000 kW: the surge of the exact optimum under the power
+    constraint, 255.5 kN (test_capability.py), not the 418 kN of the faults alone."""
+    assert harness.capability([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])[0] > 600e3
+    harness.set_group_fault("switchboard_b")
+    assert harness.capability([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])[0] == pytest.approx(418.3e3, rel=1e-3)
+    harness.send_power({"swbd_a": 1000.0})
+    assert harness.capability([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])[0] == pytest.approx(255.45e3, rel=1e-3)

@@ -2,6 +2,7 @@
 available power of each source, the bounds the power sets, failed groups and a stale input."""
 
 import numpy as np
+import pytest
 from conftest import ROOT
 
 from allocator_pkg import Allocator, load_vehicle
@@ -33,5 +34,8 @@ def test_the_power_per_source_the_bounds_and_a_failed_group():
                         "redundancy group failed: switchboard_b"]
     drawn, available = values["power swbd_a [kW]"].split(" of ")
     assert 500.0 < float(drawn) <= 1000.0 and available == "1000 available"
-    assert values["thrust limited by power"] == "azimuth_stbd 170360 N, tunnel_fwd 121686 N"
+    bound = allocator.power_bounds                      # shared again beyond the proportional 170360 N
+    assert values["thrust limited by power"] == f"azimuth_stbd {bound[0]:.6g} N, tunnel_fwd {bound[2]:.6g} N"
+    assert bound[0] > 1.4 * 170360.0
+    assert allocator.power.draw(bound * [1, 0, 1, 0], allocator.power_limit)[0] == pytest.approx(1000.0)
     assert values["failed redundancy groups"] == "switchboard_b" and values["rejected power messages"] == "2"

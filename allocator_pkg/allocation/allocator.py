@@ -42,7 +42,8 @@ from ..vehicle.config import DOF_NAMES, Vehicle
 from .actuation import ActuationStage
 from .conditions import Conditions
 from .limits import LimitsStage
-from .power_budget import PowerBudget, PowerLimit, narrowed
+from .power_budget import PowerBudget, PowerLimit
+from .power_stage import SHARE_PASSES, PowerStage
 from .result import AllocationResult, AllocatorStats
 from .solve import MethodStage, check_method
 from .state import ActuatorState
@@ -162,9 +163,11 @@ class Allocator:
         self._solver.configure(model, self._method_override or vehicle.method, inverse)
         if previous is None:
             self._limits, self._actuation = LimitsStage(model, inverse), ActuationStage(model)
+            self._share = PowerStage(model)
         else:
             self._limits.configure(model, inverse)
             self._actuation.configure(model)
+            self._share.configure(model)
         self._model, self._vehicle = model, vehicle
         voltages = vehicle.voltage_range
         if self._voltage is None or (voltages is not None and not voltages[0] <= self._voltage <= voltages[1]):
@@ -269,8 +272,15 @@ class Allocator:
 
     @property
     def power_limit(self) -> PowerLimit | None:
-        """The thrust bounds and feed weights of the power rule in force (None: no sources)."""
-        return self._power_limit
+        """The proportional thrust bounds and feed weights of the power rule in force (None: no
+        sources); a power-limited sample may share a short source's power again beyond them."""
+        return self._share.limit
+
+    @property
+    def power_bounds(self) -> np.ndarray | None:
+        """The thrust bounds [N] the power left the last sample, shared again where a short
+        source had power to spare (the proportional ones before; None: no sources)."""
+        return self._share.bound
 
     def set_available_power(self, available: Mapping[str, float]) -> None:
         """Available power [kW] of the sources named, from the next sample (a source a group
@@ -305,10 +315,9 @@ class Allocator:
         """What faults, speed, voltage and available power decide, computed once and given to
         every stage."""
         conditions = Conditions.of(self._model.vehicle, self._fault_set, self._speed, self._voltage)
-        self._power_limit = self._power.limit(conditions.low, conditions.high) if self._power.active else None
-        if self._power_limit is not None and self._power_limit.limited.any():
-            low, high = narrowed(conditions.low, conditions.high, self._power_limit)
-            conditions = replace(conditions, low=low, high=high)
+        state = getattr(self, "_state", None)
+        conditions = self._share.refresh(self._power, conditions, None if state is None else state.thrust,
+                                         self._model.vehicle.power_phase_back)
         self._conditions = conditions
         self._limits.refresh(conditions)
         self._solver.refresh(conditions)
@@ -333,12 +342,28 @@ class Allocator:
         """Allocate the generalised force [X, Y, Z, K, M, N]; uncontrolled DOFs are ignored."""
         requested = checked_request(tau)
         start = time.perf_counter()
-        model, state = self._model, self._state
+        model, state, share = self._model, self._state, self._share
         controlled = requested if model.n == len(DOF_NAMES) else requested[model.dof_index]
+        ramping = share.ramping is not None
+        if ramping:                                     # power.phase_back false: down at the rate limit
+            conditions = share.ramp(state.thrust)
+            self._limits.refresh(conditions)
+            self._actuation.refresh(conditions)
         limits = self._limits.sample(controlled, state)
+        sharing = share.sharing and not ramping
+        if sharing:                                     # a short source: its power shared as last sample
+            limits = share.carried(limits)
         output, drag = self._solver.solve(controlled, limits)
-        result = self._actuation.actuate(requested, controlled, limits, output, drag, state, self._solver.method.name,
-                                         start)
+        name = self._solver.method.name
+        result = self._actuation.actuate(requested, controlled, limits, output, drag, state, name, start)
+        for _ in range(SHARE_PASSES if sharing else 0):
+            limits = share.widened(limits, result.thrust)
+            if limits is None:
+                break
+            output, drag = self._solver.solve(controlled, limits)
+            result = self._actuation.actuate(requested, controlled, limits, output, drag, state, name, start)
+        if sharing:
+            share.commit()
         state.commit(model, result.thrust, result.azimuth, self._conditions.lift)
         self._samples += 1
         return result

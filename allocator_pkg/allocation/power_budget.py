@@ -15,6 +15,11 @@ those largest draws: each consumer's power is scaled by rho_j = A_j / D_j, an ac
 smallest rho of its live feeds. That bounds |f_i| <= m_i rho^(2/3), a thrust range for every
 stage of the sample (the optimiser moves the rest to other sources' actuators), and the draw
 on source j is at most rho_j D_j = A_j by construction.
+
+A sample that leaves a short source's power unused while some of its consumers sit at their
+bound shares it again (:meth:`PowerBudget.shared`): every consumer of the source may grow by
+the factor that scales the sample's own draw on it up to A_j, and the sample is solved again
+inside those bounds; the draw on the source is again at most A_j.
 """
 
 from __future__ import annotations
@@ -30,6 +35,14 @@ from ..vehicle.config import RedundancyGroup, Vehicle
 KW = 1000.0
 """Watts in a kilowatt: the configuration and the topic speak kW, the model W (1.44)."""
 
+SPARE = 1e-3
+"""A short source whose draw falls below its available power by more than this share has power
+to share again."""
+
+PATTERN = 1e-9
+"""A short source drawn below this share of its available power has no thrust pattern to scale
+up: its consumers keep their bounds."""
+
 
 @dataclass(frozen=True)
 class PowerLimit:
@@ -37,12 +50,16 @@ class PowerLimit:
     magnitude of every actuator (inf: the power sets none); ``weights`` (r x m), the share of
     actuator i's power drawn from source j (0 from a lost feed); ``limited``, the actuators
     whose range the bound narrows; ``available``, the available power [kW] of every source
-    the rule took."""
+    the rule took; ``largest`` [N], the largest thrust magnitude faults, speed, voltage and the
+    feed limit leave every actuator (m_i; inf for one without feeds); ``rho``, every source's
+    share of its consumers' largest draws (1: it limits nothing)."""
 
     bound: np.ndarray
     weights: np.ndarray
     limited: np.ndarray
     available: np.ndarray
+    largest: np.ndarray
+    rho: np.ndarray
 
     def holds(self, thrust: np.ndarray) -> bool:
         """Whether the power holds some actuator back at ``thrust``: one whose range a bound
@@ -144,7 +161,37 @@ class PowerBudget:
         scale = np.where((weights > 0.0) & drawing[:, None], rho, 1.0).min(axis=1, initial=1.0)
         bound = np.where(self.fed, np.minimum(derated, largest * scale ** (2.0 / 3.0)), np.inf)
         limited = bound < np.maximum(np.abs(low), np.abs(high))
-        return PowerLimit(bound=bound, weights=weights, limited=limited, available=kilowatts)
+        return PowerLimit(bound=bound, weights=weights, limited=limited, available=kilowatts,
+                          largest=np.where(self.fed, largest, np.inf), rho=rho)
+
+    def shared(self, limit: PowerLimit, bound: np.ndarray, thrust: np.ndarray,
+               movable: np.ndarray) -> np.ndarray | None:
+        """Bounds [N] that give a short source's unused power to its consumers (module
+        docstring), from a sample's ``thrust`` inside the bounds ``bound`` under ``limit``; None
+        when no short source has power to spare and a consumer at its bound that could take it
+        (``movable``: those whose window this sample may open).
+
+        Source j shares again when its draw W_j is below A_j (1 - SPARE) and a consumer sits at
+        its bound: each of its consumers may grow to g_j |f_i|, g_j = (A_j / W_j)^(2/3), so
+        that the draw on j is at most g_j^(3/2) W_j = A_j, the sample's own thrust pattern
+        scaled up until the source is full. An actuator fed by several sources takes the
+        smallest g of those sharing and keeps its bound if another of its sources is short."""
+        available = limit.available * KW
+        drawing = self.fed & (self.coefficient > 0.0)
+        consumers = (limit.weights > 0.0) & drawing[:, None]
+        magnitude = np.abs(thrust)
+        draw = (self.coefficient * np.where(drawing, magnitude, 0.0) ** 1.5) @ limit.weights
+        at_bound = limit.limited & movable & (magnitude >= bound * (1.0 - AT_LIMIT))
+        short = limit.rho < 1.0
+        sharing = (short & (draw < available * (1.0 - SPARE)) & (draw > available * PATTERN)
+                   & (consumers & at_bound[:, None]).any(axis=0))
+        if not sharing.any():
+            return None
+        growth = np.divide(available, draw, out=np.ones_like(draw), where=sharing) ** (2.0 / 3.0)
+        grown = np.where(consumers & sharing, growth * magnitude[:, None], np.inf).min(axis=1, initial=np.inf)
+        held = (consumers & short & ~sharing).any(axis=1)
+        new = np.minimum(np.where(held, np.minimum(grown, bound), grown), limit.largest)
+        return np.where(consumers[:, sharing].any(axis=1), new, bound)
 
     def draw(self, thrust: np.ndarray, limit: PowerLimit) -> np.ndarray:
         """Power [kW] each source gives at ``thrust``: p_i = P_i |f_i|^(3/2) (1.44) split over

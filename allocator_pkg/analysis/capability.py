@@ -35,6 +35,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import linprog
 
+from ..allocation.power_budget import PowerBudget, PowerLimit
 from ..allocation.solve import check_method
 from ..effectiveness.faults import Fault, FaultMode, FaultSet, static_ranges
 from ..effectiveness.model import Model
@@ -47,6 +48,13 @@ from ..vehicle.config import ActuatorConfig, Vehicle
 from .thrust_profile import ForceProfile
 
 FORCE_DOFS = ("surge", "sway", "heave")
+
+POWER_PASSES = 4
+"""Answers :meth:`Capability.reach_forces` gives under the power rule: the first inside the
+bounds in force, each next one with a short source's unused power shared again."""
+
+PowerRule = tuple[PowerBudget, PowerLimit]
+"""The power sources with the available power in force, and the rule's limit at it."""
 
 
 @dataclass(frozen=True)
@@ -105,29 +113,45 @@ class Capability:
         return self.reach(tau, faults)[0]
 
     def reach(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None, speed: float | None = None,
-              voltage: float | None = None) -> tuple[float, np.ndarray]:
+              voltage: float | None = None, power: PowerRule | None = None) -> tuple[float, np.ndarray]:
         """(lambda, wrench): the largest lambda with lambda * tau attainable (uncontrolled DOFs
         of tau ignored; inf for a zero request) at a surge speed and supply voltage (None: the
         analysis' speed, the nominal voltage), and the whole wrench [X, Y, Z, K, M, N] the
-        actuators give there (in the uncontrolled DOFs what they give on the way)."""
-        magnitude, force = self.reach_forces(tau, faults, speed, voltage)
+        actuators give there (in the uncontrolled DOFs what they give on the way). ``power``:
+        the power rule in force (:meth:`reach_forces`)."""
+        magnitude, force = self.reach_forces(tau, faults, speed, voltage, power)
         return magnitude, self.model.t_e @ force
 
     def reach_forces(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None, speed: float | None = None,
-                     voltage: float | None = None) -> tuple[float, np.ndarray]:
+                     voltage: float | None = None, power: PowerRule | None = None) -> tuple[float, np.ndarray]:
         """(lambda, f): lambda as :meth:`reach` gives it and the extended forces f (m, the model's
-        columns) that give lambda * tau (zeros for a zero request)."""
+        columns) that give lambda * tau (zeros for a zero request).
+
+        With ``power`` (the budget and the limit in force, docs/power.md) the thrust stays
+        inside the power bounds, shared again as a sample shares them
+        (:meth:`~allocator_pkg.allocation.power_budget.PowerBudget.shared`): each short source's
+        unused power goes to its consumers in proportion to the thrust of the last answer,
+        ``POWER_PASSES`` times at most; every answer stays inside bounds that keep each source
+        within its available power, and none is below the one before."""
         request = np.asarray(tau, dtype=float)[self.model.dof_index]
         if not np.any(request):
             return math.inf, np.zeros(self.model.m)
         faults = FaultSet.of(self.vehicle, faults)
         low, high = static_ranges(self.vehicle, faults, self.speed if speed is None else speed, voltage)
         zero = np.zeros(self.model.n)
-        if self.sides is None:
-            magnitude, force = self._pseudo_inverse_limit(request, zero, faults, low, high)
-        else:
-            magnitude, force = self._linear_programme(request, zero, faults, low, high)
-        return magnitude, force
+        solve = self._pseudo_inverse_limit if self.sides is None else self._linear_programme
+        if power is None or not power[1].limited.any():
+            return solve(request, zero, faults, low, high)
+        budget, limit = power
+        bound, best = limit.bound, (0.0, np.zeros(self.model.m))
+        for _ in range(POWER_PASSES):
+            answer = solve(request, zero, faults, np.clip(low, -bound, bound), np.clip(high, -bound, bound))
+            best = max(best, answer, key=lambda pair: pair[0])
+            thrust = np.sqrt(np.bincount(self.model.extended_owner, answer[1] ** 2, self.model.r))
+            bound = budget.shared(limit, bound, thrust, np.ones(thrust.size, dtype=bool))
+            if bound is None:
+                break
+        return best
 
     def attains(self, tau, multiple: float, first: int = 0) -> tuple[bool, int]:
         """Whether ``multiple`` (> 0) times tau is attainable, as ``reach(tau)[0] >= multiple``,

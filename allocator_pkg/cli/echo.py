@@ -29,7 +29,8 @@ from .recording import Recording
 def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -> str:
     """One compact line: every actuator's thrust [N], command (set-point) and azimuth [deg] if it
     has one, then the solver figures; when saturated the unallocated wrench, the actuators at a
-    thrust (!) or rate (~) limit, and the supply voltage in use."""
+    thrust (!) or rate (~) limit, and the supply voltage in use; with power sources, the power
+    each gives of what it has [kW], LIMITED when the power holds thrust back."""
     parts = []
     for name, thrust, command, azimuth in zip(commands.name, commands.thrust, commands.command, commands.azimuth):
         angle = f" @{math.degrees(azimuth):6.1f}" if azimuth != 0.0 else " " * 8
@@ -46,6 +47,10 @@ def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -
             line += f" | at limit (! thrust, ~ rate): {' '.join(flagged)}"
         if status.voltage > 0.0:                     # NaN: no voltage tables
             line += f" | {status.voltage:.2f} V"
+        if status.power_source:
+            line += " | power " + ", ".join(f"{source} {drawn:.0f}/{available:g} kW" for source, drawn, available
+                                            in zip(status.power_source, status.source_power, status.source_available))
+            line += " LIMITED" if status.power_limited else ""
     return line
 
 

@@ -115,6 +115,10 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         "power_available topic, else the capacity; docs/power.md), as does the DP capability analysis.",
         default_doc="none", read_only=True,
         constraint="unique; letters, digits and '_', starting with a letter; no actuator's name"),
+    Key("power.phase_back", BOOL, "With power.sources: when a source's available power drops, true holds the "
+        "new bounds from the next sample, faster than thrust_rate_max allows (no source over its available power "
+        "by more than rounding); false brings the thrust down at its rate limit, the source over meanwhile and "
+        "allocation_status's power_limited set (docs/power.md).", default=True),
     Key("redundancy_groups.names", STR_LIST, "Redundancy groups: what one single failure takes away together "
         "(DNV-ST-0111 [2.4.8]; the DP FMEA's redundancy concept), each with redundancy_groups.<group>.sources and "
         "redundancy_groups.<group>.actuators. The node's ~/set_group_fault fails one at runtime and its consequence "

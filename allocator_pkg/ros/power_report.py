@@ -6,6 +6,7 @@ the power holds back, the redundancy groups failed. Pure functions, as in
 from __future__ import annotations
 
 from ..allocation.allocator import Allocator
+from ..allocation.power_budget import PowerBudget
 from ..allocation.result import AllocationResult
 
 
@@ -34,7 +35,7 @@ def power_diagnostics(allocator: Allocator, last: AllocationResult | None, suppl
     if lost:
         warnings.append(f"no power from {', '.join(lost)}")
     held = [f"{name} {bound:.6g} N" for name, narrowed, bound in
-            zip(allocator.names, limit.limited.tolist(), limit.bound.tolist()) if narrowed]
+            zip(allocator.names, limit.limited.tolist(), allocator.power_bounds.tolist()) if narrowed]
     values["thrust limited by power"] = ", ".join(held) or "none"
     if last is not None and limit.holds(last.thrust):
         warnings.append("power-limited: thrust held back by the available power")
@@ -42,3 +43,9 @@ def power_diagnostics(allocator: Allocator, last: AllocationResult | None, suppl
     if allocator.group_faults:
         warnings.append(f"redundancy group failed: {', '.join(allocator.group_faults)}")
     return warnings, values
+
+
+def available_text(budget: PowerBudget) -> str:
+    """The available power in force, in words: ``swbd_a 1000 kW, swbd_b 0 kW``."""
+    return ", ".join(f"{source} {kilowatts:g} kW"
+                     for source, kilowatts in zip(budget.sources, budget.available.tolist()))

@@ -51,6 +51,7 @@ from .diagnostics import LOG_THROTTLE, Counters, diagnostic_statuses
 from .hold import Hold, refusal
 from .outputs import Outputs
 from .power_input import PowerInput
+from .power_report import available_text
 from .watchdog import Watchdog
 
 DIAGNOSTICS_PERIOD = 1.0     # s between two reports on /diagnostics
@@ -335,12 +336,14 @@ class AllocationRuntime:
                 except ValueError as error:
                     return False, str(error), 0.0, np.zeros(6)
             faults, speed, voltage = allocator.faults, allocator.speed, allocator.voltage
+            power = None if allocator.power_limit is None else (allocator.power, allocator.power_limit)
             capability = self._capability
         if not np.any(body[list(capability.vehicle.dof_indices)]):
             return False, (f"the direction has no component in the controlled DOFs "
                            f"({', '.join(capability.vehicle.dofs)})"), 0.0, np.zeros(6)
-        scale, wrench = capability.reach(body, faults, speed, voltage)
+        scale, wrench = capability.reach(body, faults, speed, voltage, power)
         where = f", {voltage:g} V" if voltage is not None else ""
+        where += f", available power {available_text(power[0])}" if power is not None else ""
         return True, (f"steady state with {len(faults)} faults, speed {speed:g} m/s{where}, method "
                       f"{capability.method}"), scale, wrench_between(wrench, self.settings.frame)
 

@@ -222,6 +222,7 @@ class Vehicle:
     power_sources: tuple[PowerSource, ...] = ()
     redundancy_groups: tuple[RedundancyGroup, ...] = ()
     flushing_zones: str = "none"
+    power_phase_back: bool = True
 
     @property
     def priority_levels(self) -> tuple[tuple[int, ...], ...]:
