@@ -39,19 +39,17 @@ from rclpy.node import Node
 from allocator_msgs.msg import ActuatorFault
 
 from ..allocation.allocator import AllocationResult, Allocator
-from ..analysis.capability import Capability
 from ..effectiveness.faults import FaultMode
 from ..vehicle.config import Vehicle
-from ..vehicle.frames import wrench_between
 from ..vehicle.node_settings import INPUT, TIMER, NodeSettings
 from . import qos, wrench_input
 from .battery import BatteryInput
+from .capability_query import CapabilityQuery
 from .consequence import ConsequenceMonitor
 from .diagnostics import LOG_THROTTLE, Counters, diagnostic_statuses
 from .hold import Hold, refusal
 from .outputs import Outputs
 from .power_input import PowerInput
-from .power_report import available_text
 from .watchdog import Watchdog
 
 DIAGNOSTICS_PERIOD = 1.0     # s between two reports on /diagnostics
@@ -96,7 +94,7 @@ class AllocationRuntime:
         self._battery = BatteryInput(node, self._lock, allocator, self.counters) \
             if vehicle.voltage_range is not None else None
         self.power_input = PowerInput(node, self._lock, allocator, self.counters) if vehicle.power_sources else None
-        self._capability: Capability | None = None
+        self._capability = CapabilityQuery()
         self._consequence = ConsequenceMonitor(node, self._lock, allocator, settings, self._outputs) \
             if vehicle.redundancy_groups else None
         self._period_ns = round(S_TO_NS / vehicle.rate_hz)
@@ -322,30 +320,9 @@ class AllocationRuntime:
         return cleared + (f" (redundancy groups {', '.join(groups)})" if groups else "")
 
     def capability(self, direction: np.ndarray) -> tuple[bool, str, float, np.ndarray]:
-        """The largest scale along ``direction`` (a wrench in the node's frame) under the faults,
-        voltage and speed in force, and the wrench there in the node's frame: (success,
-        message, scale, wrench). The analysis is built once per configuration."""
-        if not np.all(np.isfinite(direction)):
-            return False, f"the direction must be finite, got {direction.tolist()}", 0.0, np.zeros(6)
-        body = wrench_between(direction, self.settings.frame)
-        with self._lock:
-            allocator = self.allocator
-            if self._capability is None or self._capability.vehicle is not allocator.vehicle:
-                try:
-                    self._capability = Capability(allocator.vehicle, allocator.method, allocator.speed)
-                except ValueError as error:
-                    return False, str(error), 0.0, np.zeros(6)
-            faults, speed, voltage = allocator.faults, allocator.speed, allocator.voltage
-            power = None if allocator.power_limit is None else (allocator.power, allocator.power_limit)
-            capability = self._capability
-        if not np.any(body[list(capability.vehicle.dof_indices)]):
-            return False, (f"the direction has no component in the controlled DOFs "
-                           f"({', '.join(capability.vehicle.dofs)})"), 0.0, np.zeros(6)
-        scale, wrench = capability.reach(body, faults, speed, voltage, power)
-        where = f", {voltage:g} V" if voltage is not None else ""
-        where += f", available power {available_text(power[0])}" if power is not None else ""
-        return True, (f"steady state with {len(faults)} faults, speed {speed:g} m/s{where}, method "
-                      f"{capability.method}"), scale, wrench_between(wrench, self.settings.frame)
+        """``~/get_capability`` for ``direction``, a wrench in the node's frame
+        (:class:`~allocator_pkg.ros.capability_query.CapabilityQuery`)."""
+        return self._capability.answer(self.allocator, self._lock, self.settings.frame, direction)
 
     def apply(self, vehicle: Vehicle, settings: NodeSettings) -> None:
         """A checked configuration of the same actuators, between two samples."""
