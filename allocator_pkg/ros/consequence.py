@@ -4,11 +4,12 @@
 The sample path only feeds the load filter (:meth:`ConsequenceMonitor.observe`: a first-order
 low-pass of the requested wrench, a few operations on six numbers, under the runtime's lock). A
 timer at ``consequence.rate`` on the node's clock takes a snapshot under that lock (the filtered
-load, the force ranges and faults in force, the configuration) and hands it to a thread of the
-monitor's own, which solves each group's programme
-(:class:`~allocator_pkg.analysis.consequence.Consequence`; HiGHS lets go of the GIL while it
-solves), publishes the answer and sets the alarm. That thread never takes the runtime's lock, so
-no sample waits for an analysis.
+load, the configuration, and what the allocator has in force: its faults, the available power
+with the failed groups' sources at 0 kW, speed and voltage,
+:class:`~allocator_pkg.analysis.group_loss.InForce`) and hands it to a thread of the monitor's
+own, which solves each group's programme (:class:`~allocator_pkg.analysis.consequence.Consequence`;
+HiGHS lets go of the GIL while it solves), publishes the answer and sets the alarm. That thread
+never takes the runtime's lock, so no sample waits for an analysis.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from allocator_msgs.msg import ConsequenceAnalysis, GroupConsequence
 
 from ..allocation.allocator import Allocator
 from ..analysis.consequence import Consequence, GroupUtilisation
-from ..effectiveness.faults import Fault
+from ..analysis.group_loss import InForce
 from ..vehicle.config import Vehicle
 from ..vehicle.node_settings import NodeSettings
 from .conversions import fill_wrench_in
@@ -36,15 +37,14 @@ from .outputs import Outputs
 @dataclass(frozen=True)
 class Snapshot:
     """What one analysis needs, taken at once under the runtime's lock: the configuration and
-    method, the filtered load [X, Y, Z, K, M, N] (FRD), the force ranges and the faults in force,
-    the time [ns of the node clock], the frame convention and name of the message."""
+    method, the filtered load [X, Y, Z, K, M, N] (FRD), what the allocator has in force (a
+    group's loss comes on top of it), the time [ns of the node clock], the frame convention and
+    name of the message."""
 
     vehicle: Vehicle
     method: str
     load: np.ndarray
-    low: np.ndarray
-    high: np.ndarray
-    faults: dict[str, Fault]
+    in_force: InForce
     stamp: int
     frame: str
     base_frame: str
@@ -180,8 +180,7 @@ class ConsequenceMonitor:
         with self._lock:
             if not self._active:
                 return
-            low, high = allocator.ranges
-            snapshot = Snapshot(allocator.vehicle, allocator.method, self._load.copy(), low, high, allocator.faults,
+            snapshot = Snapshot(allocator.vehicle, allocator.method, self._load.copy(), InForce.of(allocator),
                                 self._node.get_clock().now().nanoseconds, settings.frame, settings.base_frame)
         with self._ready:
             self._pending = snapshot
@@ -201,7 +200,7 @@ class ConsequenceMonitor:
             try:
                 if analysis is None or analysis.vehicle is not snapshot.vehicle or analysis.method != snapshot.method:
                     analysis = Consequence(snapshot.vehicle, snapshot.method)
-                groups = analysis.utilisation(snapshot.load, snapshot.low, snapshot.high, snapshot.faults)
+                groups = analysis.utilisation(snapshot.load, snapshot.in_force)
             except (ValueError, ArithmeticError) as error:
                 self._node.get_logger().error(f"consequence analysis failed: {error}")
                 continue
