@@ -95,6 +95,7 @@ def test_a_failed_group_and_the_available_power_in_force_count_in_the_analysis(h
     assert failed.groups[1].utilisation == pytest.approx(41.5 / 78.5, rel=1e-9)   # B's loss adds nothing more
     status = consequence_diagnostics(harness)
     assert status.level == DiagnosticStatus.ERROR and "switchboard_a" in status.message
+    assert {v.key: v.value for v in status.values}["sources already lost"] == "swbd_b"
     assert harness.status[-1].consequence_alarm
 
     harness.clear_faults()
@@ -147,7 +148,8 @@ def test_the_diagnostic_of_a_direction_nothing_left_gives():
     from allocator_pkg.analysis.consequence import GroupUtilisation
     status = consequence_status("/n", 1.0, (GroupUtilisation("a", math.inf), GroupUtilisation("b", 0.5)))
     assert status.level == DiagnosticStatus.ERROR and "a (more than it gives" in status.message
-    assert [(v.key, v.value) for v in status.values][:2] == [("utilisation a", "inf"), ("utilisation b", "0.5000")]
+    assert [(v.key, v.value) for v in status.values][:3] == [("utilisation a", "inf"), ("utilisation b", "0.5000"),
+                                                             ("sources already lost", "none")]
     assert consequence_status("/n", 1.0, None).message == "no analysis yet"
     assert np.isinf(float(status.values[0].value))
 

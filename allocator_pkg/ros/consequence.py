@@ -65,9 +65,11 @@ def consequence_message(snapshot: Snapshot, groups: tuple[GroupUtilisation, ...]
     return message
 
 
-def consequence_status(node_name: str, rate: float, groups: tuple[GroupUtilisation, ...] | None) -> DiagnosticStatus:
+def consequence_status(node_name: str, rate: float, groups: tuple[GroupUtilisation, ...] | None,
+                       lost: tuple[str, ...] = ()) -> DiagnosticStatus:
     """``<node>: consequence analysis``: ERROR naming every group whose loss would leave too
-    little for the present load, else OK with the worst group; each group's utilisation."""
+    little for the present load, else OK with the worst group; each group's utilisation and
+    the power sources the analysis took as ``lost`` already."""
     status = DiagnosticStatus(level=DiagnosticStatus.OK, name=f"{node_name}: consequence analysis",
                               hardware_id=node_name)
     if rate <= 0.0:
@@ -83,6 +85,7 @@ def consequence_status(node_name: str, rate: float, groups: tuple[GroupUtilisati
         worst = max(groups, key=lambda group: group.utilisation)
         status.message = f"every group's loss leaves enough; worst {worst.group} at {_percent(worst.utilisation)}"
     status.values = [KeyValue(key=f"utilisation {group.group}", value=f"{group.utilisation:.4f}") for group in groups]
+    status.values.append(KeyValue(key="sources already lost", value=", ".join(lost) or "none"))
     status.values.append(KeyValue(key="rate [Hz]", value=f"{rate:g}"))
     return status
 
@@ -112,6 +115,7 @@ class ConsequenceMonitor:
         self._observed: int | None = None
         self._active = False
         self.groups: tuple[GroupUtilisation, ...] | None = None
+        self.lost: tuple[str, ...] = ()
         self.alarm = False
         self._ready = threading.Condition()
         self._pending: Snapshot | None = None
@@ -138,7 +142,7 @@ class ConsequenceMonitor:
         load += (1.0 - math.exp((last - now) / (S_TO_NS * time_constant))) * (wrench - load)
 
     def diagnostic(self, node_name: str) -> DiagnosticStatus:
-        return consequence_status(node_name, self._settings.consequence_rate, self.groups)
+        return consequence_status(node_name, self._settings.consequence_rate, self.groups, self.lost)
 
     def activate(self) -> None:
         """Start analysing (lock held)."""
@@ -211,6 +215,7 @@ class ConsequenceMonitor:
         """The alarm and diagnostics first, so that whoever has the message finds them in force."""
         message = consequence_message(snapshot, groups)
         was, self.groups = self.alarm, groups
+        self.lost = snapshot.in_force.lost_sources(snapshot.vehicle)
         self._set_alarm(message.alarm)
         if message.alarm != was:
             logger = self._node.get_logger()
