@@ -380,3 +380,18 @@ def test_after_a_loss_the_zone_onto_the_dead_thruster_lifts_and_pushing_onto_it_
     assert left.rotations[0].forbidden_sectors == () and [loss.flushed for loss in left.losses[0]] == ["az1"]
     intact = remaining(vehicle, InForce.intact(vehicle), RedundancyGroup("none", (), ()))
     assert len(intact.rotations[0].forbidden_sectors) == 1 and not intact.losses
+
+
+def test_a_thruster_pushing_onto_a_dead_one_has_its_pieces_cut_and_unless_it_reverses_the_sector_left_alone():
+    from allocator_pkg.analysis.consequence import force_pieces
+    from allocator_pkg.effectiveness.flushing import DeadFlushing
+    loss = DeadFlushing("az0", "az1", math.pi / 2, 0.2, 0.6)          # no foot: beta is the least factor
+    free = flushing_vehicle().actuators[0].rotation
+    cut, *left_alone = force_pieces(free, 0.0, 1000.0, None, [loss])
+    assert cut.whole and cut.radius == pytest.approx(600.0)
+    assert all(p.radius == 1000.0 and not p.contains(math.pi / 2) for p in left_alone)
+    assert any(p.contains(math.pi / 2 + 0.21) for p in left_alone)
+    reversing = force_pieces(free, -500.0, 1000.0, None, [loss])
+    assert [p.radius for p in reversing] == [pytest.approx(600.0)]      # cut only, the larger side's radius
+    (ray,) = force_pieces(free, 0.0, 1000.0, math.pi / 2, [loss])
+    assert (ray.start, ray.radius) == (math.pi / 2, pytest.approx(600.0))
