@@ -36,7 +36,7 @@ from rclpy.context import Context
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 
-from allocator_pkg import Allocator, load_vehicle
+from allocator_pkg import load_vehicle
 from allocator_pkg.analysis.consequence import Consequence
 from allocator_pkg.ros.node import AllocatorNode
 
@@ -117,14 +117,13 @@ def sample_times(rate_hz: float, consequence_rate: float, seconds: float) -> tup
 def analysis_times(count: int = 200) -> list[float]:
     """[ms] One analysis of the DP vessel (both groups) at loads along the bench's wrench."""
     vehicle = load_vehicle(CONFIG)
-    low, high = Allocator(vehicle).ranges
     analysis = Consequence(vehicle)
     out = []
     for k in range(count):
         w = wrench_at(TURN * k / count)
         load = [w.force.x, w.force.y, 0.0, 0.0, 0.0, w.torque.z]
         start = time.perf_counter()
-        analysis.utilisation(load, low, high)
+        analysis.utilisation(load)
         out.append((time.perf_counter() - start) * 1e3)
     return out
 
@@ -153,6 +152,7 @@ def main() -> int:
             published[rate] += count
     off = figures(collected[0.0])
     report = {"node_rate_hz": arguments.rate, "seconds": arguments.seconds * arguments.rounds,
+              "rounds": arguments.rounds,
               "sample_us_off": off, "analysis_ms": figures(analysis_times()), "on": []}
     print(f"sample time [us], node at {arguments.rate:g} Hz, {arguments.rounds} x {arguments.seconds:g} s per case")
     print(f"  off            median {off['median']:7.1f}  p99 {off['p99']:7.1f}  max {off['max']:8.1f}")

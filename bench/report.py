@@ -394,6 +394,30 @@ def _dp_capability_section(run: dict) -> list[str]:
             f"{1e3 * run['wall_s_median'] / run['balances']:.2f} | < {run['target_s']:g} | {met} |"]
 
 
+def _consequence_section(run: dict) -> list[str]:
+    """The node's sample time with the online consequence analysis off and on (bench/consequence.py)."""
+    off, analysis = run["sample_us_off"], run["analysis_ms"]
+    lines = ["## Consequence analysis", "",
+             f"`bench/consequence.py`: `allocator_node` on dp_vessel (two redundancy groups) at "
+             f"{run['node_rate_hz']:g} Hz, its sample (allocate and publish) timed by the wall clock around it, "
+             "GIL waits included, with the analysis off (`consequence.rate` 0) and at each rate, under a wrench "
+             "that turns through loads that a group's loss could not hold and loads it could; "
+             f"{run['seconds']:g} s per case over {run.get('rounds', 1)} rounds that alternate the cases. One "
+             f"analysis (both groups) outside the node: median {analysis['median']:.2f} ms, p99 "
+             f"{analysis['p99']:.2f} ms. At 1 Hz an analysis overlaps at most one or two of the node's samples "
+             "a second, too few to move a median: a median's ratio away from 1 there is the shared machine's "
+             "variation between rounds.", "",
+             "| analysis | samples | median us | p99 us | max us | median / off | p99 / off | analyses published |",
+             "|---|---|---|---|---|---|---|---|",
+             f"| off | {off['samples']} | {off['median']:.0f} | {off['p99']:.0f} | {off['max']:.0f} | 1 | 1 | 0 |"]
+    for on in run["on"]:
+        times, ratio = on["sample_us"], on["ratio_to_off"]
+        lines.append(f"| {on['consequence_rate_hz']:g} Hz | {times['samples']} | {times['median']:.0f} | "
+                     f"{times['p99']:.0f} | {times['max']:.0f} | {ratio['median']:.2f} | {ratio['p99']:.2f} | "
+                     f"{on['analyses_published']} |")
+    return lines
+
+
 def _allocate_share(row: dict) -> str:
     """``allocate``'s p50 wall time in the node and its share of the CPU per sample (none for a bare node)."""
     if row.get("allocate_ms_p50") is None:
@@ -461,5 +485,7 @@ def write(result: dict, path: Path) -> None:
         lines += ["", *_idle_core_section(result["idle_core"])]
     if "dp_capability" in result:
         lines += ["", *_dp_capability_section(result["dp_capability"])]
+    if "consequence" in result:
+        lines += ["", *_consequence_section(result["consequence"])]
     lines += ["", *_load_section(result), "", SOAK]
     path.write_text("\n".join(lines) + "\n")

@@ -70,6 +70,10 @@ def main(argv: list[str] | None = None) -> int:
     result["dp_capability"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_capability.py")]
                                                   + (["--repeats", "1", "--heading-step", "30"] if arguments.quick
                                                      else [])))
+    consequence_out = RESULTS / "consequence.json"
+    subprocess.run([sys.executable, str(ROOT / "bench" / "consequence.py"), "--out", str(consequence_out)]
+                   + (["--seconds", "3", "--rounds", "1"] if arguments.quick else []), check=True)
+    result["consequence"] = json.loads(consequence_out.read_text())
     load_out = RESULTS / "load.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "load.py"), "--out", str(load_out)]
                    + (["--seconds", "10"] if arguments.quick else []), check=False)

@@ -60,6 +60,7 @@ def free_dp_vessel():
         if parameters[f"actuators.{name}.type"] == "azimuth":
             parameters[f"actuators.{name}.azimuth_rate_max"] = 0.0
             parameters.pop(f"actuators.{name}.forbidden_sectors", None)
+            parameters.pop(f"actuators.{name}.protects", None)
     return vehicle_from_parameters(parameters)
 
 

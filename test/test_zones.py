@@ -34,7 +34,9 @@ TOLERANCE = 1.0                                        # [N]
 
 
 def dp_parameters(**extra):
-    parameters = read_parameters(ROOT / "config" / "dp_vessel.yaml")
+    """dp_vessel with its sectors always in force (tied to no thruster), and ``extra``."""
+    parameters = {key: value for key, value in read_parameters(ROOT / "config" / "dp_vessel.yaml").items()
+                  if not key.endswith(".protects")}
     parameters.update(extra)
     return parameters
 

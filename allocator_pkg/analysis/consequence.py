@@ -11,11 +11,13 @@ method's polygon of the thrust circle, cut by the circle where it reaches beyond
 group's loss leaves enough; u > 1: it does not (the consequence alarm); inf: no force of the
 remaining actuators gives the load's direction at all. The margin is 1 - u.
 
-A group's loss, the rule of the DNV-ST-0111 analysis (:mod:`~allocator_pkg.analysis.dp_capability`):
-its actuators fail; a thruster fed by its sources (or by sources already lost) keeps the share
-s of its power that its other feeds give, and with power P ~ |f|^(3/2) (1.44) the thrust
-s^(2/3) of its range; one fed only by lost sources keeps nothing. On top of the faults in force:
-the force ranges of the allocator (faults, voltage, speed) and the stuck angles.
+A group's loss is what the allocator would have after it (:mod:`.group_loss`): the group's
+actuators failed on top of the faults in force, the flushing zones of the working thrusters,
+and the power rule's bounds with the group's sources at 0 kW and the others at their available
+power in force. A rotatable thruster pushing onto a dead one ([3.11.4]) has each piece's radius
+cut to the least loss factor over the piece's directions, as the allocator cuts a sample's
+thrust over its angle window (:func:`~allocator_pkg.allocation.dead_flushing.cut`), and, unless
+it reverses, the pieces with the loss sectors left alone at full radius as well.
 
 Minimise u over each combination of the rotatable thrusters' convex pieces, the smallest over
 all combinations the group's. One linear programme per group
@@ -28,14 +30,14 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Collection, Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..allocation.pieces import Piece, convex_pieces
-from ..effectiveness.faults import Fault, FaultMode
+from ..effectiveness.flushing import DeadFlushing
 from ..effectiveness.model import Model
 from ..effectiveness.sectors import in_forbidden_sector
 from ..methods import METHODS
@@ -43,10 +45,9 @@ from ..methods.base import CIRCLE_SIDES
 from ..solvers.linear_program import LinearProgram
 from ..solvers.outcome import Outcome
 from ..vehicle.angles import TWO_PI
-from ..vehicle.config import RedundancyGroup, RotationConfig, Vehicle
+from ..vehicle.config import RotationConfig, Vehicle
+from .group_loss import InForce, Remaining, remaining
 
-POWER_TO_THRUST = 2.0 / 3.0
-"""Thrust follows power to this power: P ~ |f|^(3/2) (1.44)."""
 PLACEHOLDER = 1.0
 """The value of a coefficient at set-up that every analysis sets before solving."""
 
@@ -83,31 +84,29 @@ def thrust_faces(vehicle: Vehicle, method: str) -> list[tuple[float, float, floa
             for count, apothem in polygons for k in range(count)]
 
 
-def remaining_share(vehicle: Vehicle, group: RedundancyGroup, lost_sources: Collection[str] = ()) -> np.ndarray:
-    """The share of its power each actuator keeps after the group's loss: 0 for the group's
-    actuators, the sum of the feed shares of its feeds neither the group nor ``lost_sources``
-    takes for a fed thruster, 1 for an actuator without feeds."""
-    lost = set(group.sources) | set(lost_sources)
-    share = np.ones(len(vehicle.actuators))
-    for i, actuator in enumerate(vehicle.actuators):
-        if actuator.name in group.actuators:
-            share[i] = 0.0
-        elif actuator.feeds:
-            share[i] = sum(s for feed, s in zip(actuator.feeds, actuator.feed_shares) if feed not in lost)
-    return share
-
-
-def force_pieces(rotation: RotationConfig, low: float, high: float, stuck: float | None) -> list[Piece]:
+def force_pieces(rotation: RotationConfig, low: float, high: float, stuck: float | None,
+                 losses: Sequence[DeadFlushing] = ()) -> list[Piece]:
     """Convex pieces of the forces a rotatable thruster gives with signed thrust in [low, high]
     (:func:`~allocator_pkg.allocation.pieces.convex_pieces`); a stuck one's line as its forward
     ray (radius ``high``) and, with ``low`` < 0, its reverse ray (radius ``-low``); one piece of
-    radius 0 when it gives nothing."""
+    radius 0 when it gives nothing. With [3.11.4] ``losses``: each piece's radius times the
+    least loss factor over its directions, and for a thruster that neither reverses nor is stuck
+    also the pieces with the loss sectors forbidden (left alone, as the allocator may)."""
     if max(high, -low) <= 0.0 or (stuck is not None and in_forbidden_sector(rotation, stuck)):
         return [Piece(0.0, 0.0, 0.0)]
     if stuck is None:
-        return convex_pieces(rotation, low, high)
-    rays = [Piece(stuck, stuck, high)] if high > 0.0 else []
-    return rays + ([Piece(stuck + math.pi, stuck + math.pi, -low)] if low < 0.0 else [])
+        pieces = convex_pieces(rotation, low, high)
+    else:
+        pieces = [Piece(stuck, stuck, high)] if high > 0.0 else []
+        pieces += [Piece(stuck + math.pi, stuck + math.pi, -low)] if low < 0.0 else []
+    if not losses:
+        return pieces
+    cut = [replace(piece, radius=piece.radius * min(loss.lowest(piece.start, piece.end) for loss in losses))
+           for piece in pieces]
+    if stuck is not None or low < 0.0:
+        return cut
+    left_alone = replace(rotation, forbidden_sectors=rotation.forbidden_sectors + tuple(loss.sector for loss in losses))
+    return cut + convex_pieces(left_alone, low, high)
 
 
 class Consequence:
@@ -125,22 +124,23 @@ class Consequence:
     def groups(self) -> tuple[str, ...]:
         return tuple(group.name for group in self.vehicle.redundancy_groups)
 
-    def utilisation(self, load: Sequence[float], low: np.ndarray, high: np.ndarray,
-                    faults: Mapping[str, Fault] | None = None,
-                    lost_sources: Collection[str] = ()) -> tuple[GroupUtilisation, ...]:
-        """Each group's utilisation for ``load`` [X, Y, Z, K, M, N] (its controlled DOFs), with
-        the force ranges [low, high] in force (``Allocator.ranges``), the ``faults`` in force
-        (their stuck angles) and the power sources already lost."""
-        model = self.model
-        request = np.asarray(load, dtype=float)[model.dof_index] / model.dof_scale
-        stuck = {i: fault.angle for i, name in enumerate(self.vehicle.names)
-                 if (fault := (faults or {}).get(name)) is not None and fault.mode == FaultMode.STUCK}
-        answers = []
-        for group, programme in zip(self.vehicle.redundancy_groups, self._programmes):
-            factor = remaining_share(self.vehicle, group, lost_sources) ** POWER_TO_THRUST
-            value = programme.smallest(request, low * factor, high * factor, stuck) if np.any(request) else 0.0
-            answers.append(GroupUtilisation(group.name, value))
-        return tuple(answers)
+    def utilisation(self, load: Sequence[float], in_force: InForce | None = None) -> tuple[GroupUtilisation, ...]:
+        """Each group's utilisation for ``load`` [X, Y, Z, K, M, N] (its controlled DOFs), the
+        group's loss on top of what is ``in_force`` (:meth:`InForce.of` an allocator; None: a
+        new allocator's, :meth:`InForce.intact`)."""
+        groups = self.vehicle.redundancy_groups
+        if not np.any(np.asarray(load, dtype=float)[self.model.dof_index]):
+            return tuple(GroupUtilisation(group.name, 0.0) for group in groups)
+        in_force = in_force or InForce.intact(self.vehicle)
+        return tuple(self.utilisation_left(k, load, remaining(self.vehicle, in_force, group))
+                     for k, group in enumerate(groups))
+
+    def utilisation_left(self, index: int, load: Sequence[float], left: Remaining) -> GroupUtilisation:
+        """The ``index``-th group's utilisation for ``load`` with what its loss leaves, ``left``
+        (:func:`~.group_loss.remaining`)."""
+        request = np.asarray(load, dtype=float)[self.model.dof_index] / self.model.dof_scale
+        value = self._programmes[index].smallest(request, left) if np.any(request) else 0.0
+        return GroupUtilisation(self.vehicle.redundancy_groups[index].name, value)
 
 
 class _Programme:
@@ -181,13 +181,14 @@ class _Programme:
         self._scaled = model.t_ec / model.dof_scale[:, None]
         self._nonzero = [np.flatnonzero(model.t_ec[:, c]) for c in range(m)]
 
-    def smallest(self, request: np.ndarray, low: np.ndarray, high: np.ndarray, stuck: Mapping[int, float]) -> float:
+    def smallest(self, request: np.ndarray, left: Remaining) -> float:
         """The smallest utilisation over every combination of pieces (inf: none gives the request)."""
         model, lp = self.model, self.lp
         n = model.n
         lp.low[:n] = lp.up[:n] = request
+        low, high = left.low, left.high
         self._fixed_direction(low, high)
-        choices = [force_pieces(model.vehicle.actuators[i].rotation, low[i], high[i], stuck.get(int(i)))
+        choices = [force_pieces(left.rotations[i], low[i], high[i], left.stuck.get(int(i)), left.losses.get(int(i), ()))
                    for i in model.rot]
         best = math.inf
         for combination in itertools.product(*choices):

@@ -4,11 +4,12 @@
 The sample path only feeds the load filter (:meth:`ConsequenceMonitor.observe`: a first-order
 low-pass of the requested wrench, a few operations on six numbers, under the runtime's lock). A
 timer at ``consequence.rate`` on the node's clock takes a snapshot under that lock (the filtered
-load, the force ranges and faults in force, the configuration) and hands it to a thread of the
-monitor's own, which solves each group's programme
-(:class:`~allocator_pkg.analysis.consequence.Consequence`; HiGHS lets go of the GIL while it
-solves), publishes the answer and sets the alarm. That thread never takes the runtime's lock, so
-no sample waits for an analysis.
+load, the configuration, and what the allocator has in force: its faults, the available power
+with the failed groups' sources at 0 kW, speed and voltage,
+:class:`~allocator_pkg.analysis.group_loss.InForce`) and hands it to a thread of the monitor's
+own, which solves each group's programme (:class:`~allocator_pkg.analysis.consequence.Consequence`;
+HiGHS lets go of the GIL while it solves), publishes the answer and sets the alarm. That thread
+never takes the runtime's lock, so no sample waits for an analysis.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from allocator_msgs.msg import ConsequenceAnalysis, GroupConsequence
 
 from ..allocation.allocator import Allocator
 from ..analysis.consequence import Consequence, GroupUtilisation
-from ..effectiveness.faults import Fault
+from ..analysis.group_loss import InForce
 from ..vehicle.config import Vehicle
 from ..vehicle.node_settings import NodeSettings
 from .conversions import fill_wrench_in
@@ -36,15 +37,14 @@ from .outputs import Outputs
 @dataclass(frozen=True)
 class Snapshot:
     """What one analysis needs, taken at once under the runtime's lock: the configuration and
-    method, the filtered load [X, Y, Z, K, M, N] (FRD), the force ranges and the faults in force,
-    the time [ns of the node clock], the frame convention and name of the message."""
+    method, the filtered load [X, Y, Z, K, M, N] (FRD), what the allocator has in force (a
+    group's loss comes on top of it), the time [ns of the node clock], the frame convention and
+    name of the message."""
 
     vehicle: Vehicle
     method: str
     load: np.ndarray
-    low: np.ndarray
-    high: np.ndarray
-    faults: dict[str, Fault]
+    in_force: InForce
     stamp: int
     frame: str
     base_frame: str
@@ -65,9 +65,11 @@ def consequence_message(snapshot: Snapshot, groups: tuple[GroupUtilisation, ...]
     return message
 
 
-def consequence_status(node_name: str, rate: float, groups: tuple[GroupUtilisation, ...] | None) -> DiagnosticStatus:
+def consequence_status(node_name: str, rate: float, groups: tuple[GroupUtilisation, ...] | None,
+                       lost: tuple[str, ...] = ()) -> DiagnosticStatus:
     """``<node>: consequence analysis``: ERROR naming every group whose loss would leave too
-    little for the present load, else OK with the worst group; each group's utilisation."""
+    little for the present load, else OK with the worst group; each group's utilisation and
+    the power sources the analysis took as ``lost`` already."""
     status = DiagnosticStatus(level=DiagnosticStatus.OK, name=f"{node_name}: consequence analysis",
                               hardware_id=node_name)
     if rate <= 0.0:
@@ -83,6 +85,7 @@ def consequence_status(node_name: str, rate: float, groups: tuple[GroupUtilisati
         worst = max(groups, key=lambda group: group.utilisation)
         status.message = f"every group's loss leaves enough; worst {worst.group} at {_percent(worst.utilisation)}"
     status.values = [KeyValue(key=f"utilisation {group.group}", value=f"{group.utilisation:.4f}") for group in groups]
+    status.values.append(KeyValue(key="sources already lost", value=", ".join(lost) or "none"))
     status.values.append(KeyValue(key="rate [Hz]", value=f"{rate:g}"))
     return status
 
@@ -112,6 +115,7 @@ class ConsequenceMonitor:
         self._observed: int | None = None
         self._active = False
         self.groups: tuple[GroupUtilisation, ...] | None = None
+        self.lost: tuple[str, ...] = ()
         self.alarm = False
         self._ready = threading.Condition()
         self._pending: Snapshot | None = None
@@ -138,7 +142,7 @@ class ConsequenceMonitor:
         load += (1.0 - math.exp((last - now) / (S_TO_NS * time_constant))) * (wrench - load)
 
     def diagnostic(self, node_name: str) -> DiagnosticStatus:
-        return consequence_status(node_name, self._settings.consequence_rate, self.groups)
+        return consequence_status(node_name, self._settings.consequence_rate, self.groups, self.lost)
 
     def activate(self) -> None:
         """Start analysing (lock held)."""
@@ -180,8 +184,7 @@ class ConsequenceMonitor:
         with self._lock:
             if not self._active:
                 return
-            low, high = allocator.ranges
-            snapshot = Snapshot(allocator.vehicle, allocator.method, self._load.copy(), low, high, allocator.faults,
+            snapshot = Snapshot(allocator.vehicle, allocator.method, self._load.copy(), InForce.of(allocator),
                                 self._node.get_clock().now().nanoseconds, settings.frame, settings.base_frame)
         with self._ready:
             self._pending = snapshot
@@ -201,7 +204,7 @@ class ConsequenceMonitor:
             try:
                 if analysis is None or analysis.vehicle is not snapshot.vehicle or analysis.method != snapshot.method:
                     analysis = Consequence(snapshot.vehicle, snapshot.method)
-                groups = analysis.utilisation(snapshot.load, snapshot.low, snapshot.high, snapshot.faults)
+                groups = analysis.utilisation(snapshot.load, snapshot.in_force)
             except (ValueError, ArithmeticError) as error:
                 self._node.get_logger().error(f"consequence analysis failed: {error}")
                 continue
@@ -212,6 +215,7 @@ class ConsequenceMonitor:
         """The alarm and diagnostics first, so that whoever has the message finds them in force."""
         message = consequence_message(snapshot, groups)
         was, self.groups = self.alarm, groups
+        self.lost = snapshot.in_force.lost_sources(snapshot.vehicle)
         self._set_alarm(message.alarm)
         if message.alarm != was:
             logger = self._node.get_logger()
