@@ -16,7 +16,16 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result
-from ..analysis.dp_input_tables import A2_COLUMNS, A3_COLUMNS, A4_COLUMNS, a5_columns, table_a2, table_a3, table_a5
+from ..analysis.dp_input_tables import (
+    A2_COLUMNS,
+    A3_COLUMNS,
+    A4_COLUMNS,
+    a5_columns,
+    table_a2,
+    table_a3,
+    table_a4,
+    table_a5,
+)
 from ..analysis.dp_tables import (
     A6_COLUMNS,
     A7_COLUMNS,
@@ -37,8 +46,10 @@ TABLES = {
                 "to port, z [m] above the keel) from the vehicle file; type, D [m], P_B [kW], pitch, duct, "
                 "contra-rotation, permanent magnet, tunnel inlet from the particulars file; nominal thrust [3.9.2] "
                 "forward and reversed [kN] (0: the vehicle file does not reverse it)",
-    "table_a4": "Table A-4: rudder data (profile, A_r [m^2], k1, k2, maximum angle [deg], maximum side force [kN]); "
-                "none: this Level 1 takes no rudders ([3.10] not computed; a control surface is refused)",
+    "table_a4": "Table A-4: rudder data [3.10] per rudder behind a shaft line (the particulars' rudders): its "
+                "propeller, profile (Table 3-5), A_r [m^2], k1 (Table 3-5), k2 (Table 3-6), the largest rudder angle "
+                "[3.10.1] uses [deg] (the vehicle file's, at most 30) and the side force there at the propeller's "
+                "forward T_nominal [3.9.2], T_nominal C_Y alpha [kN]",
     "table_a5": "Table A-5: thruster power configuration from the vehicle file: per thruster its P_B [kW] and, per "
                 "switchboard or prime mover, its share [%] and the power it can consume from there [kW]; then "
                 "each source's available power [kW] and its usable power after the 10 % reserve [3.12.3] [kW]",
@@ -93,7 +104,7 @@ def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result) -
 def input_tables(analysis: Level1) -> dict[str, tuple[tuple[str, ...], list[tuple]]]:
     """(columns, rows) of Tables A-2 to A-5 by key."""
     return {"table_a2": (A2_COLUMNS, table_a2(analysis)), "table_a3": (A3_COLUMNS, table_a3(analysis)),
-            "table_a4": (A4_COLUMNS, []), "table_a5": (a5_columns(analysis), table_a5(analysis))}
+            "table_a4": (A4_COLUMNS, table_a4(analysis)), "table_a5": (a5_columns(analysis), table_a5(analysis))}
 
 
 def markdown_table(columns, rows) -> list[str]:
