@@ -41,7 +41,7 @@ from .dnv_rudders import describe_rudders, force_profiles, rudder_pairs
 from .dnv_thrust import BETA_MISC, nominal_thrust, ventilation_factor
 from .dnv_zones import Unit, Zone, flushing_zones
 from .dp_notes import hull_note, source_note, thruster_note
-from .dp_particulars import Particulars
+from .dp_particulars import Particulars, with_vehicle_geometry
 from .thrust_profile import ThrustProfile
 
 DYNAMIC_FACTOR = 1.25
@@ -135,7 +135,9 @@ class Level1:
 
     def __init__(self, vehicle: Vehicle, particulars: Particulars, method: str | None = None):
         self.vehicle = vehicle
-        self.particulars = particulars
+        self.particulars = with_vehicle_geometry(particulars, vehicle)
+        """The particulars, each thruster's D and duct joined with the vehicle file's."""
+        particulars = self.particulars
         self.groups = ({g.name: (*g.actuators, *g.sources) for g in vehicle.redundancy_groups}
                        or {name: (name,) for name in vehicle.names})
         """What each group's loss takes away: its actuators, then its power sources (the vehicle
