@@ -50,7 +50,7 @@ class ThrusterData:
     diameter: float | None
     power: float
     pitch: str = "FPP"
-    ducted: bool | None = None
+    ducted: bool | None = False
     contra_rotating: bool = False
     permanent_magnet: bool = False
     tunnel_inlet: str | None = None

@@ -186,7 +186,7 @@ def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
         missing = [key for key in ("kind", "power") if key not in row]
         if missing:
             raise ValueError(f"thrusters.{name}: missing key(s) {', '.join(missing)}")
-        result[str(name)] = ThrusterData(name=str(name), **{"diameter": None, **row})
+        result[str(name)] = ThrusterData(name=str(name), **{"diameter": None, "ducted": None, **row})
     return result
 
 
