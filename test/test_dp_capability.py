@@ -248,7 +248,8 @@ def test_thruster_data_that_does_not_fit_the_vehicle_is_refused(thrusters, messa
 
 def test_a_tunnel_on_a_rotatable_actuator_is_refused():
     particulars = load_particulars(DP_PARTICULARS)
-    thrusters = dict(particulars.thrusters, azimuth_stbd=ThrusterData("azimuth_stbd", **{**TUNNEL, "diameter": 3.4}))
+    tunnel = ThrusterData("azimuth_stbd", **{**TUNNEL, "diameter": 3.4, "ducted": None})
+    thrusters = dict(particulars.thrusters, azimuth_stbd=tunnel)
     with pytest.raises(ValueError, match=r"thrusters\.azimuth_stbd\.kind: tunnel, but .* rotates"):
         Level1(load_vehicle(DP_VESSEL), replace(particulars, thrusters=thrusters))
 

@@ -4,7 +4,9 @@ and frame, by hand for dp_vessel, and as the CLI writes them."""
 import csv
 
 import pytest
+import yaml
 from conftest import ROOT
+from test_dnv_rudders import twin_screw
 
 from allocator_pkg import load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.analysis.dp_capability import Level1
@@ -17,9 +19,10 @@ from allocator_pkg.analysis.dp_input_tables import (
     a5_columns,
     table_a2,
     table_a3,
+    table_a4,
     table_a5,
 )
-from allocator_pkg.analysis.dp_particulars import load_particulars
+from allocator_pkg.analysis.dp_particulars import load_particulars, particulars_from_mapping
 from allocator_pkg.cli.dp_capability import write_level1
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
@@ -36,7 +39,31 @@ def test_table_a2_is_the_particulars_hull(dp_level1):
     assert rows["Lpp"] == (83.0, "m") and rows["B"] == (18.0, "m") and rows["T"] == (5.0, "m")
     assert rows["bow angle"] == (pytest.approx(30.0), "deg") and rows["A_L,wind"] == (650.0, "m^2")
     assert rows["x_L,air"] == (8.0, "m")                  # body origin midships: the body x is Lpp/2's
-    assert rows["Loa"][0].startswith("not given") and rows["skegs"][0].startswith("not given")
+    assert rows["Loa"][0].startswith("not given") and rows["skegs"][0].startswith("none given")
+
+
+def test_table_a2_gives_each_skeg_in_the_standards_frame():
+    """A skeg's aft most point at body (-40, 3) FRD, body origin 2 m forward of Lpp/2: x -38 m, y -3 m."""
+    data = {**yaml.safe_load(DP_PARTICULARS.read_text()), "body_origin_x": 2.0,
+            "skegs": [{"x": -40.0, "y": 3.0}, {"x": -40.0, "y": -3.0}]}
+    analysis = Level1(load_vehicle(DP_VESSEL), particulars_from_mapping(data))
+    rows = {symbol: (value, unit) for _, symbol, value, unit in table_a2(analysis)}
+    assert rows["x_skeg,1"] == (-38.0, "m") and rows["y_skeg,1"] == (-3.0, "m") and rows["y_skeg,2"] == (3.0, "m")
+    assert "skegs" not in rows
+
+
+def test_table_a4_is_each_rudder_behind_its_shaft_line():
+    """twin_screw: NACA rudders (k1 1.1, k2 1.0), A_r 9 m^2 behind D 3 m: C_Y = 0.0126 1.1 = 0.01386/deg; 35 deg
+    in the vehicle file, 30 used; T_nominal 800 (3 2000 0.97)^(2/3) N, so the side force T_nominal 0.01386 30."""
+    analysis = Level1(*twin_screw())
+    rows = {row[0]: dict(zip(A4_COLUMNS, row)) for row in table_a4(analysis)}
+    assert set(rows) == {"rudder_port", "rudder_stbd"}
+    port = rows["rudder_port"]
+    assert (port["propeller"], port["profile"], port["a_r_m2"], port["k1"], port["k2"], port["max_angle_deg"]) == (
+        "shaft_port", "naca", 9.0, 1.1, 1.0, 30.0)
+    nominal = 800.0 * (3.0 * 2000.0 * 0.97) ** (2.0 / 3.0)
+    assert port["max_side_force_kn"] == pytest.approx(nominal * 0.01386 * 30.0 / 1e3, rel=1e-9)
+    assert table_a4(Level1(*twin_screw(rudders=False))) == []
 
 
 def test_table_a3_positions_are_in_the_standards_frame(dp_level1):

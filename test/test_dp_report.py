@@ -168,3 +168,6 @@ def test_the_report_files_and_summary(report):
     assert SCOPE in summary and "dp_vessel_dp_l1_table_a8.csv" in summary
     assert "Power sources: swbd_a 5600 kW, swbd_b 7800 kW; feeds: azimuth_stbd swbd_a 100 %" in summary
     assert "switchboard_a: azimuth_stbd, tunnel_fwd, swbd_a" in summary
+    for table in ("table_a6_losses", "table_a9", "table_a10"):
+        assert f"dp_vessel_dp_l1_{table}.csv" in names and f"`dp_vessel_dp_l1_{table}.csv`" in summary
+    assert "## Power per switchboard (Tables A-9, A-10)" in summary and "| intact | swbd_a |" in summary

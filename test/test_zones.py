@@ -46,6 +46,7 @@ def zoned_parameters(**extra):
     for side in ("stbd", "port"):
         del parameters[f"actuators.azimuth_{side}.forbidden_sectors"]
         parameters[f"actuators.azimuth_{side}.diameter"] = 3.4
+        parameters[f"actuators.azimuth_{side}.ducted"] = False           # open, as DEAD_HALF and BETA by hand
     for tunnel in ("fwd", "aft"):
         parameters[f"actuators.tunnel_{tunnel}.diameter"] = 2.2
         parameters[f"actuators.tunnel_{tunnel}.tunnel"] = True

@@ -243,14 +243,17 @@ def describe_losses(cases: Mapping[str, Mapping[str, ThrustProfile]]) -> str:
     and where (thrust angle in the body frame)."""
     parts = []
     for case, profiles in cases.items():
-        sectors = [f"{name} {sector}" for name, profile in profiles.items() for sector in _sectors(profile)]
+        sectors = [f"{name} {start:.1f} to {end:.1f} deg, {lowest:.3f} at {at:.1f}"
+                   for name, profile in profiles.items() for start, end, lowest, at in loss_sectors(profile)]
         parts.append(f"{case}: " + ("; ".join(sectors) if sectors else "none"))
     return ("Thrust losses by direction ([3.11.4] flushing a dead thruster, [3.11.5] a skeg; from, to, lowest "
             "factor at [deg], thrust angle in the body frame): " + ". ".join(parts) + f". {READINGS}.")
 
 
-def _sectors(profile: ThrustProfile) -> list[str]:
-    """Each run of corners below 1 with the corners at 1 around it: 'from to deg, beta at angle'."""
+def loss_sectors(profile: ThrustProfile) -> list[tuple[float, float, float, float]]:
+    """(from [deg], to [deg], lowest factor, its angle [deg]) of each run of corners below 1, from
+    and to the corners at 1 around it; thrust angles in the body frame, from in (-180, 180], to
+    after from (less than 360 deg on)."""
     corners, count = profile.corners, len(profile.corners)
     below = [k for k in range(count) if corners[k][1] < 1.0]
     runs: list[list[int]] = []
@@ -261,13 +264,13 @@ def _sectors(profile: ThrustProfile) -> list[str]:
             runs.append([k])
     if len(runs) > 1 and runs[0][0] == 0 and runs[-1][-1] == count - 1:
         runs[0] = runs.pop() + runs[0]                     # across the end of the corner list
-    texts = []
+    sectors = []
     for run in runs:
         start, end = corners[(run[0] - 1) % count][0], corners[(run[-1] + 1) % count][0]
         lowest = min(run, key=lambda k: corners[k][1])
-        texts.append(f"{_deg(start):.1f} to {_deg(start) + (_deg(end) - _deg(start)) % 360.0:.1f} deg, "
-                     f"{corners[lowest][1]:.3f} at {_deg(corners[lowest][0]):.1f}")
-    return texts
+        sectors.append((_deg(start), _deg(start) + (_deg(end) - _deg(start)) % 360.0, corners[lowest][1],
+                        _deg(corners[lowest][0])))
+    return sectors
 
 
 def _deg(angle: float) -> float:

@@ -8,14 +8,16 @@ every source within its usable power [2.4.9], [3.12.5]:
     sum_i s_ji P_B,i r_i^(3/2) <= P_usable,j       for every source j,
 
 s_ji the share of thruster i's power from source j (Table A-5), r_i its thrust in the direction it
-pushes as a fraction of its thrust range that way. P = P_B r^(3/2) is [3.9.2]'s
+pushes as a fraction of the thrust it can give that way (after its losses [3.11.4]/[3.11.5];
+behind a rudder [3.10], of the propeller's thrust). P = P_B r^(3/2) is [3.9.2]'s
 T_nominal ~ (D P_B)^(2/3) turned around: the standard states no part-load power of its own (the
 transcription's reading, ``power.md``). A thruster that lost the share s of its feeds keeps
 (1 - s) P_B and the thrust of that power, its power per newton unchanged.
 
 :class:`PoweredCapability` adds this to the capability linear programme: per thruster on a source
 that could be short, r_i above its force over its range (for a rotatable thruster over a
-72-gon around the circle, r at most 1 / cos(pi/72) = 0.1 % high) and q_i above the chords of
+72-gon around the circle, r at most 1 / cos(pi/72) = 0.1 % high, and over each half-plane of its
+piece: a chord of a loss or of a rudder's fan) and q_i above the chords of
 r^(3/2) at r = 0, 0.05, ..., 1 (at most 0.002 high), and one row per such source,
 sum_i s_ji P_B,i q_i <= P_usable,j. Both approximations overstate the power: the balance is
 conservative. A source that can give every thruster it feeds its full P_B share cannot bind and
@@ -42,6 +44,8 @@ PART_LOAD_STEP = 0.05
 """Between the points where the chords of r^(3/2) meet."""
 R_SIDES = 72
 """Faces of the polygon that bounds a rotatable thruster's thrust fraction."""
+PLANE_THROUGH_ORIGIN = 1e-9
+"""A half-plane offset (per unit radius) at most this is taken to pass through the origin."""
 
 
 def usable(capacity: float) -> float:
@@ -172,12 +176,9 @@ class PoweredCapability(Capability):
         for name in self.limits.thrusters:
             index = names.index(name)
             if index in rot:
-                position = rot.index(index)
-                c1, c2 = model.rot_columns[position]
-                start, end, radius = pieces[position][:3]
-                fraction = 0.0 if radius <= 0.0 else max(
-                    (math.cos(a) * force[c1] + math.sin(a) * force[c2]) for a in _faces(start, end)) / (
-                    radius * math.cos(math.pi / R_SIDES))
+                c1, c2 = model.rot_columns[rot.index(index)]
+                fraction = max((a1 * force[c1] + a2 * force[c2] for a1, a2 in _fraction_rows(pieces[rot.index(index)])),
+                               default=0.0)
             else:
                 value, actuator = force[model.scalar_columns[scalar.index(index)]], vehicle.actuators[index]
                 fraction = max(value / actuator.thrust_max if actuator.thrust_max > 0.0 else 0.0,
@@ -206,12 +207,9 @@ class PoweredCapability(Capability):
             index = names.index(name)
             r, q = base + k, base + count + k
             if index in rot:
-                position = rot.index(index)
-                c1, c2 = model.rot_columns[position]
-                start, end, radius = pieces[position][:3]
-                for angle in _faces(start, end) if radius > 0.0 else ():
-                    row({c1: math.cos(angle) / radius, c2: math.sin(angle) / radius,
-                         r: -math.cos(math.pi / R_SIDES)}, 0.0)
+                c1, c2 = model.rot_columns[rot.index(index)]
+                for a1, a2 in _fraction_rows(pieces[rot.index(index)]):
+                    row({c1: a1, c2: a2, r: -1.0}, 0.0)
             else:
                 column = model.scalar_columns[scalar.index(index)]
                 actuator = self.vehicle.actuators[index]
@@ -224,6 +222,22 @@ class PoweredCapability(Capability):
         for j in range(len(limits.sources)):
             row({base + count + i: limits.load[j, i] for i in range(count)}, 1.0)
         return np.array(rows), np.array(right)
+
+
+def _fraction_rows(piece) -> list[tuple[float, float]]:
+    """(a1, a2) per row r >= a1 f1 + a2 f2 that bounds a rotatable thruster's thrust fraction in its
+    piece (start, end, radius, line, half-planes): the 72-gon's faces next to the cone over
+    radius cos(pi/72), and each half-plane n . f <= c radius of a loss or a rudder's fan over
+    c radius, so r is the force over what the piece gives in its direction (the gauge of the piece:
+    along theta the piece reaches min(radius, c radius / n . u) over its half-planes). A half-plane
+    through the origin (c = 0) bounds the directions only and adds no row."""
+    start, end, radius, _, planes = piece
+    if radius <= 0.0:
+        return []
+    apothem = radius * math.cos(math.pi / R_SIDES)
+    rows = [(math.cos(angle) / apothem, math.sin(angle) / apothem) for angle in _faces(start, end)]
+    return rows + [(nx / (offset * radius), ny / (offset * radius)) for nx, ny, offset in planes
+                   if offset > PLANE_THROUGH_ORIGIN]
 
 
 def _faces(start: float, end: float) -> list[float]:

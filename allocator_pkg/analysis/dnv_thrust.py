@@ -42,14 +42,15 @@ K_V = (2.0, 1.5, 15.2, 0.85, 0.38)
 class ThrusterData:
     """One actuator's row of Table A-3. ``power`` is P_B [kW]: the MCR brake power available in
     DP mode with the power and torque limits taken into account; ``diameter`` D [m] as [3.9.2]
-    defines it per type."""
+    defines it per type. ``diameter`` and ``ducted`` None: not given here, the vehicle file's
+    (:func:`~.dp_particulars.with_vehicle_geometry`)."""
 
     name: str
     kind: str
-    diameter: float
+    diameter: float | None
     power: float
     pitch: str = "FPP"
-    ducted: bool = False
+    ducted: bool | None = False
     contra_rotating: bool = False
     permanent_magnet: bool = False
     tunnel_inlet: str | None = None
@@ -62,13 +63,15 @@ class ThrusterData:
             raise ValueError(f"{key}.kind: one of {', '.join(KINDS)}, not {self.kind!r}")
         for field in ("diameter", "power"):
             value = getattr(self, field)
+            if value is None and field == "diameter":
+                continue
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
                     math.isfinite(value) and value > 0.0):
                 raise ValueError(f"{key}.{field}: a finite number > 0, not {value!r}")
         if self.pitch not in PITCHES:
             raise ValueError(f"{key}.pitch: FPP or CPP, not {self.pitch!r}")
         for field in ("ducted", "contra_rotating", "permanent_magnet"):
-            if not isinstance(getattr(self, field), bool):
+            if not isinstance(getattr(self, field), bool) and not (field == "ducted" and self.ducted is None):
                 raise ValueError(f"{key}.{field}: true or false, not {getattr(self, field)!r}")
         if self.kind == "tunnel" and self.tunnel_inlet not in TUNNEL_INLETS:
             raise ValueError(f"{key}.tunnel_inlet: one of {', '.join(TUNNEL_INLETS)} for a tunnel "

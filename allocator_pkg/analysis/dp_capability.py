@@ -41,7 +41,7 @@ from .dnv_rudders import describe_rudders, force_profiles, rudder_pairs
 from .dnv_thrust import BETA_MISC, nominal_thrust, ventilation_factor
 from .dnv_zones import Unit, Zone, flushing_zones
 from .dp_notes import hull_note, source_note, thruster_note
-from .dp_particulars import Particulars
+from .dp_particulars import Particulars, with_vehicle_geometry
 from .thrust_profile import ThrustProfile
 
 DYNAMIC_FACTOR = 1.25
@@ -59,7 +59,7 @@ PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nomina
                 "rudders behind shaft lines [3.10]; the power balance per source [3.12.3]-[3.12.5] jointly with the "
                 "thrust: each source's capacity less the 10 % reserve against the power its thrusters draw at the "
                 "thrust the balance needs")
-NOT_YET = "no clause of [3.2]-[3.12] that the transcription gives; Tables A-9 and A-10 (power per switchboard)"
+NOT_YET = "no clause of [3.2]-[3.12] that the transcription gives"
 POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
                  "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
                  "Table A-5 as transcribed: what it can consume from each source). Each source keeps 10 % of its "
@@ -68,7 +68,8 @@ POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed 
 READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed share s keeps (1 - s) P_B ([3.12], "
             "Table A-5); the power at part thrust P_B r^(3/2), [3.9.2] turned around ([3.12] gives none); the "
             "second range of B in [3.9.4] read as the union of [-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] "
-            "in N")
+            "in N; the columns of Tables A-9 and A-10 (the transcription names their content, the power per thruster "
+            "and per switchboard with its reserve, not their columns)")
 """Where the text cannot be read as it stands, and how it is read here."""
 SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
          f"unclear: {READINGS}. Not verified by DNV.")
@@ -134,7 +135,9 @@ class Level1:
 
     def __init__(self, vehicle: Vehicle, particulars: Particulars, method: str | None = None):
         self.vehicle = vehicle
-        self.particulars = particulars
+        self.particulars = with_vehicle_geometry(particulars, vehicle)
+        """The particulars, each thruster's D and duct joined with the vehicle file's."""
+        particulars = self.particulars
         self.groups = ({g.name: (*g.actuators, *g.sources) for g in vehicle.redundancy_groups}
                        or {name: (name,) for name in vehicle.names})
         """What each group's loss takes away: its actuators, then its power sources (the vehicle

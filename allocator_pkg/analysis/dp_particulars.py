@@ -13,7 +13,9 @@ Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, fo
   ``current_area_lateral`` (A_L,current): Level 1's hull (:class:`~.dnv_loads.DnvHull`);
 - ``thrusters``: per actuator of the vehicle file, by its name, its Table A-3 row
   (:class:`~.dnv_thrust.ThrusterData`: ``kind``, ``diameter`` [m], ``power`` P_B [kW], ``pitch``,
-  ``ducted``, ``contra_rotating``, ``permanent_magnet``, ``tunnel_inlet``);
+  ``ducted``, ``contra_rotating``, ``permanent_magnet``, ``tunnel_inlet``); ``diameter`` and
+  ``ducted`` may be left to the vehicle file's ``actuators.<name>.diameter`` / ``.ducted``, which
+  the analysis checks them against (:func:`with_vehicle_geometry`);
 - ``level2`` (optional): the vessel's own data for Level 2, ``wind_coefficients`` and
   ``current_coefficients`` (:class:`~.dnv_coefficients.CoefficientTable`: ``heading_deg``,
   ``cx``, ``cy``, ``cn``), and ``site``: a site environment in place of Table 2-1
@@ -31,9 +33,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import yaml
 
@@ -44,6 +46,9 @@ from .dnv_rudders import RudderData, rudders_from_mapping
 from .dnv_site import SiteEnvironment, site_from_mapping
 from .dnv_thrust import ThrusterData
 from .environment_loads import LoadCoefficients, VesselParticulars
+
+if TYPE_CHECKING:
+    from ..vehicle.config import Vehicle
 
 SHARED_KEYS = ("lpp", "beam", "draught", "wind_area_frontal", "wind_area_lateral", "wind_centre_x",
                "underwater_centre_x")
@@ -121,6 +126,35 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
                        **_level2(data.get("level2")))
 
 
+def with_vehicle_geometry(particulars: Particulars, vehicle: Vehicle) -> Particulars:
+    """The particulars with each thruster's D and duct one definition with the vehicle file's
+    ``actuators.<name>.diameter`` / ``.ducted`` / ``.tunnel`` (the runtime flushing zones'): a value
+    the particulars leave out is the vehicle file's; one both give must agree, and ``kind`` is
+    ``tunnel`` where the vehicle file says ``tunnel: true``; refused naming both keys otherwise. The
+    vehicle file's ``ducted: false`` and ``diameter: 0`` are its defaults, read as not given."""
+    thrusters = {}
+    for name, data in particulars.thrusters.items():
+        actuator = next((a for a in vehicle.actuators if a.name == name), None)
+        if actuator is None:
+            thrusters[name] = data
+            continue
+        pair = f"thrusters.{name}.{{0}} and actuators.{name}.{{0}}"
+        if data.diameter is None and actuator.diameter <= 0.0:
+            raise ValueError(f"thrusters.{name}.diameter: missing, and the vehicle file gives no "
+                             f"actuators.{name}.diameter; Level 1 needs D ([3.9.2])")
+        if data.diameter is not None and actuator.diameter > 0.0 and data.diameter != actuator.diameter:
+            raise ValueError(pair.format("diameter") + f" differ ({data.diameter:g} and {actuator.diameter:g} m); "
+                             "give it once")
+        if data.ducted is False and actuator.ducted:
+            raise ValueError(pair.format("ducted") + " differ (false and true); give it once")
+        if actuator.tunnel and data.kind != "tunnel":
+            raise ValueError(f"thrusters.{name}.kind: {data.kind}, but the vehicle file's actuators.{name}.tunnel "
+                             "is true")
+        thrusters[name] = replace(data, diameter=actuator.diameter if data.diameter is None else data.diameter,
+                                  ducted=actuator.ducted if data.ducted is None else data.ducted)
+    return replace(particulars, thrusters=thrusters)
+
+
 def _number(data: Mapping[str, Any], key: str, prefix: str = "") -> float:
     value = data[key]
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
@@ -149,10 +183,10 @@ def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
         if unknown:
             raise ValueError(f"thrusters.{name}: unknown key(s) {', '.join(unknown)}; "
                              f"known: {', '.join(THRUSTER_KEYS)}")
-        missing = [key for key in ("kind", "diameter", "power") if key not in row]
+        missing = [key for key in ("kind", "power") if key not in row]
         if missing:
             raise ValueError(f"thrusters.{name}: missing key(s) {', '.join(missing)}")
-        result[str(name)] = ThrusterData(name=str(name), **row)
+        result[str(name)] = ThrusterData(name=str(name), **{"diameter": None, "ducted": None, **row})
     return result
 
 

@@ -4,6 +4,9 @@ analysis and its :class:`~.dp_capability.Level1Result`.
 - :func:`table_a1`: per heading the capability number intact, after each redundancy group's
   loss and combined (the lowest over the groups, [2.4.7]), and which group is the worst there;
 - :func:`table_a6`: the forbidden zones [3.11.3] in force in each case;
+- :func:`loss_sector_table`: beside Table A-6, the sectors of reduced thrust of [3.11.4] and
+  [3.11.5] in each case (Table A-6 has room for forbidden zones only: a sector here lowers the
+  thrust, down to the lowest factor, and forbids nothing);
 - :func:`table_a7`: per case and heading the number, the limiting wind speed and the wind,
   current and wave loads of the number's condition (Table 2-1), unfactored, in the standard's
   frame [2.8.2] (x forward, y to port, moment about Lpp/2 positive bow to port);
@@ -24,11 +27,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .dnv_losses import loss_sectors
 from .dp_capability import DYNAMIC_FACTOR, INTACT, LOAD_SOURCES, WORST, Level1, Level1Result
 
 KILO = 1e3
 A1_FIXED = ("heading_deg", INTACT)
 A6_COLUMNS = ("case", "thruster", "from_deg", "to_deg", "flushing")
+LOSS_COLUMNS = ("case", "thruster", "from_deg", "to_deg", "lowest_factor", "at_deg")
 A7_COLUMNS = ("case", "heading_deg", "capability_number", "wind_speed_limit",
               *(f"{source}_{quantity}" for source in LOAD_SOURCES for quantity in ("fx_kn", "fy_kn", "mz_knm")))
 A8_COLUMNS = ("case", "heading_deg", "capability_number", "thruster", "thrust_kn", "angle_deg", "available_kn",
@@ -67,6 +72,16 @@ def table_a6(analysis: Level1) -> list[tuple]:
     return [(case, zone.thruster, round(math.degrees(zone.sector[0]), 2), round(math.degrees(zone.sector[1]), 2),
              zone.flushed)
             for case, failed in cases.items() for zone in analysis.zones(tuple(failed))]
+
+
+def loss_sector_table(analysis: Level1) -> list[tuple]:
+    """(case, thruster, from_deg, to_deg, lowest_factor, at_deg) of every [3.11.4]/[3.11.5] loss
+    sector, intact and per group; thrust angles in the body frame (0 forward, 90 to starboard), the
+    factor [3.11.6] linear between the corners (the case's :meth:`~.dp_capability.Level1.thrust_profiles`)."""
+    cases = {INTACT: (), **analysis.groups}
+    return [(case, name, round(start, 2), round(end, 2), round(lowest, 4), round(at, 2))
+            for case, failed in cases.items() for name, profile in analysis.thrust_profiles(tuple(failed)).items()
+            for start, end, lowest, at in loss_sectors(profile)]
 
 
 def table_a7(analysis: Level1, result: Level1Result) -> list[tuple]:
@@ -139,15 +154,23 @@ def thruster_use(analysis: Level1, number: int, direction: float, failed: tuple[
     return uses
 
 
-def table_a8(analysis: Level1, result: Level1Result) -> list[tuple]:
-    """Per case, heading and working thruster at the heading's number: thrust and available thrust
-    [kN], thrust angle [deg] and utilisation [%]."""
+Balance = tuple[str, float, int, list[ThrusterUse]]
+"""(case, heading_deg, capability number, each working thruster's :class:`ThrusterUse` there)."""
+
+
+def balances(analysis: Level1, result: Level1Result) -> list[Balance]:
+    """Per case and heading, the heading's number and :func:`thruster_use` at its condition (the
+    allocation Tables A-8 to A-10 report)."""
     cases = {INTACT: (), **analysis.groups}
-    rows = []
-    for case, failed in cases.items():
-        for k, heading in enumerate(result.headings_deg):
-            number = int(result.numbers[case][k])
-            for use in thruster_use(analysis, number, math.radians(heading), tuple(failed)):
-                rows.append((case, float(heading), number, use.name, use.thrust / KILO, use.angle_deg,
-                             use.available / KILO, 100.0 * use.utilisation))
-    return rows
+    return [(case, float(heading), int(result.numbers[case][k]),
+             thruster_use(analysis, int(result.numbers[case][k]), math.radians(heading), tuple(failed)))
+            for case, failed in cases.items() for k, heading in enumerate(result.headings_deg)]
+
+
+def table_a8(analysis: Level1, result: Level1Result, balanced: list[Balance] | None = None) -> list[tuple]:
+    """Per case, heading and working thruster at the heading's number: thrust and available thrust
+    [kN], thrust angle [deg] and utilisation [%] (``balanced``: :func:`balances`, computed if None)."""
+    return [(case, heading, number, use.name, use.thrust / KILO, use.angle_deg, use.available / KILO,
+             100.0 * use.utilisation)
+            for case, heading, number, uses in (balanced if balanced is not None else balances(analysis, result))
+            for use in uses]

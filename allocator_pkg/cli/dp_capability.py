@@ -12,8 +12,9 @@ summary.
 - ``_<group>_number.png`` / ``_<group>_wind.png``: one per group (its failed thrusters crossed);
 - ``.csv``: ``case``, ``heading_deg``, ``capability_number``, ``wind_speed_limit`` after a ``#``
   line with the scope;
-- ``_table_a1.csv``, ``_table_a6.csv``, ``_table_a7.csv``, ``_table_a8.csv``, ``_loads.csv``
-  (:mod:`.dp_report`);
+- ``_table_a1.csv`` to ``_table_a10.csv`` (Tables A-2 to A-5 the inputs; A-9 and A-10 the power
+  per thruster and per switchboard), ``_table_a6_losses.csv`` (the [3.11.4]/[3.11.5] loss
+  sectors beside Table A-6), ``_loads.csv`` (:mod:`.dp_report`);
 - ``.txt``: the DP capability-L1(A, B, C, D) line and what the numbers rest on;
 - ``_report.md``: the one-page summary;
 - at Level 2, ``_vs_l1_number.png`` / ``_vs_l1_wind.png``: Level 1 and Level 2 on one.
@@ -31,7 +32,7 @@ from ..analysis.dnv_site import load_site
 from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result
 from ..analysis.dp_level2 import Level2
 from ..analysis.dp_particulars import load_particulars
-from ..analysis.dp_tables import groups_of
+from ..analysis.dp_tables import balances, groups_of
 from ..configuration.parameters import load_vehicle
 from .dp_plots import Outline, comparison_plot, polar_plot
 from .dp_report import write_summary, write_tables
@@ -79,11 +80,12 @@ def write_report(vehicle_path: str | Path, particulars_path: str | Path, out: st
             comparison_plot(paths[-1], level1_result, result, title, wind, outline)
     paths.append(out / f"{stem}.csv")
     write_csv(paths[-1], result)
-    paths += write_tables(out, stem, analysis, result)
+    balanced = balances(analysis, result)
+    paths += write_tables(out, stem, analysis, result, balanced)
     paths.append(out / f"{stem}.txt")
     paths[-1].write_text("\n".join([f"{title}: {result.summary_line()}", "", *result.notes]) + "\n")
     paths.append(out / f"{stem}_report.md")
-    write_summary(paths[-1], analysis, result, vehicle_path, particulars_path, paths[:-1])
+    write_summary(paths[-1], analysis, result, vehicle_path, particulars_path, paths[:-1], balanced)
     return result, paths
 
 

@@ -1,10 +1,11 @@
 """The tables and the one-page summary of a DNV-ST-0111 Level 1 report (App. A.3).
 
 :func:`write_tables` writes the CSV tables of :mod:`allocator_pkg.analysis.dp_input_tables` (A-2 to
-A-5) and :mod:`allocator_pkg.analysis.dp_tables`, each after two ``#`` lines (what the table is,
-with its units; the scope); :func:`write_summary` the Markdown summary: the vessel, the inputs and
-where they come from, Tables A-2 to A-5, the DP capability-L1 notation, the tables' headlines, the
-scope and "Not verified by DNV".
+A-5), :mod:`allocator_pkg.analysis.dp_tables` (A-1, A-6 and its loss sectors, A-7, A-8) and
+:mod:`allocator_pkg.analysis.dp_power_tables` (A-9, A-10), each after two ``#`` lines (what the
+table is, with its units; the scope); :func:`write_summary` the Markdown summary: the vessel, the
+inputs and where they come from, Tables A-2 to A-5, the DP capability-L1 notation, the tables'
+headlines (the power per switchboard too), the scope and "Not verified by DNV".
 """
 
 from __future__ import annotations
@@ -16,14 +17,28 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.dp_capability import INTACT, WORST, Level1, Level1Result
-from ..analysis.dp_input_tables import A2_COLUMNS, A3_COLUMNS, A4_COLUMNS, a5_columns, table_a2, table_a3, table_a5
+from ..analysis.dp_input_tables import (
+    A2_COLUMNS,
+    A3_COLUMNS,
+    A4_COLUMNS,
+    a5_columns,
+    table_a2,
+    table_a3,
+    table_a4,
+    table_a5,
+)
+from ..analysis.dp_power_tables import A10_COLUMNS, a9_columns, table_a9, table_a10
 from ..analysis.dp_tables import (
     A6_COLUMNS,
     A7_COLUMNS,
     A8_COLUMNS,
     LOAD_COLUMNS,
+    LOSS_COLUMNS,
+    Balance,
+    balances,
     groups_of,
     load_table,
+    loss_sector_table,
     table_a1,
     table_a6,
     table_a7,
@@ -37,8 +52,10 @@ TABLES = {
                 "to port, z [m] above the keel) from the vehicle file; type, D [m], P_B [kW], pitch, duct, "
                 "contra-rotation, permanent magnet, tunnel inlet from the particulars file; nominal thrust [3.9.2] "
                 "forward and reversed [kN] (0: the vehicle file does not reverse it)",
-    "table_a4": "Table A-4: rudder data (profile, A_r [m^2], k1, k2, maximum angle [deg], maximum side force [kN]); "
-                "none: this Level 1 takes no rudders ([3.10] not computed; a control surface is refused)",
+    "table_a4": "Table A-4: rudder data [3.10] per rudder behind a shaft line (the particulars' rudders): its "
+                "propeller, profile (Table 3-5), A_r [m^2], k1 (Table 3-5), k2 (Table 3-6), the largest rudder angle "
+                "[3.10.1] uses [deg] (the vehicle file's, at most 30) and the side force there at the propeller's "
+                "forward T_nominal [3.9.2], T_nominal C_Y alpha [kN]",
     "table_a5": "Table A-5: thruster power configuration from the vehicle file: per thruster its P_B [kW] and, per "
                 "switchboard or prime mover, its share [%] and the power it can consume from there [kW]; then "
                 "each source's available power [kW] and its usable power after the 10 % reserve [3.12.3] [kW]",
@@ -48,6 +65,11 @@ TABLES = {
     "table_a6": "Table A-6: forbidden zones in force per case ([3.11.3] at Level 1, the vehicle file's sectors at "
                 "Level 2); thrust angles [deg] in the body frame (0 forward, 90 to starboard), the thruster whose "
                 "race the zone protects",
+    "table_a6_losses": "Beside Table A-6 (whose layout has forbidden zones only): the sectors of reduced thrust per "
+                       "case, flushing a dead thruster [3.11.4] and a skeg [3.11.5] combined [3.11.6]; thrust "
+                       "angles [deg] in the body frame (0 forward, 90 to starboard) from and to the directions at "
+                       "full thrust, the lowest factor and its angle; the factor linear between the corners of "
+                       "[3.11.4]/[3.11.5] (none at Level 2)",
     "table_a7": "Table A-7: per case and heading the capability number, the limiting wind speed [m/s] and the "
                 "unfactored wind, current and wave loads of the number's Table 2-1 condition in the frame of "
                 "[2.8.2] (x forward, y to port; Fx, Fy [kN]; Mz [kN m] about Lpp/2, bow to port positive)",
@@ -55,6 +77,13 @@ TABLES = {
                 "(signed for a fixed thruster), its angle [deg, body frame], the effective thrust available "
                 "that way [kN] and the utilisation [%]; one allocation that holds the load, whose largest "
                 "utilisation is the least possible",
+    "table_a9": "Table A-9 (its columns as read here: the transcription names the content, not the columns): per "
+                "case, heading and working thruster at the heading's number, in Table A-8's allocation: the thrust "
+                "fraction r (of what it can give that way), the power it draws, s P_B r^(3/2) [kW] ([3.9.2] turned "
+                "around; s its working feed shares), and per switchboard or prime mover what it draws from there [kW]",
+    "table_a10": "Table A-10 (its columns as read here): per case, heading and working switchboard or prime mover at "
+                 "the heading's number, in Table A-8's allocation: available power, the 10 % reserved [3.12.3], the "
+                 "usable rest, what its thrusters draw [kW] and that as a share of the usable power [%]",
     "loads": "Loads per source for every heading and number 1-11 (condition: wind [m/s], Hs [m], Tp [s], "
              "current [m/s]), unfactored, and their sum times 1.25; frame of [2.8.2], Fx, Fy [kN], Mz [kN m]",
 }
@@ -74,13 +103,19 @@ def write_table(path: Path, what: str, scope: str, columns, rows) -> None:
         writer.writerows([_cell(v) for v in row] for row in rows)
 
 
-def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result) -> list[Path]:
-    """The CSV tables, ``<stem>_<table>.csv``; the paths written."""
+def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result,
+                 balanced: list[Balance] | None = None) -> list[Path]:
+    """The CSV tables, ``<stem>_<table>.csv``; the paths written (``balanced``: the allocations of
+    Tables A-8 to A-10, :func:`~allocator_pkg.analysis.dp_tables.balances`, computed if None)."""
     a1_columns, a1_rows = table_a1(result)
+    balanced = balances(analysis, result) if balanced is None else balanced
     contents = {**input_tables(analysis),
                 "table_a1": (a1_columns, a1_rows), "table_a6": (A6_COLUMNS, table_a6(analysis)),
+                "table_a6_losses": (LOSS_COLUMNS, loss_sector_table(analysis)),
                 "table_a7": (A7_COLUMNS, table_a7(analysis, result)),
-                "table_a8": (A8_COLUMNS, table_a8(analysis, result)),
+                "table_a8": (A8_COLUMNS, table_a8(analysis, result, balanced)),
+                "table_a9": (a9_columns(analysis), table_a9(analysis, result, balanced)),
+                "table_a10": (A10_COLUMNS, table_a10(analysis, result, balanced)),
                 "loads": (LOAD_COLUMNS, load_table(analysis, result))}
     paths = []
     for key, (columns, rows) in contents.items():
@@ -93,7 +128,7 @@ def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result) -
 def input_tables(analysis: Level1) -> dict[str, tuple[tuple[str, ...], list[tuple]]]:
     """(columns, rows) of Tables A-2 to A-5 by key."""
     return {"table_a2": (A2_COLUMNS, table_a2(analysis)), "table_a3": (A3_COLUMNS, table_a3(analysis)),
-            "table_a4": (A4_COLUMNS, []), "table_a5": (a5_columns(analysis), table_a5(analysis))}
+            "table_a4": (A4_COLUMNS, table_a4(analysis)), "table_a5": (a5_columns(analysis), table_a5(analysis))}
 
 
 def markdown_table(columns, rows) -> list[str]:
@@ -116,8 +151,8 @@ def _headings(result: Level1Result, case: str, value: int) -> str:
 
 
 def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_path: Path, particulars_path: Path,
-                  files: list[Path]) -> None:
-    """The one-page Markdown summary."""
+                  files: list[Path], balanced: list[Balance] | None = None) -> None:
+    """The one-page Markdown summary (``balanced`` as :func:`write_tables` takes it)."""
     title = analysis.particulars.name or vehicle_path.stem
     a, b, c, d = result.summary()
     groups = groups_of(result)
@@ -160,9 +195,26 @@ def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_pa
     worst = worst_groups(result)
     counts = ", ".join(f"{g} at {worst.count(g)}" for g in groups)
     lines += ["", f"Worst single failure per heading (Table A-1): {counts} of {len(worst)} headings.", "",
-              "## Files", "", *(f"- `{p.name}`" for p in files), "",
+              *_power_headline(analysis, result, balanced)]
+    lines += ["## Files", "", *(f"- `{p.name}`" for p in files), "",
               "## Scope", "", *(f"- {note}" for note in result.notes), ""]
     path.write_text("\n".join(lines))
+
+
+def _power_headline(analysis: Level1, result: Level1Result, balanced: list[Balance] | None) -> list[str]:
+    """Per case and source the highest share of its usable power its thrusters draw at a heading's
+    number (Table A-10)."""
+    if not analysis.capacities:
+        return []
+    highest: dict[tuple[str, str], tuple[float, float]] = {}
+    for case, heading, _, source, *_, share in table_a10(analysis, result, balanced):
+        if (case, source) not in highest or share > highest[case, source][0]:
+            highest[case, source] = (share, heading)
+    return ["## Power per switchboard (Tables A-9, A-10)", "",
+            "Highest share of the usable power (after the 10 % reserve) the thrusters draw at a heading's number, "
+            "in Table A-8's allocation:", "", "| case | source | highest [%] | at heading [deg] |", "|---|---|---|---|",
+            *(f"| {case} | {source} | {share:.1f} | {heading:g} |"
+              for (case, source), (share, heading) in highest.items()), ""]
 
 
 def _power_lines(analysis: Level1) -> list[str]:

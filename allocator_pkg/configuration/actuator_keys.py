@@ -102,9 +102,11 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
         default_doc="none (every sector always in force)",
         constraint="one per sector; names from actuators.names other than this one, or empty"),
     Key("diameter", FLOAT, "Propeller diameter D, for the flushing zones of flushing_zones dnv ([3.11.3], "
-        "[3.11.4]).", default=0.0, minimum=0.0, applies_to=_THR, unit="m", default_doc="0 (none)"),
+        "[3.11.4]), and DNV-ST-0111 Level 1's D where the particulars file gives none.", default=0.0,
+        minimum=0.0, applies_to=_THR, unit="m", default_doc="0 (none)"),
     Key("ducted", BOOL, "The propeller runs in a nozzle: [3.11.4]'s narrower loss sector, within 4 D instead "
-        "of 8 D (flushing_zones dnv).", default=False, applies_to=_THR),
+        "of 8 D (flushing_zones dnv); DNV-ST-0111 Level 1's duct where the particulars file gives none.",
+        default=False, applies_to=_THR),
     Key("tunnel", BOOL, "A tunnel thruster: others may flush it ([3.11.3], [3.11.4]; flushing_zones dnv).",
         default=False, applies_to=(FIXED,)),
     Key("reversible", BOOL, "Whether negative thrust along the current angle is allowed.", default=False,
