@@ -74,7 +74,7 @@ VEHICLE_VALUES = {
     "nonlinear.max_iterations": 3, "dynamic.gain": 0.25, "svd_filter.time_constant": 0.7,
     "svd_filter.damping_threshold": 0.1, "explicit.regions": "regions.npz", "solver.eps_abs": 1e-4,
     "solver.eps_rel": 2e-4, "solver.max_iter": 500, "solver.time_limit": 0.01, "water_density": 1000.0,
-    "flushing_zones": "dnv",
+    "flushing_zones": "dnv", "power.phase_back": False,
     "bias.enabled": True, "bias.thrust": 5.0, "bias.fade_start": 0.3, "bias.fade_end": 0.6,
     "bias.fade_time_constant": 10.0,
 }
