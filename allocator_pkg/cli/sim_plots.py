@@ -25,13 +25,14 @@ METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),
                ("thrust_reversals", "thrust reversals [count]", "{:.0f}"),
                ("saturated_fraction", "saturated fraction [share]", "{:.3f}"),
                ("realtime_factor", "real-time factor [x real time]", "{:.1f}"))
-FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter")
+FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter", "group_fault", "power")
 """The kinds of event the nominal run leaves out: what goes wrong, not what is asked."""
 
 
 def nominal(scenario: Scenario) -> Scenario | None:
-    """The same scenario and seed without its faults, battery ramps and parameter changes (other
-    events kept): what the run is without the failure. None when it has none of them."""
+    """The same scenario and seed without its faults (of actuators and groups), battery ramps,
+    changes of available power and parameter changes (set-points and weather kept): what the
+    run is without the failure. None when it has none of them."""
     kept = tuple(event for event in scenario.events if event.kind not in FAILURES)
     return None if len(kept) == len(scenario.events) else replace(scenario, events=kept)
 
