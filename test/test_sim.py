@@ -27,9 +27,11 @@ from allocator_pkg.vehicle.angles import wrap
 pytestmark = pytest.mark.slow
 
 SCENARIOS = {"dp_station_keeping": 0.1, "dp_azimuth_failure": 0.1, "rov_thruster_failure": 0.15,
-             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0, "dp_calm_bias": 0.2}
+             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0, "dp_calm_bias": 0.2,
+             "dp_switchboard_trip": 0.5, "dp_power_limited": 0.5, "dp_consequence_alarm": 0.5}
 """The shipped scenarios, each with the scale of its duration here (the set-point change at
-full length: its windows' bounds are for the vessel's own pace)."""
+full length: its windows' bounds are for the vessel's own pace; the power scenarios at half:
+their weather ramps and the alarm's lead need the time)."""
 RESULTS = {}
 
 
