@@ -105,8 +105,10 @@ def test_every_recorded_command_is_within_the_limits_in_force(finished):
         mode = np.array(list(commands.mode))          # uint8[] reads back as bytes
         failed = mode == ActuatorFault.FAILED
         assert np.all(thrust[failed] == 0.0)
+        available = list(status.source_available)
         for i, actuator in enumerate(vehicle.actuators):
-            steady = previous is not None and mode[i] == previous[2][i] == ActuatorFault.NOMINAL
+            steady = previous is not None and mode[i] == previous[2][i] == ActuatorFault.NOMINAL \
+                and available == previous[3]                  # less power cuts the thrust at once too
             if steady and actuator.thrust_rate_max > 0.0:     # a failure stops a thruster at once
                 assert abs(thrust[i] - previous[0][i]) <= actuator.thrust_rate_max * period * (1 + 1e-9) + 1e-6
             if actuator.rotatable:
@@ -117,7 +119,7 @@ def test_every_recorded_command_is_within_the_limits_in_force(finished):
                     assert abs(wrap(angle[i] - previous[1][i])) <= actuator.rotation.rate_max * period + 1e-9
                     if mode[i] == previous[2][i] == ActuatorFault.STUCK:
                         assert angle[i] == previous[1][i]
-        previous = (thrust, angle, mode)
+        previous = (thrust, angle, mode, available)
     if case.voltage is not None and any(e.kind == "battery_ramp" for e in case.events):
         voltages = [s.voltage for s in topics["/allocation_status"]]
         assert voltages[0] == pytest.approx(16.0) and voltages[-1] < 13.0    # the limits followed the sag
