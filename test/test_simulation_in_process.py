@@ -12,7 +12,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from conftest import ROOT
+from conftest import ALARM_TOLERANCE, ROOT
 
 from allocator_pkg.allocation.allocator import Allocator
 from allocator_pkg.cli.sim import run
@@ -32,10 +32,6 @@ SCENARIOS = {"dp_stuck_azimuth": 0.1, "dp_azimuth_failure": 0.1, "rov_battery_sa
 (30 s), a failure and its clearing (30 s), a battery ramp on the 6-DOF vehicle (15 s), a
 switchboard's group fault and the other's available power cut (30 s)."""
 TOLERANCE = 1e-9
-ALARM_TOLERANCE = 1.0 + 3 * 0.1
-"""[s] How far apart the links' alarm times may be: one analysis period (consequence.rate 1 Hz,
-the DP vessel's; the node's timer has a phase of its own) and three samples for the node's
-thread to answer."""
 
 
 def assert_same_metrics(node: dict, own: dict, where) -> None:
