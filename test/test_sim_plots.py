@@ -255,7 +255,10 @@ def test_the_comparison_table_and_figure_show_the_nominal_runs():
                                     {m: r.metrics for m, r in nominals.items()})
     first, second = table.split("nominal runs):")
     assert "| metric | qp | lp |" in first and "| metric | qp |" in second and "| metric | qp | lp |" not in second
-    assert "depth error" not in table
+    assert "depth error" not in table and "alarm" not in table
+    trip = scenario("dp_switchboard_trip", 1.0)
+    power = sim_plots.compare_table(trip, {"qp": made_up_run(trip).metrics})
+    assert "| time over available power [s] | 0.0 |" in power and "| consequence alarm at [s] | inf |" in power
     figure = sim_plots.compare_figure(case, results, nominals)
     timeline = figure.axes[0]
     assert [t.split(":")[0] for t in legend_texts(timeline)][:3] == ["qp", "qp, nominal", "lp"]
