@@ -95,6 +95,7 @@ docs: setup
 	$(PY) tools/update_docs.py
 	$(PY) tools/render_markers.py
 	$(PY) tools/plot_priorities.py
+	$(PY) tools/plot_bus_trip.py
 
 VEHICLES := $(filter-out config/default.yaml,$(wildcard config/*.yaml))
 capability: setup

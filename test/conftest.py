@@ -32,6 +32,10 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / "data"
 BENCH = ROOT / "bench"
+ALARM_TOLERANCE = 1.0 + 3 * 0.1
+"""[s] How far apart two closed-loop runs' consequence alarm times may be when the node is in
+the loop: one analysis period (consequence.rate 1 Hz, the DP vessel's; the node's timer has a
+phase of its own on the sim clock) and three samples for the node's thread to answer."""
 
 
 def bench_module(name: str) -> ModuleType:

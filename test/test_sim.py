@@ -11,7 +11,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from conftest import ROOT
+from conftest import ALARM_TOLERANCE, ROOT
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 
@@ -19,6 +19,7 @@ from allocator_msgs.msg import ActuatorFault
 from allocator_pkg.cli.sim import main, run
 from allocator_pkg.cli.sim_metrics import metrics_from_recording
 from allocator_pkg.effectiveness.faults import thrust_limits
+from allocator_pkg.simulation.metrics import ALARM_METRICS
 from allocator_pkg.simulation.report import report_checks
 from allocator_pkg.simulation.scenario import Event, load_scenario
 from allocator_pkg.simulation.verdict import broken, verdict_lines
@@ -27,9 +28,11 @@ from allocator_pkg.vehicle.angles import wrap
 pytestmark = pytest.mark.slow
 
 SCENARIOS = {"dp_station_keeping": 0.1, "dp_azimuth_failure": 0.1, "rov_thruster_failure": 0.15,
-             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0, "dp_calm_bias": 0.2}
+             "rov_battery_sag": 0.15, "dp_stuck_azimuth": 0.1, "dp_setpoint_change": 1.0, "dp_calm_bias": 0.2,
+             "dp_switchboard_trip": 0.5, "dp_power_limited": 0.5, "dp_consequence_alarm": 0.5}
 """The shipped scenarios, each with the scale of its duration here (the set-point change at
-full length: its windows' bounds are for the vessel's own pace)."""
+full length: its windows' bounds are for the vessel's own pace; the power scenarios at half:
+their weather ramps and the alarm's lead need the time)."""
 RESULTS = {}
 
 
@@ -103,8 +106,10 @@ def test_every_recorded_command_is_within_the_limits_in_force(finished):
         mode = np.array(list(commands.mode))          # uint8[] reads back as bytes
         failed = mode == ActuatorFault.FAILED
         assert np.all(thrust[failed] == 0.0)
+        available = list(status.source_available)
         for i, actuator in enumerate(vehicle.actuators):
-            steady = previous is not None and mode[i] == previous[2][i] == ActuatorFault.NOMINAL
+            steady = previous is not None and mode[i] == previous[2][i] == ActuatorFault.NOMINAL \
+                and available == previous[3]                  # less power cuts the thrust at once too
             if steady and actuator.thrust_rate_max > 0.0:     # a failure stops a thruster at once
                 assert abs(thrust[i] - previous[0][i]) <= actuator.thrust_rate_max * period * (1 + 1e-9) + 1e-6
             if actuator.rotatable:
@@ -115,7 +120,7 @@ def test_every_recorded_command_is_within_the_limits_in_force(finished):
                     assert abs(wrap(angle[i] - previous[1][i])) <= actuator.rotation.rate_max * period + 1e-9
                     if mode[i] == previous[2][i] == ActuatorFault.STUCK:
                         assert angle[i] == previous[1][i]
-        previous = (thrust, angle, mode)
+        previous = (thrust, angle, mode, available)
     if case.voltage is not None and any(e.kind == "battery_ramp" for e in case.events):
         voltages = [s.voltage for s in topics["/allocation_status"]]
         assert voltages[0] == pytest.approx(16.0) and voltages[-1] < 13.0    # the limits followed the sag
@@ -125,7 +130,9 @@ def test_the_same_seed_gives_the_same_metrics(tmp_path_factory, tmp_path):
     case, result, _ = finished_run("dp_azimuth_failure", tmp_path_factory)   # a fault, azimuths
     again = run(case, tmp_path, log=lambda _: None)
     for key, value in result.metrics.items():
-        if key != "realtime_factor":
+        if key in ALARM_METRICS:                              # the node's analysis thread: within a period
+            assert again.metrics[key] == pytest.approx(value, abs=ALARM_TOLERANCE), key
+        elif key != "realtime_factor":
             assert again.metrics[key] == value, key
     assert np.array_equal(np.array(again.trace.position), np.array(result.trace.position))
 

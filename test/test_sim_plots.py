@@ -255,7 +255,10 @@ def test_the_comparison_table_and_figure_show_the_nominal_runs():
                                     {m: r.metrics for m, r in nominals.items()})
     first, second = table.split("nominal runs):")
     assert "| metric | qp | lp |" in first and "| metric | qp |" in second and "| metric | qp | lp |" not in second
-    assert "depth error" not in table
+    assert "depth error" not in table and "alarm" not in table
+    trip = scenario("dp_switchboard_trip", 1.0)
+    power = sim_plots.compare_table(trip, {"qp": made_up_run(trip).metrics})
+    assert "| time over available power [s] | 0.0 |" in power and "| consequence alarm at [s] | inf |" in power
     figure = sim_plots.compare_figure(case, results, nominals)
     timeline = figure.axes[0]
     assert [t.split(":")[0] for t in legend_texts(timeline)][:3] == ["qp", "qp, nominal", "lp"]
@@ -264,3 +267,31 @@ def test_the_comparison_table_and_figure_show_the_nominal_runs():
         legend_texts(timeline)[0].split(": ")[1])].get_color()
     assert event_lines(timeline) == pytest.approx(sorted(e.time for e in case.events))
     assert "bound 4 m" in legend_texts(figure.axes[1])
+
+
+def test_a_vehicle_with_power_sources_gets_their_power_against_what_is_available_and_the_alarm():
+    case = scenario("dp_switchboard_trip", 1.0)
+    plain = made_up_run(case)
+    trace = replace(plain.trace, sources=["swbd_a", "swbd_b"])
+    for t in trace.time:
+        tripped = t >= 100.0
+        trace.add_power([300.0 + t, 0.0 if tripped else 200.0], [600.0 if t >= 160.0 else 5600.0,
+                                                                 0.0 if tripped else 7800.0], tripped)
+    figure = timeline_figure(replace(plain, trace=trace), case)
+    sources = figure.axes[-1]
+    assert sources.get_ylabel() == "power per source [kW]"
+    assert legend_texts(sources) == ["swbd_a drawn", "swbd_a available", "swbd_b drawn", "swbd_b available",
+                                     "consequence alarm"]
+    lines = labelled(sources)
+    assert lines["swbd_a available"].get_color() == lines["swbd_a drawn"].get_color()
+    assert lines["swbd_a available"].get_linestyle() == "--"
+    assert lines["swbd_b available"].get_ydata()[-1] == 0.0 and lines["swbd_a drawn"].get_ydata()[0] == 300.0
+    assert event_lines(sources) == [100.0, 160.0]
+    assert [event_label(e) for e in case.events] == ["switchboard_b FAILED", "swbd_a 600 kW"]
+    assert event_label(Event(10.0, "weather_ramp", value=1.5, duration=120.0)) == "weather x1.5 in 120 s"
+
+
+def test_the_nominal_run_leaves_out_group_faults_and_power_but_keeps_the_weather():
+    assert sim_plots.nominal(scenario("dp_switchboard_trip")).events == ()
+    kept = sim_plots.nominal(scenario("dp_consequence_alarm")).events
+    assert [e.kind for e in kept] == ["weather_ramp"]

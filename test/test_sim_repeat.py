@@ -1,16 +1,18 @@
 """Repeatable means repeatable: every method that serves a shipped scenario's vehicle gives
-the same metrics.json, bit for bit (all but the real-time factor, which is wall time), on two
-runs of the same short scenario with the same seed. A vessel scenario with a fault and its
+the same metrics.json, bit for bit (all but the real-time factor, which is wall time, and the
+consequence alarm times, which the node's analysis thread sets within an analysis period), on
+two runs of the same short scenario with the same seed. A vessel scenario with a fault and its
 clearing (services between steps, azimuths) and an ROV scenario with a battery ramp (the
 voltage on its own topic every step, and the BlueROV2's tied optima under lp)."""
 
 import json
 
 import pytest
-from conftest import ROOT
+from conftest import ALARM_TOLERANCE, ROOT
 
 from allocator_pkg.cli.sim import run
 from allocator_pkg.methods import METHODS
+from allocator_pkg.simulation.metrics import ALARM_METRICS
 from allocator_pkg.simulation.scenario import ScenarioError, load_scenario
 
 pytestmark = pytest.mark.slow
@@ -36,8 +38,16 @@ def report(scenario, out):
     return data
 
 
+def alarm_times(data) -> dict[str, float]:
+    """The alarm times (ALARM_METRICS) of the run and each window, taken out of ``data``."""
+    scopes = {"run": data["metrics"]} | {name: window["metrics"] for name, window in data["windows"].items()}
+    return {f"{scope}.{key}": metrics.pop(key) for scope, metrics in scopes.items() for key in ALARM_METRICS}
+
+
 @pytest.mark.parametrize("scenario", list(cases()))
 def test_the_same_seed_gives_the_same_metrics_bit_for_bit(scenario, tmp_path):
     first, second = report(scenario, tmp_path / "first"), report(scenario, tmp_path / "second")
+    times = alarm_times(first)
+    assert alarm_times(second) == pytest.approx(times, rel=0.0, abs=ALARM_TOLERANCE)
     assert first == second
-    assert len(first["metrics"]) == 9 and all(isinstance(v, (int, float)) for v in first["metrics"].values())
+    assert len(first["metrics"]) == 11 and all(isinstance(v, (int, float)) for v in first["metrics"].values())

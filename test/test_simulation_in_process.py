@@ -1,7 +1,9 @@
 """allocator_pkg.simulation.in_process: the allocator library in the closed loop judges the
-allocator the node runs. On shipped scenarios with a fault, its clearing, a parameter change
-and a battery sag (shortened), the in-process run and the node-in-the-loop run give the same
-metrics, window metrics and commanded thrusts and angles to 1e-9; the link reads the wrench
+allocator the node runs. On shipped scenarios with a fault, its clearing, a parameter change,
+a battery sag, a redundancy group's loss and a change of available power (shortened), the
+in-process run and the node-in-the-loop run give the same metrics, window metrics, commanded
+thrusts and angles and power per source to 1e-9, and consequence alarm times within one
+analysis period and a few samples (the node analyses on a thread of its own); the link reads the wrench
 and writes the unallocated wrench in the node's frame, takes the battery's voltage as float32,
 and refuses the faults and parameters the node refuses, leaving the allocator as it was."""
 
@@ -10,7 +12,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from conftest import ROOT
+from conftest import ALARM_TOLERANCE, ROOT
 
 from allocator_pkg.allocation.allocator import Allocator
 from allocator_pkg.cli.sim import run
@@ -18,15 +20,26 @@ from allocator_pkg.configuration.parameters import vehicle_from_parameters
 from allocator_pkg.configuration.params_file import read_parameters
 from allocator_pkg.effectiveness.faults import FaultMode
 from allocator_pkg.simulation.in_process import InProcessLink, node_parameters
+from allocator_pkg.simulation.metrics import ALARM_METRICS
 from allocator_pkg.simulation.plant import Pose
 from allocator_pkg.simulation.run_setup import SimulationError
 from allocator_pkg.simulation.scenario import load_scenario
 from allocator_pkg.vehicle.frames import wrench_between
 
-SCENARIOS = {"dp_stuck_azimuth": 0.1, "dp_azimuth_failure": 0.1, "rov_battery_sag": 0.15}
+SCENARIOS = {"dp_stuck_azimuth": 0.1, "dp_azimuth_failure": 0.1, "rov_battery_sag": 0.15,
+             "dp_switchboard_trip": 0.1}
 """Shipped scenarios with the scale of their duration: a STUCK fault and a parameter change
-(30 s), a failure and its clearing (30 s), a battery ramp on the 6-DOF vehicle (15 s)."""
+(30 s), a failure and its clearing (30 s), a battery ramp on the 6-DOF vehicle (15 s), a
+switchboard's group fault and the other's available power cut (30 s)."""
 TOLERANCE = 1e-9
+
+
+def assert_same_metrics(node: dict, own: dict, where) -> None:
+    """Equal to TOLERANCE, the alarm times (ALARM_METRICS) to ALARM_TOLERANCE."""
+    assert node.keys() == own.keys()
+    for key, value in node.items():
+        tolerance = ALARM_TOLERANCE if key in ALARM_METRICS else TOLERANCE
+        assert own[key] == pytest.approx(value, rel=TOLERANCE, abs=tolerance), (where, key)
 
 
 def scenario(name, scale=1.0):
@@ -46,16 +59,18 @@ def test_the_in_process_run_gives_the_node_runs_metrics_and_commands(name, tmp_p
     reports = [json.loads((tmp_path / folder / "metrics.json").read_text()) for folder in ("node", "in_process")]
     for report in reports:
         assert report["metrics"].pop("realtime_factor") > 0.0
-    assert reports[0]["metrics"].keys() == reports[1]["metrics"].keys()
-    for key, value in reports[0]["metrics"].items():
-        assert reports[1]["metrics"][key] == pytest.approx(value, rel=TOLERANCE, abs=TOLERANCE), key
+    assert_same_metrics(reports[0]["metrics"], reports[1]["metrics"], "run")
     for window, figures in reports[0]["windows"].items():
-        for key, value in figures["metrics"].items():
-            assert reports[1]["windows"][window]["metrics"][key] == pytest.approx(value, rel=TOLERANCE,
-                                                                                  abs=TOLERANCE), (window, key)
+        assert_same_metrics(figures["metrics"], reports[1]["windows"][window]["metrics"], window)
+    assert reports[0]["sources"].keys() == reports[1]["sources"].keys()
+    for source, figures in reports[0]["sources"].items():
+        assert reports[1]["sources"][source] == pytest.approx(figures, rel=TOLERANCE, abs=TOLERANCE), source
     for field in ("thrust", "azimuth", "power", "voltage", "saturated", "position"):
         np.testing.assert_allclose(own.trace.arrays()[field], node.trace.arrays()[field], rtol=TOLERANCE,
                                    atol=TOLERANCE, equal_nan=True, err_msg=field)
+    for field in ("source_power", "source_available"):
+        np.testing.assert_allclose(own.trace.power_arrays()[field], node.trace.power_arrays()[field],
+                                   rtol=TOLERANCE, atol=TOLERANCE, err_msg=field)
     assert len(own.trace.time) == len(node.trace.time) == round(case.duration * own.vehicle.rate_hz)
     assert not (tmp_path / "in_process" / "run.mcap").exists()
 

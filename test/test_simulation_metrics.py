@@ -6,11 +6,14 @@ import numpy as np
 import pytest
 
 from allocator_pkg.simulation.metrics import (
+    alarm_metrics,
     azimuth_travel,
     energy,
     heading_errors,
     position_errors,
+    power_metrics,
     run_metrics,
+    source_figures,
     thrust_reversals,
 )
 
@@ -52,3 +55,30 @@ def test_run_metrics_together():
     assert metrics == pytest.approx({"position_error_rms": math.sqrt(12.5), "position_error_max": 5.0,
                                      "heading_error_rms": math.degrees(0.1), "energy": 1.0, "azimuth_travel": 0.0,
                                      "thrust_reversals": 1, "saturated_fraction": 0.5})
+
+
+def test_a_source_is_over_its_available_power_beyond_one_percent():
+    available = np.array([[100.0, 0.0], [100.0, 0.0], [100.0, 0.0], [50.0, 0.0]])
+    power = np.array([[101.0, 0.0], [101.5, 0.0], [80.0, 1e-9], [60.0, 0.0]])      # 1 %: not over; then over
+    assert power_metrics(power, available, 0.1)["time_over_available"] == pytest.approx(0.3)
+    figures = source_figures(["a", "b"], power, available, 0.1)
+    assert figures["a"] == {"peak_power": 101.5, "least_available": 50.0, "time_over_available": pytest.approx(0.2)}
+    assert figures["b"]["time_over_available"] == pytest.approx(0.1)
+    assert power_metrics(np.zeros((4, 0)), np.zeros((4, 0)), 0.1) == {"time_over_available": 0.0}
+    assert source_figures([], np.zeros((4, 0)), np.zeros((4, 0)), 0.1) == {}
+
+
+def test_the_alarm_is_timed_against_the_loss_of_position():
+    time = np.arange(6.0)
+    distance = np.array([0.0, 1.0, 2.0, 6.0, 7.0, 4.0])                            # lost at 3 s beyond 5 m
+    early = alarm_metrics(time, np.array([0, 1, 1, 0, 1, 1]), distance, 5.0)
+    assert early == {"consequence_alarm_time": 1.0, "position_lost_time": 3.0, "alarm_lead_time": 2.0,
+                     "alarm_after_position_loss": 0.0}
+    late = alarm_metrics(time, np.array([0, 0, 0, 0, 0, 1]), distance, 5.0)
+    assert late["alarm_lead_time"] == -2.0 and late["alarm_after_position_loss"] == 2.0
+    never = alarm_metrics(time, np.zeros(6), distance, 5.0)
+    assert never["consequence_alarm_time"] == math.inf and never["alarm_lead_time"] == -math.inf
+    assert never["alarm_after_position_loss"] == math.inf
+    held = alarm_metrics(time, np.zeros(6), distance, 10.0)
+    assert held["position_lost_time"] == math.inf and held["alarm_after_position_loss"] == 0.0
+    assert alarm_metrics(time, np.ones(6), distance, 10.0)["alarm_lead_time"] == math.inf

@@ -172,3 +172,47 @@ def test_any_metric_but_the_real_time_factor_can_be_bounded(tmp_path):
                                   "thrust_reversals: 3, saturated_fraction: 0.05, position_error_rms: 1.0"))
     assert scenario.bounds == {"energy": 2e8, "thrust_reversals": 3.0, "saturated_fraction": 0.05,
                                "position_error_rms": 1.0, "heading_error_max": 3.0}
+
+
+def test_group_faults_power_and_weather_ramps_load():
+    trip = load_scenario(ROOT / "config" / "scenarios" / "dp_switchboard_trip.yaml")
+    assert [(e.time, e.kind, e.name) for e in trip.events] == [(100.0, "group_fault", "switchboard_b"),
+                                                              (160.0, "power", "swbd_a")]
+    assert trip.events[1].value == 600.0
+    assert [(w.name, w.start, w.end) for w in trip.all_windows()] == [("fault", 100.0, 300.0)]
+    alarm = load_scenario(ROOT / "config" / "scenarios" / "dp_consequence_alarm.yaml").scaled(0.5)
+    ramp = next(e for e in alarm.events if e.kind == "weather_ramp")
+    assert (ramp.time, ramp.duration, ramp.value) == (10.0, 75.0, 1.9)
+    assert alarm.position_limit == 8.0 and trip.position_limit == 5.0
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("{time: 100.0, group_fault: {group: switchboard_b}}", "{time: 100.0, group_fault: {group: switchboard_c}}",
+     r"events\[0\]\.group_fault\.group: 'switchboard_c' is not a redundancy group of the vehicle "
+     r"\(switchboard_a, switchboard_b\)"),
+    ("{time: 100.0, group_fault: {group: switchboard_b}}", "{time: 100.0, group_fault: {name: switchboard_b}}",
+     r"events\[0\]\.group_fault\.name: unknown key"),
+    ("{time: 100.0, group_fault: {group: switchboard_b}}", "{time: 100.0, group_fault: switchboard_b}",
+     r"events\[0\]\.group_fault: a mapping"),
+    ("{source: swbd_a, available: 600.0}", "{source: swbd_c, available: 600.0}",
+     r"events\[1\]\.power\.source: 'swbd_c' is not a power source of the vehicle \(swbd_a, swbd_b\)"),
+    ("{source: swbd_a, available: 600.0}", "{source: swbd_a, available: -1.0}",
+     r"events\[1\]\.power\.available: at least 0"),
+    ("{source: swbd_a, available: 600.0}", "{source: swbd_a}", r"events\[1\]\.power\.available: required"),
+    ("{time: 160.0, power: {source: swbd_a, available: 600.0}}",
+     "{time: 160.0, weather_ramp: {to: -2.0, duration: 10.0}}", r"events\[1\]\.weather_ramp\.to: at least 0"),
+    ("{time: 160.0, power: {source: swbd_a, available: 600.0}}",
+     "{time: 160.0, weather_ramp: {to: 2.0, duration: 10.0, hs: 4.0}}", r"events\[1\]\.weather_ramp\.hs: unknown"),
+    ("seed: 3", "seed: 3\nposition_limit: 0.0", "position_limit: at least"),
+    ("bounds: {position_error_max: 4.0", "bounds: {alarm_lead_time: 4.0", "bounds.alarm_lead_time: unknown key"),
+])
+def test_group_faults_power_and_weather_ramps_are_checked_at_load(tmp_path, old, new, message):
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(_bad(tmp_path, old, new, base="dp_switchboard_trip.yaml"))
+
+
+def test_a_vehicle_without_groups_or_sources_refuses_their_events(tmp_path):
+    with pytest.raises(ScenarioError, match=r"group_fault\.group: 'a' is not a redundancy group of the vehicle "
+                                            r"\(it has none\)"):
+        load_scenario(_bad(tmp_path, "events:\n", "events:\n  - {time: 1.0, group_fault: {group: a}}\n",
+                           base="rov_thruster_failure.yaml"))

@@ -7,8 +7,9 @@ lock-step on ROS 2 sim time.
                   [--no-baseline] [--in-process]
 
 The node runs as its own process, unchanged, with ``use_sim_time`` and ``trigger: input``.
-This process publishes ``/clock``, the vehicle's ``odometry``, its ``battery_state`` and the
-controller's ``wrench_command``, and integrates the vehicle on the ``thruster_commands`` it
+This process publishes ``/clock``, the vehicle's ``odometry``, its ``battery_state``, the power
+plant's ``power_available`` (once a scenario's ``power`` event has come) and the controller's
+``wrench_command``, and integrates the vehicle on the ``thruster_commands`` it
 gets back. The clock advances one step (1 / rate_hz) only when the node has answered the
 step's wrench (its ``allocation_status`` stamped with the step's time and echoing the
 wrench), so a run is deterministic for a seed and runs as fast as the node answers.

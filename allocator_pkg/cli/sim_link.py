@@ -1,7 +1,7 @@
 """The node's link of an ``allocator-sim`` run (a :class:`~allocator_pkg.simulation.closed_loop.Link`):
-``/clock``, the vehicle's ``odometry`` and ``battery_state`` and the controller's
-``wrench_command`` out, the node's ``allocation_status`` and ``thruster_commands`` in, its
-services, and the recording of every step into ``run.mcap``.
+``/clock``, the vehicle's ``odometry`` and ``battery_state``, the power plant's
+``power_available`` and the controller's ``wrench_command`` out, the node's
+``allocation_status`` and ``thruster_commands`` in, its services, and the recording of every step into ``run.mcap``.
 
 The clock advances only when the node has answered the step's wrench: its status stamped with
 the step's time and echoing the wrench, and its commands of the same stamp. Before the run,
@@ -25,7 +25,7 @@ from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import BatteryState
 
-from allocator_msgs.msg import AllocationStatus, ThrusterCommands
+from allocator_msgs.msg import AllocationStatus, PowerAvailable, ThrusterCommands
 
 from ..ros import qos
 from ..ros.conversions import array_to_wrench, wrench_to_array
@@ -49,7 +49,10 @@ rare on loopback."""
 RETRIES = 3
 FIRST_WRENCH_DELAY = 0.1
 """[s] of wall time between the first wrench and the clock step that is to allocate it."""
+POWER_DELAY = 0.1
+"""[s] of wall time between new available power and the clock step that is to allocate with it."""
 TOPICS = {"clock": "/clock", "odometry": "/odometry", "setpoint": "/setpoint", "battery": "/battery_state",
+          "power": "/power_available",
           "wrench": "/wrench_command", "commands": "/thruster_commands", "status": "/allocation_status"}
 
 def _clock(t_ns: int) -> Clock:
@@ -64,7 +67,9 @@ def _nanoseconds(message) -> int:
 
 def _answer(status: AllocationStatus, commands: ThrusterCommands) -> Answer:
     return Answer(np.array(commands.thrust), np.array(commands.azimuth), status.saturated, status.power,
-                  status.voltage, wrench_to_array(status.unallocated))
+                  status.voltage, wrench_to_array(status.unallocated),
+                  source_power=np.array(status.source_power) if status.power_source else None,
+                  consequence_alarm=bool(status.consequence_alarm))
 
 
 class NodeLink:
@@ -81,6 +86,8 @@ class NodeLink:
         self.clock = self.node.create_publisher(Clock, "/clock", 10)
         self.odometry = self.node.create_publisher(Odometry, "odometry", 10)
         self.battery = self.node.create_publisher(BatteryState, "battery_state", 10)
+        self.power = self.node.create_publisher(PowerAvailable, "power_available", 10)
+        self.reported: dict[str, float] = {}
         self.answers: dict[str, Any] = {}
         self.last: tuple[AllocationStatus, ThrusterCommands] | None = None
         self.node.create_subscription(AllocationStatus, "allocation_status",
@@ -89,7 +96,7 @@ class NodeLink:
                                       lambda m: self.answers.__setitem__("commands", m), 10)
         self.recording = RunRecording(out / "run.mcap", self.node)
         own, node_output = [QoSProfile(depth=10)], [qos.output()]
-        self.offered = {"clock": own, "battery": own, "odometry": own, "setpoint": [], "wrench": own,
+        self.offered = {"clock": own, "battery": own, "power": own, "odometry": own, "setpoint": [], "wrench": own,
                         "commands": node_output, "status": node_output}
         """What each recorded topic's publishers offer: this process's profile, the node's outputs';
         nothing for the set-point, recorded but not published."""
@@ -180,13 +187,29 @@ class NodeLink:
         self.battery.publish(message)
         return message
 
+    def publish_power(self, t_ns: int, power: dict[str, float] | None) -> PowerAvailable | None:
+        """``power_available`` of the sources reported (none: nothing); a change is given
+        POWER_DELAY of wall time to reach the node before the clock step that is to use it."""
+        if not power:
+            return None
+        message = PowerAvailable(source=list(power), available=[float(v) for v in power.values()])
+        message.header.stamp.sec, message.header.stamp.nanosec = divmod(t_ns, 1_000_000_000)
+        self.power.publish(message)
+        if power != self.reported:
+            self.reported = dict(power)
+            deadline = time.monotonic() + POWER_DELAY
+            while time.monotonic() < deadline:
+                self.executor.spin_once(timeout_sec=0.005)
+        return message
+
     def step(self, t_ns: int, pose: Pose, voltage: float | None, wrench: np.ndarray, setpoint_position,
-             setpoint_heading: float, record: bool = True) -> Answer:
-        """One step at ``t_ns``: battery_state (when there is a voltage), the odometry of
-        ``pose``, then the clock and the wrench until the node answers; with ``record``, every
-        message of the step and the set-point in force (``setpoint_position`` NED [m],
-        ``setpoint_heading`` [rad]) recorded. The node's answer."""
+             setpoint_heading: float, record: bool = True, power: dict[str, float] | None = None) -> Answer:
+        """One step at ``t_ns``: battery_state (when there is a voltage), power_available (when
+        the power plant reports), the odometry of ``pose``, then the clock and the wrench until
+        the node answers; with ``record``, every message of the step and the set-point in force
+        (``setpoint_position`` NED [m], ``setpoint_heading`` [rad]) recorded. The node's answer."""
         battery = self.publish_battery(t_ns, voltage)
+        available = self.publish_power(t_ns, power)
         odometry = Odometry()
         odometry.header.stamp.sec, odometry.header.stamp.nanosec = divmod(t_ns, 1_000_000_000)
         odometry.header.frame_id, odometry.child_frame_id = "ned", "base_link"
@@ -206,7 +229,7 @@ class NodeLink:
         self.last = status, commands
         if not record:
             return _answer(status, commands)
-        for topic, item in (("clock", clock), ("battery", battery), ("odometry", odometry),
+        for topic, item in (("clock", clock), ("battery", battery), ("power", available), ("odometry", odometry),
                             ("setpoint", goal), ("wrench", message), ("commands", commands),
                             ("status", status)):
             if item is not None:
@@ -223,6 +246,13 @@ class NodeLink:
         response = self.services.set_fault(actuator, mode, value)
         if not response.success:
             raise SimulationError(f"set_actuator_fault refused: {response.message}")
+        return response.message
+
+    def set_group_fault(self, group: str) -> str:
+        """``~/set_group_fault``; its message, or SimulationError when the node refuses it."""
+        response = self.services.set_group_fault(group)
+        if not response.success:
+            raise SimulationError(f"set_group_fault refused: {response.message}")
         return response.message
 
     def clear_faults(self) -> str:

@@ -1,7 +1,8 @@
 """Figures and tables of allocator-sim: a run's ``footprint.png`` (:mod:`.sim_footprint`) and
 ``timeline.png`` (:mod:`.sim_timeline`), the comparison of methods (a markdown table of metrics
-and one figure), and the nominal run a failure is read against: the same scenario and seed
-without its faults, battery ramps and parameter changes."""
+and one figure; the power and alarm rows for a scenario with power events), and the nominal run
+a failure is read against: the same scenario and seed without its faults, battery ramps,
+changes of available power and parameter changes."""
 
 from __future__ import annotations
 
@@ -24,14 +25,21 @@ METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),
                ("azimuth_travel", "azimuth travel [rad]", "{:.2f}"),
                ("thrust_reversals", "thrust reversals [count]", "{:.0f}"),
                ("saturated_fraction", "saturated fraction [share]", "{:.3f}"),
+               ("time_over_available", "time over available power [s]", "{:.1f}"),
+               ("consequence_alarm_time", "consequence alarm at [s]", "{:.1f}"),
+               ("alarm_lead_time", "alarm lead time [s]", "{:.1f}"),
                ("realtime_factor", "real-time factor [x real time]", "{:.1f}"))
-FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter")
+POWER_ROWS = ("time_over_available", "consequence_alarm_time", "alarm_lead_time")
+"""Rows for a scenario with power events (group faults, available power, weather ramps) only."""
+POWER_EVENTS = ("group_fault", "power", "weather_ramp")
+FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter", "group_fault", "power")
 """The kinds of event the nominal run leaves out: what goes wrong, not what is asked."""
 
 
 def nominal(scenario: Scenario) -> Scenario | None:
-    """The same scenario and seed without its faults, battery ramps and parameter changes (other
-    events kept): what the run is without the failure. None when it has none of them."""
+    """The same scenario and seed without its faults (of actuators and groups), battery ramps,
+    changes of available power and parameter changes (set-points and weather kept): what the
+    run is without the failure. None when it has none of them."""
     kept = tuple(event for event in scenario.events if event.kind not in FAILURES)
     return None if len(kept) == len(scenario.events) else replace(scenario, events=kept)
 
@@ -68,6 +76,8 @@ def _table(scenario: Scenario, metrics: dict[str, dict[str, float]]) -> list[str
     lines = ["| metric | " + " | ".join(methods) + " |", "|---|" + "---:|" * len(methods)]
     for key, label, form in METRIC_ROWS:
         if key == "depth_error_max" and scenario.horizontal:
+            continue
+        if key in POWER_ROWS and not any(event.kind in POWER_EVENTS for event in scenario.events):
             continue
         if all(key in m for m in metrics.values()):
             lines.append(f"| {label} | " + " | ".join(form.format(metrics[m][key]) for m in methods) + " |")

@@ -23,7 +23,7 @@ NOMINAL = {"color": "0.6", "linestyle": (0, (4, 2)), "linewidth": 3.0, "zorder":
 """The nominal run (same seed, nothing going wrong): wide light dashes under the run's line,
 seen beside it where the two agree."""
 NOMINAL_LABEL = "nominal run: same seed, no failure"
-EVENT_COLOURS = {"fault": FAULT_COLOUR, "clear_faults": "tab:green"}
+EVENT_COLOURS = {"fault": FAULT_COLOUR, "group_fault": FAULT_COLOUR, "clear_faults": "tab:green"}
 LABEL_SIZE = 8
 """[pt] of the events' labels."""
 
@@ -79,6 +79,12 @@ def event_label(event: Event) -> str:
         return f"battery to {event.value:g} V in {event.duration:g} s"
     if event.kind == "parameter":
         return f"{event.name.removeprefix('actuators.')} = {event.value}"
+    if event.kind == "group_fault":
+        return f"{event.name} FAILED"
+    if event.kind == "power":
+        return f"{event.name} {event.value:g} kW"
+    if event.kind == "weather_ramp":
+        return f"weather x{event.value:g} in {event.duration:g} s"
     return event.kind.replace("_", " ")
 
 

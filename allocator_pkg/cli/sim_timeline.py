@@ -1,9 +1,10 @@
 """``timeline.png`` of an ``allocator-sim`` run, panel under panel against time: position error
 [m] (and depth error, 6 DOF), heading error [deg], roll and pitch [deg] (6 DOF), every
 actuator's thrust against its limits (at the supply voltage in force, for thrust tables measured
-at several voltages), azimuth angles [deg], the supply voltage when it changes, and the power
-estimate (1.44)
-with the saturated samples; the scenario's events as labelled lines, the faults shaded, and the
+at several voltages), azimuth angles [deg], the supply voltage when it changes, the power
+estimate (1.44) with the saturated samples, and for a vehicle with power sources each source's
+power against its available power with the consequence alarm (:mod:`.sim_power`); the
+scenario's events as labelled lines, the faults shaded, and the
 nominal run (same seed, nothing going wrong) dashed under the errors and the power."""
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from ..simulation.metrics import heading_errors
 from ..simulation.run_setup import RunResult
 from ..simulation.scenario import Scenario
 from ..vehicle.config import Vehicle
+from .sim_power import sources_panel
 from .sim_style import (
     FAULT_COLOUR,
     LABEL_SIZE,
@@ -148,7 +150,8 @@ def timeline_figure(result: RunResult, scenario: Scenario, nominal: RunResult | 
     rotating = any(actuator.rotatable for actuator in result.vehicle.actuators)
     sagging = np.ptp(np.nan_to_num(a["voltage"])) > 0.0
     panels = ["position", "heading", *([] if scenario.horizontal else ["roll_pitch"]), "thrust",
-              *(["azimuth"] if rotating else []), *(["voltage"] if sagging else []), "power"]
+              *(["azimuth"] if rotating else []), *(["voltage"] if sagging else []), "power",
+              *(["sources"] if result.trace.sources else [])]
     ratios = [TALL.get(panel, 1.0) for panel in panels]
     figure, column = plt.subplots(len(panels), 1, figsize=(12.0, 1.2 + 1.9 * sum(ratios)), sharex=True,
                                   gridspec_kw={"height_ratios": ratios}, layout="constrained")
@@ -162,6 +165,8 @@ def timeline_figure(result: RunResult, scenario: Scenario, nominal: RunResult | 
                              label="supply voltage (the thrust limits follow it)")
         axes["voltage"].set_ylabel("voltage [V]")
     _power(axes["power"], result, nominal)
+    if "sources" in axes:
+        sources_panel(axes["sources"], result)
     column[0].set_xlim(a["time"][0], a["time"][-1])
     for panel in column:
         shade_faults(panel, result.fault_intervals)

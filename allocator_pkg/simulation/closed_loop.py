@@ -24,8 +24,9 @@ import numpy as np
 from ..configuration.parameters import load_vehicle
 from .controller import StationKeeping
 from .plant import PLANAR, Pose
+from .power_plant import PowerPlant
 from .report import run_report
-from .run_setup import RunResult, Voltage, build_plant, setpoint_vector, warm_up_steps
+from .run_setup import RunResult, Voltage, WeatherScale, build_plant, setpoint_vector, warm_up_steps
 from .scenario import Event, Scenario
 from .trace import Trace
 from .windows import fault_intervals
@@ -39,7 +40,9 @@ class Answer:
     """What the loop takes from one sample of the allocator, as ``allocation_status`` and
     ``thruster_commands`` carry it: thrusts [N] and angles [rad] commanded, the saturation flag,
     the power estimate (1.44), the supply voltage the limits followed [V] (NaN without voltage
-    tables) and the unallocated wrench [X, Y, Z, K, M, N] in the node's ``frame``."""
+    tables), the unallocated wrench [X, Y, Z, K, M, N] in the node's ``frame``, the power drawn
+    from each source [kW] (``source_power``; None without power sources) and the consequence
+    alarm."""
 
     thrust: np.ndarray
     azimuth: np.ndarray
@@ -47,23 +50,28 @@ class Answer:
     power: float
     voltage: float
     unallocated: np.ndarray
+    source_power: np.ndarray | None = None
+    consequence_alarm: bool = False
 
 
 class Link(Protocol):
     """The allocator of one run. ``begin`` brings it into step at sim time ``t_ns`` [ns]
     (nothing allocated) and has it allocate ``wrench`` at the next step: (that step's time,
-    its answer). ``step`` is one sample at ``t_ns``: the supply voltage and the vehicle's
-    ``pose`` first, then the controller's ``wrench`` (with ``record``, a link that records
-    writes the step with the set-point in force). Faults and parameters apply from the next
+    its answer). ``step`` is one sample at ``t_ns``: the supply voltage, the available power
+    the power plant reports (``power``, kW by source) and the vehicle's ``pose`` first, then
+    the controller's ``wrench`` (with ``record``, a link that records writes the step with the
+    set-point in force). Faults, a redundancy group's loss and parameters apply from the next
     sample; a refused one raises ``SimulationError``. ``live_line`` is the latest sample in one
     line of text."""
 
     def begin(self, t_ns: int, period_ns: int, supply: float | None, wrench: np.ndarray) -> tuple[int, Answer]: ...
 
     def step(self, t_ns: int, pose: Pose, supply: float | None, wrench: np.ndarray, setpoint_position,
-             setpoint_heading: float, record: bool = True) -> Answer: ...
+             setpoint_heading: float, record: bool = True, power: dict[str, float] | None = None) -> Answer: ...
 
     def set_fault(self, actuator: str, mode: str, value: float) -> str: ...
+
+    def set_group_fault(self, group: str) -> str: ...
 
     def clear_faults(self) -> str: ...
 
@@ -92,7 +100,10 @@ class ClosedLoop:
         self.controller.settle(self.plant.eta, self.plant.environment_force())
         self.schedule = scenario.schedule()
         self.voltage = Voltage(scenario)
-        self.trace = Trace(names=list(self.vehicle.names), period=self.period, horizontal=scenario.horizontal)
+        self.weather = WeatherScale(scenario)
+        self.power_plant = PowerPlant(self.vehicle)
+        self.trace = Trace(names=list(self.vehicle.names), period=self.period, horizontal=scenario.horizontal,
+                           sources=list(self.power_plant.sources), position_limit=scenario.position_limit)
         self.faults = fault_intervals(scenario.events, scenario.duration)
 
     def run(self, live: float = 0.0) -> RunResult:
@@ -149,14 +160,17 @@ class ClosedLoop:
             supply = self.voltage.at(t)
             if supply is not None:
                 plant.thrusters.set_voltage(supply)
+            plant.environment.scale = self.weather.at(t)
             pose = plant.pose()
             position, heading = self.schedule.at(t)
             setpoint = setpoint_vector(position, heading, plant.planar)
             wrench = self._wrench(setpoint)
-            answer = link.step(start_ns + k * self.period_ns, pose, supply, wrench, position, heading)
+            answer = link.step(start_ns + k * self.period_ns, pose, supply, wrench, position, heading,
+                               power=dict(self.power_plant.reported))
             faulted = any(start <= t + 1e-9 < end for start, end in self.faults)
             trace.add(t, pose.position, pose.attitude, position, heading, answer.thrust, answer.azimuth,
                       answer.saturated, answer.power, faulted, answer.voltage)
+            trace.add_power(answer.source_power, self.power_plant.available(), answer.consequence_alarm)
             if live > 0.0 and t - printed >= live - 1e-9:
                 printed = t
                 error = trace.position_errors()[-1]
@@ -165,11 +179,20 @@ class ClosedLoop:
             plant.step(answer.thrust, answer.azimuth, self.period)
 
     def _apply(self, link: Link, event: Event) -> None:
-        """A timed event: a fault (on the allocator and on the simulated thruster), clearing the
-        faults, or an allocator parameter (the set-point's events are in the schedule, the
-        battery ramps in the voltage)."""
+        """A timed event: a fault (on the allocator and on the simulated thruster), a redundancy
+        group's loss (on the allocator, the simulated thrusters of the group and the power
+        plant's sources), clearing the faults, the available power of a source (the power plant
+        reports it from this step) or an allocator parameter (the set-point's events are in the
+        schedule, the battery ramps in the voltage, the weather ramps in the weather scale)."""
         thrusters = self.plant.thrusters
-        if event.kind == "fault":
+        if event.kind == "group_fault":
+            message = link.set_group_fault(event.name)
+            for actuator in self.power_plant.trip_group(event.name):
+                thrusters.set_fault(actuator, "failed", 0.0)
+        elif event.kind == "power":
+            self.power_plant.set_available(event.name, float(event.value))
+            message = f"power plant: {event.name} gives {float(event.value):g} kW"
+        elif event.kind == "fault":
             value = 0.0 if event.mode == "failed" else event.value
             if value is None:                           # stuck where it is
                 value = float(thrusters.angle[self.vehicle.names.index(event.actuator)])
@@ -178,6 +201,7 @@ class ClosedLoop:
         elif event.kind == "clear_faults":
             message = link.clear_faults()
             thrusters.clear_faults()
+            self.power_plant.restore()
         elif event.kind == "parameter":
             message = link.set_parameter(event.name, event.value)
         else:

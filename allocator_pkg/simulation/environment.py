@@ -9,7 +9,8 @@ process for the wind speed (turbulence intensity sigma / mean), not a Harris or 
 spectrum; the slowly varying wave drift is the mean drift of
 ``analysis.environment_loads.wave_drift_load`` times (1 + such a process), not a Newman
 approximation from a wave spectrum. Directions are where the environment comes from, in
-degrees clockwise from north.
+degrees clockwise from north. ``scale`` (1 unless a scenario's weather ramp changes it) multiplies
+the current's speed, the wind's speed and the significant wave height, variations included.
 """
 
 from __future__ import annotations
@@ -81,6 +82,7 @@ class Environment:
         self._direction = GaussMarkov(spec.current_direction_variation, generator)
         self._gust = GaussMarkov(spec.gusts, generator)
         self._drift = GaussMarkov(spec.drift_variation, generator)
+        self.scale = 1.0
 
     def step(self, dt: float) -> None:
         for process in (self._speed, self._direction, self._gust, self._drift):
@@ -91,14 +93,14 @@ class Environment:
         away from where it comes from."""
         speed = self.spec.current_speed + (0.0 if mean else self._speed.value)
         direction = math.radians(self.spec.current_direction + (0.0 if mean else self._direction.value))
-        speed = max(0.0, speed)
+        speed = max(0.0, speed) * self.scale
         return np.array([-speed * math.cos(direction), -speed * math.sin(direction), self.spec.current_down])
 
     def mean_current(self) -> np.ndarray:
         return self.current(mean=True)
 
     def wind_speed(self, mean: bool = False) -> float:
-        return max(0.0, self.spec.wind_speed + (0.0 if mean else self._gust.value))
+        return max(0.0, self.spec.wind_speed + (0.0 if mean else self._gust.value)) * self.scale
 
     def hull_load(self, heading: float, mean: bool = False) -> np.ndarray:
         """[X, Y, N] of wind and wave drift on the hull at ``heading`` [rad] (``mean``: without
@@ -107,6 +109,6 @@ class Environment:
             return np.zeros(3)
         spec = self.spec
         wind = wind_load(self.particulars, self.wind_speed(mean), math.radians(spec.wind_direction) - heading)
-        drift = wave_drift_load(self.particulars, spec.wave_height, spec.wave_period,
+        drift = wave_drift_load(self.particulars, spec.wave_height * self.scale, spec.wave_period,
                                 math.radians(spec.wave_direction) - heading)
         return wind + drift * (1.0 if mean else max(0.0, 1.0 + self._drift.value))

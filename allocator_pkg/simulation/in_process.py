@@ -18,7 +18,12 @@ What the node does, and so what this does:
   wrench given back in that frame (``ros/wrench_input.py``, ``ros/conversions.py``);
 - before the first wrench, the watchdog's zero thrust (``Allocator.stop``), angles held;
 - a fault: ``set_fault`` with the efficiency (DEGRADED) or angle (STUCK) and 0 otherwise, as
-  ``~/set_actuator_fault`` carries it; ``clear_faults``;
+  ``~/set_actuator_fault`` carries it; ``set_group_fault`` as ``~/set_group_fault``;
+  ``clear_faults``;
+- available power (``power_available``): each step's reported values, ``set_available_power``;
+  the status's power per source (``Allocator.power.reading``);
+- with redundancy groups, the consequence analysis at its rate on the sim clock
+  (:mod:`.consequence_watch`) and its alarm in the answer;
 - a parameter: refused when read-only or not declared; else checked with the node's declared
   values and the change over them, and the running allocator reconfigured
   (``check_reconfigure``, ``reconfigure``), as the node's parameter callbacks do
@@ -46,6 +51,7 @@ from ..vehicle.config import ConfigError
 from ..vehicle.frames import wrench_between
 from ..vehicle.node_settings import INPUT, NODE_NAME
 from .closed_loop import Answer
+from .consequence_watch import ConsequenceWatch
 from .plant import Pose
 from .run_setup import SimulationError
 from .scenario import Scenario
@@ -78,6 +84,7 @@ class InProcessLink:
         self.follows_speed = vehicle.has_surfaces
         self.rejected_voltages = 0
         self._last: AllocationResult | None = None
+        self.watch = ConsequenceWatch(self.allocator) if vehicle.redundancy_groups else None
 
     # -- the samples ----------------------------------------------------------------------
 
@@ -88,20 +95,28 @@ class InProcessLink:
             for _ in range(STOPS):
                 t_ns += period_ns
                 self._supply(supply)
+                self._tick(t_ns)
                 self.allocator.stop()
         t_ns += period_ns
         self._supply(supply)
-        return t_ns, self._allocate(wrench)
+        return t_ns, self._allocate(wrench, t_ns)
 
     def step(self, t_ns: int, pose: Pose, supply: float | None, wrench: np.ndarray, setpoint_position,
-             setpoint_heading: float, record: bool = True) -> Answer:
-        """One sample: the battery's voltage, the odometry's surge speed, then ``wrench``."""
+             setpoint_heading: float, record: bool = True, power: dict[str, float] | None = None) -> Answer:
+        """One sample: the battery's voltage, the available power reported, the odometry's
+        surge speed, then ``wrench``."""
         self._supply(supply)
+        if power:
+            self.allocator.set_available_power(power)
         if self.follows_speed:
             speed = float(pose.velocity[0])
             if math.isfinite(speed):
                 self.allocator.set_speed(speed)
-        return self._allocate(wrench)
+        return self._allocate(wrench, t_ns)
+
+    def _tick(self, t_ns: int) -> None:
+        if self.watch is not None:
+            self.watch.tick(t_ns, self.settings)
 
     def _supply(self, volts: float | None) -> None:
         """``battery_state``'s voltage (float32) to the allocator, when it follows one."""
@@ -112,13 +127,20 @@ class InProcessLink:
         except ValueError:
             self.rejected_voltages += 1
 
-    def _allocate(self, wrench: np.ndarray) -> Answer:
+    def _allocate(self, wrench: np.ndarray, t_ns: int) -> Answer:
         frame = self.settings.frame
         allocator = self.allocator
+        self._tick(t_ns)
         result = self._last = allocator.allocate(wrench_between(wrench, frame))
+        if self.watch is not None:
+            self.watch.observe(result.requested, t_ns, self.settings)
         voltage = allocator.voltage
+        limit = allocator.power_limit
+        reading = None if limit is None else allocator.power.reading(result.thrust, limit)
         return Answer(result.thrust.copy(), result.azimuth.copy(), bool(result.saturated), float(result.power),
-                      math.nan if voltage is None else float(voltage), wrench_between(result.unallocated, frame))
+                      math.nan if voltage is None else float(voltage), wrench_between(result.unallocated, frame),
+                      source_power=None if reading is None else reading.power.copy(),
+                      consequence_alarm=self.watch is not None and self.watch.alarm)
 
     def live_line(self) -> str:
         """Every actuator's thrust [N] and angle [deg], then the solver's figures."""
@@ -141,6 +163,13 @@ class InProcessLink:
         except ValueError as error:
             raise SimulationError(f"set_actuator_fault refused: {error}") from error
         return f"{actuator}: {fault.name} from the next sample"
+
+    def set_group_fault(self, group: str) -> str:
+        try:
+            self.allocator.set_group_fault(group)
+        except ValueError as error:
+            raise SimulationError(f"set_group_fault refused: {error}") from error
+        return f"redundancy group {group} failed from the next sample"
 
     def clear_faults(self) -> str:
         had = sorted(self.allocator.faults)

@@ -9,7 +9,20 @@ back from its recording (odometry, set-point, commands, status):
 - ``azimuth_travel`` [rad]: the commanded angles' total movement (each step wrapped);
 - ``thrust_reversals``: sign changes of each commanded thrust, counted where its size
   exceeds ``REVERSAL_SHARE`` of its largest force;
-- ``saturated_fraction``: the share of samples the status flags saturated.
+- ``saturated_fraction``: the share of samples the status flags saturated;
+
+and of the power and the consequence analysis (:func:`power_metrics`, :func:`alarm_metrics`):
+
+- ``time_over_available`` [s]: how long some power source drew more than its available power
+  (the simulated power plant's) by more than ``OVER_SHARE`` of it; per source, in the report,
+  with its peak power [kW] (:func:`source_figures`);
+- ``consequence_alarm_time`` [s]: when the status's ``consequence_alarm`` first rose (inf: never);
+- ``position_lost_time`` [s]: when the position error first exceeded the scenario's
+  ``position_limit`` (inf: never);
+- ``alarm_lead_time`` [s]: how long before the position was lost the alarm rose (inf: the
+  position was never lost; -inf: no alarm);
+- ``alarm_after_position_loss`` [s]: how long the position had been lost when the alarm rose
+  (0: the alarm came first, or the position was never lost; inf: lost, and no alarm).
 """
 
 from __future__ import annotations
@@ -20,10 +33,19 @@ import numpy as np
 
 METRIC_UNITS = {"position_error_rms": "m", "position_error_max": "m", "heading_error_rms": "deg",
                 "heading_error_max": "deg", "depth_error_max": "m", "energy": "J", "azimuth_travel": "rad",
-                "thrust_reversals": "count", "saturated_fraction": "share", "realtime_factor": "x real time"}
+                "thrust_reversals": "count", "saturated_fraction": "share", "time_over_available": "s",
+                "consequence_alarm_time": "s", "position_lost_time": "s", "alarm_lead_time": "s",
+                "alarm_after_position_loss": "s", "realtime_factor": "x real time"}
 """Every metric of a run, in the order they are reported, with its unit."""
-BOUNDED_METRICS = tuple(name for name in METRIC_UNITS if name != "realtime_factor")
-"""The metrics a scenario's ``bounds`` may hold a run to (from above): all but the wall-clock one."""
+UNBOUNDED = ("position_lost_time", "alarm_lead_time", "realtime_factor")
+"""Metrics an upper bound means nothing for: two moments that are better later, and the wall clock."""
+BOUNDED_METRICS = tuple(name for name in METRIC_UNITS if name not in UNBOUNDED)
+"""The metrics a scenario's ``bounds`` may hold a run to (from above)."""
+ALARM_METRICS = ("consequence_alarm_time", "alarm_lead_time", "alarm_after_position_loss")
+"""The metrics of the consequence alarm's time: the node analyses asynchronously, so these may
+differ between the node and the in-process link by up to one analysis period."""
+OVER_SHARE = 0.01
+"""A source is over its available power when it draws more than (1 + this) times it."""
 REVERSAL_SHARE = 0.01
 """A thrust counts as having a sign when it exceeds this share of the actuator's largest force."""
 
@@ -77,3 +99,43 @@ def run_metrics(*, position: np.ndarray, position_setpoint: np.ndarray, heading:
         "thrust_reversals": thrust_reversals(thrust, thrust_scale),
         "saturated_fraction": float(np.mean(np.asarray(saturated, dtype=float))),
     }
+
+
+def over_available(power: np.ndarray, available: np.ndarray) -> np.ndarray:
+    """Per sample and source (n x s, kW): whether it draws more than (1 + OVER_SHARE) of its available power."""
+    return np.asarray(power, dtype=float) > (1.0 + OVER_SHARE) * np.asarray(available, dtype=float)
+
+
+def source_figures(sources: list[str], power: np.ndarray, available: np.ndarray,
+                   period: float) -> dict[str, dict[str, float]]:
+    """Per source: ``peak_power`` [kW] drawn, the least available power [kW] and
+    ``time_over_available`` [s], over n samples (n x s, kW)."""
+    if not sources or len(power) == 0:
+        return {}
+    over = over_available(power, available)
+    return {name: {"peak_power": float(np.max(power[:, j])), "least_available": float(np.min(available[:, j])),
+                   "time_over_available": float(np.count_nonzero(over[:, j]) * period)}
+            for j, name in enumerate(sources)}
+
+
+def power_metrics(power: np.ndarray, available: np.ndarray, period: float) -> dict[str, float]:
+    """``time_over_available`` [s]: samples (n x s, kW) in which some source is over, times the period."""
+    if np.size(power) == 0:
+        return {"time_over_available": 0.0}
+    return {"time_over_available": float(np.count_nonzero(over_available(power, available).any(axis=1)) * period)}
+
+
+def first_time(time: np.ndarray, flags: np.ndarray) -> float:
+    """The time [s] of the first sample flagged (inf: none)."""
+    flagged = np.flatnonzero(np.asarray(flags, dtype=bool))
+    return float(np.asarray(time)[flagged[0]]) if flagged.size else math.inf
+
+
+def alarm_metrics(time: np.ndarray, alarm: np.ndarray, distance: np.ndarray, limit: float) -> dict[str, float]:
+    """The consequence alarm's time against the loss of position (the module's last four metrics):
+    ``distance`` [m] the position error of each sample, ``limit`` [m] the scenario's ``position_limit``."""
+    raised = first_time(time, alarm)
+    lost = first_time(time, np.asarray(distance) > limit)
+    return {"consequence_alarm_time": raised, "position_lost_time": lost,
+            "alarm_lead_time": -math.inf if math.isinf(raised) else lost - raised,
+            "alarm_after_position_loss": 0.0 if math.isinf(lost) else max(0.0, raised - lost)}

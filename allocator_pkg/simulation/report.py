@@ -1,7 +1,8 @@
 """What ``metrics.json`` holds for one run, and its verdict: the metrics over the whole run
 with their units, the same metrics over each window (the scenario's and the automatic ones of
-its faults), the step-response figures of each set-point step, and the checks of the
-scenario's bounds against them."""
+its faults), the step-response figures of each set-point step, each power source's peak
+power, least available power and time over it, and the checks of the scenario's bounds
+against them."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from .step_response import SETTLING_BAND
 from .trace import Trace
 from .verdict import Check, checks
 
+SOURCE_UNITS = {"peak_power": "kW", "least_available": "kW", "time_over_available": "s"}
 STEP_UNITS = {"time": "s", "size": "m or deg (the channel's)", "rise_time": "s", "overshoot": "%",
               "settling_time": "s"}
 
@@ -32,7 +34,8 @@ def run_report(scenario: Scenario, trace: Trace, vehicle: Vehicle, realtime_fact
                       **trace.step_response(step).as_dict()})
     return {"scenario": scenario.name, "method": scenario.method, "seed": scenario.seed,
             "duration": scenario.duration, "metrics": metrics, "units": dict(METRIC_UNITS), "windows": windows,
-            "steps": steps, "step_units": dict(STEP_UNITS), "settling_band": SETTLING_BAND}
+            "steps": steps, "step_units": dict(STEP_UNITS), "settling_band": SETTLING_BAND,
+            "sources": trace.source_figures(), "source_units": dict(SOURCE_UNITS)}
 
 
 def report_checks(scenario: Scenario, report: dict) -> list[Check]:

@@ -84,3 +84,20 @@ class Voltage:
             share = 1.0 if ramp.duration == 0.0 else min(1.0, (t - ramp.time) / ramp.duration)
             voltage = voltage + share * (float(ramp.value) - voltage)
         return voltage
+
+
+class WeatherScale:
+    """The scale of the environment at a sim time (:class:`~.environment.Environment`'s
+    ``scale``): 1, then each weather ramp linearly to its end value."""
+
+    def __init__(self, scenario: Scenario):
+        self.ramps = [e for e in scenario.events if e.kind == "weather_ramp"]
+
+    def at(self, t: float) -> float:
+        scale = 1.0
+        for ramp in self.ramps:
+            if t < ramp.time:
+                continue
+            share = 1.0 if ramp.duration == 0.0 else min(1.0, (t - ramp.time) / ramp.duration)
+            scale = scale + share * (float(ramp.value) - scale)
+        return scale

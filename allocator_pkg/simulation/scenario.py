@@ -24,7 +24,7 @@ from ..effectiveness.faults import FaultMode, FaultSet
 from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec
-from .scenario_check import check_method_serves, check_parameter, check_vehicle, unknown_keys
+from .scenario_check import check_member, check_method_serves, check_parameter, check_vehicle, unknown_keys
 from .scenario_values import (
     ScenarioError,
     environment,
@@ -40,7 +40,8 @@ from .windows import Window, fault_windows
 
 MODELS = ("dp_vessel", "bluerov2_heavy")
 FAULT_MODES = ("failed", "stuck", "degraded")
-EVENT_KINDS = ("fault", "clear_faults", "battery_ramp", "parameter", "setpoint")
+EVENT_KINDS = ("fault", "clear_faults", "battery_ramp", "parameter", "setpoint", "group_fault", "power",
+               "weather_ramp")
 
 
 @dataclass(frozen=True)
@@ -48,7 +49,10 @@ class Event:
     """At ``time`` [s]: one of a fault (``fault``: actuator, mode, value: the share of force
     left when ``degraded``, the angle [rad] when ``stuck``, None for the angle it has then),
     clearing every fault, a battery voltage ramp (``ramp``: to [V], duration [s]), a node
-    parameter or a new set-point (``setpoint``: value a SetpointTarget)."""
+    parameter, a new set-point (``setpoint``: value a SetpointTarget), a redundancy group's
+    loss (``group_fault``: name the group), the available power of a source changing
+    (``power``: name the source, value [kW]) or the weather growing (``weather_ramp``: value
+    the scale of the environment's speeds and wave height it reaches, duration [s])."""
 
     time: float
     kind: str
@@ -86,6 +90,8 @@ class Scenario:
     windows: tuple[Window, ...] = ()
     """The named windows of the file (the automatic ones: :meth:`all_windows`)."""
     description: str = ""
+    position_limit: float = 5.0
+    """[m] The vessel has lost its position once its position error exceeds this."""
 
     @property
     def horizontal(self) -> bool:
@@ -155,9 +161,17 @@ def _event(data: Any, index: int) -> Event:
             raise ScenarioError(f"{where}fault.value: required for degraded, the share of force left in (0, 1]")
         value = None if mode == "stuck" and "value" not in body else number(body, "value", where + "fault.", 0.0)
         return Event(time, kind, actuator=body["actuator"], mode=mode, value=value)
-    if kind == "battery_ramp":
-        return Event(time, kind, value=number(body, "to", where + "battery_ramp.", minimum=0.0),
-                     duration=number(body, "duration", where + "battery_ramp.", 0.0, 0.0))
+    if kind in ("battery_ramp", "weather_ramp"):
+        return Event(time, kind, value=number(body, "to", f"{where}{kind}.", minimum=0.0),
+                     duration=number(body, "duration", f"{where}{kind}.", 0.0, 0.0))
+    if kind == "group_fault":
+        if not isinstance(body.get("group"), str):
+            raise ScenarioError(f"{where}group_fault.group: a redundancy group's name, not {body.get('group')!r}")
+        return Event(time, kind, name=body["group"])
+    if kind == "power":
+        if not isinstance(body.get("source"), str):
+            raise ScenarioError(f"{where}power.source: a power source's name, not {body.get('source')!r}")
+        return Event(time, kind, name=body["source"], value=number(body, "available", where + "power.", minimum=0.0))
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
@@ -183,6 +197,11 @@ def _check_event(event: Event, index: int, vehicle: Vehicle) -> None:
                 raise ValueError(f"{where}.fault.value: {error}") from error
         elif event.kind == "parameter":
             check_parameter(event.name, f"{where}.parameter.name")
+        elif event.kind == "group_fault":
+            check_member(event.name, [g.name for g in vehicle.redundancy_groups], f"{where}.group_fault.group",
+                         "redundancy group")
+        elif event.kind == "power":
+            check_member(event.name, [s.name for s in vehicle.power_sources], f"{where}.power.source", "power source")
     except ValueError as error:
         raise ScenarioError(str(error)) from error
 
@@ -262,5 +281,6 @@ def load_scenario(path: str | Path) -> Scenario:
         parameters=dict(parameters), voltage=number(battery, "voltage", "battery.", minimum=0.0) if battery else None,
         events=tuple(sorted(checked, key=lambda e: e.time)),
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
-        description=str(data.get("description", "")))
+        description=str(data.get("description", "")),
+        position_limit=number(data, "position_limit", "", 5.0, 1e-6))
 

@@ -30,11 +30,14 @@ EVENT_KEYS = {
     "battery_ramp": {"to": {}, "duration": {}},
     "parameter": {"name": {}, "value": {}},
     "setpoint": {"position": {}, "heading": {}, "speed": {}, "heading_rate": {}},
+    "group_fault": {"group": {}},
+    "power": {"source": {}, "available": {}},
+    "weather_ramp": {"to": {}, "duration": {}},
 }
 BOUND_KEYS = {name: {} for name in BOUNDED_METRICS}
 SCENARIO_KEYS: dict[str, Any] = {
     "name": {}, "description": {}, "model": {}, "vehicle": {}, "particulars": {}, "method": {}, "duration": {},
-    "seed": {}, "thruster_time_constant": {},
+    "seed": {}, "thruster_time_constant": {}, "position_limit": {},
     "setpoint": {"position": {}, "heading": {}},
     "initial": {"position": {}, "heading": {}},
     "controller": {"kp": {}, "kd": {}, "ki": {}, "unallocated_threshold": {}},
@@ -116,3 +119,10 @@ def check_parameter(name: str, where: str) -> None:
         raise ValueError(f"{where}: '{name}' is not a parameter of the allocator (see docs/configuration.md)")
     if key.read_only:
         raise ValueError(f"{where}: '{name}' is read-only while the node runs")
+
+
+def check_member(name: str, known: list[str], where: str, what: str) -> None:
+    """Raise ValueError when ``name`` is not among the vehicle's ``known`` names of ``what``."""
+    if name not in known:
+        raise ValueError(f"{where}: '{name}' is not a {what} of the vehicle ("
+                         + (", ".join(known) if known else "it has none") + ")")

@@ -1,7 +1,7 @@
 """Named stretches of a run that metrics are taken over, besides the whole run: the ones a
 scenario names (``windows``: name, start, end [s] and bounds of their own) and the automatic
-ones of its faults: ``fault`` from a fault until the faults are cleared (or the run ends)
-and ``after_fault`` from the clearing until the next fault (or the end), numbered
+ones of its faults: ``fault`` from a fault (an actuator's or a redundancy group's) until the
+faults are cleared (or the run ends) and ``after_fault`` from the clearing until the next fault (or the end), numbered
 ``fault_1``, ``after_fault_1``, ... when there is more than one fault interval."""
 
 from __future__ import annotations
@@ -23,14 +23,15 @@ class Window:
 
 
 def fault_intervals(events, duration: float) -> list[tuple[float, float]]:
-    """[start, end) [s] of each stretch with a fault in force: from the first fault event while
+    """[start, end) [s] of each stretch with a fault in force: from the first fault (of an
+    actuator or a redundancy group) while
     none is in force to the next ``clear_faults`` (or ``duration``). ``events`` sorted by time,
     each with ``time`` and ``kind``."""
     intervals, start = [], None
     for event in events:
         if event.time >= duration:
             break
-        if event.kind == "fault" and start is None:
+        if event.kind in ("fault", "group_fault") and start is None:
             start = event.time
         elif event.kind == "clear_faults" and start is not None:
             intervals.append((start, event.time))

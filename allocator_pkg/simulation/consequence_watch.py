@@ -1,0 +1,65 @@
+"""The online consequence analysis of the in-process link (docs/power.md, "Consequence
+analysis"): what ``allocator_node`` does for a vehicle with redundancy groups
+(``ros/consequence.py``), sample by sample in this process. Each allocated sample feeds the
+first-order low-pass filter of the requested wrench
+
+    y_k = y_(k-1) + (1 - exp(-dt_k / T)) (tau_k - y_(k-1)),    T = consequence.filter_time
+
+(the first sample, or any without a filter, sets y to its request); at every multiple of the
+analysis period 1 / ``consequence.rate`` of the sim clock, the
+:class:`~allocator_pkg.analysis.consequence.Consequence` analysis of the load filtered up to
+the sample before, under what the allocator has in force (``InForce``), sets the alarm that
+the statuses carry from that sample on.
+
+The node analyses on a thread of its own, started by a timer on the same clock: its alarm
+reaches the statuses a sample or more after its timer fired, while here it reaches the
+sample of that clock step. An alarm time of the two links can so differ by up to one analysis
+period; everything else of a run is the same."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..allocation.allocator import Allocator
+from ..analysis.consequence import Consequence
+from ..analysis.group_loss import InForce
+from ..vehicle.node_settings import NodeSettings
+
+NS = 1_000_000_000
+
+
+class ConsequenceWatch:
+    """The load filter and the periodic analysis of one allocator; ``alarm`` is the last one's."""
+
+    def __init__(self, allocator: Allocator):
+        self.load = np.zeros(6)
+        self.alarm = False
+        self._observed: int | None = None
+        self._analysis: Consequence | None = None
+        self._allocator = allocator
+
+    def observe(self, wrench: np.ndarray, now: int, settings: NodeSettings) -> None:
+        """One allocated sample's requested wrench (FRD) at ``now`` [ns] into the filter."""
+        last, self._observed = self._observed, now
+        time_constant = settings.consequence_filter_time
+        if last is None or now < last or time_constant <= 0.0:
+            self.load[:] = wrench
+            return
+        self.load += (1.0 - math.exp((last - now) / (NS * time_constant))) * (wrench - self.load)
+
+    def tick(self, now: int, settings: NodeSettings) -> None:
+        """The clock at ``now`` [ns]: at a multiple of the analysis period, analyse the load
+        filtered so far and set the alarm; with the analysis off (rate 0), no alarm."""
+        rate = settings.consequence_rate
+        if rate <= 0.0:
+            self.alarm = False
+            return
+        if now % round(NS / rate) != 0:
+            return
+        allocator = self._allocator
+        analysis = self._analysis
+        if analysis is None or analysis.vehicle is not allocator.vehicle or analysis.method != allocator.method:
+            analysis = self._analysis = Consequence(allocator.vehicle, allocator.method)
+        self.alarm = any(group.alarm for group in analysis.utilisation(self.load, InForce.of(allocator)))
