@@ -129,4 +129,5 @@ def test_the_dp_vessel_without_tables_is_unchanged():
     assert particulars.thrust_loss == {}
     level2 = Level2(load_vehicle(DP_VESSEL), particulars)
     assert level2.thrust_profiles() == {} and loss_sector_table(level2) == []
+    assert "(level2.thrust_loss): none; every thruster the vehicle file's thrust limits" in "\n".join(level2.notes())
     assert level2.run().summary_line() == "DP capability-L2(11, 10, 8, 7)"

@@ -149,8 +149,8 @@ class Level2(Level1):
         tables = self.particulars.thrust_loss
         notes[5] = ("Thrust losses ([3.11.4], [3.11.5], [3.9.3], [3.9.4]): not applied; the vessel's own tables "
                     "(level2.thrust_loss): " + ("; ".join(table.describe() for table in tables.values()) or "none")
-                    + (f" ({TABLE_READING})" if tables else "") + "; other thrusters the vehicle file's thrust "
-                    "limits in every direction and at every current.")
+                    + (f" ({TABLE_READING}); other thrusters" if tables else "; every thruster")
+                    + " the vehicle file's thrust limits in every direction and at every current.")
         notes.insert(2, self.site.describe() if self.site else "Environment: Table 2-1 (no site environment given).")
         return notes
 
