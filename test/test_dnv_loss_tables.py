@@ -5,9 +5,12 @@ refusals naming the key, and the DP vessel without tables unchanged."""
 import math
 from dataclasses import replace
 
+import numpy as np
 import pytest
 import yaml
 from conftest import ROOT
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from test_thrust_profile import _search, _two_azimuths
 
 from allocator_pkg import load_vehicle
@@ -40,6 +43,24 @@ def test_the_direction_factor_is_linear_in_the_angle_and_periodic():
     profile = table.profile()
     for angle, factor in profile.corners:                          # every corner on the linear table
         assert factor == pytest.approx(table.factor(angle), abs=1e-12)
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.lists(st.tuples(st.floats(-180.0, 179.0), st.floats(0.05, 1.0)), min_size=2, max_size=8,
+                unique_by=lambda row: round(row[0])),
+       st.floats(-math.pi, math.pi))
+def test_the_profile_follows_the_table_and_is_exact_at_the_rows_and_through(rows, through):
+    rows = sorted((round(angle), factor) for angle, factor in rows)
+    table = loss_tables({"a": {"angle_deg": [a for a, _ in rows], "factor": [f for _, f in rows]}})["a"]
+    profile = table.profile((through,))
+    if profile is None:
+        assert all(factor == 1.0 for _, factor in rows)
+        return
+    for angle, factor in rows:
+        assert profile.factor(math.radians(angle)) == pytest.approx(factor, abs=1e-9)
+    assert profile.factor(through) == pytest.approx(table.factor(through), abs=1e-9)
+    angles = np.linspace(-math.pi, math.pi, 241)
+    assert max(abs(profile.factor(a) - table.factor(a)) for a in angles) < 5e-3
 
 
 def test_one_azimuth_reaches_the_table_worked_by_hand():

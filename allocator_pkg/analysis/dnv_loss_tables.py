@@ -6,7 +6,8 @@ model tests or CFD (thruster-thruster and thruster-hull interaction, and the los
   angle theta in the body frame (0 forward, 90 deg to starboard), linear in the angle between the
   rows and around 360 deg. It scales the thrust limit the way a [3.11.4]/[3.11.5] loss does (a
   :class:`~.thrust_profile.ThrustProfile`, drawn by chords between corners at most
-  :data:`~.dnv_losses.CHORD_STEP` apart wherever it is below 1, and exactly at the rows); a fixed
+  :data:`~.dnv_losses.CHORD_STEP` apart and :data:`FACTOR_STEP` of the factor apart wherever it is
+  below 1, and exactly at the rows); a fixed
   thruster takes the factor of its direction, and of the opposite one reversed.
 - Over the current speed (``speed`` [m/s], ``speed_factor``): a factor in [0, 1] on both thrust
   limits at the condition's current speed, linear between the rows and held beyond the ends.
@@ -29,6 +30,9 @@ from .dnv_losses import CHORD_STEP
 from .thrust_profile import TWO_PI, ThrustProfile
 
 TABLE_KEYS = ("angle_deg", "factor", "speed", "speed_factor")
+FACTOR_STEP = 0.02
+"""The largest change of the factor between two corners of a direction table's profile (a steep
+row pair: chords nearly radial, each within about a sixth of it of the linear factor)."""
 
 
 @dataclass(frozen=True)
@@ -57,8 +61,9 @@ class LossTable:
 
     def profile(self, through: Iterable[float] = ()) -> ThrustProfile | None:
         """The direction table as a thrust profile: corners at the rows, at the angles ``through``
-        [rad] (a fixed thruster's directions, exact there) and every :data:`CHORD_STEP` between two
-        rows not both at 1; None without a table or with every factor 1."""
+        [rad] (a fixed thruster's directions, exact there) and, between two rows not both at 1,
+        every :data:`CHORD_STEP` and every :data:`FACTOR_STEP` of the factor; None without a table
+        or with every factor 1."""
         if not self.angles or all(factor == 1.0 for factor in self.factors):
             return None
         start = self.angles[0]
@@ -68,7 +73,8 @@ class LossTable:
         corners: list[tuple[float, float]] = []
         for a, b in pairwise([*rows, start + TWO_PI]):
             fa, fb = self.factor(a), self.factor(b)
-            steps = 1 if fa == fb == 1.0 else max(1, math.ceil((b - a) / CHORD_STEP - 1e-9))
+            steps = 1 if fa == fb == 1.0 else max(1, math.ceil((b - a) / CHORD_STEP - 1e-9),
+                                                  math.ceil(abs(fb - fa) / FACTOR_STEP - 1e-9))
             corners += [(a + (b - a) * j / steps, self.factor(a + (b - a) * j / steps)) for j in range(steps)]
         return ThrustProfile(tuple(corners))
 
