@@ -65,8 +65,8 @@ def test_the_profile_follows_the_table_and_is_exact_at_the_rows_and_through(rows
 
 def test_one_azimuth_reaches_the_table_worked_by_hand():
     """azimuth_stbd (420 kN) alone at the origin, surge and sway: along 90 deg the dip's 0.4, so
-    168 kN; along 75 deg halfway down the 60-90 deg ramp, 0.7, so 294 kN (the chord drawn every
-    1 deg lies at most 1 - cos(0.5 deg) = 4e-5 below it); along 0 deg the full 420 kN."""
+    168 kN; along 75 deg halfway down the 60-90 deg ramp, 0.7, so 294 kN (on this ramp the chords
+    drawn every 1 deg lie within 1e-4 of it); along 0 deg the full 420 kN."""
     vehicle = _two_azimuths()
     single = replace(vehicle, actuators=(replace(vehicle.actuators[0], position=(0.0, 0.0, 4.5)),),
                      dofs=("surge", "sway"))
