@@ -7,7 +7,9 @@ model tests or CFD (thruster-thruster and thruster-hull interaction, and the los
   rows and around 360 deg. It scales the thrust limit the way a [3.11.4]/[3.11.5] loss does (a
   :class:`~.thrust_profile.ThrustProfile`, drawn by chords between corners at most
   :data:`~.dnv_losses.CHORD_STEP` apart and :data:`FACTOR_STEP` of the factor apart wherever it is
-  below 1, and exactly at the rows); a fixed
+  below 1, exactly at the rows and never above the linear factor, the spiral r = a + b theta being
+  convex; beside a row at 0 the last chord runs into the origin, so the factor is 0 over that
+  step); a fixed
   thruster takes the factor of its direction, and of the opposite one reversed.
 - Over the current speed (``speed`` [m/s], ``speed_factor``): a factor in [0, 1] on both thrust
   limits at the condition's current speed, linear between the rows and held beyond the ends.

@@ -58,8 +58,9 @@ AREA_NOTE = ("coefficients: Fx = q A_F,wind Cx, Fy = q A_L,wind Cy, Mz = q A_L,w
 
 
 TABLE_READING = ("factors linear in the thrust angle (body frame) between rows and around 360 deg, drawn by chords "
-                 "every 1 deg below 1; a fixed thruster at its direction, reversed at the opposite one; the speed "
-                 "factor linear in the condition's current, held beyond the table, on both thrust limits")
+                 "every 1 deg and 0.02 of the factor below 1 (never above the linear factor); a fixed thruster at "
+                 "its direction, reversed at the opposite one; the speed factor linear in the condition's current, "
+                 "held beyond the table, on both thrust limits")
 
 
 class Level2(Level1):
