@@ -5,9 +5,13 @@ are given.
 - Wind and current: the particulars' coefficient tables over heading
   (:mod:`.dnv_coefficients`) where given, else [3.5] and [3.6];
 - thrust: each thruster's ``thrust_min`` and ``thrust_max`` of the vehicle file, taken as the
-  thrust it delivers in every direction (no [3.9.3], [3.9.4], [3.11.4] or [3.11.5] loss applied),
-  times share^(2/3) (the power-to-thrust relation of [3.9.2]) of the share of its P_B its feeds
-  give it, as in Level 1 (a lost feed share, a board short of power [3.12]);
+  thrust it delivers (no [3.9.3], [3.9.4], [3.11.4] or [3.11.5] loss applied), times share^(2/3)
+  (the power-to-thrust relation of [3.9.2]) of the share of its P_B its feeds give it, as in Level
+  1 (a lost feed share, a board short of power [3.12]);
+- thrust losses: the particulars' ``level2.thrust_loss`` tables where given
+  (:mod:`.dnv_loss_tables`): over the thrust direction as a thrust profile (the capability
+  programme takes it as it takes Level 1's [3.11.4]/[3.11.5] losses), over the current speed a
+  factor on both limits at each condition's current;
 - forbidden directions: the vehicle file's ``forbidden_sectors`` instead of the [3.11.3] zones; a
   sector whose race points only at failed thrusters lifts in that case, as a zone does;
 - environment: a site's (:mod:`.dnv_site`: its own condition table, or Table 2-1 with the site's
@@ -26,17 +30,21 @@ import math
 
 import numpy as np
 
-from ..vehicle.config import Vehicle
+from ..vehicle.config import ActuatorConfig, Vehicle
 from .dnv_conditions import Condition
+from .dnv_loss_tables import check_thrusters
 from .dnv_site import SiteEnvironment
 from .dnv_zones import Zone
 from .dp_capability import NOT_YET, Level1
 from .dp_particulars import Particulars
 from .environment_loads import RHO_AIR, RHO_WATER
+from .thrust_profile import ThrustProfile
 
 OWN_DATA = ("wind and current loads from the particulars' coefficient tables over heading where given ([3.5], [3.6] "
             "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4]/[3.11.4]/"
-            "[3.11.5] loss; a lost feed share s leaves (1 - s)^(2/3) of it); the vehicle file's forbidden sectors "
+            "[3.11.5] loss; a lost feed share s leaves (1 - s)^(2/3) of it), times the particulars' thrust-loss "
+            "tables over the thrust direction and over the current speed where given (the notes list them); "
+            "the vehicle file's forbidden sectors "
             "(lifted with the thruster they protect); a site environment in place of Table 2-1 where given")
 KEPT = ("wave drift [3.7], the dynamic factor 1.25 [3.2.2], rudders behind shaft lines [3.10], the power balance "
         "per source [3.12], the redundancy groups")
@@ -49,6 +57,12 @@ AREA_NOTE = ("coefficients: Fx = q A_F,wind Cx, Fy = q A_L,wind Cy, Mz = q A_L,w
              "A_L,current and A_L,current Lpp for current; the standard's frame, moment about Lpp/2")
 
 
+TABLE_READING = ("factors linear in the thrust angle (body frame) between rows and around 360 deg, drawn by chords "
+                 "every 1 deg and 0.02 of the factor below 1 (never above the linear factor); a fixed thruster at "
+                 "its direction, reversed at the opposite one; the speed factor linear in the condition's current, "
+                 "held beyond the table, on both thrust limits")
+
+
 class Level2(Level1):
     """The Level 2 balance of one vehicle and its particulars."""
 
@@ -57,6 +71,12 @@ class Level2(Level1):
 
     def __init__(self, vehicle: Vehicle, particulars: Particulars, method: str | None = None,
                  site: SiteEnvironment | None = None):
+        thrusters = {a.name: a for a in vehicle.actuators if not a.is_surface}
+        check_thrusters(particulars.thrust_loss, thrusters)
+        self.loss_profiles: dict[str, ThrustProfile] = {
+            name: profile for name, table in particulars.thrust_loss.items()
+            if (profile := table.profile(_directions(thrusters[name]))) is not None}
+        """The direction tables as thrust profiles, by thruster (a fixed one's drawn exactly at its directions)."""
         super().__init__(vehicle, particulars, method)
         self.site = site or particulars.site
         """The site environment in force (a file's, else the particulars' ``level2.site``; None: Table 2-1)."""
@@ -79,18 +99,22 @@ class Level2(Level1):
     def thrust_range(self, name: str, condition: Condition, direction: float,
                      lost: tuple[str, ...] = ()) -> tuple[float, float]:
         """[low, high] [N]: the vehicle file's thrust limits, times share^(2/3) of its
-        :meth:`power_share` (a lost feed share; a board short of power is the balance's)."""
+        :meth:`power_share` (a lost feed share; a board short of power is the balance's) and the
+        speed table's factor at the condition's current (:mod:`.dnv_loss_tables`)."""
         actuator = self.actuators[name].config
         share = self.power_share(name, lost)
         if share <= 0.0:
             raise ValueError(f"{name}: every feed lost ({', '.join(actuator.feeds)}) but not the thruster; "
                              "list it in the redundancy group's actuators")
         factor = share ** (2.0 / 3.0)
+        if name in self.particulars.thrust_loss:
+            factor *= self.particulars.thrust_loss[name].speed_factor(condition.current)
         return actuator.thrust_min * factor, actuator.thrust_max * factor
 
-    def thrust_profiles(self, failed: tuple[str, ...] = ()) -> dict:
-        """None: the vehicle file's thrust limits hold in every direction."""
-        return {}
+    def thrust_profiles(self, failed: tuple[str, ...] = ()) -> dict[str, ThrustProfile]:
+        """Per working thruster with a direction table, its profile (none: the vehicle file's
+        thrust limits hold in every direction)."""
+        return {name: profile for name, profile in self.loss_profiles.items() if name not in failed}
 
     def zones(self, failed: tuple[str, ...] = ()) -> list[Zone]:
         """The vehicle file's forbidden sectors of the working thrusters, but those whose race
@@ -123,6 +147,18 @@ class Level2(Level1):
         notes[4] = "Forbidden sectors (vehicle file): " + ("; ".join(
             f"{z.thruster} {math.degrees(z.sector[0]):.1f} to {math.degrees(z.sector[1]):.1f} deg"
             for z in self.zones()) or "none") + " (thrust angle in the body frame, 0 forward, 90 to starboard)."
-        notes[5] = "Thrust losses by direction ([3.11.4], [3.11.5]): not applied (the vehicle file's thrust limits)."
+        tables = self.particulars.thrust_loss
+        notes[5] = ("Thrust losses ([3.11.4], [3.11.5], [3.9.3], [3.9.4]): not applied; the vessel's own tables "
+                    "(level2.thrust_loss): " + ("; ".join(table.describe() for table in tables.values()) or "none")
+                    + (f" ({TABLE_READING}); other thrusters" if tables else "; every thruster")
+                    + " the vehicle file's thrust limits in every direction and at every current.")
         notes.insert(2, self.site.describe() if self.site else "Environment: Table 2-1 (no site environment given).")
         return notes
+
+
+def _directions(actuator: ActuatorConfig) -> tuple[float, ...]:
+    """A fixed thruster's thrust directions [rad] (ahead; astern when it reverses); none for a rotatable one."""
+    if actuator.rotatable:
+        return ()
+    angle = math.atan2(actuator.direction[1], actuator.direction[0])
+    return (angle, angle + math.pi) if actuator.thrust_min < 0.0 else (angle,)

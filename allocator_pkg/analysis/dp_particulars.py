@@ -18,8 +18,9 @@ Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, fo
   the analysis checks them against (:func:`with_vehicle_geometry`);
 - ``level2`` (optional): the vessel's own data for Level 2, ``wind_coefficients`` and
   ``current_coefficients`` (:class:`~.dnv_coefficients.CoefficientTable`: ``heading_deg``,
-  ``cx``, ``cy``, ``cn``), and ``site``: a site environment in place of Table 2-1
-  (:mod:`.dnv_site`);
+  ``cx``, ``cy``, ``cn``), ``site``: a site environment in place of Table 2-1
+  (:mod:`.dnv_site`), and ``thrust_loss``: per thruster, by its name, its loss tables over the
+  thrust direction and over the current speed (:mod:`.dnv_loss_tables`);
 - ``skegs`` (optional): the aft most point of each skeg or gondola, ``x`` and ``y`` [m] in the
   body frame (Table A-2), for the skeg loss of [3.11.5] (:func:`~.dnv_losses.skegs_from_list`);
 - ``rudders`` (optional): per rudder of the vehicle file, by its name, its Table A-4 row for
@@ -41,6 +42,7 @@ import yaml
 
 from .dnv_coefficients import CoefficientTable, coefficient_table
 from .dnv_loads import BodyFrame, DnvHull
+from .dnv_loss_tables import LossTable, loss_tables
 from .dnv_losses import Skeg, skegs_from_list
 from .dnv_rudders import RudderData, rudders_from_mapping
 from .dnv_site import SiteEnvironment, site_from_mapping
@@ -75,6 +77,8 @@ class Particulars:
     """Level 2: the vessel's current coefficients over heading (None: [3.6])."""
     site: SiteEnvironment | None = None
     """Level 2: the site environment in place of Table 2-1 (None: Table 2-1)."""
+    thrust_loss: Mapping[str, LossTable] = field(default_factory=dict)
+    """Level 2: the vessel's thrust-loss tables per thruster, by name (none: no loss)."""
     skegs: tuple[Skeg, ...] = ()
     """The aft most point of each skeg or gondola (body frame) for [3.11.5]."""
     rudders: Mapping[str, RudderData] = field(default_factory=dict)
@@ -190,14 +194,16 @@ def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
     return result
 
 
-def _level2(level2: Any) -> dict[str, CoefficientTable | SiteEnvironment]:
+def _level2(level2: Any) -> dict[str, Any]:
     if level2 is None:
         return {}
-    keys = ("wind_coefficients", "current_coefficients", "site")
+    keys = ("wind_coefficients", "current_coefficients", "site", "thrust_loss")
     if not isinstance(level2, Mapping) or set(level2) - set(keys):
         raise ValueError(f"level2: a mapping with {', '.join(keys)} (each optional)")
-    result: dict[str, CoefficientTable | SiteEnvironment] = {
+    result: dict[str, Any] = {
         key: coefficient_table(level2[key], f"level2.{key}") for key in keys[:2] if key in level2}
     if "site" in level2:
         result["site"] = site_from_mapping(level2["site"], "level2.site", "the particulars' level2.site")
+    if "thrust_loss" in level2:
+        result["thrust_loss"] = loss_tables(level2["thrust_loss"])
     return result

@@ -66,10 +66,11 @@ TABLES = {
                 "Level 2); thrust angles [deg] in the body frame (0 forward, 90 to starboard), the thruster whose "
                 "race the zone protects",
     "table_a6_losses": "Beside Table A-6 (whose layout has forbidden zones only): the sectors of reduced thrust per "
-                       "case, flushing a dead thruster [3.11.4] and a skeg [3.11.5] combined [3.11.6]; thrust "
+                       "case, flushing a dead thruster [3.11.4] and a skeg [3.11.5] combined [3.11.6] (at Level 2 the "
+                       "vessel's own tables over the thrust direction, level2.thrust_loss); thrust "
                        "angles [deg] in the body frame (0 forward, 90 to starboard) from and to the directions at "
                        "full thrust, the lowest factor and its angle; the factor linear between the corners of "
-                       "[3.11.4]/[3.11.5] (none at Level 2)",
+                       "[3.11.4]/[3.11.5] or of the table's chords",
     "table_a7": "Table A-7: per case and heading the capability number, the limiting wind speed [m/s] and the "
                 "unfactored wind, current and wave loads of the number's Table 2-1 condition in the frame of "
                 "[2.8.2] (x forward, y to port; Fx, Fy [kN]; Mz [kN m] about Lpp/2, bow to port positive)",
