@@ -287,7 +287,7 @@ def test_a_vehicle_with_power_sources_gets_their_power_against_what_is_available
     assert lines["swbd_a available"].get_linestyle() == "--"
     assert lines["swbd_b available"].get_ydata()[-1] == 0.0 and lines["swbd_a drawn"].get_ydata()[0] == 300.0
     assert event_lines(sources) == [100.0, 160.0]
-    assert [event_label(e) for e in case.events] == ["switchboard_b FAILED", "swbd_a 600 kW"]
+    assert [event_label(e) for e in case.events] == ["switchboard_b FAILED", "swbd_a 450 kW"]
     assert event_label(Event(10.0, "weather_ramp", value=1.5, duration=120.0)) == "weather x1.5 in 120 s"
 
 

@@ -178,7 +178,7 @@ def test_group_faults_power_and_weather_ramps_load():
     trip = load_scenario(ROOT / "config" / "scenarios" / "dp_switchboard_trip.yaml")
     assert [(e.time, e.kind, e.name) for e in trip.events] == [(100.0, "group_fault", "switchboard_b"),
                                                               (160.0, "power", "swbd_a")]
-    assert trip.events[1].value == 600.0
+    assert trip.events[1].value == 450.0
     assert [(w.name, w.start, w.end) for w in trip.all_windows()] == [("fault", 100.0, 300.0)]
     alarm = load_scenario(ROOT / "config" / "scenarios" / "dp_consequence_alarm.yaml").scaled(0.5)
     ramp = next(e for e in alarm.events if e.kind == "weather_ramp")
@@ -194,14 +194,14 @@ def test_group_faults_power_and_weather_ramps_load():
      r"events\[0\]\.group_fault\.name: unknown key"),
     ("{time: 100.0, group_fault: {group: switchboard_b}}", "{time: 100.0, group_fault: switchboard_b}",
      r"events\[0\]\.group_fault: a mapping"),
-    ("{source: swbd_a, available: 600.0}", "{source: swbd_c, available: 600.0}",
+    ("{source: swbd_a, available: 450.0}", "{source: swbd_c, available: 450.0}",
      r"events\[1\]\.power\.source: 'swbd_c' is not a power source of the vehicle \(swbd_a, swbd_b\)"),
-    ("{source: swbd_a, available: 600.0}", "{source: swbd_a, available: -1.0}",
+    ("{source: swbd_a, available: 450.0}", "{source: swbd_a, available: -1.0}",
      r"events\[1\]\.power\.available: at least 0"),
-    ("{source: swbd_a, available: 600.0}", "{source: swbd_a}", r"events\[1\]\.power\.available: required"),
-    ("{time: 160.0, power: {source: swbd_a, available: 600.0}}",
+    ("{source: swbd_a, available: 450.0}", "{source: swbd_a}", r"events\[1\]\.power\.available: required"),
+    ("{time: 160.0, power: {source: swbd_a, available: 450.0}}",
      "{time: 160.0, weather_ramp: {to: -2.0, duration: 10.0}}", r"events\[1\]\.weather_ramp\.to: at least 0"),
-    ("{time: 160.0, power: {source: swbd_a, available: 600.0}}",
+    ("{time: 160.0, power: {source: swbd_a, available: 450.0}}",
      "{time: 160.0, weather_ramp: {to: 2.0, duration: 10.0, hs: 4.0}}", r"events\[1\]\.weather_ramp\.hs: unknown"),
     ("seed: 3", "seed: 3\nposition_limit: 0.0", "position_limit: at least"),
     ("bounds: {position_error_max: 4.0", "bounds: {alarm_lead_time: 4.0", "bounds.alarm_lead_time: unknown key"),
