@@ -16,6 +16,7 @@ from __future__ import annotations
 import concurrent.futures
 import json
 import os
+import pickle
 import sys
 from collections.abc import Callable
 from concurrent.futures.process import BrokenProcessPool
@@ -84,6 +85,10 @@ class PoolEngine:
     """A local process pool of ``workers``; a broken pool is replaced and its cases run again."""
 
     def __init__(self, workers: int, runner: Runner, setup: CaseSetup) -> None:
+        try:
+            pickle.dumps((runner, setup))
+        except (pickle.PicklingError, AttributeError, TypeError) as error:
+            raise ValueError(f"the case runner and set-up go to worker processes by pickle: {error}") from error
         self.workers, self.runner, self.setup = workers, runner, setup
         self.pool = concurrent.futures.ProcessPoolExecutor(workers)
         self.running: dict[concurrent.futures.Future, Case] = {}
@@ -93,26 +98,33 @@ class PoolEngine:
         attempts = self.attempts[case.key] = self.attempts.get(case.key, 0) + 1
         if attempts > MAX_ATTEMPTS:
             raise RuntimeError(f"case {case}: its worker died {MAX_ATTEMPTS} times")
-        self.running[self.pool.submit(self.runner, case, self.setup)] = case
+        try:
+            self.running[self.pool.submit(self.runner, case, self.setup)] = case
+        except BrokenProcessPool:
+            self.attempts[case.key] -= 1
+            self._restart([case])
 
     def wait(self) -> list[CaseResult]:
         done, _ = concurrent.futures.wait(self.running, return_when=concurrent.futures.FIRST_COMPLETED)
-        results, broken = [], False
+        results, lost = [], []
         for future in done:
             case = self.running.pop(future)
             try:
                 results.append(future.result())
             except BrokenProcessPool:
-                broken = True
-                self.running[future] = case
-        if broken:
-            lost = list(self.running.values())
-            self.pool.shutdown(wait=False, cancel_futures=True)
-            self.pool = concurrent.futures.ProcessPoolExecutor(self.workers)
-            self.running = {}
-            for case in lost:
-                self.submit(case)
+                lost.append(case)
+        if lost:
+            self._restart(lost)
         return results
+
+    def _restart(self, lost: list[Case]) -> None:
+        """A new pool running ``lost`` and every case that had not come back."""
+        lost = [*lost, *self.running.values()]
+        self.pool.shutdown(wait=False, cancel_futures=True)
+        self.pool = concurrent.futures.ProcessPoolExecutor(self.workers)
+        self.running = {}
+        for case in lost:
+            self.submit(case)
 
     def close(self) -> None:
         self.pool.shutdown(wait=True, cancel_futures=True)
@@ -123,13 +135,14 @@ class DaskEngine:
 
     def __init__(self, address: str, runner: Runner, setup: CaseSetup) -> None:
         try:
-            from dask.distributed import Client
+            from dask.distributed import Client, as_completed
         except ImportError as error:
             raise ValueError("--scheduler needs dask[distributed] (pip install allocator_pkg[cluster])") from error
-        self.client = Client(address, set_as_default=False)
+        self.client = Client(address)
         self.runner, self.setup = runner, setup
         self.setup_future = self.client.scatter(setup, broadcast=True)
         self.running: dict[Any, Case] = {}
+        self.completed = as_completed([])
 
     @property
     def workers(self) -> int:
@@ -140,13 +153,11 @@ class DaskEngine:
                                     key=f"level3-{case.heading_deg:g}-{case.number}-{case.group}-{case.seed}-"
                                         f"{os.getpid()}-{id(self)}")
         self.running[future] = case
+        self.completed.add(future)
 
     def wait(self) -> list[CaseResult]:
-        from dask.distributed import wait
-
-        done, _ = wait(list(self.running), return_when="FIRST_COMPLETED")
         results = []
-        for future in done:
+        for future in [next(self.completed), *self.completed.next_batch(block=False)]:
             self.running.pop(future)
             results.append(future.result())
         return results
