@@ -47,7 +47,7 @@ def write_level3(prepared: Level3Study, result: Level1Result, finished: dict[tup
     out.mkdir(parents=True, exist_ok=True)
     stem = f"{prepared.inputs.vessel.stem}_dp_l3"
     title = prepared.analysis.particulars.name or prepared.inputs.vessel.stem
-    criteria = prepared.setup.criteria.describe()
+    criteria = prepared.setup.criteria.short()
     outline = Outline.of(prepared.analysis)
     paths = []
     for suffix, caption, cases in (("", "intact and worst single failure", [INTACT, WORST]),
@@ -62,7 +62,7 @@ def write_level3(prepared: Level3Study, result: Level1Result, finished: dict[tup
     footprints(paths[-1], prepared, result, finished, title)
     paths.append(out / f"{stem}.csv")
     write_csv(paths[-1], result)
-    scope = f"{result.scope} Criteria: {criteria}."
+    scope = f"{result.scope} Criteria: {prepared.setup.criteria.describe()}."
     a1_columns, a1_rows = table_a1(result)
     tables = {**input_tables(prepared.analysis), "table_a1": (a1_columns, a1_rows)}
     for key, (columns, rows) in tables.items():
@@ -100,8 +100,7 @@ def levels_plot(path: Path, results: tuple[Level1Result, Level1Result, Level1Res
     import matplotlib.pyplot as plt
 
     level1, level2, level3 = results
-    figure = polar_figure(level3, title, f"Level 1 ({level1.summary_line()}), Level 2 ({level2.summary_line()}) and "
-                          f"Level 3\n({criteria})", wind, [INTACT, WORST], outline)
+    figure = polar_figure(level3, title, f"Level 1, 2 and 3 ({criteria})", wind, [INTACT, WORST], outline)
     axes = figure.axes[0]
     for line in axes.get_lines():
         line.set_label(f"Level 3 {line.get_label()}")
@@ -110,12 +109,14 @@ def levels_plot(path: Path, results: tuple[Level1Result, Level1Result, Level1Res
         values = result.wind_limits if wind else result.numbers
         for case, colour in zip((INTACT, WORST), colours):
             axes.plot(angles, np.append(values[case], values[case][0]), color=colour, linewidth=1.3,
-                      linestyle=":" if level == 1 else "-.", label=f"Level {level} {case}")
+                      linestyle=":" if level == 1 else "-.", label=f"Level {level} {case} ({result.summary_line()})")
     top = max(r.conditions[-1].wind for r in results) if wind else max(len(r.conditions) for r in results) - 1
     axes.set_ylim(0.0, top)
+    if not wind:
+        axes.set_yticks(range(top + 1))
     for legend in figure.legends:
         legend.remove()
-    figure.legend(loc="lower center", bbox_to_anchor=(0.5, 0.065), ncol=3, fontsize=8, frameon=False)
+    figure.legend(loc="lower center", bbox_to_anchor=(0.5, 0.05), ncol=2, fontsize=7.5, frameon=False)
     figure.savefig(path, dpi=100)
     plt.close(figure)
 

@@ -57,6 +57,11 @@ class Criteria:
         return (f"position limit {self.position_limit:g} m, heading limit {self.heading_limit_deg:g} deg, "
                 f"{self.settle:g} s on station (a group fails then) + {self.duration:g} s simulated per case")
 
+    def short(self) -> str:
+        """The criteria in a few words, for a plot's caption."""
+        return (f"limits {self.position_limit:g} m, {self.heading_limit_deg:g} deg; {self.settle:g} + "
+                f"{self.duration:g} s per case")
+
 
 @dataclass(frozen=True)
 class Case:
