@@ -108,8 +108,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="the same at Level 2 with the vessel's own data (<vehicle>_dp_l2...), and a plot of "
                              "Level 1 against Level 2")
     parser.add_argument("--site", metavar="SITE",
-                        help="with --dnv-level2: a site environment file (wind, hs, tp or tz, current over the "
-                             "capability numbers) in place of Table 2-1 and of the particulars' level2.site")
+                        help="with --dnv-level2 or --dnv-level3: a site environment file (wind, hs, tp or tz, "
+                             "current over the capability numbers) in place of Table 2-1 and of the particulars' "
+                             "level2.site")
     parser.add_argument("--heading-step", "--headings", type=float, default=10.0,
                         help="degrees between headings for --dnv-level1/2/3 (default %(default)s)")
     add_level3_arguments(parser)
