@@ -14,7 +14,7 @@ from allocator_pkg.cli.capability import main
 from allocator_pkg.cli.dp_level3 import JOURNAL, SCOPE_L3
 
 FILES = [str(ROOT / "config/dp_vessel.yaml"), str(ROOT / "config/particulars/dp_vessel.yaml")]
-SMALL = ["--site", str(DATA / "level3_site.yaml"), "--headings", "90", "--position-limit", "0.05",
+SMALL = ["--site", str(DATA / "sites" / "level3_site.yaml"), "--headings", "90", "--position-limit", "0.05",
          "--settle", "2", "--duration", "6", "--no-progress"]
 TEXT_OUTPUTS = ("dp_vessel_dp_l3.csv", "dp_vessel_dp_l3_table_a1.csv", "dp_vessel_dp_l3_limits.csv",
                 "dp_vessel_dp_l3_cases.csv", "dp_vessel_dp_l3.txt")

@@ -13,7 +13,7 @@ from allocator_pkg.cli.level3_engine import Journal, run_search
 from allocator_pkg.simulation.level3_case import CaseResult, Criteria, run_case
 
 INPUTS = Level3Inputs(ROOT / "config/dp_vessel.yaml", ROOT / "config/particulars/dp_vessel.yaml",
-                      site=DATA / "level3_site.yaml", heading_step=90.0,
+                      site=DATA / "sites" / "level3_site.yaml", heading_step=90.0,
                       criteria=Criteria(0.05, 3.0, settle=2.0, duration=3.0))
 HEADER = {"test": "1"}
 
