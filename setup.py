@@ -17,7 +17,8 @@ setup(
         (f"share/{PACKAGE}/launch", sorted(glob("launch/*.py"))),
     ],
     install_requires=["setuptools", "numpy", "osqp", "daqp", "highspy", "pyyaml"],
-    extras_require={"tools": ["scipy", "matplotlib"]},     # allocator-capability and the demo
+    extras_require={"tools": ["scipy", "matplotlib", "tqdm"],      # allocator-capability and the demo
+                    "cluster": ["dask[distributed]"]},  # allocator-capability --dnv-level3 --scheduler
     zip_safe=True,
     maintainer="allocator_pkg maintainers",
     maintainer_email="allocator@example.com",

@@ -10,7 +10,9 @@ file's method. The numbers come from :class:`~allocator_pkg.analysis.capability.
 ``allocator-capability --dnv-level1 VESSEL.yaml PARTICULARS.yaml [--out folder]`` writes the
 DNV-ST-0111 Level 1 DP capability report of :mod:`.dp_capability` (plots, tables, summary);
 ``--dnv-level2`` the same at Level 2 with a plot of Level 1 against it; ``--site SITE.yaml`` gives
-Level 2 a site environment in place of Table 2-1 (:mod:`~allocator_pkg.analysis.dnv_site`).
+Level 2 a site environment in place of Table 2-1 (:mod:`~allocator_pkg.analysis.dnv_site`);
+``--dnv-level3`` the time-domain Level 3 of :mod:`.dp_level3` (closed-loop runs on a process pool
+or a Dask cluster).
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from ..effectiveness.faults import FaultMode
 from ..methods import METHODS
 from ..vehicle.config import DOF_NAMES
 from .dp_capability import write_report
+from .dp_level3_report import add_level3_arguments, level3_command
 
 
 def write_csv(path: Path, plane: tuple[str, str], cases: dict[str, Envelope]) -> None:
@@ -105,13 +108,17 @@ def main(argv: list[str] | None = None) -> int:
                         help="the same at Level 2 with the vessel's own data (<vehicle>_dp_l2...), and a plot of "
                              "Level 1 against Level 2")
     parser.add_argument("--site", metavar="SITE",
-                        help="with --dnv-level2: a site environment file (wind, hs, tp or tz, current over the "
-                             "capability numbers) in place of Table 2-1 and of the particulars' level2.site")
-    parser.add_argument("--heading-step", type=float, default=10.0,
-                        help="degrees between headings for --dnv-level1/2 (default %(default)s)")
+                        help="with --dnv-level2 or --dnv-level3: a site environment file (wind, hs, tp or tz, "
+                             "current over the capability numbers) in place of Table 2-1 and of the particulars' "
+                             "level2.site")
+    parser.add_argument("--heading-step", "--headings", type=float, default=10.0,
+                        help="degrees between headings for --dnv-level1/2/3 (default %(default)s)")
+    add_level3_arguments(parser)
     arguments = parser.parse_args(argv)
-    if arguments.site and not arguments.dnv_level2:
-        parser.error("--site goes with --dnv-level2")
+    if arguments.site and not (arguments.dnv_level2 or arguments.dnv_level3):
+        parser.error("--site goes with --dnv-level2 or --dnv-level3")
+    if arguments.dnv_level3:
+        return level3_command(parser, arguments)
     if arguments.dnv_level1 or arguments.dnv_level2:
         return _dnv(arguments)
     if arguments.config is None:

@@ -24,6 +24,9 @@ FOOTERS = {
        "Unclear clauses read as the report says. Not verified by DNV.",
     2: "DNV-ST-0111 Level 2 as read here (no Level 2 text in the transcription used): the vessel's coefficients, "
        f"thrust limits, sectors and site where given.\nNot yet: {NOT_YET_L2}.\nNot verified by DNV.",
+    3: "DNV-ST-0111 Level 3 as read here (no Level 3 text in the transcription used): seeded closed-loop time-domain "
+       "runs, conditions rising to the first that fails;\ncriteria and durations this package's defaults (in the "
+       "caption). Not verified by DNV.",
 }
 CASE_STYLE = {INTACT: dict(color="tab:blue", linewidth=2.4), WORST: dict(color="tab:red", linewidth=1.8,
                                                                          linestyle="--")}
