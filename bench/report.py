@@ -466,6 +466,40 @@ def _settling_section(result: dict, off_grid: dict | None = None) -> list[str]:
     return lines
 
 
+def _inprocess_section(run: dict) -> list[str]:
+    """The in-process closed loop's real-time factor against the node in the loop (bench/inprocess_sim.py)."""
+    inside = run["in_process"]
+    lines = ["## Closed loop in process", "",
+             f"`bench/inprocess_sim.py`: `{run['scenario']}` ({run['duration_s']:g} s simulated, method "
+             f"{run['method']}) with the allocator library in the loop (`allocator-sim --in-process`), the median "
+             f"of {run['repeats']} runs, and one run with `allocator_node` in the loop; simulated seconds per "
+             "second of the whole run (wall clock, and CPU of this process and its children).", "",
+             "| | wall, steps only | wall, whole run | CPU, whole run |", "|---|---|---|---|",
+             f"| in process | {inside['loop']:.0f}x | {inside['run']:.0f}x | {inside['run_cpu']:.0f}x |"]
+    if "node" in run:
+        node, ratio = run["node"], run["ratio"]
+        lines += [f"| node in the loop | {node['loop']:.0f}x | {node['run']:.0f}x | {node['run_cpu']:.0f}x |",
+                  f"| ratio | {ratio['loop']:.1f} | {ratio['run']:.1f} | {ratio['run_cpu']:.1f} |"]
+    lines += ["", f"Target: at least {run['target']:g}x real time on one core (CPU): "
+              f"{'met' if run['meets_target'] else 'not met'}."]
+    return lines
+
+
+def _level3_section(run: dict) -> list[str]:
+    """The cost of a Level 3 case and the pool's speed-up (bench/dp_level3.py)."""
+    inside = run["in_process"]
+    return ["## DP capability Level 3", "",
+            f"`bench/dp_level3.py`: {run['cases']} fixed cases on {run['vessel']} "
+            f"({run['simulated_s_per_case']:g} s simulated each), in this process, then on a pool of one and of "
+            "two workers (start-up included); the results of the three are compared.", "",
+            "| s per case (wall) | cases per minute | real-time factor (wall / CPU) | 1 worker s | 2 workers s | "
+            "speed-up | target | identical |", "|---|---|---|---|---|---|---|---|",
+            f"| {inside['wall_s_per_case']:.2f} | {inside['cases_per_minute']:.1f} | "
+            f"{inside['realtime_factor_wall']:.0f}x / {inside['realtime_factor_cpu']:.0f}x | "
+            f"{run['pool_1_worker']['wall_s']:.1f} | {run['pool_2_workers']['wall_s']:.1f} | "
+            f"{run['speedup_2_over_1']:.2f} | >= {run['target_speedup']:g} | {'yes' if run['identical'] else 'no'} |"]
+
+
 def write(result: dict, path: Path) -> None:
     m = result["machine"]
     lines = [INTRO.format(warm_up=result["solver"]["warm_up"], gc=result["solver"]["gc"]).rstrip(), ""]
@@ -487,5 +521,9 @@ def write(result: dict, path: Path) -> None:
         lines += ["", *_dp_capability_section(result["dp_capability"])]
     if "consequence" in result:
         lines += ["", *_consequence_section(result["consequence"])]
+    if "inprocess_sim" in result:
+        lines += ["", *_inprocess_section(result["inprocess_sim"])]
+    if "dp_level3" in result:
+        lines += ["", *_level3_section(result["dp_level3"])]
     lines += ["", *_load_section(result), "", SOAK]
     path.write_text("\n".join(lines) + "\n")

@@ -74,6 +74,10 @@ def main(argv: list[str] | None = None) -> int:
     subprocess.run([sys.executable, str(ROOT / "bench" / "consequence.py"), "--out", str(consequence_out)]
                    + (["--seconds", "3", "--rounds", "1"] if arguments.quick else []), check=True)
     result["consequence"] = json.loads(consequence_out.read_text())
+    result["inprocess_sim"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "inprocess_sim.py")]
+                                                  + (["--repeats", "1"] if arguments.quick else [])))
+    result["dp_level3"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_level3.py")]
+                                              + (["--settle", "10", "--duration", "30"] if arguments.quick else [])))
     load_out = RESULTS / "load.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "load.py"), "--out", str(load_out)]
                    + (["--seconds", "10"] if arguments.quick else []), check=False)

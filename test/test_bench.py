@@ -188,6 +188,25 @@ def test_the_report_gives_the_dp_capability_run_against_its_target():
     assert report._dp_capability_section({**run, "wall_s_median": 12.0})[-1].endswith("| no |")
 
 
+
+def test_the_report_gives_the_in_process_factors_and_the_ratio_to_the_node():
+    run = {"scenario": "dp_station_keeping", "duration_s": 300.0, "method": "qp", "repeats": 5,
+           "in_process": {"loop": 400.0, "run": 350.0, "run_cpu": 360.0}, "target": 300.0, "meets_target": True,
+           "node": {"loop": 50.0, "run": 35.0, "run_cpu": 36.0}, "ratio": {"loop": 8.0, "run": 10.0, "run_cpu": 10.0}}
+    lines = report._inprocess_section(run)
+    assert "| in process | 400x | 350x | 360x |" in lines and "| ratio | 8.0 | 10.0 | 10.0 |" in lines
+    assert lines[-1].endswith(": met.")
+    assert report._inprocess_section({**run, "meets_target": False})[-1].endswith("not met.")
+
+
+def test_the_report_gives_the_level3_case_cost_and_speed_up():
+    run = {"vessel": "dp_vessel", "cases": 16, "simulated_s_per_case": 660.0,
+           "in_process": {"wall_s_per_case": 1.8, "cases_per_minute": 60.0 / 1.8, "realtime_factor_wall": 660.0 / 1.8,
+                          "realtime_factor_cpu": 400.0},
+           "pool_1_worker": {"wall_s": 30.0}, "pool_2_workers": {"wall_s": 15.0}, "speedup_2_over_1": 2.0,
+           "target_speedup": 1.8, "identical": True}
+    assert report._level3_section(run)[-1] == "| 1.80 | 33.3 | 367x / 400x | 30.0 | 15.0 | 2.00 | >= 1.8 | yes |"
+
 def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator():
     """The bench's per-sequence loop on a few samples (it reads the method in use from the
     allocator, which no other test exercises)."""
