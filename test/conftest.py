@@ -36,6 +36,9 @@ ALARM_TOLERANCE = 1.0 + 3 * 0.1
 """[s] How far apart two closed-loop runs' consequence alarm times may be when the node is in
 the loop: one analysis period (consequence.rate 1 Hz, the DP vessel's; the node's timer has a
 phase of its own on the sim clock) and three samples for the node's thread to answer."""
+ALARM_METRICS = ("consequence_alarm_time", "alarm_lead_time", "alarm_after_position_loss")
+"""The metrics of the consequence alarm's time: the node analyses asynchronously, so these may
+differ between the node and the in-process link by up to one analysis period."""
 
 
 def bench_module(name: str) -> ModuleType:

@@ -188,7 +188,6 @@ def test_the_report_gives_the_dp_capability_run_against_its_target():
     assert report._dp_capability_section({**run, "wall_s_median": 12.0})[-1].endswith("| no |")
 
 
-
 def test_the_report_gives_the_in_process_factors_and_the_ratio_to_the_node():
     run = {"scenario": "dp_station_keeping", "duration_s": 300.0, "method": "qp", "repeats": 5,
            "in_process": {"loop": 400.0, "run": 350.0, "run_cpu": 360.0}, "target": 300.0, "meets_target": True,

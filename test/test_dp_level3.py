@@ -37,6 +37,7 @@ def test_the_report(uninterrupted, capsys):
     assert text.startswith("dp_vessel (MSS osv hull, some inputs estimated): DP capability-L3(")
     assert "position limit 0.05 m, heading limit 3 deg, 2 s on station (a group fails then) + 6 s" in text
     assert SCOPE_L3 in text and "Not simulated, the static Level 2 balance already fails them" in text
+    assert "gusts at its turbulence intensity); method qp." in text
     cases = (uninterrupted / "dp_vessel_dp_l3_cases.csv").read_text().splitlines()
     assert cases[1].startswith("# ") and "position limit 0.05 m" in cases[1]
     assert cases[2] == ("case,heading_deg,capability_number,seed,wind_speed,hs,tp,current,max_position_m,"

@@ -11,7 +11,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from conftest import ALARM_TOLERANCE, ROOT
+from conftest import ALARM_METRICS, ALARM_TOLERANCE, ROOT
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 
@@ -19,7 +19,6 @@ from allocator_msgs.msg import ActuatorFault
 from allocator_pkg.cli.sim import main, run
 from allocator_pkg.cli.sim_metrics import metrics_from_recording
 from allocator_pkg.effectiveness.faults import thrust_limits
-from allocator_pkg.simulation.metrics import ALARM_METRICS
 from allocator_pkg.simulation.report import report_checks
 from allocator_pkg.simulation.scenario import Event, load_scenario
 from allocator_pkg.simulation.verdict import broken, verdict_lines

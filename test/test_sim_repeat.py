@@ -8,11 +8,10 @@ voltage on its own topic every step, and the BlueROV2's tied optima under lp).""
 import json
 
 import pytest
-from conftest import ALARM_TOLERANCE, ROOT
+from conftest import ALARM_METRICS, ALARM_TOLERANCE, ROOT
 
 from allocator_pkg.cli.sim import run
 from allocator_pkg.methods import METHODS
-from allocator_pkg.simulation.metrics import ALARM_METRICS
 from allocator_pkg.simulation.scenario import ScenarioError, load_scenario
 
 pytestmark = pytest.mark.slow

@@ -12,7 +12,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from conftest import ALARM_TOLERANCE, ROOT
+from conftest import ALARM_METRICS, ALARM_TOLERANCE, ROOT
 
 from allocator_pkg.allocation.allocator import Allocator
 from allocator_pkg.cli.sim import run
@@ -20,7 +20,6 @@ from allocator_pkg.configuration.parameters import vehicle_from_parameters
 from allocator_pkg.configuration.params_file import read_parameters
 from allocator_pkg.effectiveness.faults import FaultMode
 from allocator_pkg.simulation.in_process import InProcessLink, node_parameters
-from allocator_pkg.simulation.metrics import ALARM_METRICS
 from allocator_pkg.simulation.plant import Pose
 from allocator_pkg.simulation.run_setup import SimulationError
 from allocator_pkg.simulation.scenario import load_scenario

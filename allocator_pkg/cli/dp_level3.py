@@ -140,7 +140,7 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
     lines = [f"{CRITERIA_NOTE}: {inputs.criteria.describe()}.",
              f"Seeds per condition: {inputs.seeds} (a condition holds when every seed holds); base scenario "
              f"{inputs.scenario.name} (controller gains, thruster time constant, the environment's slow variations; "
-             "gusts at its turbulence intensity); method {prepared.setup.scenario.method}.",
+             f"gusts at its turbulence intensity); method {prepared.setup.scenario.method}.",
              prepared.analysis.site.describe() if prepared.analysis.site else
              "Environment: Table 2-1 (no site environment given).",
              "Limiting wind speed: the wind of the number's condition (no bisection between conditions in the time "

@@ -137,7 +137,8 @@ class DaskEngine:
         try:
             from dask.distributed import Client, as_completed
         except ImportError as error:
-            raise ValueError("--scheduler needs dask[distributed] (pip install allocator_pkg[cluster])") from error
+            raise ValueError("--scheduler needs dask[distributed] (pip install allocator_pkg[tools,cluster])") \
+                from error
         self.client = Client(address)
         self.runner, self.setup = runner, setup
         self.setup_future = self.client.scatter(setup, broadcast=True)

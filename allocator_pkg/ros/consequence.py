@@ -205,11 +205,10 @@ class ConsequenceMonitor:
                 if analysis is None or analysis.vehicle is not snapshot.vehicle or analysis.method != snapshot.method:
                     analysis = Consequence(snapshot.vehicle, snapshot.method)
                 groups = analysis.utilisation(snapshot.load, snapshot.in_force)
-            except (ValueError, ArithmeticError) as error:
-                self._node.get_logger().error(f"consequence analysis failed: {error}")
-                continue
-            if self._active and self._settings.consequence_rate > 0.0:
-                self._report(snapshot, groups)
+                if self._active and self._settings.consequence_rate > 0.0:
+                    self._report(snapshot, groups)
+            except Exception as error:          # the thread must outlive any one analysis
+                self._node.get_logger().error(f"consequence analysis failed: {type(error).__name__}: {error}")
 
     def _report(self, snapshot: Snapshot, groups: tuple[GroupUtilisation, ...]) -> None:
         """The alarm and diagnostics first, so that whoever has the message finds them in force."""

@@ -38,6 +38,7 @@ class ConsequenceWatch:
         self.alarm = False
         self._observed: int | None = None
         self._analysis: Consequence | None = None
+        self._due: int | None = None
         self._allocator = allocator
 
     def observe(self, wrench: np.ndarray, now: int, settings: NodeSettings) -> None:
@@ -50,14 +51,19 @@ class ConsequenceWatch:
         self.load += (1.0 - math.exp((last - now) / (NS * time_constant))) * (wrench - self.load)
 
     def tick(self, now: int, settings: NodeSettings) -> None:
-        """The clock at ``now`` [ns]: at a multiple of the analysis period, analyse the load
-        filtered so far and set the alarm; with the analysis off (rate 0), no alarm."""
+        """The clock at ``now`` [ns]: at the first tick at or after each multiple of the analysis
+        period (as a timer on the clock fires), analyse the load filtered so far and set the
+        alarm; with the analysis off (rate 0), no alarm."""
         rate = settings.consequence_rate
         if rate <= 0.0:
-            self.alarm = False
+            self.alarm, self._due = False, None
             return
-        if now % round(NS / rate) != 0:
+        period = round(NS / rate)
+        if self._due is None:
+            self._due = -(-now // period) * period
+        if now < self._due:
             return
+        self._due = (now // period + 1) * period
         allocator = self._allocator
         analysis = self._analysis
         if analysis is None or analysis.vehicle is not allocator.vehicle or analysis.method != allocator.method:

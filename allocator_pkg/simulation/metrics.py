@@ -41,9 +41,6 @@ UNBOUNDED = ("position_lost_time", "alarm_lead_time", "realtime_factor")
 """Metrics an upper bound means nothing for: two moments that are better later, and the wall clock."""
 BOUNDED_METRICS = tuple(name for name in METRIC_UNITS if name not in UNBOUNDED)
 """The metrics a scenario's ``bounds`` may hold a run to (from above)."""
-ALARM_METRICS = ("consequence_alarm_time", "alarm_lead_time", "alarm_after_position_loss")
-"""The metrics of the consequence alarm's time: the node analyses asynchronously, so these may
-differ between the node and the in-process link by up to one analysis period."""
 OVER_SHARE = 0.01
 """A source is over its available power when it draws more than (1 + this) times it."""
 REVERSAL_SHARE = 0.01
