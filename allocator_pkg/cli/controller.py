@@ -3,6 +3,8 @@ wrenches published, its services and parameters called, each call bounded in tim
 
 from __future__ import annotations
 
+import time
+
 from geometry_msgs.msg import Wrench
 from rcl_interfaces.srv import GetParameters, ListParameters, SetParametersAtomically
 from rclpy.executors import SingleThreadedExecutor
@@ -16,6 +18,8 @@ from allocator_msgs.srv import GetCapability, SetActuatorFault, SetGroupFault
 from ..ros.conversions import array_to_wrench
 from ..vehicle.node_settings import NODE_NAME
 
+RESEND_AFTER = 1.0
+"""[s] How long a request waits for its answer before it is sent again (:meth:`Controller.call`)."""
 FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRADED,
                "failed": ActuatorFault.FAILED, "stuck": ActuatorFault.STUCK}
 
@@ -38,20 +42,32 @@ class Controller:
         return f"{self.namespace}/{name}" if self.namespace else name
 
     def call(self, kind, name: str, request, timeout: float = 5.0):
+        """The node's answer to ``request`` on its service ``name``, within ``timeout`` [s].
+
+        Every service called here is idempotent, so a request without an answer after
+        :data:`RESEND_AFTER` is sent again, and the first answer to any of them is taken: a
+        server that answers before it has discovered the client's response reader drops its
+        answer (Fast DDS: "failed to send response"), and a new request gets through."""
         client = self.node.create_client(kind, f"{self.service_prefix}/{name}")
         try:
             if not client.wait_for_service(timeout_sec=timeout):
                 raise ServiceTimeout(f"service {self.service_prefix}/{name} not available (is the node running, "
                                      "with the same ROS_DOMAIN_ID and ROS_AUTOMATIC_DISCOVERY_RANGE?)")
-            future = client.call_async(request)
             executor = self.node.executor
             if executor is None:
                 executor = SingleThreadedExecutor(context=self.node.context)
                 executor.add_node(self.node)
-            executor.spin_until_future_complete(future, timeout_sec=timeout)
-            if not future.done():
-                raise ServiceTimeout(f"service {self.service_prefix}/{name} did not answer within {timeout:g} s")
-            return future.result()
+            futures = []
+            deadline = time.monotonic() + timeout
+            while (left := deadline - time.monotonic()) > 0.0:
+                futures.append(client.call_async(request))
+                wait_until = time.monotonic() + min(RESEND_AFTER, left)
+                while time.monotonic() < wait_until and not any(future.done() for future in futures):
+                    executor.spin_once(timeout_sec=0.05)
+                answered = next((future for future in futures if future.done()), None)
+                if answered is not None:
+                    return answered.result()
+            raise ServiceTimeout(f"service {self.service_prefix}/{name} did not answer within {timeout:g} s")
         finally:
             self.node.destroy_client(client)
 
