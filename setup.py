@@ -29,10 +29,10 @@ setup(
         "console_scripts": [
             "allocator_node = allocator_pkg.ros.node:main",
             "allocator_lifecycle_node = allocator_pkg.ros.lifecycle_node:main",
-            "allocator-ctl = allocator_pkg.cli.ctl:main",
-            "allocator-capability = allocator_pkg.cli.capability:main",
-            "allocator-explicit = allocator_pkg.cli.explicit:main",
-            "allocator-sim = allocator_pkg.cli.sim:main",
+            "allocator-ctl = allocator_pkg.cli.allocator_ctl:main",
+            "allocator-capability = allocator_pkg.cli.allocator_capability:main",
+            "allocator-explicit = allocator_pkg.cli.allocator_explicit:main",
+            "allocator-sim = allocator_pkg.cli.allocator_sim:main",
         ],
         "pytest11": ["allocator_pkg = allocator_pkg.testing.plugin"],     # the allocator_harness fixture
     },

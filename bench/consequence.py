@@ -37,7 +37,7 @@ from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 
 from allocator_pkg import load_vehicle
-from allocator_pkg.analysis.consequence import Consequence
+from allocator_pkg.capability.consequence import Consequence
 from allocator_pkg.ros.node import AllocatorNode
 
 ROOT = Path(__file__).resolve().parents[1]

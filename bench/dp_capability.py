@@ -1,7 +1,7 @@
 """How long a full DNV-ST-0111 Level 1 run takes on this machine.
 
 One run is that of ``allocator-capability --dnv-level1`` on dp_vessel without its files: a fresh
-:class:`~allocator_pkg.analysis.dp_capability.Level1` (nothing cached) run over every heading
+:class:`~allocator_pkg.dp.level1.Level1` (nothing cached) run over every heading
 (every 10 deg: 36), intact and for every redundancy group. Each run is timed by the wall clock;
 the figure is the median over the repeats. A balance is one call of ``Level1.balanced`` (one
 condition, heading and case), counted by a subclass.
@@ -19,8 +19,8 @@ import time
 from pathlib import Path
 
 from allocator_pkg import load_vehicle
-from allocator_pkg.analysis.dp_capability import Level1
-from allocator_pkg.analysis.dp_particulars import load_particulars
+from allocator_pkg.dp.inputs.particulars import load_particulars
+from allocator_pkg.dp.level1 import Level1
 
 ROOT = Path(__file__).resolve().parents[1]
 VESSEL = "dp_vessel"

@@ -6,7 +6,7 @@ of switchboard_a, seed 0, each ``--settle`` + ``--duration`` simulated seconds. 
 
 - one after another in this process (the case cost: wall and CPU time per case, cases per
   minute, simulated seconds per wall second);
-- on the Level 3 process pool (:class:`allocator_pkg.cli.level3_engine.PoolEngine`) with 1 and
+- on the Level 3 process pool (:class:`allocator_pkg.dp.level3.engine.PoolEngine`) with 1 and
   with 2 workers, timed by the wall clock; the speed-up is the 1-worker time over the 2-worker
   time (target 1.8), and the three sets of results must be equal bit for bit.
 
@@ -24,10 +24,10 @@ import sys
 import time
 from pathlib import Path
 
-from allocator_pkg.analysis.dnv_conditions import CONDITIONS
-from allocator_pkg.cli.level3_engine import PoolEngine
 from allocator_pkg.configuration.parameters import load_vehicle
-from allocator_pkg.simulation.level3_case import INTACT, Case, CaseResult, CaseSetup, Criteria, run_case
+from allocator_pkg.dp.level3.case import INTACT, Case, CaseResult, CaseSetup, Criteria, run_case
+from allocator_pkg.dp.level3.engine import PoolEngine
+from allocator_pkg.dp.standard.weather import CONDITIONS
 from allocator_pkg.simulation.scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[1]

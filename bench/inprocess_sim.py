@@ -35,7 +35,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from allocator_pkg.cli.sim import run
+from allocator_pkg.cli.allocator_sim import run
 from allocator_pkg.simulation.run_setup import RunResult
 from allocator_pkg.simulation.scenario import Scenario, load_scenario
 

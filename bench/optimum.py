@@ -2,7 +2,7 @@
 the actuators can give with their static ranges, every rotatable thruster anywhere in its
 allowed angles, found by SLSQP over every combination of convex pieces from (1.5) alone,
 sharing no code with the allocator. ``bench/settling.py`` judges the settling sweep by it, and
-``test/test_generated.py`` the generated azimuth vessels."""
+``test/allocation/test_generated.py`` the generated azimuth vessels."""
 
 from itertools import product
 

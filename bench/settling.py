@@ -16,7 +16,7 @@ hold the request for 400 samples from rest and judge the last 100:
   checked here with arithmetic of its own;
 - time per sample (median, p99).
 
-``make bench`` runs the full sweep (``--full``); ``test/test_settling.py`` a small one;
+``make bench`` runs the full sweep (``--full``); ``test/allocation/test_settling.py`` a small one;
 ``--off-grid`` the directions between the full sweep's (every 5 deg from 2.5, at the same
 magnitudes; about 20 minutes on one core, ``--vessels`` splits it). The
 output names the commit of the ``allocator_pkg`` it ran, so the sweep can measure any checkout:
@@ -40,7 +40,7 @@ from optimum import best_attainable_wrench
 
 import allocator_pkg
 from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters
-from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.capability.envelope import Capability
 from allocator_pkg.effectiveness.faults import FaultSet, static_ranges
 from allocator_pkg.effectiveness.model import Model
 

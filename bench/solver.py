@@ -57,7 +57,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from allocator_pkg import METHODS, Allocator, load_vehicle
-from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.capability.envelope import Capability
 from allocator_pkg.effectiveness.actuators import drag_gain, lift_gain
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 from allocator_pkg.effectiveness.model import Model

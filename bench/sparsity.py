@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters
-from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.capability.envelope import Capability
 from allocator_pkg.effectiveness.model import Model
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -18,7 +18,7 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
-from allocator_pkg.cli.sim import run
+from allocator_pkg.cli.allocator_sim import run
 from allocator_pkg.simulation.scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -30,6 +30,13 @@ settings.register_profile("explore", max_examples=1000)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 ROOT = Path(__file__).resolve().parents[1]
+SUITE = Path(__file__).resolve().parent
+for _folder in sorted(path for path in SUITE.rglob("*") if path.is_dir() and path.name not in {"data", "__pycache__"}):
+    if str(_folder) not in sys.path:
+        sys.path.append(str(_folder))
+"""The suite's folders mirror the package; pytest imports each test module by its name (no
+``__init__.py``), so with every folder on the path a test module imports another's helpers by
+name from any folder (their names are unique: ``test_imports``)."""
 DATA = Path(__file__).resolve().parent / "data"
 BENCH = ROOT / "bench"
 ALARM_TOLERANCE = 1.0 + 3 * 0.1

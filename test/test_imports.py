@@ -86,8 +86,8 @@ def test_the_configuration_types_import_nothing_of_the_package_but_angles():
     assert graph()["allocator_pkg.vehicle.config"] == {"allocator_pkg.vehicle.angles"}
 
 
-LAYERS = ("vehicle", "effectiveness", "configuration", "solvers", "methods", "allocation", "analysis", "simulation",
-          "ros", "cli", "testing")
+LAYERS = ("vehicle", "effectiveness", "configuration", "solvers", "methods", "allocation", "capability", "hull",
+          "simulation", "dp", "ros", "cli", "testing")
 """The package's folders, lowest first: a module imports only from its own folder or one below."""
 
 
@@ -132,6 +132,11 @@ def outside_imports(path: Path) -> set[str]:
     return found - {"allocator_pkg"}
 
 
+def is_report(module: str) -> bool:
+    """A module of a ``report`` folder: the only place a plot is drawn."""
+    return "report" in module.split(".")[1:-1]
+
+
 def test_the_maths_never_imports_rclpy_and_the_nodes_never_a_command_line_or_a_plot():
     for path in sorted(PACKAGE.rglob("*.py")):
         module, names = module_name(path), outside_imports(path)
@@ -139,4 +144,27 @@ def test_the_maths_never_imports_rclpy_and_the_nodes_never_a_command_line_or_a_p
         if rank is not None and rank < LAYERS.index("ros"):
             assert not {name for name in names if name.startswith("rcl") or name.endswith("_msgs")}, module
         if rank is not None and rank < LAYERS.index("cli"):
-            assert not names & {"argparse", "matplotlib"}, module
+            assert "argparse" not in names, module
+        if not is_report(module):
+            assert "matplotlib" not in names, module
+
+
+def test_nothing_in_ros_imports_a_report_module():
+    edges = graph()
+    found = sorted((module, target) for module, targets in edges.items() if module.split(".")[1:2] == ["ros"]
+                   for target in targets if is_report(target))
+    assert not found, found
+
+
+def test_no_two_modules_of_the_package_share_a_name():
+    names = [path.stem for path in PACKAGE.rglob("*.py") if path.name != "__init__.py"]
+    assert sorted({name for name in names if names.count(name) > 1}) == []
+
+
+def test_the_tests_mirror_the_package():
+    """A test module in a folder under test/ is named after a module of the same package folder,
+    or tests that folder as a whole (the node, its inputs, the properties of every method)."""
+    for path in sorted((ROOT / "test").rglob("test_*.py")):
+        folder = path.parent.relative_to(ROOT / "test")
+        if folder.parts:
+            assert (PACKAGE / folder).is_dir(), path

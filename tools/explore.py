@@ -1,4 +1,4 @@
-"""Fresh generated vehicles by the thousand, judged as test/test_generated.py judges them.
+"""Fresh generated vehicles by the thousand, judged as test/allocation/test_generated.py judges them.
 
 Every case of test_generated.CASES runs for each of its methods with hypothesis, not
 derandomised, with --examples draws; the seed is printed so that a run can be repeated

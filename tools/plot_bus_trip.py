@@ -18,9 +18,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from allocator_pkg.cli.sim_timeline import timeline_figure
 from allocator_pkg.simulation.closed_loop import ClosedLoop
 from allocator_pkg.simulation.in_process import in_process_link
+from allocator_pkg.simulation.report.timeline import timeline_figure
 from allocator_pkg.simulation.scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[1]

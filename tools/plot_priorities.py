@@ -22,7 +22,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from allocator_pkg import Allocator, load_vehicle, read_parameters, vehicle_from_parameters
-from allocator_pkg.analysis.capability import Capability
+from allocator_pkg.capability.envelope import Capability
 from allocator_pkg.vehicle.config import DOF_NAMES
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -2,7 +2,7 @@
 
 - docs/configuration.md: the key tables, from allocator_pkg.configuration.schema, between the BEGIN/END
   markers (the prose around them is kept);
-- docs/faults.md: the fault matrix of every shipped vehicle (allocator_pkg.analysis.fault_matrix).
+- docs/faults.md: the fault matrix of every shipped vehicle (allocator_pkg.capability.fault_matrix).
 
 Tests fail when these files and the code disagree.
 """
@@ -10,7 +10,7 @@ Tests fail when these files and the code disagree.
 import sys
 from pathlib import Path
 
-from allocator_pkg.analysis.fault_matrix import markdown
+from allocator_pkg.capability.fault_matrix import markdown
 from allocator_pkg.configuration.schema import markdown_reference
 
 BEGIN = "<!-- BEGIN GENERATED: make docs -->\n"

@@ -17,10 +17,10 @@ import argparse
 import sys
 from pathlib import Path
 
+from ..simulation.report import figures as sim_plots
 from ..simulation.run_setup import SimulationError
 from ..simulation.scenario import ScenarioError, load_scenario
-from . import sim_plots
-from .sim import run
+from .allocator_sim import run
 
 DEFAULT_SCENARIO = Path(__file__).resolve().parents[2] / "config" / "scenarios" / "dp_azimuth_failure.yaml"
 

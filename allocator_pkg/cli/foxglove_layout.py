@@ -24,9 +24,9 @@ import numpy as np
 
 from ..configuration.parameters import load_vehicle
 from ..effectiveness.faults import thrust_limits
+from ..ros.sim_recording import BODY, TOPICS, WORLD
+from ..simulation.report.style import LIMIT_COLOUR, PALETTE
 from ..vehicle.config import Vehicle
-from .sim_recording import BODY, TOPICS, WORLD
-from .sim_style import LIMIT_COLOUR, PALETTE
 
 COMMANDS, STATUS = "/thruster_commands", "/allocation_status"
 UNALLOCATED = {"surge": ("force.x", "N"), "sway": ("force.y", "N"), "heave": ("force.z", "N"),

@@ -25,7 +25,7 @@ class Key:
     ``required`` means it must be given. A per-actuator key whose default differs by actuator
     type has it in ``type_defaults`` (type: default). ``constraint`` says in words what the
     checks of :mod:`allocator_pkg.configuration.parameters` and
-    :mod:`allocator_pkg.configuration.actuators` want beyond type, choices, range and length.
+    :mod:`allocator_pkg.configuration.actuator_parsers` want beyond type, choices, range and length.
     """
 
     name: str

@@ -27,10 +27,10 @@ from ..vehicle.config import (
 )
 from ..vehicle.node_settings import NodeSettings
 from . import schema
-from .actuators import parse_actuator
+from .actuator_parsers import parse_actuator
 from .bias_pairs import parse_bias_pairs
 from .fields import filled, node_field, vehicle_field
-from .flushing import check_flushing
+from .flushing_keys import check_flushing
 from .params_file import read_parameters
 from .power import parse_power
 from .schema import ACTUATOR_KEY_BY_NAME, ACTUATOR_PREFIX, NODE_KEY_BY_NAME, VEHICLE_KEY_BY_NAME

@@ -5,7 +5,7 @@ from.
 ``METHODS`` maps each configuration name to its :class:`~.base.AllocationMethod`: the
 allocator's construction, ``allocator-capability --method``, the benchmarks and the tests'
 parameter lists all read it; the schema offers its names from
-:data:`~allocator_pkg.vehicle.config.METHOD_NAMES` (test/test_schema.py holds the two equal). A
+:data:`~allocator_pkg.vehicle.config.METHOD_NAMES` (test/configuration/test_schema.py holds the two equal). A
 new method is one module with a subclass of :class:`~.base.AllocationMethod`, one line here,
 its name in METHOD_NAMES, its tests and a section in docs/theory.md.
 

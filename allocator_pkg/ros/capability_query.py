@@ -1,6 +1,6 @@
 """``~/get_capability``: the largest scale along a wrench direction that the actuators give
 under the faults, battery voltage, speed and available power in force now
-(:class:`~allocator_pkg.analysis.capability.Capability`, built once per configuration)."""
+(:class:`~allocator_pkg.capability.envelope.Capability`, built once per configuration)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import threading
 import numpy as np
 
 from ..allocation.allocator import Allocator
-from ..analysis.capability import Capability
+from ..capability.envelope import Capability
 from ..vehicle.frames import wrench_between
 from .power_report import available_text
 

@@ -69,7 +69,7 @@ class Outputs:
         self._consequence = self._create(ConsequenceAnalysis, "~/consequence", qos.output()) \
             if vehicle.redundancy_groups else None
         self.consequence_alarm = False
-        """Copied into every status: set by the consequence analysis (:mod:`~allocator_pkg.ros.consequence`)."""
+        """Copied into every status: set by the consequence analysis (:mod:`~allocator_pkg.ros.consequence_topic`)."""
         self._per_actuator: ActuatorTopics | None = None
         self._apply_per_actuator(vehicle, settings, self._create)
         self._ros2_control = Ros2ControlOutput(vehicle, settings, self._create, self._destroy)

@@ -23,7 +23,7 @@ once a second), and with power sources the available power of ``power_available`
 group (:meth:`~AllocationRuntime.set_group_fault`). On the bench, ``~/hold_actuator`` holds one
 actuator (:meth:`~AllocationRuntime.hold`, :mod:`~allocator_pkg.ros.hold`); a stale input still
 stops it. With redundancy groups, each sample feeds the consequence analysis' load filter; the
-analysis runs on a thread of its own (:mod:`~allocator_pkg.ros.consequence`).
+analysis runs on a thread of its own (:mod:`~allocator_pkg.ros.consequence_topic`).
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ from ..vehicle.node_settings import INPUT, TIMER, NodeSettings
 from . import qos, wrench_input
 from .battery import BatteryInput
 from .capability_query import CapabilityQuery
-from .consequence import ConsequenceMonitor
+from .consequence_topic import ConsequenceMonitor
 from .diagnostics import LOG_THROTTLE, Counters, diagnostic_statuses
 from .hold import Hold, refusal
 from .outputs import Outputs

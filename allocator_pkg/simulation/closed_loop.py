@@ -4,7 +4,7 @@ allocator behind a :class:`Link`, so that a run is deterministic for a seed and 
 as the allocator answers.
 
 Two links answer: the real ``allocator_node`` as a child process on ROS 2 sim time
-(``allocator_pkg.cli.sim_link``), and the allocator library in this process, doing what the
+(``allocator_pkg.ros.sim_link``), and the allocator library in this process, doing what the
 node does per sample (:mod:`.in_process`). The loop, its warm-up, events, trace and
 ``metrics.json`` are the same for both."""
 
@@ -25,7 +25,7 @@ from ..configuration.parameters import load_vehicle
 from .controller import StationKeeping
 from .plant import PLANAR, Pose
 from .power_plant import PowerPlant
-from .report import run_report
+from .run_report import run_report
 from .run_setup import RunResult, Voltage, WeatherScale, build_plant, setpoint_vector, warm_up_steps
 from .scenario import Event, Scenario
 from .trace import Trace

@@ -7,7 +7,7 @@ first-order low-pass filter of the requested wrench
 
 (the first sample, or any without a filter, sets y to its request); at every multiple of the
 analysis period 1 / ``consequence.rate`` of the sim clock, the
-:class:`~allocator_pkg.analysis.consequence.Consequence` analysis of the load filtered up to
+:class:`~allocator_pkg.capability.consequence.Consequence` analysis of the load filtered up to
 the sample before, under what the allocator has in force (``InForce``), sets the alarm that
 the statuses carry from that sample on.
 
@@ -23,8 +23,8 @@ import math
 import numpy as np
 
 from ..allocation.allocator import Allocator
-from ..analysis.consequence import Consequence
-from ..analysis.group_loss import InForce
+from ..capability.consequence import Consequence
+from ..capability.group_loss import InForce
 from ..vehicle.node_settings import NodeSettings
 
 NS = 1_000_000_000

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..analysis.environment_loads import VesselParticulars, wave_drift_load, wind_load
+from ..hull.environment_loads import VesselParticulars, wave_drift_load, wind_load
 
 
 @dataclass(frozen=True)

@@ -2,7 +2,7 @@
 :class:`~allocator_pkg.simulation.closed_loop.Link` that does per sample what
 ``allocator_node`` does between the wrench it receives and the commands it publishes, so that
 a run gives the same trace and metrics as with the node in the loop
-(``allocator_pkg.cli.sim_loop``), thousands of times faster to repeat.
+(``allocator_pkg.ros.sim_loop``), thousands of times faster to repeat.
 
 What the node does, and so what this does:
 
@@ -62,7 +62,7 @@ STOPS = 3
 
 def node_parameters(scenario: Scenario) -> dict[str, Any]:
     """The parameters the node of ``scenario`` starts with: its vehicle file's section, then
-    ``trigger``, ``method`` and the scenario's ``parameters`` (``allocator_pkg.cli.sim_loop``'s
+    ``trigger``, ``method`` and the scenario's ``parameters`` (``allocator_pkg.ros.sim_loop``'s
     command line)."""
     return {**read_parameters(scenario.vehicle, NODE_NAME), "trigger": INPUT, "method": scenario.method,
             **scenario.parameters}

@@ -16,11 +16,11 @@ from typing import Any
 
 import yaml
 
-from ..analysis.dp_particulars import load_particulars
-from ..analysis.environment_loads import VesselParticulars
 from ..configuration.parameters import vehicle_from_parameters
 from ..configuration.params_file import read_parameters
 from ..effectiveness.faults import FaultMode, FaultSet
+from ..hull.environment_loads import VesselParticulars
+from ..hull.hull_file import load_hull
 from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec
@@ -241,7 +241,7 @@ def load_scenario(path: str | Path) -> Scenario:
         if not isinstance(data.get("particulars"), str):
             raise ScenarioError("particulars: required for dp_vessel, a particulars file")
         try:
-            particulars = load_particulars(path.parent / data["particulars"]).vessel
+            particulars = load_hull(path.parent / data["particulars"])
         except ValueError as error:
             raise ScenarioError(f"particulars: {error}") from error
     setpoint, initial = section(data, "setpoint"), section(data, "initial")

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..analysis.environment_loads import LoadCoefficients
+from ..hull.environment_loads import LoadCoefficients
 from .kinematics import coriolis_planar
 
 STRIPS = 20

@@ -1,0 +1,166 @@
+"""allocator-capability: the capability envelope of a vehicle as a plot and a table.
+
+``allocator-capability config.yaml [--out folder]`` writes ``<vehicle>_capability.png`` (the
+largest request held per direction in a plane of two controlled DOFs, polar for surge and
+sway, for the nominal vehicle and every single-actuator failure) and ``<vehicle>_capability.csv``
+(the same numbers); ``--all-methods`` adds ``<vehicle>_<method>_capability.png`` and ``.csv``
+for each group of registered methods whose constraints give another capability than the
+file's method. The numbers come from :class:`~allocator_pkg.capability.envelope.Capability`.
+
+``allocator-capability --dnv-level1 VESSEL.yaml PARTICULARS.yaml [--out folder]`` writes the
+DNV-ST-0111 Level 1 DP capability report of :mod:`.dp_capability` (plots, tables, summary);
+``--dnv-level2`` the same at Level 2 with a plot of Level 1 against it; ``--site SITE.yaml`` gives
+Level 2 a site environment in place of Table 2-1 (:mod:`~allocator_pkg.dp.inputs.site`);
+``--dnv-level3`` the time-domain Level 3 of :mod:`.dp_level3` (closed-loop runs on a process pool
+or a Dask cluster).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..allocation.allocator import Allocator
+from ..capability.envelope import Capability, differing_methods, reachable
+from ..capability.report.envelope_files import write_envelopes
+from ..configuration.parameters import load_vehicle
+from ..dp.level3.case import Criteria
+from ..dp.level3.study import BASE_SCENARIO, JOURNAL, Level3Inputs, study
+from ..dp.report.files import write_report
+from ..dp.report.level3_report import write_level3
+from ..methods import METHODS
+from ..vehicle.config import DOF_NAMES
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="allocator-capability", description=__doc__.split("\n\n")[0])
+    parser.add_argument("config", nargs="?", help="vehicle params file")
+    parser.add_argument("--out", default=".", help="folder for <vehicle>_capability.png and .csv")
+    parser.add_argument("--step", type=float, default=5.0, help="degrees between directions (default %(default)s)")
+    parser.add_argument("--yaw-moment", type=float, default=0.0, help="yaw moment held [N m] (default 0)")
+    parser.add_argument("--speed", type=float, default=2.0, help="surge speed for control surfaces [m/s]")
+    parser.add_argument("--method", choices=list(METHODS), help="default: the file's")
+    parser.add_argument("--plane", nargs=2, metavar=("X", "Y"), choices=DOF_NAMES,
+                        help="the two DOFs of the plot (default: surge sway, else the first two controlled)")
+    parser.add_argument("--all-methods", action="store_true",
+                        help="also <vehicle>_<method>_capability.png and .csv for each group of registered methods "
+                             "whose constraints give another capability than the file's method")
+    parser.add_argument("--dnv-level1", nargs=2, metavar=("VESSEL", "PARTICULARS"),
+                        help="DNV-ST-0111 Level 1 DP capability report of a vehicle params file and a particulars "
+                             "file (config/particulars/): <vehicle>_dp_l1_report.md, plots, tables")
+    parser.add_argument("--dnv-level2", nargs=2, metavar=("VESSEL", "PARTICULARS"),
+                        help="the same at Level 2 with the vessel's own data (<vehicle>_dp_l2...), and a plot of "
+                             "Level 1 against Level 2")
+    parser.add_argument("--site", metavar="SITE",
+                        help="with --dnv-level2 or --dnv-level3: a site environment file (wind, hs, tp or tz, "
+                             "current over the capability numbers) in place of Table 2-1 and of the particulars' "
+                             "level2.site")
+    parser.add_argument("--heading-step", "--headings", type=float, default=10.0,
+                        help="degrees between headings for --dnv-level1/2/3 (default %(default)s)")
+    add_level3_arguments(parser)
+    arguments = parser.parse_args(argv)
+    if arguments.site and not (arguments.dnv_level2 or arguments.dnv_level3):
+        parser.error("--site goes with --dnv-level2 or --dnv-level3")
+    if arguments.dnv_level3:
+        return level3_command(arguments)
+    if arguments.dnv_level1 or arguments.dnv_level2:
+        return _dnv(arguments)
+    if arguments.config is None:
+        parser.error("a vehicle params file, or --dnv-level1/--dnv-level2 VESSEL PARTICULARS")
+    vehicle = load_vehicle(arguments.config)
+    plane = tuple(arguments.plane) if arguments.plane else None
+    try:
+        capability = Capability(vehicle, arguments.method, arguments.speed, plane)
+    except ValueError as error:
+        print(f"allocator-capability: {error}", file=sys.stderr)
+        return 2
+    for warning in Allocator(reachable(vehicle), method=capability.method).warnings:
+        print(f"allocator-capability: warning: {warning}", file=sys.stderr)
+    stem = Path(arguments.config).stem
+    _print(write_envelopes(capability, Path(arguments.out), stem, "", capability.method, arguments.step,
+                           arguments.yaw_moment))
+    if arguments.all_methods:
+        for names in differing_methods(vehicle, capability.method):
+            other = Capability(vehicle, names[0], arguments.speed, plane)
+            _print(write_envelopes(other, Path(arguments.out), stem, f"_{names[0]}", ", ".join(names),
+                                   arguments.step, arguments.yaw_moment))
+    return 0
+
+
+def add_level3_arguments(parser: argparse.ArgumentParser) -> None:
+    """The options of ``--dnv-level3`` on the ``allocator-capability`` parser."""
+    defaults = Criteria()
+    parser.add_argument("--dnv-level3", nargs=2, metavar=("VESSEL", "PARTICULARS"),
+                        help="DNV-ST-0111 Level 3 as read here: seeded closed-loop time-domain runs per heading, "
+                             "condition and redundancy group (<vehicle>_dp_l3..., cases.jsonl)")
+    parser.add_argument("--seeds", type=int, default=1, help="--dnv-level3: seeds per condition (default 1)")
+    engine = parser.add_mutually_exclusive_group()
+    engine.add_argument("--workers", type=int, help="--dnv-level3: local worker processes (default: the CPU count)")
+    engine.add_argument("--scheduler", metavar="ADDRESS",
+                        help="--dnv-level3: run the cases on the Dask distributed scheduler at ADDRESS")
+    parser.add_argument("--resume", action="store_true",
+                        help="--dnv-level3: keep the finished cases of DIR/cases.jsonl and run only the rest")
+    parser.add_argument("--position-limit", type=float, default=defaults.position_limit,
+                        help="--dnv-level3: largest position excursion held [m] (default %(default)s)")
+    parser.add_argument("--heading-limit", type=float, default=defaults.heading_limit_deg,
+                        help="--dnv-level3: largest heading deviation held [deg] (default %(default)s)")
+    parser.add_argument("--settle", type=float, default=defaults.settle,
+                        help="--dnv-level3: seconds on station before a group fails (default %(default)s)")
+    parser.add_argument("--duration", type=float, default=defaults.duration,
+                        help="--dnv-level3: seconds simulated after settling (default %(default)s)")
+    parser.add_argument("--scenario", type=Path, default=BASE_SCENARIO,
+                        help="--dnv-level3: the dp_vessel scenario giving controller gains, thruster time constant "
+                             "and the environment's variations (default config/scenarios/dp_station_keeping.yaml)")
+    parser.add_argument("--no-progress", action="store_true", help="--dnv-level3: no progress bar")
+
+
+def level3_command(arguments: argparse.Namespace) -> int:
+    """``--dnv-level3``: check every input, run the cases, write the outputs; the summary, the
+    scope and criteria lines and the paths on stdout."""
+    vessel, particulars = arguments.dnv_level3
+    out = Path(arguments.out)
+    try:
+        inputs = Level3Inputs(Path(vessel), Path(particulars), arguments.scenario,
+                              Path(arguments.site) if arguments.site else None, arguments.method,
+                              arguments.heading_step, arguments.seeds,
+                              Criteria(arguments.position_limit, arguments.heading_limit, arguments.settle,
+                                       arguments.duration))
+        prepared, result, finished = study(inputs, out, arguments.workers, arguments.scheduler, arguments.resume,
+                                           not arguments.no_progress)
+    except (ValueError, OSError) as error:             # a ConfigError, a ScenarioError too
+        print(f"allocator-capability: {error}", file=sys.stderr)
+        return 2
+    paths = write_level3(prepared, result, finished, out)
+    print(result.summary_line())
+    print(result.scope)
+    print(result.notes[0])
+    for path in [out / JOURNAL, *paths]:
+        print(path)
+    return 0
+
+
+def _print(paths: list[Path]) -> None:
+    for path in paths:
+        print(path)
+
+
+def _dnv(arguments: argparse.Namespace) -> int:
+    """--dnv-level1/2: the report of cli/dp_capability.py, the summary and scope lines on stdout."""
+    level = 1 if arguments.dnv_level1 else 2
+    vessel, particulars = arguments.dnv_level1 or arguments.dnv_level2
+    try:
+        result, paths = write_report(vessel, particulars, arguments.out, arguments.heading_step, arguments.method,
+                                     level, arguments.site)
+    except ValueError as error:                 # a ConfigError too
+        print(f"allocator-capability: {error}", file=sys.stderr)
+        return 2
+    print(result.summary_line())
+    print(result.scope)
+    for path in paths:
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

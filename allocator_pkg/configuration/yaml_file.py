@@ -1,0 +1,23 @@
+"""The one reader of this package's YAML input files that are not ROS params files (particulars,
+site, scenario, Level 3 criteria): a mapping, with the file's path named in every error."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+
+def read_mapping(path: str | Path, what: str) -> Mapping[str, Any]:
+    """The top-level mapping of the YAML file ``path``; a ``ValueError`` that names the path when
+    the file cannot be read, is not YAML or is not a mapping (``what`` names the kind of file)."""
+    path = Path(path)
+    try:
+        data = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError) as error:
+        raise ValueError(f"{path}: {error}") from error
+    if not isinstance(data, Mapping):
+        raise ValueError(f"{path}: {what} is a mapping of keys to values")
+    return data

@@ -1,0 +1,175 @@
+"""One case of the DNV-ST-0111 Level 3 (time-domain) capability analysis: a seeded in-process
+closed-loop run (:class:`~.closed_loop.ClosedLoop` over :class:`~.in_process.InProcessLink`) of
+the DP vessel on station, with wind, current and waves of one capability number's condition all
+coming from one heading, intact or with a redundancy group failed once the vessel has settled
+on station, so that the failure's transient counts.
+
+A case holds when the horizontal position excursion from the set-point stays within
+``position_limit`` [m] and the heading deviation within ``heading_limit_deg`` over the whole run
+(settling and after). The public transcription of the standard used here
+(WilliamBoland1/Prosjektoppgave_Collab) has no Level 3 text: the criteria, the settling time, the
+duration and the environment's variations are this package's defaults (:data:`CRITERIA_NOTE`),
+stated in every output. Each case is a pure function of its inputs, the seed among them.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import tempfile
+from collections.abc import Iterator
+from dataclasses import asdict, dataclass, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ...simulation.closed_loop import ClosedLoop
+from ...simulation.in_process import InProcessLink
+from ...simulation.metrics import heading_errors
+from ...simulation.scenario import Event, Scenario
+from ..standard.weather import Condition
+
+INTACT = "intact"
+TRACK_PERIOD = 1.0
+"""[s] between the samples of a case's x-y track kept for the footprint plots."""
+CRITERIA_NOTE = ("Level 3 criteria: the transcription used has no Level 3 text; a case holds when the horizontal "
+                 "position excursion from the set-point stays within the position limit and the heading deviation "
+                 "within the heading limit over the whole run (this package's defaults, not the standard's)")
+
+
+@dataclass(frozen=True)
+class Criteria:
+    """What a case must hold [m, deg] and how long it runs [s]: ``settle`` on station, then
+    ``duration`` (a group fails at the end of ``settle``)."""
+
+    position_limit: float = 5.0
+    heading_limit_deg: float = 3.0
+    settle: float = 60.0
+    duration: float = 600.0
+
+    def __post_init__(self) -> None:
+        for name, value in asdict(self).items():
+            if not (math.isfinite(value) and value > 0.0):
+                raise ValueError(f"{name}: a finite number > 0, not {value!r}")
+
+    def describe(self) -> str:
+        return (f"position limit {self.position_limit:g} m, heading limit {self.heading_limit_deg:g} deg, "
+                f"{self.settle:g} s on station (a group fails then) + {self.duration:g} s simulated per case")
+
+    def short(self) -> str:
+        """The criteria in a few words, for a plot's caption."""
+        return (f"limits {self.position_limit:g} m, {self.heading_limit_deg:g} deg; {self.settle:g} + "
+                f"{self.duration:g} s per case")
+
+
+@dataclass(frozen=True)
+class Case:
+    """Heading [deg, environment from; 0 ahead, 90 from starboard], capability number, ``intact``
+    or a redundancy group, seed index."""
+
+    heading_deg: float
+    number: int
+    group: str
+    seed: int
+
+    @property
+    def key(self) -> tuple[float, int, str, int]:
+        return (self.heading_deg, self.number, self.group, self.seed)
+
+
+@dataclass(frozen=True)
+class CaseSetup:
+    """Everything a case needs besides itself: the base scenario (vessel, particulars, method,
+    controller gains, thruster time constant, the environment's variations), the condition of
+    each number, each group's actuators, the vehicle file's named redundancy groups (failed with
+    ``Allocator.set_group_fault``) and the criteria."""
+
+    scenario: Scenario
+    conditions: tuple[Condition, ...]
+    groups: dict[str, tuple[str, ...]]
+    named_groups: frozenset[str]
+    criteria: Criteria
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """Position excursion [m] (max, mean), heading deviation [deg] (max), whether the case held,
+    and the x-y track (north, east [m]) every :data:`TRACK_PERIOD`."""
+
+    case: Case
+    max_position: float
+    mean_position: float
+    max_heading_deg: float
+    held: bool
+    track: tuple[tuple[float, float], ...]
+
+    def to_json(self) -> dict[str, Any]:
+        return {"heading_deg": self.case.heading_deg, "number": self.case.number, "group": self.case.group,
+                "seed": self.case.seed, "max_position_m": self.max_position, "mean_position_m": self.mean_position,
+                "max_heading_deg": self.max_heading_deg, "held": self.held, "track": [list(p) for p in self.track]}
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> CaseResult:
+        case = Case(float(data["heading_deg"]), int(data["number"]), str(data["group"]), int(data["seed"]))
+        return cls(case, float(data["max_position_m"]), float(data["mean_position_m"]),
+                   float(data["max_heading_deg"]), bool(data["held"]), tuple((float(n), float(e))
+                                                                             for n, e in data["track"]))
+
+
+def case_scenario(setup: CaseSetup, case: Case) -> Scenario:
+    """The scenario of one case: the condition's wind (gusts at the base scenario's turbulence
+    intensity), current and waves, all from ``case.heading_deg`` relative to the bow (the
+    set-point heading 0 deg, north), the base scenario's slow variations, the seed (the base
+    scenario's plus the case's index), and a failure of every actuator of the group at ``settle``."""
+    base, criteria = setup.scenario, setup.criteria
+    condition = setup.conditions[case.number]
+    spec = base.environment
+    intensity = spec.gusts.sigma / spec.wind_speed if spec.wind_speed > 0.0 else 0.0
+    heading = case.heading_deg
+    environment = replace(spec, current_speed=condition.current, current_direction=heading,
+                          wind_speed=condition.wind, wind_direction=heading,
+                          gusts=replace(spec.gusts, sigma=intensity * condition.wind),
+                          wave_height=condition.hs, wave_direction=heading,
+                          wave_period=condition.tp if condition.tp > 0.0 else spec.wave_period)
+    failed = () if case.group == INTACT else setup.groups[case.group]
+    events = tuple(Event(criteria.settle, "fault", actuator=name, mode="failed", value=0.0) for name in failed)
+    return replace(base, name=f"{base.name}_l3", duration=criteria.settle + criteria.duration,
+                   seed=base.seed + case.seed, setpoint_position=(0.0, 0.0, 0.0), setpoint_heading=0.0,
+                   initial_position=(0.0, 0.0, 0.0), initial_heading=0.0, environment=environment, events=events,
+                   bounds={}, windows=())
+
+
+class GroupFaultLink(InProcessLink):
+    """The in-process link failing a named redundancy group through ``Allocator.set_group_fault``
+    (its actuators and its power sources) at the first fault of one of its actuators."""
+
+    def __init__(self, scenario: Scenario, group: str | None) -> None:
+        super().__init__(scenario)
+        self.group = group
+
+    def set_fault(self, actuator: str, mode: str, value: float) -> str:
+        if self.group is not None and self.group not in self.allocator.group_faults:
+            self.allocator.set_group_fault(self.group)
+        return super().set_fault(actuator, mode, value)
+
+
+def run_case(case: Case, setup: CaseSetup) -> CaseResult:
+    """One case, start to end (no file is kept)."""
+    scenario = case_scenario(setup, case)
+    group = case.group if case.group in setup.named_groups else None
+
+    @contextlib.contextmanager
+    def connect(run: Scenario, out: Path) -> Iterator[GroupFaultLink]:
+        yield GroupFaultLink(run, group)
+
+    with tempfile.TemporaryDirectory(prefix="l3_case_") as folder:
+        trace = ClosedLoop(scenario, Path(folder), connect, log=lambda _: None).run().trace
+    position = trace.position_errors()
+    heading = np.degrees(np.abs(heading_errors(np.array(trace.attitude)[:, 2], np.array(trace.setpoint_heading))))
+    criteria = setup.criteria
+    max_position, max_heading = float(np.max(position)), float(np.max(heading))
+    every = max(1, round(TRACK_PERIOD / trace.period))
+    track = tuple((float(p[0]), float(p[1])) for p in trace.position[::every])
+    return CaseResult(case, max_position, float(np.mean(position)), max_heading,
+                      max_position <= criteria.position_limit and max_heading <= criteria.heading_limit_deg, track)

@@ -1,0 +1,155 @@
+"""DNV-ST-0111 Level 3 (time-domain) DP capability as this package reads it:
+``allocator-capability --dnv-level3 VESSEL PARTICULARS --out DIR [--headings STEP] [--seeds N]
+[--workers N | --scheduler ADDRESS] [--resume]``.
+
+Per heading and case (intact, each redundancy group) the conditions rise per [2.4.4] (Table 2-1,
+or the Level 2 site's) until the first that fails in seeded in-process closed-loop runs
+(:mod:`allocator_pkg.dp.level3.case`); a condition the static Level 2 balance already fails
+is not simulated. :func:`study` checks every input before the first case runs, then runs the
+cases (:mod:`.level3_engine`) and gives the result as a
+:class:`~allocator_pkg.dp.level1.Level1Result` of level 3, written out by
+:mod:`.dp_level3_report`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from ...configuration.parameters import load_vehicle
+from ...simulation.scenario import load_scenario, vehicle_config
+from ...simulation.scenario_check import check_method_serves, check_vehicle
+from ..inputs.particulars import load_particulars
+from ..inputs.site import load_site
+from ..level1 import INTACT, WORST, Level1, Level1Result
+from ..level2 import Level2
+from .case import CRITERIA_NOTE, CaseResult, CaseSetup, Criteria
+from .engine import Journal, run_search
+from .search import STATIC, Level3Search
+
+BASE_SCENARIO = Path(__file__).resolve().parents[2] / "config" / "scenarios" / "dp_station_keeping.yaml"
+"""The scenario whose controller gains, thruster time constant and environment variations the
+cases use (``--scenario``)."""
+JOURNAL = "cases.jsonl"
+SCOPE_L3 = ("DNV-ST-0111 (Dec 2021) Level 3 as read here (the transcription used has no Level 3 text): seeded "
+            "in-process closed-loop time-domain runs of the vessel with this package's allocator, its station-keeping "
+            "controller and its simulation load model (not the standard's [3.5]-[3.7]); wind, current and waves of "
+            "Table 2-1 (or the Level 2 site's) from each heading; a redundancy group failed after settling on "
+            "station; conditions rising per [2.4.4] to the first that fails; a condition the static Level 2 "
+            "balance fails is not simulated. Not verified by DNV.")
+
+
+@dataclass(frozen=True)
+class Level3Inputs:
+    """What a study runs on: the two files, the base scenario, an optional site, the method,
+    the heading step [deg], seeds per condition and the criteria."""
+
+    vessel: Path
+    particulars: Path
+    scenario: Path = BASE_SCENARIO
+    site: Path | None = None
+    method: str | None = None
+    heading_step: float = 10.0
+    seeds: int = 1
+    criteria: Criteria = field(default_factory=Criteria)
+
+    def fingerprint(self) -> dict[str, str]:
+        """The journal's header: every input, the files by their content."""
+        def digest(path: Path | None) -> str:
+            return hashlib.sha256(path.read_bytes()).hexdigest() if path else ""
+        return {"level3": "1", "vessel": digest(self.vessel), "particulars": digest(self.particulars),
+                "scenario": digest(self.scenario), "site": digest(self.site), "method": str(self.method),
+                "heading_step": repr(self.heading_step), "seeds": str(self.seeds),
+                "criteria": self.criteria.describe()}
+
+
+@dataclass(frozen=True)
+class Level3Study:
+    """The checked set-up: the static Level 1 and Level 2 analyses, the case set-up and the search."""
+
+    inputs: Level3Inputs
+    level1: Level1Result
+    level2: Level1Result
+    analysis: Level2
+    setup: CaseSetup
+    search: Level3Search
+
+
+def prepare(inputs: Level3Inputs) -> Level3Study:
+    """Check every input and run the static balances; ValueError naming what is wrong."""
+    if not (isinstance(inputs.seeds, int) and inputs.seeds >= 1):
+        raise ValueError(f"--seeds: an integer >= 1, not {inputs.seeds!r}")
+    step = inputs.heading_step
+    if not 0.0 < step <= 90.0 or not math.isclose(360.0 / step, round(360.0 / step)):
+        raise ValueError(f"--headings: a step that divides 360 deg and is at most 90 deg, not {step}")
+    vehicle, particulars = load_vehicle(inputs.vessel), load_particulars(inputs.particulars)
+    base = load_scenario(inputs.scenario)
+    if base.model != "dp_vessel":
+        raise ValueError(f"--scenario: a dp_vessel scenario, not {base.model}")
+    base = replace(base, vehicle=inputs.vessel.resolve(), particulars=particulars.vessel,
+                   method=inputs.method or vehicle.method)
+    config = vehicle_config(base.vehicle, base.parameters)
+    check_vehicle("dp_vessel", config, str(inputs.vessel))
+    check_method_serves(base.method, config)
+    analysis = Level2(vehicle, particulars, inputs.method, load_site(inputs.site) if inputs.site else None)
+    level2 = analysis.run(step)
+    level1 = Level1(vehicle, particulars, inputs.method).run(step)
+    groups = {name: tuple(member for member in members if member in vehicle.names)
+              for name, members in analysis.groups.items()}
+    setup = CaseSetup(base, tuple(analysis.conditions), groups,
+                      frozenset(group.name for group in vehicle.redundancy_groups), inputs.criteria)
+    headings = tuple(float(h) for h in level2.headings_deg)
+    ceilings = {(heading, case): int(level2.numbers[case][k]) for case in (INTACT, *groups)
+                for k, heading in enumerate(headings)}
+    search = Level3Search(headings, (INTACT, *groups), inputs.seeds, ceilings, len(analysis.conditions) - 1)
+    return Level3Study(inputs, level1, level2, analysis, setup, search)
+
+
+def study(inputs: Level3Inputs, out: Path, workers: int | None = None, scheduler: str | None = None,
+          resume: bool = False, progress: bool = True) -> tuple[Level3Study, Level1Result, dict[tuple, CaseResult]]:
+    """Check, run every case (journal ``out/cases.jsonl``), and give (study, Level 3 result, cases)."""
+    if workers is not None and workers < 1:
+        raise ValueError(f"--workers: an integer >= 1, not {workers}")
+    prepared = prepare(inputs)
+    journal = Journal(out / JOURNAL, inputs.fingerprint(), resume)
+    finished = run_search(prepared.search, prepared.setup, journal, workers, scheduler, progress=progress)
+    return prepared, level3_result(prepared, finished), finished
+
+
+def level3_result(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> Level1Result:
+    """Numbers per heading and case, the worst single failure the lowest over the groups per
+    heading; the limiting wind speed is the number's condition's (no bisection in the time domain)."""
+    search, conditions = prepared.search, prepared.setup.conditions
+    headings = np.array(search.headings)
+    numbers = {case: np.array([search.outcome((h, case), finished).number for h in search.headings], dtype=int)
+               for case in search.cases}
+    groups = [case for case in search.cases if case != INTACT]
+    numbers[WORST] = np.min([numbers[g] for g in groups], axis=0)
+    winds = {case: np.array([conditions[n].wind for n in values]) for case, values in numbers.items()}
+    return Level1Result(headings, numbers, winds, tuple(notes(prepared, finished)), 3, SCOPE_L3, conditions)
+
+
+def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]:
+    """What the numbers rest on: criteria, durations, seeds, environment, and per heading and
+    case why the number stops where it does."""
+    inputs, search = prepared.inputs, prepared.search
+    lines = [f"{CRITERIA_NOTE}: {inputs.criteria.describe()}.",
+             f"Seeds per condition: {inputs.seeds} (a condition holds when every seed holds); base scenario "
+             f"{inputs.scenario.name} (controller gains, thruster time constant, the environment's slow variations; "
+             f"gusts at its turbulence intensity); method {prepared.setup.scenario.method}.",
+             prepared.analysis.site.describe() if prepared.analysis.site else
+             "Environment: Table 2-1 (no site environment given).",
+             "Limiting wind speed: the wind of the number's condition (no bisection between conditions in the time "
+             "domain)."]
+    static = []
+    for chain in search.chains():
+        outcome = search.outcome(chain, finished)
+        if outcome.reason == STATIC:
+            static.append(f"{chain[1]} {chain[0]:g} deg: {outcome.number + 1}")
+    lines.append("Not simulated, the static Level 2 balance already fails them (case heading: condition): "
+                 + ("; ".join(static) if static else "none") + ".")
+    return lines

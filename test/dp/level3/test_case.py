@@ -1,0 +1,95 @@
+"""The Level 3 case runner: a seeded in-process closed-loop run per (heading, condition, case, seed)."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from conftest import ROOT
+
+from allocator_pkg.configuration.parameters import load_vehicle
+from allocator_pkg.dp.level3.case import (
+    INTACT,
+    Case,
+    CaseResult,
+    CaseSetup,
+    Criteria,
+    GroupFaultLink,
+    case_scenario,
+    run_case,
+)
+from allocator_pkg.dp.standard.weather import CONDITIONS
+from allocator_pkg.simulation.closed_loop import ClosedLoop
+from allocator_pkg.simulation.run_setup import build_plant
+from allocator_pkg.simulation.scenario import load_scenario
+
+GROUPS = {"switchboard_a": ("azimuth_stbd", "tunnel_fwd"), "switchboard_b": ("azimuth_port", "tunnel_aft")}
+
+
+@pytest.fixture(scope="module")
+def setup() -> CaseSetup:
+    scenario = load_scenario(ROOT / "config/scenarios/dp_station_keeping.yaml")
+    return CaseSetup(scenario, CONDITIONS, GROUPS, frozenset(GROUPS), Criteria(1.0, 3.0, settle=5.0, duration=15.0))
+
+
+def test_environment_comes_from_the_heading(setup):
+    scenario = case_scenario(setup, Case(90.0, 6, INTACT, 2))
+    spec = scenario.environment
+    assert (spec.wind_direction, spec.current_direction, spec.wave_direction) == (90.0, 90.0, 90.0)
+    assert (spec.wind_speed, spec.wave_height, spec.wave_period, spec.current_speed) == (13.8, 3.1, 8.5, 0.75)
+    base = setup.scenario.environment                         # the base's turbulence intensity
+    assert spec.gusts.sigma == pytest.approx(13.8 * base.gusts.sigma / base.wind_speed)
+    assert scenario.seed == setup.scenario.seed + 2 and scenario.duration == 20.0 and not scenario.events
+
+
+def test_a_group_fails_every_actuator_after_settling(setup):
+    events = case_scenario(setup, Case(0.0, 3, "switchboard_b", 0)).events
+    assert [(e.time, e.kind, e.actuator, e.mode) for e in events] == [
+        (5.0, "fault", "azimuth_port", "failed"), (5.0, "fault", "tunnel_aft", "failed")]
+
+
+def test_beam_weather_from_starboard_pushes_the_vessel_to_port(setup):
+    vehicle = load_vehicle(setup.scenario.vehicle)
+    for heading, side in ((90.0, -1.0), (270.0, 1.0)):
+        plant = build_plant(case_scenario(setup, Case(heading, 5, INTACT, 0)), vehicle)
+        force = plant.environment_force()                      # body frame: Y to starboard
+        assert np.sign(force[1]) == side and abs(force[1]) > 10.0 * abs(force[0])
+    ahead = build_plant(case_scenario(setup, Case(0.0, 5, INTACT, 0)), vehicle).environment_force()
+    assert ahead[0] < 0.0 and abs(ahead[0]) > 10.0 * abs(ahead[1])
+
+
+def test_a_case_is_a_pure_function_of_its_inputs(setup):
+    case = Case(30.0, 6, "switchboard_a", 0)
+    first, second = run_case(case, setup), run_case(case, setup)
+    assert first == second
+    assert CaseResult.from_json(first.to_json()) == first
+    other = run_case(replace(case, seed=1), setup)
+    assert other.track != first.track                          # another seed, other gusts
+
+
+def test_criteria_decide_held(setup):
+    result = run_case(Case(90.0, 7, "switchboard_a", 0), setup)
+    assert result.held == (result.max_position <= 1.0 and result.max_heading_deg <= 3.0)
+    loose = replace(setup, criteria=Criteria(result.max_position + 0.01, result.max_heading_deg + 0.01, 5.0, 15.0))
+    tight = replace(setup, criteria=Criteria(0.5 * result.max_position, 90.0, 5.0, 15.0))
+    assert run_case(result.case, loose).held and not run_case(result.case, tight).held
+
+
+def test_the_group_link_fails_the_group_and_the_simulated_thrusters(setup, tmp_path):
+    scenario = case_scenario(setup, Case(60.0, 4, "switchboard_a", 0))
+    links = []
+
+    def connect(run, out):
+        import contextlib
+
+        @contextlib.contextmanager
+        def opened():
+            links.append(GroupFaultLink(run, "switchboard_a"))
+            yield links[-1]
+        return opened()
+
+    trace = ClosedLoop(scenario, tmp_path, connect, log=lambda _: None).run().trace
+    assert links[0].allocator.group_faults == ("switchboard_a",)
+    thrust, time = np.array(trace.thrust), np.array(trace.time)
+    failed = [trace.names.index(name) for name in GROUPS["switchboard_a"]]
+    assert np.all(thrust[time > 5.0 + 1e-9][:, failed] == 0.0)
+    assert np.any(thrust[time < 5.0][:, failed] != 0.0)

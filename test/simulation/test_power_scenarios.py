@@ -1,0 +1,80 @@
+"""The DP power scenarios in process, at half their length: a switchboard trip, power-limited
+station keeping and the consequence alarm ahead of the loss of position. No source ever draws
+more than the simulated power plant gives (time_over_available 0, checked against the trace
+itself too), a tripped switchboard's thrusters give nothing, the power limit costs position,
+and the consequence alarm comes before the failure and before the position is lost."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from conftest import ROOT
+
+from allocator_pkg.simulation.closed_loop import ClosedLoop
+from allocator_pkg.simulation.in_process import in_process_link
+from allocator_pkg.simulation.report.figures import nominal
+from allocator_pkg.simulation.scenario import load_scenario
+
+SCALE = 0.5
+
+
+def run(case, tmp_path, name="run"):
+    loop = ClosedLoop(case, tmp_path / name, in_process_link, log=lambda _: None)
+    return loop, loop.run()
+
+
+def scenario(name):
+    return load_scenario(ROOT / "config" / "scenarios" / f"{name}.yaml").scaled(SCALE)
+
+
+def assert_never_over(result):
+    a = result.trace.power_arrays()
+    assert result.metrics["time_over_available"] == 0.0
+    assert np.all(a["source_power"] <= 1.01 * a["source_available"])
+    for figures in result.report["sources"].values():
+        assert figures["time_over_available"] == 0.0
+
+
+def test_a_switchboard_trip_fails_its_thrusters_and_the_other_board_stays_within_its_power(tmp_path):
+    case = scenario("dp_switchboard_trip")
+    loop, result = run(case, tmp_path)
+    trip, cut = (event.time for event in case.events)
+    assert_never_over(result)
+    t = np.array(result.trace.time)
+    a = result.trace.power_arrays() | result.trace.arrays()
+    names = list(result.vehicle.names)
+    lost = [names.index("azimuth_port"), names.index("tunnel_aft")]
+    assert np.all(a["thrust"][t >= trip][:, lost] == 0.0) and np.any(a["thrust"][t < trip][:, lost] != 0.0)
+    assert np.all(a["source_power"][t >= trip, 1] == 0.0) and np.all(a["source_available"][t >= trip, 1] == 0.0)
+    assert np.all(a["source_available"][t >= cut, 0] == 450.0)
+    assert np.max(a["source_power"][t >= cut, 0]) <= 606.0
+    thrusters = loop.plant.thrusters                                              # the simulated ones failed too
+    assert np.all(thrusters.efficiency[lost] == 0.0) and np.all(thrusters.efficiency[[0, 2]] == 1.0)
+    assert trip <= result.metrics["consequence_alarm_time"] <= trip + 1.0       # the other board left alone
+    assert result.metrics["position_error_max"] <= case.bounds["position_error_max"]
+
+
+def test_power_limited_station_keeping_loses_position_but_never_overloads(tmp_path):
+    case = scenario("dp_power_limited")
+    _, limited = run(case, tmp_path)
+    _, unlimited = run(nominal(case), tmp_path, "unlimited")
+    assert_never_over(limited)
+    assert np.max(limited.trace.power_arrays()["source_power"]) <= 1.01 * 450.0
+    assert np.max(unlimited.trace.power_arrays()["source_power"]) > 1.2 * 450.0
+    assert limited.metrics["position_error_max"] > 2.0 * unlimited.metrics["position_error_max"]
+    assert limited.metrics["saturated_fraction"] > 0.3 > unlimited.metrics["saturated_fraction"]
+
+
+def test_the_consequence_alarm_comes_before_the_failure_and_the_loss_of_position(tmp_path):
+    case = scenario("dp_consequence_alarm")
+    fault = next(event.time for event in case.events if event.kind == "group_fault")
+    _, result = run(case, tmp_path)
+    _, calm = run(replace(case, events=()), tmp_path, "calm")
+    metrics = result.metrics
+    assert_never_over(result)
+    assert metrics["consequence_alarm_time"] < fault < metrics["position_lost_time"] < case.duration
+    lead = metrics["position_lost_time"] - metrics["consequence_alarm_time"]
+    assert metrics["alarm_lead_time"] == pytest.approx(lead)
+    assert metrics["alarm_lead_time"] > 10.0 and metrics["alarm_after_position_loss"] == 0.0
+    assert result.report["windows"]["before_fault"]["metrics"]["position_error_max"] <= case.position_limit
+    assert calm.metrics["consequence_alarm_time"] == np.inf                      # the weather raised it
