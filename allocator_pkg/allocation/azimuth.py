@@ -122,6 +122,26 @@ def plan(
             current_sigma = sigma
         state.sigma = current_sigma
 
+    return _window(rotation, alpha0, angle_step, piece, forbidden, best, current_sigma, (window_low, window_high),
+                   thrust_range)
+
+
+def _window(
+    rotation: RotationConfig,
+    alpha0: float,
+    angle_step: float,
+    piece: tuple[float, float],
+    forbidden: list[tuple[float, float]],
+    best: tuple[int, float, bool] | None,
+    current_sigma: int,
+    thrust_window: tuple[float, float],
+    thrust_range: tuple[float, float],
+) -> AzimuthLimits:
+    """The limits of a thruster that keeps pushing on the side ``current_sigma``: its thrust window on
+    that side, and the angles of ``piece`` (offsets from ``alpha0``) within a rate step, opened
+    only toward the long way round where the feasible sector's end blocks the short way, and
+    at most half a turn wide about the wanted direction."""
+    window_low, window_high = thrust_window
     if current_sigma > 0:
         thrust_low, thrust_high = max(window_low, 0.0), max(window_high, 0.0)
     else:

@@ -43,7 +43,7 @@ def test_allocator_ctl_and_the_nodes_keep_dds_on_this_machine_unless_told_otherw
              "    print(os.environ.get('ROS_DOMAIN_ID'), os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE'))\n"
              "    sys.exit(0)\n"
              "rclpy.init = init\n"
-             "from allocator_pkg.cli import ctl\n"
+             "from allocator_pkg.cli import allocator_ctl as ctl\n"
              "from allocator_pkg.ros import main_loop\n"
              "ctl.main(['clear']) if sys.argv[1] == 'ctl' else main_loop.spin(None)\n")
     plain = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS_AUTOMATIC_DISCOVERY_RANGE")}
