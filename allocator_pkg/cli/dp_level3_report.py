@@ -29,9 +29,12 @@ from .dp_capability import write_csv
 from .dp_level3 import BASE_SCENARIO, JOURNAL, Level3Inputs, Level3Study, study
 from .dp_plots import Outline, polar_figure, polar_plot
 from .dp_report import TABLES, input_tables, write_table
+from .level3_engine import CaseLost, Interrupted
 
 CASE_COLUMNS = ("case", "heading_deg", "capability_number", "seed", "wind_speed", "hs", "tp", "current",
                 "max_position_m", "mean_position_m", "max_heading_deg", "held")
+INTERRUPTED = 130
+"""The exit status of a run stopped by SIGINT (128 + the signal's number, as a shell gives)."""
 LIMIT_COLUMNS = ("case", "heading_deg", "capability_number", "limited_by")
 CASES_TABLE = ("Level 3 cases run: the condition (number; wind [m/s], Hs [m], Tp [s], current [m/s]) from the "
                "heading, intact or the group failed after settling; position excursion from the set-point [m] (max, "
@@ -202,9 +205,15 @@ def level3_command(parser, arguments) -> int:
                                        arguments.duration))
         prepared, result, finished = study(inputs, out, arguments.workers, arguments.scheduler, arguments.resume,
                                            not arguments.no_progress)
+    except Interrupted as interrupted:
+        print(f"allocator-capability: {interrupted}", file=sys.stderr)
+        return INTERRUPTED
     except (ValueError, OSError) as error:             # a ConfigError, a ScenarioError too
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2
+    except CaseLost as error:
+        print(f"allocator-capability: {error}; rerun with --resume", file=sys.stderr)
+        return 1
     paths = write_level3(prepared, result, finished, out)
     print(result.summary_line())
     print(result.scope)
