@@ -15,8 +15,8 @@ from conftest import DATA, ROOT
 
 from allocator_pkg.cli import level3_engine
 from allocator_pkg.cli.dp_level3 import Level3Inputs, prepare
-from allocator_pkg.cli.level3_engine import DaskEngine, Journal, open_engine, run_search
-from allocator_pkg.simulation.level3_case import CaseResult, Criteria, run_case
+from allocator_pkg.cli.level3_engine import DaskEngine, Journal, PoolEngine, open_engine, run_search
+from allocator_pkg.simulation.level3_case import Case, CaseResult, Criteria, run_case
 
 INPUTS = Level3Inputs(ROOT / "config/dp_vessel.yaml", ROOT / "config/particulars/dp_vessel.yaml",
                       site=DATA / "sites" / "level3_site.yaml", heading_step=90.0,
@@ -144,6 +144,29 @@ def test_a_worker_that_dies_mid_case_has_the_case_run_again(prepared, reference,
 
 class Stop(Exception):
     pass
+
+
+def sleeps(case, setup):
+    """A case runner that takes 30 s, leaving a file as it starts and another as it ends."""
+    folder = Path(os.environ["L3_SLEEPS"])
+    (folder / f"{os.getpid()}.started").touch()
+    time.sleep(30.0)
+    (folder / f"{os.getpid()}.finished").touch()
+
+
+def test_a_pool_stopped_by_an_exception_kills_its_cases_in_flight(tmp_path, monkeypatch):
+    monkeypatch.setenv("L3_SLEEPS", str(tmp_path))
+    with pytest.raises(Stop), PoolEngine(2) as engine:
+        engine.start(sleeps, None)
+        engine.submit(Case(0.0, 1, "intact", 0))
+        engine.submit(Case(0.0, 1, "intact", 1))
+        deadline = time.monotonic() + 60.0
+        while len(list(tmp_path.glob("*.started"))) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        raise Stop
+    workers = [int(path.stem) for path in tmp_path.glob("*.started")]
+    assert len(workers) == 2 and not any(map(alive, workers))
+    assert not list(tmp_path.glob("*.finished"))          # killed, not waited for
 
 
 def counting(case, setup):

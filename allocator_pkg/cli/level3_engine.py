@@ -19,6 +19,7 @@ SIGKILL included, and leave SIGINT to it: an interrupted run stops its cases and
 
 from __future__ import annotations
 
+import abc
 import concurrent.futures
 import contextlib
 import ctypes
@@ -167,7 +168,7 @@ def _watch_parent(parent: int) -> None:
     os._exit(1)
 
 
-class _Engine:
+class _Engine(abc.ABC):
     """What both engines share: a context that closes the engine, stopping its cases in flight
     when the block ends by an exception (an interrupt among them)."""
 
@@ -177,8 +178,9 @@ class _Engine:
     def __exit__(self, kind: type | None, *_: object) -> None:
         self.close(stop=kind is not None)
 
+    @abc.abstractmethod
     def close(self, stop: bool = False) -> None:
-        raise NotImplementedError
+        """Release the engine; ``stop``: end the cases in flight too."""
 
 
 class PoolEngine(_Engine):
@@ -246,11 +248,13 @@ class PoolEngine(_Engine):
         """Shut the pool down; ``stop``: end the cases in flight too (their workers are killed)."""
         if self.pool is None:
             return
+        # the executor has no public way to end a case in flight (terminate_workers: Python 3.14)
+        workers = list((self.pool._processes or {}).values()) if stop else []
         self.pool.shutdown(wait=False, cancel_futures=True)
-        if stop:
-            # the executor has no public way to end a case in flight (terminate_workers: Python 3.14)
-            for process in list((self.pool._processes or {}).values()):
-                process.kill()
+        for process in workers:
+            process.kill()
+        for process in workers:
+            process.join()
         self.pool.shutdown(wait=True)
         self.pool, self.running = None, {}
 
