@@ -46,17 +46,15 @@ def case_setup(settle: float, duration: float) -> CaseSetup:
 def on_pool(setup: CaseSetup, workers: int) -> tuple[float, dict[tuple, CaseResult]]:
     """Wall time [s] of the cases on a pool of ``workers`` (its start-up included), and the results."""
     start = time.perf_counter()
-    engine = PoolEngine(workers, run_case, setup)
     results = {}
-    try:
+    with PoolEngine(workers) as engine:
+        engine.start(run_case, setup)
         queue = list(CASES)
         while queue or engine.running:
             while queue and len(engine.running) < 2 * workers:
                 engine.submit(queue.pop(0))
             for result in engine.wait():
                 results[result.case.key] = result
-    finally:
-        engine.close()
     return time.perf_counter() - start, results
 
 

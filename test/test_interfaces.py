@@ -32,7 +32,8 @@ def test_allocation_status_fields():
         "solve_time": "double", "power": "double", "unallocated": "geometry_msgs/Wrench",
         "at_thrust_limit": "sequence<boolean>", "at_rate_limit": "sequence<boolean>", "voltage": "double",
         "power_source": "sequence<string>", "source_power": "sequence<double>",
-        "source_available": "sequence<double>", "power_limited": "boolean", "consequence_alarm": "boolean"}
+        "source_available": "sequence<double>", "power_limited": "boolean", "consequence_alarm": "boolean",
+        "lost_reach": "sequence<string>"}
     assert (AllocationStatus.OUTCOME_SOLVED, AllocationStatus.OUTCOME_INACCURATE,
             AllocationStatus.OUTCOME_ITERATION_LIMIT, AllocationStatus.OUTCOME_FALLBACK,
             AllocationStatus.OUTCOME_STOPPED) == (0, 1, 2, 3, 4)

@@ -33,7 +33,7 @@ import numpy as np
 from ..effectiveness.configuration_matrix import configuration_matrix
 from ..effectiveness.faults import Fault, FaultMode, FaultSet
 from ..effectiveness.model import Model
-from ..effectiveness.reach import actuation_notes, reachability_warnings
+from ..effectiveness.reach import actuation_notes, lost_reach, reachability_warnings
 from ..effectiveness.sectors import in_feasible_sector
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
@@ -118,6 +118,13 @@ class Allocator:
         return list(self._warnings)
 
     @property
+    def lost_reach(self) -> list[str]:
+        """What the faults in force took: the controlled DOFs, and combinations of them, the
+        working actuators no longer reach (empty: none), computed when the faults or the
+        configuration change."""
+        return list(self._lost_reach)
+
+    @property
     def notes(self) -> list[str]:
         """What the operator should know but is by design (an under-actuated vehicle)."""
         return list(self._notes)
@@ -176,6 +183,7 @@ class Allocator:
         if previous is None or previous.vehicle.dofs != vehicle.dofs or not np.array_equal(previous.t_e, model.t_e):
             self._warnings = reachability_warnings(model)      # rank tests: only the geometry decides
             self._notes = actuation_notes(model)
+        self._lost_reach = lost_reach(model, self._fault_set)
         self._refresh()
 
     @property
@@ -250,14 +258,14 @@ class Allocator:
         (0, 1], or STUCK on an actuator that cannot be stuck or at an angle it cannot take;
         nothing changes then. ``angle`` is the azimuth or deflection [rad] of STUCK."""
         self._fault_set = self._fault_set.with_fault(name, mode, efficiency, angle)
-        self._refresh()
+        self._faults_changed()
 
     def clear_faults(self) -> None:
         """Every actuator back to NOMINAL; the sources of failed redundancy groups back to their
         available power."""
         self._fault_set = self._fault_set.cleared()
         self._power.lost, self._groups = frozenset(), ()
-        self._refresh()
+        self._faults_changed()
 
     def modes(self) -> np.ndarray:
         """FaultMode of every actuator, configuration order."""
@@ -309,6 +317,11 @@ class Allocator:
         self._fault_set = fault_set
         self._power.lost |= set(members.sources)
         self._groups += () if group in self._groups else (group,)
+        self._faults_changed()
+
+    def _faults_changed(self) -> None:
+        """The reach the new faults leave (:attr:`lost_reach`), then every stage refreshed."""
+        self._lost_reach = lost_reach(self._model, self._fault_set)
         self._refresh()
 
     def _refresh(self) -> None:

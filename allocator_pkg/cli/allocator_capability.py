@@ -26,11 +26,15 @@ from ..capability.envelope import Capability, differing_methods, reachable
 from ..capability.report.envelope_files import write_envelopes
 from ..configuration.parameters import load_vehicle
 from ..dp.level3.case import Criteria
+from ..dp.level3.engine import CaseLost, Interrupted
 from ..dp.level3.study import BASE_SCENARIO, JOURNAL, Level3Inputs, study
 from ..dp.report.files import write_report
 from ..dp.report.level3_report import write_level3
 from ..methods import METHODS
 from ..vehicle.config import DOF_NAMES
+
+INTERRUPTED = 130
+"""The exit status of a run stopped by SIGINT (128 + the signal's number, as a shell gives)."""
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -128,9 +132,15 @@ def level3_command(arguments: argparse.Namespace) -> int:
                                        arguments.duration))
         prepared, result, finished = study(inputs, out, arguments.workers, arguments.scheduler, arguments.resume,
                                            not arguments.no_progress)
+    except Interrupted as interrupted:
+        print(f"allocator-capability: {interrupted}", file=sys.stderr)
+        return INTERRUPTED
     except (ValueError, OSError) as error:             # a ConfigError, a ScenarioError too
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2
+    except CaseLost as error:
+        print(f"allocator-capability: {error}; rerun with --resume", file=sys.stderr)
+        return 1
     paths = write_level3(prepared, result, finished, out)
     print(result.summary_line())
     print(result.scope)

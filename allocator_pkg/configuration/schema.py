@@ -177,8 +177,13 @@ NODE_KEYS: tuple[Key, ...] = (
         "on battery_state for this long, the thrust limits follow nominal_voltage again (diagnostics say so).",
         default=5.0, minimum=0.0, exclusive_minimum=True, unit="s"),
     Key("power_timeout", FLOAT, "With power.sources: with no valid allocator_msgs/PowerAvailable on power_available "
-        "for this long, every source's available power is its capacity again (diagnostics say so).",
+        "for this long the input is stale: every source's available power is held at its last valid value, or "
+        "lower with power_stale_fallback, and the diagnostics are at ERROR until a valid message comes.",
         default=5.0, minimum=0.0, exclusive_minimum=True, unit="s"),
+    Key("power_stale_fallback", FLOAT, "With power.sources: while power_available is stale (power_timeout), each "
+        "source's available power is the lower of its last valid value and this share of its capacity: 1 holds the "
+        "last valid values, below 1 assumes the sources may have lost power since.", default=1.0, minimum=0.0,
+        maximum=1.0, unit="share"),
     Key("robot_description_file", STR, "URDF file read with geometry_source robot_description; empty: the "
         "robot_description topic (transient local, as robot_state_publisher offers it).", default="",
         read_only=True, constraint="a file path, or empty"),

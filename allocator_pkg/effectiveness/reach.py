@@ -1,12 +1,14 @@
 """Which directions the actuators reach: rank tests on the extended configuration matrix T_e
-(1.17), which only the geometry decides, for the operator's warnings and notes."""
+(1.17), which only the geometry decides, for the operator's warnings and notes; and, under
+faults, which of those the working actuators no longer reach."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ..vehicle.config import DOF_NAMES, ActuatorConfig
-from .configuration_matrix import NEGLIGIBLE, extended_configuration_matrix
+from .configuration_matrix import NEGLIGIBLE, actuator_direction, extended_configuration_matrix, force_column
+from .faults import FaultMode, FaultSet
 from .model import Model
 
 PLANE = ("surge", "sway", "yaw")
@@ -84,3 +86,52 @@ def actuation_notes(model: Model) -> list[str]:
         return []
     return [f"under-actuated: the actuators give {rank} independent directions in {', '.join(PLANE)}; "
             f"{', '.join(left)} is left to the vehicle's dynamics"]
+
+
+def working_columns(model: Model, faults: FaultSet) -> np.ndarray:
+    """The controlled rows of the columns the working actuators can still vary (n x k): none of a
+    failed actuator or of a stuck control surface (pinned at its deflection's force), one of a
+    rotatable thruster stuck at its azimuth (its T(alpha) column there), every extended column
+    of the others (a degraded one keeps its directions)."""
+    rows = [DOF_NAMES.index(dof) for dof in model.vehicle.dofs]
+    columns = []
+    for i, actuator in enumerate(model.vehicle.actuators):
+        if faults.modes[i] == FaultMode.FAILED or (i in faults.stuck and not actuator.rotatable):
+            continue
+        if i in faults.stuck:
+            columns.append(force_column(actuator.position, actuator_direction(actuator, faults.stuck[i]))[rows])
+        else:
+            columns += list(model.t_ec[:, model.extended_owner == i].T)
+    return np.column_stack(columns) if columns else np.zeros((len(rows), 0))
+
+
+def _rank(matrix: np.ndarray) -> int:
+    return int(np.linalg.matrix_rank(matrix, tol=RANK_TOLERANCE)) if matrix.size else 0
+
+
+def lost_reach(model: Model, faults: FaultSet) -> list[str]:
+    """What the working actuators (:func:`working_columns`) no longer reach that every actuator
+    does, in words: the controlled DOFs none of them produces, then, when fewer independent
+    directions are left than those DOFs explain, the DOFs they produce only together with
+    others (a DOF reached alone is a unit wrench in the span of the columns). Empty without
+    faults or with no loss."""
+    if not faults.faults:
+        return []
+    dofs = model.vehicle.dofs
+    working = working_columns(model, faults)
+    lost = [dof for k, dof in enumerate(dofs)
+            if np.any(np.abs(model.t_ec[k]) > 1e-12) and not np.any(np.abs(working[k]) > 1e-12)]
+    lines = [f"after the faults no working actuator produces {dof}; requests in it will always be saturated"
+             for dof in lost]
+    rank, intact = _rank(working), _rank(model.t_ec)
+    unit = np.eye(len(dofs))
+    alone = [dof for k, dof in enumerate(dofs) if dof not in lost
+             and _rank(np.column_stack([model.t_ec, unit[k]])) == intact
+             and _rank(np.column_stack([working, unit[k]])) > rank]
+    if alone or rank + len(lost) < intact:            # more lost than the DOFs no actuator produces
+        together = f"; {', '.join(alone)} only together with other DOFs" if alone else ""
+        lines.append(f"after the faults the working actuators reach {rank} independent direction"
+                     f"{'' if rank == 1 else 's'} of the "
+                     f"{len(dofs)} controlled DOFs ({', '.join(dofs)}), {intact} with every actuator{together}; "
+                     "some combinations will be saturated")
+    return lines

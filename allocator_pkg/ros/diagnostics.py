@@ -75,8 +75,10 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
                       battery: tuple[str, bool] | None = None,
                       power: tuple[str, bool, bool] | None = None) -> DiagnosticStatus:
     """OK while allocating; WARN with faults, saturated samples (and the DOFs short), fallbacks,
-    rejected inputs, publishers of the wrong type, unreachable DOFs or no battery voltage (the
-    thrust limits at nominal_voltage); ERROR while the input is stale (zero thrust commanded).
+    rejected inputs, publishers of the wrong type, unreachable DOFs (of the configuration, or of
+    the working actuators under the faults in force) or no battery voltage (the thrust limits at
+    nominal_voltage); ERROR while the wrench input is stale (zero thrust
+    commanded) or the available power is (held, not known).
     ``battery`` is (topic, whether the nominal voltage stands in) when the thrust tables follow
     a battery voltage; ``power`` the power input's report, with power sources
     (:func:`~allocator_pkg.ros.power_report.power_diagnostics`)."""
@@ -99,9 +101,13 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
     if battery is not None and battery[1]:
         warnings.append(f"no valid battery voltage on {battery[0]}: thrust limits at nominal_voltage "
                         f"{allocator.voltage:g} V")
-    power_warnings, power_values = power_diagnostics(allocator, last, power, counters.rejected_power)
+    power_errors, power_warnings, power_values = power_diagnostics(allocator, last, power, counters.rejected_power)
+    if power_errors:
+        level = DiagnosticStatus.ERROR
+        problems += power_errors
     warnings += power_warnings
     warnings += allocator.warnings
+    warnings += allocator.lost_reach
     if warnings and level == DiagnosticStatus.OK:
         level = DiagnosticStatus.WARN
     problems += warnings
@@ -139,6 +145,7 @@ def allocation_status(node_name: str, allocator: Allocator, counters: Counters, 
     values.update(power_values)
     if allocator.notes:
         values["actuation"] = "; ".join(allocator.notes)
+    values["lost to faults"] = "; ".join(allocator.lost_reach) or "none"
     for actuator, mode in zip(allocator.names, modes):
         values[f"mode {actuator}"] = FaultMode(mode).name
     status.values = [KeyValue(key=key, value=value) for key, value in values.items()]

@@ -122,6 +122,7 @@ class Outputs:
             message = status_message(result, status, header, self._settings.frame, allocator.voltage,
                                      self._status_message, power)
             message.consequence_alarm = self.consequence_alarm
+            message.lost_reach = allocator.lost_reach       # computed when the faults changed
             self._status.publish(message)
             self.statuses_published += 1
         if self._per_actuator is not None:

@@ -11,14 +11,15 @@ from ..allocation.result import AllocationResult
 
 
 def power_diagnostics(allocator: Allocator, last: AllocationResult | None, supply: tuple[str, bool, bool] | None,
-                      rejected: int) -> tuple[list[str], dict[str, str]]:
-    """(warnings, values) of the power per source; none without sources. ``supply`` is the
-    power input's (topic, whether the capacities stand in, whether because its messages
-    stopped), ``rejected`` how many of its messages were rejected. A warning for a failed
-    group, a source at 0 kW, a source drawn to its limit and a stale input."""
+                      rejected: int) -> tuple[list[str], list[str], dict[str, str]]:
+    """(errors, warnings, values) of the power per source; none without sources. ``supply`` is
+    the power input's (topic, whether the capacities stand in, whether its messages stopped),
+    ``rejected`` how many of its messages were rejected. An error for a stale input (the values
+    held named); a warning for a failed group, a source at 0 kW and a source drawn to its limit."""
     budget, limit = allocator.power, allocator.power_limit
     if limit is None:
-        return [], {}
+        return [], [], {}
+    errors: list[str] = []
     warnings: list[str] = []
     values: dict[str, str] = {}
     available = budget.available
@@ -27,10 +28,12 @@ def power_diagnostics(allocator: Allocator, last: AllocationResult | None, suppl
         values[f"power {source} [kW]"] = f"{kilowatts:.1f} of {most:g} available"
     if supply is not None:
         topic, fallback, stale = supply
-        values["available power from"] = "power.<source>.capacity (no power_available)" if fallback else topic
+        values["available power from"] = ("power.<source>.capacity (no power_available)" if fallback else
+                                          f"{topic} (stale: held at {available_text(budget)})" if stale else topic)
         values["rejected power messages"] = str(rejected)
         if stale:
-            warnings.append(f"no valid available power on {topic}: every source at its capacity")
+            errors.append(f"stale available power: nothing valid on {topic} for power_timeout, holding "
+                          f"{available_text(budget)}")
     lost = [s for s, most in zip(budget.sources, available.tolist()) if most == 0.0]
     if lost:
         warnings.append(f"no power from {', '.join(lost)}")
@@ -42,7 +45,7 @@ def power_diagnostics(allocator: Allocator, last: AllocationResult | None, suppl
     values["failed redundancy groups"] = ", ".join(allocator.group_faults) or "none"
     if allocator.group_faults:
         warnings.append(f"redundancy group failed: {', '.join(allocator.group_faults)}")
-    return warnings, values
+    return errors, warnings, values
 
 
 def available_text(budget: PowerBudget) -> str:

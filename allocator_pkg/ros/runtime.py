@@ -379,7 +379,8 @@ class AllocationRuntime:
             report = None if battery is None else (battery.topic_name, battery.fallback)
             power = self.power_input
             if power is not None:
-                power.check(self._clock.now().nanoseconds, self.settings.power_timeout)
+                power.check(self._clock.now().nanoseconds, self.settings.power_timeout,
+                            self.settings.power_stale_fallback)
             statuses = diagnostic_statuses(node.get_fully_qualified_name(), self.allocator, self.counters,
                                            self.watchdog.stale, self._last, foreign, report,
                                            None if power is None else power.report)

@@ -42,9 +42,10 @@ class NodeSettings:
     sample (``timer`` or ``input``); how often at most the status goes out (0: every sample);
     the rate of the thrust markers (0: none); where positions and directions come from and the
     URDF file (empty: the ``robot_description`` topic); how long [s] the thrust limits follow
-    the last battery voltage before they fall back to the nominal voltage; how long [s] the
-    available power of the last power_available message holds before every source is back at
-    its capacity; the ros2_control
+    the last battery voltage before they fall back to the nominal voltage; how long [s] without
+    a valid power_available message before that input is stale, and the share of each source's
+    capacity its available power is held at most at meanwhile (the last valid value when
+    lower); the ros2_control
     topics of thrust and of azimuth angles (empty: none) and the actuators they carry, in the
     controller's joint order (every actuator in configuration order unless the key gives
     them); whether ``~/hold_actuator`` may hold one actuator at a time, at most what share of
@@ -66,6 +67,7 @@ class NodeSettings:
     robot_description_file: str
     battery_timeout: float
     power_timeout: float
+    power_stale_fallback: float
     ros2_control_thrust_topic: str
     ros2_control_angle_topic: str
     ros2_control_actuators: tuple[str, ...]

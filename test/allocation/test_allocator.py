@@ -113,6 +113,41 @@ def test_a_controlled_dof_out_of_reach_is_a_warning_not_an_under_actuation_note(
                                  "sway is left to the vehicle's dynamics"]
 
 
+def test_the_reach_the_faults_take_is_named_when_they_change():
+    """dp_vessel: azimuths at (-41.5, +-7) m, tunnels along y at x 37 and 35 m; a force (fx, fy)
+    at (x, y) gives yaw x fy - y fx, an azimuth at angle a thrusts along (cos a, sin a)."""
+    alloc = Allocator(load_vehicle(ROOT / "config" / "dp_vessel.yaml"))
+    assert alloc.lost_reach == []
+    alloc.set_fault("tunnel_fwd", FaultMode.FAILED)
+    alloc.set_fault("tunnel_aft", FaultMode.FAILED)
+    assert alloc.lost_reach == []                      # (1, 0, -7), (0, 1, -41.5), (1, 0, 7): rank 3
+    alloc.set_fault("azimuth_stbd", FaultMode.STUCK, angle=0.0)
+    alloc.set_fault("azimuth_port", FaultMode.STUCK, angle=0.0)
+    assert alloc.lost_reach == [                       # (1, 0, -7), (1, 0, 7): no sway, surge and yaw alone
+        "after the faults no working actuator produces sway; requests in it will always be saturated"]
+    alloc.set_fault("azimuth_port", FaultMode.FAILED)
+    alloc.set_fault("azimuth_stbd", FaultMode.NOMINAL)
+    assert alloc.lost_reach == [                       # (1, 0, -7), (0, 1, -41.5): no unit wrench in their span
+        "after the faults the working actuators reach 2 independent directions of the 3 controlled DOFs "
+        "(surge, sway, yaw), 3 with every actuator; surge, sway, yaw only together with other DOFs; some "
+        "combinations will be saturated"]
+    alloc.set_fault("azimuth_stbd", FaultMode.STUCK, angle=math.pi / 2)
+    assert alloc.lost_reach == [                       # (0, 1, -41.5) alone
+        "after the faults no working actuator produces surge; requests in it will always be saturated",
+        "after the faults the working actuators reach 1 independent direction of the 3 controlled DOFs "
+        "(surge, sway, yaw), 3 with every actuator; sway, yaw only together with other DOFs; some combinations "
+        "will be saturated"]
+    alloc.clear_faults()
+    assert alloc.lost_reach == []
+    alloc.set_group_fault("switchboard_b")             # azimuth_port, tunnel_aft: (1, 0, -7), (0, 1, -41.5), (0, 1, 37)
+    assert alloc.lost_reach == []
+    alloc.set_fault("tunnel_fwd", FaultMode.DEGRADED, efficiency=0.2)
+    assert alloc.lost_reach == []                      # weaker, not gone
+    alloc.set_fault("tunnel_fwd", FaultMode.FAILED)
+    assert len(alloc.lost_reach) == 1 and "surge, sway, yaw only together" in alloc.lost_reach[0]
+    assert alloc.warnings == []                        # the configuration's own warnings stay as they were
+
+
 def test_unknown_method_and_bad_dt():
     vehicle = load_vehicle(EXAMPLE)
     with pytest.raises(ValueError, match="unknown method 'fast'"):

@@ -82,6 +82,7 @@ NODE_VALUES = {
     "wrench_timeout": 1.5, "per_actuator_topics": True, "frame": "flu", "base_frame": "hull",
     "wrench_type": "wrench_stamped", "trigger": "input", "executor": "single_threaded", "status_rate_hz": 5.0,
     "markers_rate_hz": 2.0, "geometry_source": "robot_description", "battery_timeout": 2.0, "power_timeout": 3.0,
+    "power_stale_fallback": 0.5,
     "robot_description_file": "r.urdf", "ros2_control.thrust_topic": "/thrust", "ros2_control.angle_topic": "/angle",
     "step_test.enabled": True, "step_test.thrust_share": 0.3, "step_test.duration_max": 10.0,
     "consequence.rate": 2.0, "consequence.filter_time": 30.0,

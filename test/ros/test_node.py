@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 from conftest import ROOT, vehicle_from
+from diagnostic_msgs.msg import DiagnosticStatus
 
 from allocator_pkg import Allocator, FaultMode
 
@@ -305,6 +306,34 @@ def test_an_under_actuated_vehicle_says_so_in_diagnostics(harness):
     values = harness.diagnostics_after_a_second()
     assert values["actuation"].startswith("under-actuated: the actuators give 2 independent directions")
     assert "sway is left to the vehicle's dynamics" in values["actuation"]
+
+
+@pytest.mark.params(ROOT / "config" / "dp_vessel.yaml", wrench_timeout=0.0)
+def test_after_faults_the_status_and_diagnostics_name_the_reach_lost(harness):
+    """dp_vessel: a force (fx, fy) at (x, y) gives yaw x fy - y fx; azimuth_stbd at (-41.5, 7) m
+    alone gives (1, 0, -7) and (0, 1, -41.5), which hold no unit wrench."""
+    harness.tick(1)
+    assert list(harness.status[-1].lost_reach) == []
+    assert harness.diagnostics_after_a_second()["lost to faults"] == "none"
+    assert harness.set_group_fault("switchboard_b")[0]                 # azimuth_port, tunnel_aft
+    assert harness.set_fault("tunnel_fwd", "failed")[0]
+    harness.tick(1)
+    lost = ("after the faults the working actuators reach 2 independent directions of the 3 controlled DOFs "
+            "(surge, sway, yaw), 3 with every actuator; surge, sway, yaw only together with other DOFs; some "
+            "combinations will be saturated")
+    assert list(harness.status[-1].lost_reach) == [lost]
+    values = harness.diagnostics_after_a_second()
+    assert values["lost to faults"] == lost
+    status = harness.diagnostics[-1].status[0]
+    assert lost in status.message and status.level != DiagnosticStatus.OK
+    assert harness.set_fault("azimuth_stbd", "stuck", angle=0.0)[0]
+    harness.tick(1)
+    assert harness.status[-1].lost_reach[0] == ("after the faults no working actuator produces sway; "
+                                                "requests in it will always be saturated")
+    harness.clear_faults()
+    harness.tick(1)
+    assert list(harness.status[-1].lost_reach) == []
+    assert harness.diagnostics_after_a_second()["lost to faults"] == "none"
 
 
 BLUEROV = ROOT / "config" / "bluerov2_heavy.yaml"

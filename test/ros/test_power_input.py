@@ -1,6 +1,7 @@
 """Power per source in a node on simulated time: power_available sets the sources' available
 power from the next sample, bad messages are counted and kept out, without one for
-power_timeout every source is back at its capacity; ~/set_group_fault fails a redundancy group
+power_timeout the last valid values are held (or power_stale_fallback of the capacity, the lower)
+with the diagnostics at ERROR until a valid message comes; ~/set_group_fault fails a redundancy group
 and ~/clear_faults restores it; allocation_status and the diagnostics carry the power per
 source."""
 
@@ -8,6 +9,7 @@ import math
 
 import pytest
 from conftest import ROOT
+from diagnostic_msgs.msg import DiagnosticStatus
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 SPLIT = {"actuators__azimuth_stbd__feeds": ["swbd_a", "swbd_b"], "actuators__azimuth_stbd__feed_shares": [0.7, 0.3]}
@@ -43,10 +45,34 @@ def test_power_available_limits_the_sources_and_bad_messages_are_counted(harness
     assert "power-limited" in harness.diagnostics[-1].status[0].message
     harness.tick(round(5.0 / harness.node.period))                             # nothing for power_timeout
     values = harness.diagnostics_after_a_second()
-    assert values["available power from"] == CAPACITY
-    assert "no valid available power" in harness.diagnostics[-1].status[0].message
-    assert harness.node.allocator.power.available.tolist() == [5600.0, 7800.0]
-    assert list(harness.status[-1].source_available) == [5600.0, 7800.0]
+    held = "swbd_a 300 kW, swbd_b 7800 kW"
+    assert values["available power from"] == f"{harness.power.topic_name} (stale: held at {held})"
+    status = harness.diagnostics[-1].status[0]
+    assert status.level == DiagnosticStatus.ERROR
+    assert f"stale available power: nothing valid on {harness.power.topic_name} for power_timeout, holding {held}" \
+        in status.message
+    assert harness.node.allocator.power.available.tolist() == [300.0, 7800.0]
+    assert list(harness.status[-1].source_available) == [300.0, 7800.0]
+    harness.send_power({"swbd_b": 7000.0})                                      # valid again
+    values = harness.diagnostics_after_a_second()
+    assert values["available power from"] == harness.power.topic_name
+    assert harness.diagnostics[-1].status[0].level != DiagnosticStatus.ERROR
+    assert harness.node.allocator.power.available.tolist() == [300.0, 7000.0]
+
+
+@pytest.mark.params(DP_VESSEL, wrench_timeout=0.0, power_timeout=2.0, power_stale_fallback=0.5)
+def test_a_stale_power_input_falls_back_to_the_lower_of_the_last_values_and_the_share(harness):
+    harness.send_power({"swbd_a": 1000.0, "swbd_b": 7000.0})
+    harness.tick(1)
+    assert list(harness.status[-1].source_available) == [1000.0, 7000.0]
+    harness.tick(round(2.0 / harness.node.period))                             # nothing for power_timeout
+    harness.diagnostics_after_a_second()
+    assert harness.diagnostics[-1].status[0].level == DiagnosticStatus.ERROR
+    assert harness.node.allocator.power.available.tolist() == [1000.0, 0.5 * 7800.0]     # min(1000, 2800), 3900
+    assert list(harness.status[-1].source_available) == [1000.0, 3900.0]
+    harness.diagnostics_after_a_second()                                        # stays held, never back up
+    assert harness.node.allocator.power.available.tolist() == [1000.0, 3900.0]
+    assert harness.diagnostics[-1].status[0].level == DiagnosticStatus.ERROR
 
 
 @pytest.mark.params(DP_VESSEL, wrench_timeout=0.0, **SPLIT)

@@ -13,13 +13,13 @@ DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 
 def test_a_vehicle_without_sources_says_nothing_of_power():
     allocator = Allocator(load_vehicle(ROOT / "config" / "example1_rov.yaml"))
-    assert power_diagnostics(allocator, allocator.allocate(np.zeros(6)), None, 0) == ([], {})
+    assert power_diagnostics(allocator, allocator.allocate(np.zeros(6)), None, 0) == ([], [], {})
 
 
 def test_the_power_per_source_the_bounds_and_a_failed_group():
     allocator = Allocator(load_vehicle(DP_VESSEL))
-    warnings, values = power_diagnostics(allocator, None, ("/power_available", True, False), 0)
-    assert warnings == []
+    errors, warnings, values = power_diagnostics(allocator, None, ("/power_available", True, False), 0)
+    assert errors == warnings == []
     assert values == {"power swbd_a [kW]": "0.0 of 5600 available", "power swbd_b [kW]": "0.0 of 7800 available",
                       "available power from": "power.<source>.capacity (no power_available)",
                       "rejected power messages": "0", "thrust limited by power": "none",
@@ -28,9 +28,11 @@ def test_the_power_per_source_the_bounds_and_a_failed_group():
     allocator.set_group_fault("switchboard_b")
     for _ in range(50):
         last = allocator.allocate([5e5, 0.0, 0.0, 0.0, 0.0, 0.0])
-    warnings, values = power_diagnostics(allocator, last, ("/power_available", True, True), 2)
-    assert warnings == ["no valid available power on /power_available: every source at its capacity",
-                        "no power from swbd_b", "power-limited: thrust held back by the available power",
+    errors, warnings, values = power_diagnostics(allocator, last, ("/power_available", False, True), 2)
+    assert errors == ["stale available power: nothing valid on /power_available for power_timeout, holding "
+                      "swbd_a 1000 kW, swbd_b 0 kW"]
+    assert values["available power from"] == "/power_available (stale: held at swbd_a 1000 kW, swbd_b 0 kW)"
+    assert warnings == ["no power from swbd_b", "power-limited: thrust held back by the available power",
                         "redundancy group failed: switchboard_b"]
     drawn, available = values["power swbd_a [kW]"].split(" of ")
     assert 500.0 < float(drawn) <= 1000.0 and available == "1000 available"

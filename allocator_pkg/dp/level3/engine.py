@@ -6,19 +6,32 @@ finished case as it completes (flushed and fsynced), so that a run stopped at an
 resumes (``--resume``) without running a finished case again.
 
 Each case is a pure function of its inputs (the seed among them), so the results are the same
-bit for bit on any number of workers and on either engine. A pool worker that dies mid-case
-breaks the pool: a new one runs every case that had not come back (at most
-:data:`MAX_ATTEMPTS` times each); Dask retries a case whose worker died by itself.
+bit for bit on any number of workers and on either engine; a finished run rewrites the journal
+in case order, so that it too is the same. A pool worker that dies mid-case breaks the pool: a
+new one runs every case that had not come back (at most :data:`MAX_ATTEMPTS` times each); Dask
+runs a case whose worker died on another (up to its ``distributed.scheduler.allowed-failures``).
+
+The engine is opened (:func:`open_engine`: a scheduler that does not answer is an error) before
+the journal is touched. Pool workers end with the process that made the pool however it ends,
+SIGKILL included, and leave SIGINT to it: an interrupted run stops its cases and raises
+:class:`Interrupted`.
 """
 
 from __future__ import annotations
 
+import abc
 import concurrent.futures
+import contextlib
+import ctypes
 import json
+import multiprocessing
 import os
 import pickle
+import signal
 import sys
-from collections.abc import Callable
+import threading
+import time
+from collections.abc import Callable, Iterator
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 from typing import Any
@@ -29,7 +42,27 @@ from .search import Level3Search
 MAX_ATTEMPTS = 3
 """Times a pool case runs before the run gives up (a worker died under it each time)."""
 DASK_RETRIES = 2
+"""Times Dask runs a case again that raised an exception (a dead worker counts against the
+scheduler's ``allowed-failures`` instead)."""
+CONNECT_TIMEOUT = 10.0
+"""Seconds a Dask scheduler has to answer before ``--scheduler`` is refused."""
+PR_SET_PDEATHSIG = 1
+"""prctl(2): the signal a process gets when its parent ends (Linux)."""
 Runner = Callable[[Case, CaseSetup], CaseResult]
+
+
+class CaseLost(RuntimeError):
+    """A case the engine could not finish: its workers kept dying (or, on Dask, it kept raising)."""
+
+
+class Interrupted(Exception):
+    """A run stopped by SIGINT after ``done`` of at most ``total`` cases (each finished one in
+    the journal); ``total`` None: before the cases started."""
+
+    def __init__(self, done: int, total: int | None) -> None:
+        where = f"after {done} of {total} cases" if total is not None else "before the cases started"
+        super().__init__(f"interrupted {where}; rerun with --resume")
+        self.done, self.total = done, total
 
 
 class Journal:
@@ -47,27 +80,58 @@ class Journal:
             for data in lines[1:]:
                 result = CaseResult.from_json(data)
                 self.finished[result.case.key] = result
-        path.parent.mkdir(parents=True, exist_ok=True)
-        temporary = path.with_suffix(".jsonl.tmp")
-        with temporary.open("w") as handle:
-            handle.writelines(json.dumps(data) + "\n" for data in lines)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(temporary, path)
+        self.header = lines[0]
+        _replace_lines(path, lines)
         self.handle = path.open("a")
 
     def append(self, result: CaseResult) -> CaseResult:
-        """Write one finished case (flushed and fsynced); the result as read back from its line."""
+        """Write one finished case (flushed and fsynced); the result as read back from its line.
+        SIGINT waits until the line is written and counted."""
         line = json.dumps(result.to_json())
-        self.handle.write(line + "\n")
-        self.handle.flush()
-        os.fsync(self.handle.fileno())
         stored = CaseResult.from_json(json.loads(line))
-        self.finished[stored.case.key] = stored
+        with _interrupts_held():
+            self.handle.write(line + "\n")
+            self.handle.flush()
+            os.fsync(self.handle.fileno())
+            self.finished[stored.case.key] = stored
         return stored
+
+    def finish(self) -> None:
+        """Rewrite the (closed) journal as its header and the finished cases in case order
+        (:attr:`Case.key`), the same whatever order they finished in."""
+        ordered = [self.finished[key].to_json() for key in sorted(self.finished)]
+        _replace_lines(self.path, [self.header, *ordered])
 
     def close(self) -> None:
         self.handle.close()
+
+
+@contextlib.contextmanager
+def _interrupts_held() -> Iterator[None]:
+    """SIGINT held back in this block and raised again at its end (Python runs signal handlers in
+    the main thread only, so elsewhere there is nothing to hold)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda number, _: caught.append(number))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if caught:
+            signal.raise_signal(signal.SIGINT)
+
+
+def _replace_lines(path: Path, lines: list[dict[str, Any]]) -> None:
+    """``path`` replaced at once by ``lines`` (flushed and fsynced before it takes the name)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    temporary = path.with_suffix(".jsonl.tmp")
+    with temporary.open("w") as handle:
+        handle.writelines(json.dumps(data) + "\n" for data in lines)
+        handle.flush()
+        os.fsync(handle.fileno())
+    os.replace(temporary, path)
 
 
 def _valid_lines(path: Path) -> list[dict[str, Any]]:
@@ -81,23 +145,77 @@ def _valid_lines(path: Path) -> list[dict[str, Any]]:
     return lines
 
 
-class PoolEngine:
-    """A local process pool of ``workers``; a broken pool is replaced and its cases run again."""
+def _follow_parent(parent: int) -> None:
+    """A pool worker's start: it ends when ``parent`` (the process that made the pool) ends, however
+    that ends (Linux: SIGKILL from the kernel, ``PR_SET_PDEATHSIG``; elsewhere a thread watching
+    the parent), and it ignores SIGINT, which a terminal sends to the whole process group: the
+    parent decides what an interrupt stops."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        libc = ctypes.CDLL(None, use_errno=True)
+        if libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0) != 0:
+            raise OSError(ctypes.get_errno(), "prctl(PR_SET_PDEATHSIG)")
+    else:
+        threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+    if os.getppid() != parent:                      # the parent ended before the signal was set
+        os._exit(1)
 
-    def __init__(self, workers: int, runner: Runner, setup: CaseSetup) -> None:
+
+def _watch_parent(parent: int) -> None:
+    """End this process once its parent ``parent`` has ended (it is then another's child)."""
+    while os.getppid() == parent:
+        time.sleep(0.5)
+    os._exit(1)
+
+
+class _Engine(abc.ABC):
+    """What both engines share: a context that closes the engine, stopping its cases in flight
+    when the block ends by an exception (an interrupt among them)."""
+
+    def __enter__(self) -> _Engine:
+        return self
+
+    def __exit__(self, kind: type | None, *_: object) -> None:
+        self.close(stop=kind is not None)
+
+    @abc.abstractmethod
+    def close(self, stop: bool = False) -> None:
+        """Release the engine; ``stop``: end the cases in flight too."""
+
+
+class PoolEngine(_Engine):
+    """A local process pool of ``workers``; a broken pool is replaced and its cases run again.
+    Its workers are forked (where the platform can) from the process that makes the pool and end
+    with it (:func:`_follow_parent`)."""
+
+    def __init__(self, workers: int) -> None:
+        if workers < 1:
+            raise ValueError(f"--workers: an integer >= 1, not {workers}")
+        self.workers = workers
+        self.runner: Runner | None = None
+        self.setup: CaseSetup | None = None
+        self.pool: concurrent.futures.ProcessPoolExecutor | None = None
+        self.running: dict[concurrent.futures.Future, Case] = {}
+        self.attempts: dict[tuple, int] = {}
+
+    def start(self, runner: Runner, setup: CaseSetup) -> None:
+        """Run cases with ``runner`` on ``setup`` (both go to the workers by pickle)."""
         try:
             pickle.dumps((runner, setup))
         except (pickle.PicklingError, AttributeError, TypeError) as error:
             raise ValueError(f"the case runner and set-up go to worker processes by pickle: {error}") from error
-        self.workers, self.runner, self.setup = workers, runner, setup
-        self.pool = concurrent.futures.ProcessPoolExecutor(workers)
-        self.running: dict[concurrent.futures.Future, Case] = {}
-        self.attempts: dict[tuple, int] = {}
+        self.runner, self.setup = runner, setup
+        self.pool = self._new_pool()
+
+    def _new_pool(self) -> concurrent.futures.ProcessPoolExecutor:
+        method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
+        return concurrent.futures.ProcessPoolExecutor(self.workers, multiprocessing.get_context(method),
+                                                      initializer=_follow_parent, initargs=(os.getpid(),))
 
     def submit(self, case: Case) -> None:
         attempts = self.attempts[case.key] = self.attempts.get(case.key, 0) + 1
         if attempts > MAX_ATTEMPTS:
-            raise RuntimeError(f"case {case}: its worker died {MAX_ATTEMPTS} times")
+            raise CaseLost(f"case {case}: its worker died {MAX_ATTEMPTS} times")
         try:
             self.running[self.pool.submit(self.runner, case, self.setup)] = case
         except BrokenProcessPool:
@@ -121,33 +239,56 @@ class PoolEngine:
         """A new pool running ``lost`` and every case that had not come back."""
         lost = [*lost, *self.running.values()]
         self.pool.shutdown(wait=False, cancel_futures=True)
-        self.pool = concurrent.futures.ProcessPoolExecutor(self.workers)
+        self.pool = self._new_pool()
         self.running = {}
         for case in lost:
             self.submit(case)
 
-    def close(self) -> None:
-        self.pool.shutdown(wait=True, cancel_futures=True)
+    def close(self, stop: bool = False) -> None:
+        """Shut the pool down; ``stop``: end the cases in flight too (their workers are killed)."""
+        if self.pool is None:
+            return
+        # the executor has no public way to end a case in flight (terminate_workers: Python 3.14)
+        workers = list((self.pool._processes or {}).values()) if stop else []
+        self.pool.shutdown(wait=False, cancel_futures=True)
+        for process in workers:
+            process.kill()
+        for process in workers:
+            process.join()
+        self.pool.shutdown(wait=True)
+        self.pool, self.running = None, {}
 
 
-class DaskEngine:
-    """The cases on a Dask distributed cluster at ``address`` (retried when a worker dies)."""
+class DaskEngine(_Engine):
+    """The cases on the Dask distributed cluster at ``address``: refused (ValueError) when no
+    scheduler answers there within :data:`CONNECT_TIMEOUT`. A case that raises runs again
+    :data:`DASK_RETRIES` times; one whose worker dies runs on another, up to the scheduler's
+    ``allowed-failures``."""
 
-    def __init__(self, address: str, runner: Runner, setup: CaseSetup) -> None:
+    def __init__(self, address: str) -> None:
         try:
             from dask.distributed import Client, as_completed
         except ImportError as error:
-            raise ValueError("--scheduler needs dask[distributed] (pip install allocator_pkg[tools,cluster])") \
-                from error
-        self.client = Client(address)
-        self.runner, self.setup = runner, setup
-        self.setup_future = self.client.scatter(setup, broadcast=True)
+            raise ValueError("--scheduler needs dask[distributed] (the cluster extra: pip install -e '.[cluster]' "
+                             "in the checkout)") from error
+        try:
+            self.client = Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False)
+        except (OSError, ValueError, TypeError) as error:
+            raise ValueError(f"--scheduler {address}: no Dask scheduler answers there within "
+                             f"{CONNECT_TIMEOUT:g} s ({error})") from error
+        self.runner: Runner | None = None
+        self.setup_future: Any = None
         self.running: dict[Any, Case] = {}
-        self.completed = as_completed([])
+        self.completed = as_completed([], loop=self.client.loop)
 
     @property
     def workers(self) -> int:
         return max(1, len(self.client.scheduler_info().get("workers", {})))
+
+    def start(self, runner: Runner, setup: CaseSetup) -> None:
+        """Run cases with ``runner`` on ``setup`` (scattered to every worker)."""
+        self.runner = runner
+        self.setup_future = self.client.scatter(setup, broadcast=True)
 
     def submit(self, case: Case) -> None:
         future = self.client.submit(self.runner, case, self.setup_future, pure=False, retries=DASK_RETRIES,
@@ -159,27 +300,39 @@ class DaskEngine:
     def wait(self) -> list[CaseResult]:
         results = []
         for future in [next(self.completed), *self.completed.next_batch(block=False)]:
-            self.running.pop(future)
-            results.append(future.result())
+            case = self.running.pop(future)
+            try:
+                results.append(future.result())
+            except Exception as error:          # KilledWorker, or the case's own error after its retries
+                raise CaseLost(f"case {case} on the Dask cluster: {type(error).__name__}: {error}") from error
         return results
 
-    def close(self) -> None:
+    def close(self, stop: bool = False) -> None:
+        """Disconnect; ``stop``: cancel the cases in flight first."""
+        if stop and self.running:
+            self.client.cancel(list(self.running))
+        self.running = {}
         self.client.close()
 
 
-def run_search(search: Level3Search, setup: CaseSetup, journal: Journal, workers: int | None = None,
-               scheduler: str | None = None, runner: Runner = run_case,
-               progress: bool = True) -> dict[tuple, CaseResult]:
-    """Every case the search needs, on the engine chosen; each finished one into ``journal``.
-    The finished results by :attr:`Case.key`."""
+def open_engine(workers: int | None = None, scheduler: str | None = None) -> PoolEngine | DaskEngine:
+    """The Dask engine at ``scheduler`` (connected), else a pool of ``workers`` (default the CPU
+    count); ValueError for a bad count or a scheduler that does not answer."""
+    return DaskEngine(scheduler) if scheduler else PoolEngine((os.cpu_count() or 1) if workers is None else workers)
+
+
+def run_search(search: Level3Search, setup: CaseSetup, journal: Journal, engine: PoolEngine | DaskEngine,
+               runner: Runner = run_case, progress: bool = True) -> dict[tuple, CaseResult]:
+    """Every case the search needs, on ``engine`` (opened, left open), each finished one into
+    ``journal`` (closed, in case order once the search is done). The finished results by
+    :attr:`Case.key`; :class:`Interrupted` on SIGINT (KeyboardInterrupt)."""
     from tqdm import tqdm
 
     finished = journal.finished
-    engine = (DaskEngine(scheduler, runner, setup) if scheduler else
-              PoolEngine(workers or os.cpu_count() or 1, runner, setup))
     bar = tqdm(total=_bound(search, finished), initial=len(finished), unit="case", disable=not progress,
                file=sys.stderr, desc="Level 3")
     try:
+        engine.start(runner, setup)
         while True:
             running = {case.key for case in engine.running.values()}
             queue = [case for case in search.pending(finished) if case.key not in running]
@@ -193,10 +346,12 @@ def run_search(search: Level3Search, setup: CaseSetup, journal: Journal, workers
                 bar.update(1)
             bar.total = _bound(search, finished)
             bar.refresh()
+    except KeyboardInterrupt:
+        raise Interrupted(len(finished), _bound(search, finished)) from None
     finally:
         bar.close()
-        engine.close()
         journal.close()
+    journal.finish()
     return finished
 
 

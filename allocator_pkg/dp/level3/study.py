@@ -28,7 +28,7 @@ from ..inputs.site import load_site
 from ..level1 import INTACT, WORST, Level1, Level1Result
 from ..level2 import Level2
 from .case import CRITERIA_NOTE, CaseResult, CaseSetup, Criteria
-from .engine import Journal, run_search
+from .engine import Interrupted, Journal, open_engine, run_search
 from .search import STATIC, Level3Search
 
 BASE_SCENARIO = Path(__file__).resolve().parents[2] / "config" / "scenarios" / "dp_station_keeping.yaml"
@@ -111,12 +111,16 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
 
 def study(inputs: Level3Inputs, out: Path, workers: int | None = None, scheduler: str | None = None,
           resume: bool = False, progress: bool = True) -> tuple[Level3Study, Level1Result, dict[tuple, CaseResult]]:
-    """Check, run every case (journal ``out/cases.jsonl``), and give (study, Level 3 result, cases)."""
-    if workers is not None and workers < 1:
-        raise ValueError(f"--workers: an integer >= 1, not {workers}")
-    prepared = prepare(inputs)
-    journal = Journal(out / JOURNAL, inputs.fingerprint(), resume)
-    finished = run_search(prepared.search, prepared.setup, journal, workers, scheduler, progress=progress)
+    """Open the engine, check, run every case (journal ``out/cases.jsonl``, touched only once the
+    engine and the inputs are known good), and give (study, Level 3 result, cases).
+    :class:`~.level3_engine.Interrupted` on SIGINT, the journal resumable."""
+    try:
+        with open_engine(workers, scheduler) as engine:
+            prepared = prepare(inputs)
+            journal = Journal(out / JOURNAL, inputs.fingerprint(), resume)
+            finished = run_search(prepared.search, prepared.setup, journal, engine, progress=progress)
+    except KeyboardInterrupt:
+        raise Interrupted(0, None) from None
     return prepared, level3_result(prepared, finished), finished
 
 

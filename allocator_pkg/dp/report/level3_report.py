@@ -31,6 +31,8 @@ from .tables import groups_of, table_a1
 
 CASE_COLUMNS = ("case", "heading_deg", "capability_number", "seed", "wind_speed", "hs", "tp", "current",
                 "max_position_m", "mean_position_m", "max_heading_deg", "held")
+INTERRUPTED = 130
+"""The exit status of a run stopped by SIGINT (128 + the signal's number, as a shell gives)."""
 LIMIT_COLUMNS = ("case", "heading_deg", "capability_number", "limited_by")
 CASES_TABLE = ("Level 3 cases run: the condition (number; wind [m/s], Hs [m], Tp [s], current [m/s]) from the "
                "heading, intact or the group failed after settling; position excursion from the set-point [m] (max, "

@@ -1,15 +1,21 @@
-"""The Level 3 engines: the same results on 1 and 2 pool workers and on a Dask cluster, a worker
-that dies mid-case, and the journal a stopped run resumes from."""
+"""The Level 3 engines: the same results and journal on 1 and 2 pool workers and on a Dask
+cluster, a worker that dies mid-case, pool workers that end with their parent, a scheduler that
+does not answer, and the journal a stopped run resumes from."""
 
 import json
 import os
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import pytest
 from conftest import DATA, ROOT
 
-from allocator_pkg.dp.level3.case import CaseResult, Criteria, run_case
-from allocator_pkg.dp.level3.engine import Journal, run_search
+from allocator_pkg.dp.level3 import engine as level3_engine
+from allocator_pkg.dp.level3.case import Case, CaseResult, Criteria, run_case
+from allocator_pkg.dp.level3.engine import DaskEngine, Journal, PoolEngine, open_engine, run_search
 from allocator_pkg.dp.level3.study import Level3Inputs, prepare
 
 INPUTS = Level3Inputs(ROOT / "config/dp_vessel.yaml", ROOT / "config/particulars/dp_vessel.yaml",
@@ -23,26 +29,101 @@ def prepared():
     return prepare(INPUTS)
 
 
-def search_on(prepared, folder: Path, **engine) -> dict:
-    return run_search(prepared.search, prepared.setup, Journal(folder / "cases.jsonl", HEADER, False),
-                      progress=False, **engine)
+def search_on(prepared, folder: Path, runner=run_case, **engine) -> dict:
+    with open_engine(**engine) as opened:
+        return run_search(prepared.search, prepared.setup, Journal(folder / "cases.jsonl", HEADER, False), opened,
+                          runner, progress=False)
 
 
 @pytest.fixture(scope="module")
-def reference(prepared, tmp_path_factory):
-    return search_on(prepared, tmp_path_factory.mktemp("one"), workers=1)
+def reference_folder(tmp_path_factory):
+    return tmp_path_factory.mktemp("one")
 
 
-def test_two_workers_give_the_same_cases_bit_for_bit(prepared, reference, tmp_path):
+@pytest.fixture(scope="module")
+def reference(prepared, reference_folder):
+    return search_on(prepared, reference_folder, workers=1)
+
+
+def test_two_workers_give_the_same_cases_and_journal_bit_for_bit(prepared, reference, reference_folder, tmp_path):
     assert len(reference) >= 6
     assert search_on(prepared, tmp_path, workers=2) == reference
+    journal = (tmp_path / "cases.jsonl").read_bytes()
+    assert journal == (reference_folder / "cases.jsonl").read_bytes()
 
 
-def test_a_dask_cluster_gives_the_same_cases_bit_for_bit(prepared, reference, tmp_path):
+def test_a_dask_cluster_gives_the_same_cases_and_journal_bit_for_bit(prepared, reference, reference_folder,
+                                                                     tmp_path):
     distributed = pytest.importorskip("dask.distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, protocol="tcp://",
                                   host="127.0.0.1", dashboard_address=None) as cluster:
         assert search_on(prepared, tmp_path, scheduler=cluster.scheduler_address) == reference
+    assert (tmp_path / "cases.jsonl").read_bytes() == (reference_folder / "cases.jsonl").read_bytes()
+
+
+def test_the_finished_journal_is_in_case_order(reference, reference_folder):
+    lines = (reference_folder / "cases.jsonl").read_text().splitlines()
+    keys = [CaseResult.from_json(json.loads(line)).case.key for line in lines[1:]]
+    assert keys == sorted(reference)
+
+
+def test_a_scheduler_that_does_not_answer_is_refused(monkeypatch):
+    pytest.importorskip("dask.distributed")
+    monkeypatch.setattr(level3_engine, "CONNECT_TIMEOUT", 1.0)
+    with pytest.raises(ValueError, match=r"--scheduler tcp://127.0.0.1:9: no Dask scheduler answers there within 1 s"):
+        DaskEngine("tcp://127.0.0.1:9")
+
+
+SLEEPER = """
+import os, sys, time
+from pathlib import Path
+from allocator_pkg.dp.level3.engine import PoolEngine
+from allocator_pkg.dp.level3.case import Case
+
+
+def sleeper(case, setup):
+    Path(sys.argv[1], str(os.getpid())).touch()
+    time.sleep(600)
+
+
+with PoolEngine(2) as engine:
+    engine.start(sleeper, None)
+    engine.submit(Case(0.0, 1, "intact", 0))
+    engine.submit(Case(0.0, 1, "intact", 1))
+    engine.wait()
+"""
+
+
+def alive(pid: int) -> bool:
+    """Whether process ``pid`` runs (a zombie, ended but not yet reaped, does not)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_pool_workers_end_when_their_parent_is_killed(tmp_path):
+    parent = subprocess.Popen([sys.executable, "-c", SLEEPER, str(tmp_path)], start_new_session=True,
+                              env={**os.environ, "PYTHONPATH": str(ROOT)})
+    workers: list[int] = []
+    try:
+        deadline = time.monotonic() + 60.0
+        while len(workers) < 2 and time.monotonic() < deadline and parent.poll() is None:
+            workers = [int(path.name) for path in tmp_path.iterdir()]
+            time.sleep(0.05)
+        assert len(workers) == 2 and all(map(alive, workers))
+        parent.kill()                                  # SIGKILL, the parent only
+        parent.wait()
+        deadline = time.monotonic() + 10.0
+        while any(map(alive, workers)) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not any(map(alive, workers))
+    finally:
+        for pid in filter(alive, workers):
+            os.kill(pid, signal.SIGKILL)
+        if parent.poll() is None:
+            parent.kill()
 
 
 def dies_once(case, setup):
@@ -57,12 +138,35 @@ def dies_once(case, setup):
 
 def test_a_worker_that_dies_mid_case_has_the_case_run_again(prepared, reference, tmp_path, monkeypatch):
     monkeypatch.setenv("L3_DIE_MARKERS", str(tmp_path))
-    assert search_on(prepared, tmp_path, workers=2, runner=dies_once) == reference
+    assert search_on(prepared, tmp_path, dies_once, workers=2) == reference
     assert {path.name for path in tmp_path.glob("*_?")} == {"0_intact_2", "90_switchboard_a_1"}
 
 
 class Stop(Exception):
     pass
+
+
+def sleeps(case, setup):
+    """A case runner that takes 30 s, leaving a file as it starts and another as it ends."""
+    folder = Path(os.environ["L3_SLEEPS"])
+    (folder / f"{os.getpid()}.started").touch()
+    time.sleep(30.0)
+    (folder / f"{os.getpid()}.finished").touch()
+
+
+def test_a_pool_stopped_by_an_exception_kills_its_cases_in_flight(tmp_path, monkeypatch):
+    monkeypatch.setenv("L3_SLEEPS", str(tmp_path))
+    with pytest.raises(Stop), PoolEngine(2) as engine:
+        engine.start(sleeps, None)
+        engine.submit(Case(0.0, 1, "intact", 0))
+        engine.submit(Case(0.0, 1, "intact", 1))
+        deadline = time.monotonic() + 60.0
+        while len(list(tmp_path.glob("*.started"))) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        raise Stop
+    workers = [int(path.stem) for path in tmp_path.glob("*.started")]
+    assert len(workers) == 2 and not any(map(alive, workers))
+    assert not list(tmp_path.glob("*.finished"))          # killed, not waited for
 
 
 def counting(case, setup):
@@ -86,13 +190,14 @@ def test_a_stopped_run_resumes_without_running_a_finished_case(prepared, referen
         return stored
 
     journal.append = append_then_stop
-    with pytest.raises(Stop):
-        run_search(prepared.search, prepared.setup, journal, workers=2, progress=False)
+    with pytest.raises(Stop), open_engine(workers=2) as engine:
+        run_search(prepared.search, prepared.setup, journal, engine, progress=False)
     with path.open("a") as handle:                   # killed in the middle of a line
         handle.write('{"heading_deg": 0.0, "num')
     resumed = Journal(path, HEADER, True)
     assert set(resumed.finished) == {r.case.key for r in counted}
-    finished = run_search(prepared.search, prepared.setup, resumed, workers=1, progress=False, runner=counting)
+    with open_engine(workers=1) as engine:
+        finished = run_search(prepared.search, prepared.setup, resumed, engine, counting, progress=False)
     assert finished == reference
     lines = [json.loads(line) for line in path.read_text().splitlines()]
     assert lines[0] == HEADER and len(lines) == 1 + len(reference)

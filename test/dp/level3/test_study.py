@@ -1,16 +1,20 @@
-"""allocator-capability --dnv-level3: the outputs, inputs refused before any case runs, and a run
-killed midway that resumes to the same result as one never stopped."""
+"""allocator-capability --dnv-level3: the outputs, inputs refused before any case runs, a run
+killed midway that resumes to the same result as one never stopped, an interrupted run and a
+scheduler that does not answer."""
 
 import os
+import re
 import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 from conftest import DATA, ROOT
 
 from allocator_pkg.cli.allocator_capability import main
+from allocator_pkg.dp.level3 import engine as level3_engine
 from allocator_pkg.dp.level3.study import JOURNAL, SCOPE_L3
 
 FILES = [str(ROOT / "config/dp_vessel.yaml"), str(ROOT / "config/particulars/dp_vessel.yaml")]
@@ -95,3 +99,63 @@ def test_a_killed_run_resumes_to_the_same_result(uninterrupted, tmp_path):
     assert len(journal.read_text().splitlines()) - 1 == whole     # nothing finished ran again
     for name in TEXT_OUTPUTS:
         assert (tmp_path / name).read_text() == (uninterrupted / name).read_text()
+
+
+def children(pid: int) -> set[int]:
+    """The processes ``pid`` started (Linux /proc)."""
+    return {int(child) for task in Path(f"/proc/{pid}/task").iterdir()
+            for child in (task / "children").read_text().split()}
+
+
+def alive(pid: int) -> bool:
+    """Whether process ``pid`` runs (a zombie, ended but not yet reaped, does not)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_sigint_ends_in_one_line_and_status_130(tmp_path):
+    environment = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
+                   "ROS_DOMAIN_ID": os.environ.get("ROS_DOMAIN_ID", "42"), "PYTHONPATH": str(ROOT)}
+    process = subprocess.Popen([sys.executable, "-m", "allocator_pkg.cli.allocator_capability", "--dnv-level3", *FILES,
+                                "--out", str(tmp_path), "--workers", "2", *SMALL], env=environment,
+                               start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    journal = tmp_path / JOURNAL
+    workers: set[int] = set()
+    try:
+        deadline = time.monotonic() + 60.0
+        while time.monotonic() < deadline and process.poll() is None:
+            if journal.exists() and len(journal.read_text().splitlines()) >= 3:
+                break
+            time.sleep(0.02)
+        workers = children(process.pid)
+        process.send_signal(signal.SIGINT)             # the parent only
+        _, err = process.communicate(timeout=60)
+        assert process.returncode == 130
+        done = len(journal.read_text().splitlines()) - 1
+        assert done >= 2
+        lines = err.strip().splitlines()
+        assert len(lines) == 1
+        assert re.fullmatch(rf"allocator-capability: interrupted after {done} of \d+ cases; rerun with --resume",
+                            lines[0])
+        assert len(workers) == 2 and not any(map(alive, workers))
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+        for pid in filter(alive, workers):
+            os.kill(pid, signal.SIGKILL)
+
+
+def test_an_unreachable_scheduler_is_refused_before_the_analysis_and_the_journal(tmp_path, capsys, monkeypatch):
+    pytest.importorskip("dask.distributed")
+    monkeypatch.setattr(level3_engine, "CONNECT_TIMEOUT", 1.0)
+    earlier = '{"level3": "1"}\n{"an earlier": "case"}\n'
+    (tmp_path / JOURNAL).write_text(earlier)
+    missing = str(tmp_path / "missing.yaml")             # the scheduler is checked before the files
+    assert main(["--dnv-level3", missing, FILES[1], "--out", str(tmp_path), *SMALL,
+                 "--scheduler", "tcp://127.0.0.1:9"]) == 2
+    assert "--scheduler tcp://127.0.0.1:9: no Dask scheduler answers there within 1 s" in capsys.readouterr().err
+    assert (tmp_path / JOURNAL).read_text() == earlier
