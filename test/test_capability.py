@@ -275,3 +275,31 @@ def test_dp_vessel_sway_abeam_once_the_other_azimuth_fails():
         assert capability.max_force(math.radians(degrees), faults=faults) == pytest.approx(expected, rel=1e-3)
     envelope = capability.envelope(90.0, faults={"azimuth_port": failed})
     assert envelope.magnitude[1] == pytest.approx(cases[0][2], rel=1e-3)
+
+
+def test_with_dnv_zones_a_dead_thruster_lifts_its_zone_and_pushing_onto_it_costs_its_loss():
+    """Two azimuths of 1000 N and 2 m diameter 10 m apart athwartships, ``flushing_zones: dnv``
+    (surge and sway). Intact, az0 (y = +5 m) may not push its race onto az1 (toward starboard,
+    +pi/2) within arctan(0.1 + 2 / 10) = 0.291 rad: along +pi/2 az0 pushes at the zone's edge and
+    az1 mirrors it, 2000 cos(0.291) N. With az1 failed that zone lifts and pushing onto the dead
+    az1 costs the [3.11.4] loss, beta = 1 - 1 / (0.02 x 5^2 + 0.25 x 5 + 1.2) straight at it,
+    within arctan(0.6 x 2 / 10) = 0.119 rad: 1000 beta along +pi/2, 1000 N at pi/2 + 0.2
+    (outside the loss sector, inside the lifted zone); the allocator meets 0.99 times each and
+    not 1.01 times."""
+    parameters = {"actuators.names": ["az0", "az1"], "dofs": ["surge", "sway"], "flushing_zones": "dnv"}
+    for name, y in (("az0", 5.0), ("az1", -5.0)):
+        parameters.update({f"actuators.{name}.type": "azimuth", f"actuators.{name}.position": [0.0, y, 0.0],
+                           f"actuators.{name}.thrust_max": 1000.0, f"actuators.{name}.diameter": 2.0})
+    vehicle = vehicle_from_parameters(parameters)
+    capability = Capability(vehicle, "qp")
+    beta = 1.0 - 1.0 / (0.02 * 25.0 + 0.25 * 5.0 + 1.2)
+    assert capability.max_force(math.pi / 2) == pytest.approx(2000.0 * math.cos(math.atan(0.3)), rel=1e-3)
+    dead = {"az1": FaultMode.FAILED}
+    for angle, expected in ((math.pi / 2, 1000.0 * beta), (math.pi / 2 + 0.2, 1000.0)):
+        reach = capability.max_force(angle, faults=dead)
+        assert reach == pytest.approx(expected, rel=1e-3)
+        allocator = Allocator(vehicle, method="qp")
+        allocator.set_fault("az1", FaultMode.FAILED)
+        direction = np.array([math.cos(angle), math.sin(angle), 0.0, 0.0, 0.0, 0.0])
+        assert not _settled(allocator, 0.99 * reach * direction, 300).saturated
+        assert _settled(allocator, 1.01 * reach * direction, 100).saturated
