@@ -14,12 +14,17 @@ pseudo-inverse gives within every limit count, found by bisection on the pseudo-
 ``explicit`` serves only actuators of fixed direction, whose box it shares with ``qp``.
 
 Rotatable thrusters may turn to any allowed angle (steady state: rate limits do not apply).
-A forbidden sector makes the set of forces a thruster can give non-convex; it is split into
-convex pieces (cones at most pi wide) and every combination of pieces is solved, keeping the
-best. A thrust limit that depends on the thrust direction (``profiles``: a
-:class:`~.thrust_profile.ForceProfile` per rotatable thruster: a loss sector, a propeller with
-its rudder) gives the thruster's convex pieces itself, bounded by half-planes. Control surfaces give the lift
-of the given speed, thrusters with voltage-indexed tables the thrust of the given supply voltage.
+The faults decide the ranges and the flushing zones in force as they do for the allocator
+(:class:`~allocator_pkg.allocation.conditions.Conditions`): a forbidden sector that
+``protects`` a thruster lifts while that thruster does not work, with ``flushing_zones: dnv``
+the zones follow the working thrusters, and a thruster pushing onto a dead one has its
+[3.11.4] loss (or leaves the loss sector alone). A forbidden sector makes the set of forces
+a thruster can give non-convex; it is split into convex pieces (cones at most pi wide) and
+every combination of pieces is solved, keeping the best. A thrust limit that depends on the
+thrust direction (``profiles``: a :class:`~.thrust_profile.ForceProfile` per rotatable
+thruster: a loss sector, a propeller with its rudder) gives the thruster's convex pieces
+itself, bounded by half-planes. Control surfaces give the lift of the given speed, thrusters
+with voltage-indexed tables the thrust of the given supply voltage.
 
 :func:`region`, :func:`unmodelled` and :func:`differing_methods` tell which registered
 methods can serve a vehicle and which of them share a capability.
@@ -35,16 +40,18 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import linprog
 
+from ..allocation.conditions import Conditions
 from ..allocation.power_budget import PowerBudget, PowerLimit
 from ..allocation.solve import check_method
-from ..effectiveness.faults import Fault, FaultMode, FaultSet, static_ranges
+from ..effectiveness.faults import Fault, FaultMode, FaultSet
+from ..effectiveness.flushing import DeadFlushing
 from ..effectiveness.model import Model
 from ..effectiveness.sectors import allowed_arcs, can_push_along, in_forbidden_sector
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
 from ..vehicle.angles import TWO_PI
-from ..vehicle.config import ActuatorConfig, Vehicle
+from ..vehicle.config import RotationConfig, Vehicle
 from .thrust_profile import ForceProfile
 
 FORCE_DOFS = ("surge", "sway", "heave")
@@ -105,7 +112,7 @@ class Capability:
                   faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
         """Largest magnitude along ``direction`` [rad, in the plane, from its first DOF toward
         its second] with the yaw moment held (when yaw is controlled and not in the plane)."""
-        return float(np.hypot(*self._max_point(direction, yaw_moment, FaultSet.of(self.vehicle, faults))))
+        return float(np.hypot(*self._max_point(direction, yaw_moment, self.in_force(faults))))
 
     def scale(self, tau, faults: Mapping[str, Fault | FaultMode] | None = None) -> float:
         """The largest lambda with lambda * tau attainable ([X, Y, Z, K, M, N]; uncontrolled DOFs
@@ -136,22 +143,31 @@ class Capability:
         request = np.asarray(tau, dtype=float)[self.model.dof_index]
         if not np.any(request):
             return math.inf, np.zeros(self.model.m)
-        faults = FaultSet.of(self.vehicle, faults)
-        low, high = static_ranges(self.vehicle, faults, self.speed if speed is None else speed, voltage)
+        conditions = self.in_force(faults, speed, voltage)
+        low, high = conditions.low, conditions.high
         zero = np.zeros(self.model.n)
         solve = self._pseudo_inverse_limit if self.sides is None else self._linear_programme
         if power is None or not power[1].limited.any():
-            return solve(request, zero, faults, low, high)
+            return solve(request, zero, conditions, low, high)
         budget, limit = power
         bound, best = limit.bound, (0.0, np.zeros(self.model.m))
         for _ in range(POWER_PASSES):
-            answer = solve(request, zero, faults, np.clip(low, -bound, bound), np.clip(high, -bound, bound))
+            answer = solve(request, zero, conditions, np.clip(low, -bound, bound), np.clip(high, -bound, bound))
             best = max(best, answer, key=lambda pair: pair[0])
             thrust = np.sqrt(np.bincount(self.model.extended_owner, answer[1] ** 2, self.model.r))
             bound = budget.shared(limit, bound, thrust, np.ones(thrust.size, dtype=bool))
             if bound is None:
                 break
         return best
+
+    def in_force(self, faults: Mapping[str, Fault | FaultMode] | FaultSet | None = None, speed: float | None = None,
+                 voltage: float | None = None) -> Conditions:
+        """What ``faults`` put in force at a surge speed and supply voltage (None: the analysis'
+        speed, the nominal voltage), by the allocator's rule: the static force ranges, the sides
+        of fixed thrusters a zone closes, the rotations with the flushing zones that follow the
+        working thrusters and the [3.11.4] losses."""
+        faults = faults if isinstance(faults, FaultSet) else FaultSet.of(self.vehicle, faults)
+        return Conditions.of(self.vehicle, faults, self.speed if speed is None else speed, voltage)
 
     def attains(self, tau, multiple: float, first: int = 0) -> tuple[bool, int]:
         """Whether ``multiple`` (> 0) times tau is attainable, as ``reach(tau)[0] >= multiple``,
@@ -161,9 +177,9 @@ class Capability:
         request = np.asarray(tau, dtype=float)[self.model.dof_index]
         if self.sides is None or not np.any(request):
             return self.reach(tau)[0] >= multiple, -1
-        faults = FaultSet.of(self.vehicle, None)
-        low, high = static_ranges(self.vehicle, faults, self.speed)
-        combinations = list(itertools.product(*(self._pieces(i, None, low[i], high[i]) for i in self.model.rot)))
+        conditions = self.in_force()
+        low, high = conditions.low, conditions.high
+        combinations = list(itertools.product(*(self._pieces(i, conditions, low[i], high[i]) for i in self.model.rot)))
         order = sorted(range(len(combinations)), key=lambda k: k != first)          # ``first`` first
         zero = np.zeros(self.model.n)
         for k in order:
@@ -174,8 +190,8 @@ class Capability:
     def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
                  faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:
         directions = np.radians(np.arange(0.0, 360.0, step_deg))
-        faults = FaultSet.of(self.vehicle, faults)
-        points = np.array([self._max_point(angle, yaw_moment, faults) for angle in directions])
+        conditions = self.in_force(faults)
+        points = np.array([self._max_point(angle, yaw_moment, conditions) for angle in directions])
         return Envelope(directions=directions, points=points)
 
     # -- one direction --------------------------------------------------------------------
@@ -189,21 +205,18 @@ class Capability:
             fixed[list(self.vehicle.dofs).index("yaw")] = yaw_moment
         return unit, fixed
 
-    def _max_point(self, direction: float, yaw_moment: float, faults: FaultSet) -> np.ndarray:
+    def _max_point(self, direction: float, yaw_moment: float, conditions: Conditions) -> np.ndarray:
         unit, fixed = self._request(direction, yaw_moment)
-        low, high = static_ranges(self.vehicle, faults, self.speed)
-        if self.sides is None:
-            magnitude = self._pseudo_inverse_limit(unit, fixed, faults, low, high)[0]
-        else:
-            magnitude = self._linear_programme(unit, fixed, faults, low, high)[0]
+        solve = self._pseudo_inverse_limit if self.sides is None else self._linear_programme
+        magnitude = solve(unit, fixed, conditions, conditions.low, conditions.high)[0]
         return magnitude * self.axis_scale * np.array([math.cos(direction), math.sin(direction)])
 
-    def _linear_programme(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet, low: np.ndarray,
+    def _linear_programme(self, unit: np.ndarray, fixed: np.ndarray, conditions: Conditions, low: np.ndarray,
                           high: np.ndarray) -> tuple[float, np.ndarray]:
-        """The largest magnitude over every combination of convex pieces, and its extended forces."""
+        """The largest magnitude over every combination of convex pieces (the zones and losses of
+        ``conditions``, the ranges ``low``, ``high``), and its extended forces."""
         model = self.model
-        choices = [self._pieces(i, faults.faults.get(self.vehicle.actuators[i].name), low[i], high[i])
-                   for i in model.rot]
+        choices = [self._pieces(i, conditions, low[i], high[i]) for i in model.rot]
         best, force = 0.0, np.zeros(model.m)
         for combination in itertools.product(*choices):
             magnitude, solution = self._solve(unit, fixed, low, high, combination, self.sides)
@@ -220,9 +233,11 @@ class Capability:
             return actuator.thrust_max
         return profile.available(angle, actuator.thrust_min, actuator.thrust_max)
 
-    def _pieces(self, index: int, fault: Fault | None, low: float, high: float) -> list[tuple]:
-        actuator = self.vehicle.actuators[index]
-        return _pieces(actuator, fault, low, high, self.profiles.get(actuator.name))
+    def _pieces(self, index: int, conditions: Conditions, low: float, high: float) -> list[tuple]:
+        """The convex pieces of the ``index``-th actuator's forces with the zones and losses in force."""
+        name = self.vehicle.actuators[index].name
+        return _pieces(conditions.rotations[index], conditions.faults.faults.get(name), low, high,
+                       self.profiles.get(name), conditions.losses.get(index, ()))
 
     def _solve(self, unit, fixed, low, high, pieces, sides) -> tuple[float, np.ndarray]:
         """max F s.t. T_e f = F unit + fixed, boxes, and each rotatable force in its piece."""
@@ -278,10 +293,11 @@ class Capability:
         return linprog(cost, A_ub=np.array(a_ub) if a_ub else None, b_ub=np.array(b_ub) if b_ub else None,
                        A_eq=a_eq, b_eq=b_eq, bounds=bounds, method="highs")
 
-    def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet, low: np.ndarray,
+    def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, conditions: Conditions, low: np.ndarray,
                               high: np.ndarray) -> tuple[float, np.ndarray]:
-        """Largest F whose pseudo-inverse forces stay within every limit (bisection), and those forces."""
-        model = self.model
+        """Largest F whose pseudo-inverse forces stay within every limit (the zones and losses of
+        ``conditions``, the ranges ``low``, ``high``) (bisection), and those forces."""
+        model, faults = self.model, conditions.faults
         excluded = (low == 0.0) & (high == 0.0)
         lines = {int(i): faults.stuck[int(i)] for i in model.rot if int(i) in faults.stuck}
         gain = PseudoInverseGains(model).gain(excluded, lines)
@@ -294,11 +310,11 @@ class Capability:
                 if not low[i] - 1e-9 <= force[column] <= high[i] + 1e-9:
                     return False
             for i, (c1, c2) in zip(model.rot, model.rot_columns):
-                actuator = self.vehicle.actuators[i]
-                magnitude_i = math.hypot(force[c1], force[c2])
-                if magnitude_i > max(high[i], -low[i]) + 1e-9:
+                magnitude_i, angle = math.hypot(force[c1], force[c2]), math.atan2(force[c2], force[c1])
+                loss = min((dead.factor(angle) for dead in conditions.losses.get(int(i), ())), default=1.0)
+                if magnitude_i > max(high[i], -low[i]) * loss + 1e-9:
                     return False
-                if magnitude_i > 1e-9 and not can_push_along(actuator.rotation, math.atan2(force[c2], force[c1])):
+                if magnitude_i > 1e-9 and not can_push_along(conditions.rotations[i], angle):
                     return False
             return True
 
@@ -312,12 +328,29 @@ class Capability:
         return lower, gain @ (lower * unit + fixed)
 
 
-def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float,
-            profile: ForceProfile | None = None) -> list[tuple]:
+def _pieces(rotation: RotationConfig, fault: Fault | None, low: float, high: float,
+            profile: ForceProfile | None = None, losses: tuple[DeadFlushing, ...] = ()) -> list[tuple]:
     """Convex pieces (start, end, radius, line, half-planes) of the forces a rotatable thruster
-    can give (:data:`~.thrust_profile.ForcePiece`): with a ``profile`` those it gives, stuck its
-    limit times the profile's factor at that angle; without, cones of the allowed arcs."""
-    rotation = actuator.rotation
+    of ``rotation`` (the zones in force) can give (:data:`~.thrust_profile.ForcePiece`): with a
+    ``profile`` those it gives, stuck its limit times the profile's factor at that angle;
+    without, cones of the allowed arcs. With [3.11.4] ``losses`` (onto dead thrusters), as the
+    allocator has them (:func:`~.consequence.force_pieces`): each piece's radius times the least
+    loss factor over its directions, and for a thruster that neither reverses nor is stuck also
+    the pieces with the loss sectors forbidden (left alone)."""
+    pieces = _plain_pieces(rotation, fault, low, high, profile)
+    if not losses:
+        return pieces
+    cut = [(start, end, radius * min(loss.lowest(start, end) for loss in losses), line, chords)
+           for start, end, radius, line, chords in pieces]
+    if (fault is not None and fault.mode == FaultMode.STUCK) or low < 0.0:
+        return cut
+    left_alone = replace(rotation, forbidden_sectors=rotation.forbidden_sectors + tuple(loss.sector for loss in losses))
+    return cut + _plain_pieces(left_alone, None, low, high, profile)
+
+
+def _plain_pieces(rotation: RotationConfig, fault: Fault | None, low: float, high: float,
+                  profile: ForceProfile | None) -> list[tuple]:
+    """:func:`_pieces` without losses."""
     if fault is not None and fault.mode == FaultMode.STUCK:
         angle = fault.angle
         share = (lambda a: 1.0) if profile is None else profile.factor

@@ -235,7 +235,8 @@ class Level1:
 
     def variant(self, condition: Condition, direction: float, failed: tuple[str, ...] = ()) -> Vehicle:
         """The vehicle's working thrusters (the failed ones left out) with Level 1's thrust ranges and
-        zones for the condition, heading and case (a fixed thruster's range times its loss factors)."""
+        zones for the condition, heading and case (a fixed thruster's range times its loss factors):
+        the zones of the case, none to lift or add (no ``protects``, ``flushing_zones`` none)."""
         zones, profiles = self.zones(failed), self.thrust_profiles(failed)
         actuators = []
         for actuator in self.vehicle.actuators:
@@ -245,7 +246,7 @@ class Level1:
             low, high = self.thrust_range(actuator.name, condition, direction, failed)
             own = [zone for zone in zones if zone.thruster == actuator.name]
             if actuator.rotatable:
-                rotation = replace(actuator.rotation, forbidden_sectors=tuple(zone.sector for zone in own))
+                rotation = replace(actuator.rotation, forbidden_sectors=tuple(zone.sector for zone in own), protects=())
                 actuators.append(replace(actuator, thrust_min=low, thrust_max=high, rotation=rotation))
                 continue
             if actuator.name in profiles:
@@ -257,7 +258,7 @@ class Level1:
                 low = 0.0
             pair, fixed = self.rudders.get(actuator.name), replace(actuator, thrust_min=low, thrust_max=high)
             actuators.append(pair.turned(fixed) if pair and pair.rudder not in failed else fixed)
-        return replace(self.vehicle, actuators=tuple(actuators))
+        return replace(self.vehicle, actuators=tuple(actuators), flushing_zones="none")
 
     def capability(self, variant: Vehicle, failed: tuple[str, ...] | None = None) -> Capability:
         """The capability analysis of a variant with its case's :meth:`thrust_profiles` (the case:

@@ -210,3 +210,96 @@ def test_under_the_power_in_force_the_capability_is_the_exact_optimums():
     assert scale == pytest.approx(best, rel=5e-3)
     thrust = np.sqrt(np.bincount(capability.model.extended_owner, force ** 2, capability.model.r))
     assert budget.draw(thrust, limit)[0] <= 1000.0 * 1.01
+
+
+DP_CASES = [("fault", name) for name in ("azimuth_stbd", "azimuth_port", "tunnel_fwd", "tunnel_aft")] + [
+    ("group", name) for name in ("switchboard_a", "switchboard_b")]
+
+
+def _settled(allocator, tau, steps):
+    """The allocator's last answer after ``steps`` samples of ``tau``."""
+    for _ in range(steps):
+        result = allocator.allocate(tau)
+    return result
+
+
+@pytest.mark.parametrize("kind, name", DP_CASES)
+def test_dp_vessel_capability_after_a_fault_is_the_allocators_attainable_set(kind, name):
+    """dp_vessel after every single actuator fault and every redundancy group's loss: the
+    ~/get_capability answer (the service's own query, with the zones, power and faults in force)
+    is the allocator's attainable set in eight directions of surge and sway (yaw held at 0): the
+    allocator with the same faults meets 0.99 times the answer unsaturated, settled, and saturates
+    at 1.01 times it. The sector an azimuth keeps off the other lifts when that one fails."""
+    import threading
+
+    from allocator_pkg.ros.capability_query import CapabilityQuery
+
+    vessel = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
+    allocator = Allocator(vessel)
+    if kind == "fault":
+        allocator.set_fault(name, FaultMode.FAILED)
+    else:
+        allocator.set_group_fault(name)
+    query, lock = CapabilityQuery(), threading.Lock()
+    for degrees in range(0, 360, 45):
+        direction = np.array([math.cos(math.radians(degrees)), math.sin(math.radians(degrees)), 0.0, 0.0, 0.0, 0.0])
+        success, message, scale, _ = query.answer(allocator, lock, "body", 1e5 * direction)
+        assert success, message
+        tau = 1e5 * scale * direction
+        assert scale > 0.0, (name, degrees)
+        met = _settled(allocator, 0.99 * tau, 300)
+        controlled = [0, 1, 5]                                  # surge, sway, yaw
+        assert not met.saturated and np.allclose(met.achieved[controlled], 0.99 * tau[controlled], atol=2e3), (
+            name, degrees, scale, met.short)
+        assert _settled(allocator, 1.01 * tau, 60).saturated, (name, degrees, scale)
+
+
+def test_dp_vessel_sway_abeam_once_the_other_azimuth_fails():
+    """The sector an azimuth keeps off the other (about +-90 deg) lifts when that one fails, so
+    pure sway (X = 0, N = 0; x = -41.5 m for the azimuths, 37 m and 35 m for the tunnels) comes
+    from the azimuth abeam and the tunnels balancing its yaw moment, 41.5 F_a = 37 F_fwd + 35 F_aft:
+    - azimuth_port failed, to starboard: F_a = 420 kN, F_aft = 300 kN, F_fwd = (41.5 420 - 35 300)
+      / 37 = 187.3 kN: 907.3 kN;
+    - azimuth_stbd failed, to port: both tunnels at 300 kN, F_a = 72 300 / 41.5 = 520.5 kN
+      (of 655): 1120.5 kN;
+    - switchboard B lost (azimuth_port, tunnel_aft), to starboard: F_fwd = 300 kN, F_a = 37 300 /
+      41.5 = 267.5 kN: 567.5 kN; switchboard A lost, to port: 300 (1 + 35 / 41.5) = 553.0 kN."""
+    vessel = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
+    capability = Capability(vessel, speed=0.0)
+    failed = FaultMode.FAILED
+    cases = [({"azimuth_port": failed}, 90, 420e3 + 300e3 + (41.5 * 420e3 - 35.0 * 300e3) / 37.0),
+             ({"azimuth_stbd": failed}, 270, 600e3 + 72.0 * 300e3 / 41.5),
+             ({"azimuth_port": failed, "tunnel_aft": failed}, 90, 300e3 * (1.0 + 37.0 / 41.5)),
+             ({"azimuth_stbd": failed, "tunnel_fwd": failed}, 270, 300e3 * (1.0 + 35.0 / 41.5))]
+    for faults, degrees, expected in cases:
+        assert capability.max_force(math.radians(degrees), faults=faults) == pytest.approx(expected, rel=1e-3)
+    envelope = capability.envelope(90.0, faults={"azimuth_port": failed})
+    assert envelope.magnitude[1] == pytest.approx(cases[0][2], rel=1e-3)
+
+
+def test_with_dnv_zones_a_dead_thruster_lifts_its_zone_and_pushing_onto_it_costs_its_loss():
+    """Two azimuths of 1000 N and 2 m diameter 10 m apart athwartships, ``flushing_zones: dnv``
+    (surge and sway). Intact, az0 (y = +5 m) may not push its race onto az1 (toward starboard,
+    +pi/2) within arctan(0.1 + 2 / 10) = 0.291 rad: along +pi/2 az0 pushes at the zone's edge and
+    az1 mirrors it, 2000 cos(0.291) N. With az1 failed that zone lifts and pushing onto the dead
+    az1 costs the [3.11.4] loss, beta = 1 - 1 / (0.02 x 5^2 + 0.25 x 5 + 1.2) straight at it,
+    within arctan(0.6 x 2 / 10) = 0.119 rad: 1000 beta along +pi/2, 1000 N at pi/2 + 0.2
+    (outside the loss sector, inside the lifted zone); the allocator meets 0.99 times each and
+    not 1.01 times."""
+    parameters = {"actuators.names": ["az0", "az1"], "dofs": ["surge", "sway"], "flushing_zones": "dnv"}
+    for name, y in (("az0", 5.0), ("az1", -5.0)):
+        parameters.update({f"actuators.{name}.type": "azimuth", f"actuators.{name}.position": [0.0, y, 0.0],
+                           f"actuators.{name}.thrust_max": 1000.0, f"actuators.{name}.diameter": 2.0})
+    vehicle = vehicle_from_parameters(parameters)
+    capability = Capability(vehicle, "qp")
+    beta = 1.0 - 1.0 / (0.02 * 25.0 + 0.25 * 5.0 + 1.2)
+    assert capability.max_force(math.pi / 2) == pytest.approx(2000.0 * math.cos(math.atan(0.3)), rel=1e-3)
+    dead = {"az1": FaultMode.FAILED}
+    for angle, expected in ((math.pi / 2, 1000.0 * beta), (math.pi / 2 + 0.2, 1000.0)):
+        reach = capability.max_force(angle, faults=dead)
+        assert reach == pytest.approx(expected, rel=1e-3)
+        allocator = Allocator(vehicle, method="qp")
+        allocator.set_fault("az1", FaultMode.FAILED)
+        direction = np.array([math.cos(angle), math.sin(angle), 0.0, 0.0, 0.0, 0.0])
+        assert not _settled(allocator, 0.99 * reach * direction, 300).saturated
+        assert _settled(allocator, 1.01 * reach * direction, 100).saturated

@@ -356,6 +356,17 @@ def test_get_capability_answers_along_a_direction_in_the_nodes_frame(harness):
     assert not bad.success and "finite" in bad.message
 
 
+@pytest.mark.params(ROOT / "config" / "dp_vessel.yaml", wrench_timeout=0.0)
+def test_get_capability_after_a_group_fault_lifts_the_sector_that_protected_the_lost_azimuth(harness):
+    """dp_vessel, switchboard B lost (azimuth_port, tunnel_aft): azimuth_stbd's sector about 90 deg
+    kept its race off azimuth_port and lifts, so pure sway to starboard is azimuth_stbd abeam with
+    tunnel_fwd balancing its yaw moment (41.5 F_a = 37 F_fwd, F_fwd at 300 kN): 567.5 kN."""
+    assert harness.set_group_fault("switchboard_b")[0]
+    scale, achieved = harness.capability([0.0, 1.0, 0.0, 0.0, 0.0, 0.0])
+    assert scale == pytest.approx(300e3 * (1.0 + 37.0 / 41.5), rel=1e-3)
+    assert achieved[[0, 1, 5]] == pytest.approx([0.0, scale, 0.0], abs=1.0)
+
+
 def _fault_request(actuator, mode):
     from allocator_msgs.msg import ActuatorFault
     from allocator_msgs.srv import SetActuatorFault

@@ -25,13 +25,13 @@ from ...simulation.scenario import load_scenario, vehicle_config
 from ...simulation.scenario_check import check_method_serves, check_vehicle
 from ..inputs.particulars import load_particulars
 from ..inputs.site import load_site
-from ..level1 import INTACT, WORST, Level1, Level1Result
+from ..level1 import INTACT, MAX_STEP_DEG, WORST, Level1, Level1Result
 from ..level2 import Level2
 from .case import CRITERIA_NOTE, CaseResult, CaseSetup, Criteria
 from .engine import Interrupted, Journal, open_engine, run_search
 from .search import STATIC, Level3Search
 
-BASE_SCENARIO = Path(__file__).resolve().parents[2] / "config" / "scenarios" / "dp_station_keeping.yaml"
+BASE_SCENARIO = Path(__file__).resolve().parents[3] / "config" / "scenarios" / "dp_station_keeping.yaml"
 """The scenario whose controller gains, thruster time constant and environment variations the
 cases use (``--scenario``)."""
 JOURNAL = "cases.jsonl"
@@ -69,10 +69,10 @@ class Level3Inputs:
 
 @dataclass(frozen=True)
 class Level3Study:
-    """The checked set-up: the static Level 1 and Level 2 analyses, the case set-up and the search."""
+    """The checked set-up: the static Level 2 analysis and its result at the study's headings (the
+    ceilings of the search), the case set-up and the search."""
 
     inputs: Level3Inputs
-    level1: Level1Result
     level2: Level1Result
     analysis: Level2
     setup: CaseSetup
@@ -97,7 +97,6 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     check_method_serves(base.method, config)
     analysis = Level2(vehicle, particulars, inputs.method, load_site(inputs.site) if inputs.site else None)
     level2 = analysis.run(step)
-    level1 = Level1(vehicle, particulars, inputs.method).run(step)
     groups = {name: tuple(member for member in members if member in vehicle.names)
               for name, members in analysis.groups.items()}
     setup = CaseSetup(base, tuple(analysis.conditions), groups,
@@ -106,7 +105,17 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     ceilings = {(heading, case): int(level2.numbers[case][k]) for case in (INTACT, *groups)
                 for k, heading in enumerate(headings)}
     search = Level3Search(headings, (INTACT, *groups), inputs.seeds, ceilings, len(analysis.conditions) - 1)
-    return Level3Study(inputs, level1, level2, analysis, setup, search)
+    return Level3Study(inputs, level2, analysis, setup, search)
+
+
+def published(prepared: Level3Study) -> tuple[Level1Result, Level1Result]:
+    """Level 1 and Level 2 of the vessel as ``--dnv-level1`` and ``--dnv-level2`` publish them, at
+    the standard's heading step (:data:`~allocator_pkg.analysis.dp_capability.MAX_STEP_DEG`),
+    for the comparison plots: the study's own Level 2 where its step is that one."""
+    analysis, inputs = prepared.analysis, prepared.inputs
+    level1 = Level1(analysis.vehicle, analysis.particulars, inputs.method).run(MAX_STEP_DEG)
+    level2 = prepared.level2 if inputs.heading_step == MAX_STEP_DEG else analysis.run(MAX_STEP_DEG)
+    return level1, level2
 
 
 def study(inputs: Level3Inputs, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -149,6 +158,8 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
              "Environment: Table 2-1 (no site environment given).",
              "Limiting wind speed: the wind of the number's condition (no bisection between conditions in the time "
              "domain)."]
+    if inputs.heading_step > MAX_STEP_DEG:
+        lines.append(f"Headings every {inputs.heading_step:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
     static = []
     for chain in search.chains():
         outcome = search.outcome(chain, finished)

@@ -3,13 +3,15 @@
 
 - ``_number.png`` / ``_wind.png``: intact and worst single failure; ``_groups_number.png`` /
   ``_groups_wind.png``: each group's loss (the Level 1 plots, :mod:`.dp_plots`);
-- ``_vs_l1_l2_number.png`` / ``_vs_l1_l2_wind.png``: Level 1, 2 and 3 of the vessel on one;
+- ``_vs_l1_l2_number.png`` / ``_vs_l1_l2_wind.png``: Level 1, 2 and 3 of the vessel on one (Level 1
+  and 2 as published, at the standard's 10 deg headings, whatever the study's step);
 - ``_footprints.png``: per heading the x-y track of each case at its number (solid) and at the
   first condition that failed (dashed), with the position limit;
 - ``.csv``, ``_table_a1.csv`` and Tables A-2 to A-5 (:mod:`.dp_report`) as at Level 1;
   ``_limits.csv``: why each number stops where it does; ``_cases.csv``: every case run with its
   excursion statistics;
-- ``.txt``: the DP capability-L3(A, B, C, D) line, the scope, the criteria and the notes.
+- ``.txt``: the DP capability-L3(A, B, C, D) line, the scope, the criteria, the notes and the
+  Level 1 and 2 lines of the comparison plots.
 
 Every one states the criteria and that the result is not verified by DNV.
 """
@@ -21,9 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..level1 import INTACT, WORST, Level1Result
+from ..level1 import INTACT, MAX_STEP_DEG, WORST, Level1Result
 from ..level3.case import CaseResult
-from ..level3.study import Level3Study
+from ..level3.study import Level3Study, published
 from .capability_plots import Outline, polar_figure, polar_plot
 from .files import write_csv
 from .summary import TABLES, input_tables, write_table
@@ -56,9 +58,10 @@ def write_level3(prepared: Level3Study, result: Level1Result, finished: dict[tup
         for wind, quantity in ((False, "number"), (True, "wind")):
             paths.append(out / f"{stem}{suffix}_{quantity}.png")
             polar_plot(paths[-1], result, title, f"{caption} ({criteria})", wind, cases, outline, (), suffix == "")
+    level1, level2 = published(prepared)
     for wind, quantity in ((False, "number"), (True, "wind")):
         paths.append(out / f"{stem}_vs_l1_l2_{quantity}.png")
-        levels_plot(paths[-1], (prepared.level1, prepared.level2, result), title, wind, outline, criteria)
+        levels_plot(paths[-1], (level1, level2, result), title, wind, outline, criteria)
     paths.append(out / f"{stem}_footprints.png")
     footprints(paths[-1], prepared, result, finished, title)
     paths.append(out / f"{stem}.csv")
@@ -74,7 +77,11 @@ def write_level3(prepared: Level3Study, result: Level1Result, finished: dict[tup
     paths.append(out / f"{stem}_cases.csv")
     write_table(paths[-1], CASES_TABLE, scope, CASE_COLUMNS, case_rows(prepared, finished))
     paths.append(out / f"{stem}.txt")
-    paths[-1].write_text("\n".join([f"{title}: {result.summary_line()}", "", result.scope, *result.notes]) + "\n")
+    compared = (f"The comparison plots (_vs_l1_l2) show Level 1 and Level 2 as published (--dnv-level1, "
+                f"--dnv-level2), at the standard's {MAX_STEP_DEG:g} deg headings: {level1.summary_line()}, "
+                f"{level2.summary_line()}.")
+    paths[-1].write_text("\n".join([f"{title}: {result.summary_line()}", "", result.scope, *result.notes, compared])
+                         + "\n")
     return paths
 
 

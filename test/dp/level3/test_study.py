@@ -42,6 +42,15 @@ def test_the_report(uninterrupted, capsys):
     assert "position limit 0.05 m, heading limit 3 deg, 2 s on station (a group fails then) + 6 s" in text
     assert SCOPE_L3 in text and "Not simulated, the static Level 2 balance already fails them" in text
     assert "gusts at its turbulence intensity); method qp." in text
+    assert "Headings every 90 deg: coarser than the standard's 10 deg." in text
+
+
+def test_the_comparison_shows_level_1_as_published_whatever_the_heading_step(uninterrupted):
+    """A study every 90 deg compares itself with Level 1 at the standard's 10 deg headings, the one
+    ``--dnv-level1`` publishes (docs/dp_capability), not with a Level 1 of its own 4 headings."""
+    published = (ROOT / "docs" / "dp_capability" / "dp_vessel_dp_l1.txt").read_text().splitlines()[0].split(": ")[1]
+    text = (uninterrupted / "dp_vessel_dp_l3.txt").read_text()
+    assert f"at the standard's 10 deg headings: {published}, DP capability-L2(" in text
     cases = (uninterrupted / "dp_vessel_dp_l3_cases.csv").read_text().splitlines()
     assert cases[1].startswith("# ") and "position limit 0.05 m" in cases[1]
     assert cases[2] == ("case,heading_deg,capability_number,seed,wind_speed,hs,tp,current,max_position_m,"
