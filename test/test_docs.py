@@ -12,6 +12,8 @@ from conftest import ROOT
 
 PAGES = {"docs/dp_capability.md": 0, "README.md": 0}
 """Page and the index of its ```python block to run (README's first: the library example)."""
+SLOW = {"docs/dp_capability.md"}
+"""Pages whose example runs minutes: DNV Level 1 three times and Level 2 twice."""
 
 
 def python_blocks(text: str) -> list[str]:
@@ -45,7 +47,8 @@ def run(source: str) -> list[tuple[str, object, object]]:
     return checked
 
 
-@pytest.mark.parametrize("page", list(PAGES))
+@pytest.mark.parametrize("page", [pytest.param(page, marks=[pytest.mark.slow] if page in SLOW else [])
+                                  for page in PAGES])
 def test_the_python_example_runs_and_gives_the_values_it_states(page, tmp_path, monkeypatch):
     block = python_blocks((ROOT / page).read_text())[PAGES[page]]
     (tmp_path / "config").symlink_to(ROOT / "config")
