@@ -25,33 +25,51 @@ from .conversions import OUTCOME_NAMES, wrench_to_array
 from .node_client import Controller
 from .recording import Recording
 
+WIDTH = 120
+"""[characters] The live table's lines are at most this wide (unless one part alone is wider)."""
+
+
+def wrapped(parts: list[str], first: str = "") -> list[str]:
+    """``parts`` joined by ' | ' into lines of at most :data:`WIDTH` characters, the first
+    starting with ``first``, each later one with '  | '."""
+    lines = [first + parts[0]]
+    for part in parts[1:]:
+        if len(lines[-1]) + 3 + len(part) <= WIDTH:
+            lines[-1] += " | " + part
+        else:
+            lines.append("  | " + part)
+    return lines
+
 
 def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -> str:
-    """One compact line: every actuator's thrust [N], command (set-point) and azimuth [deg] if it
-    has one, then the solver figures; when saturated the unallocated wrench, the actuators at a
-    thrust (!) or rate (~) limit, and the supply voltage in use; with power sources, the power
-    each gives of what it has [kW], LIMITED when the power holds thrust back."""
+    """A few lines of at most :data:`WIDTH` characters: every actuator's thrust [N], command
+    (set-point) and azimuth [deg] if it has one; then the solver figures; when saturated the
+    unallocated wrench, the actuators at a thrust (!) or rate (~) limit, and the supply voltage in
+    use; with power sources, the power each gives of what it has [kW], LIMITED when the power
+    holds thrust back."""
     parts = []
     for name, thrust, command, azimuth in zip(commands.name, commands.thrust, commands.command, commands.azimuth):
         angle = f" @{math.degrees(azimuth):6.1f}" if azimuth != 0.0 else " " * 8
         parts.append(f"{name} {thrust:9.1f} N cmd {command:8.2f}{angle}")
-    line = " | ".join(parts)
+    lines = wrapped(parts) if parts else []
     if status is not None:
-        line += (f" || sat {'YES' if status.saturated else 'no '} {status.solve_time * 1e6:7.0f} us "
-                 f"{status.iterations:5d} it {status.solver_status}")
+        figures = [f"sat {'YES' if status.saturated else 'no '} {status.solve_time * 1e6:7.0f} us "
+                   f"{status.iterations:5d} it {status.solver_status}"]
         if status.saturated:
-            line += " | unallocated " + " ".join(f"{v:.1f}" for v in wrench_to_array(status.unallocated))
+            figures.append("unallocated " + " ".join(f"{v:.1f}" for v in wrench_to_array(status.unallocated)))
         flagged = [f"{name}{'!' if thrust else ''}{'~' if rate else ''}" for name, thrust, rate
                    in zip(commands.name, status.at_thrust_limit, status.at_rate_limit) if thrust or rate]
         if flagged:
-            line += f" | at limit (! thrust, ~ rate): {' '.join(flagged)}"
+            figures.append(f"at limit (! thrust, ~ rate): {' '.join(flagged)}")
         if status.voltage > 0.0:                     # NaN: no voltage tables
-            line += f" | {status.voltage:.2f} V"
+            figures.append(f"{status.voltage:.2f} V")
         if status.power_source:
-            line += " | power " + ", ".join(f"{source} {drawn:.0f}/{available:g} kW" for source, drawn, available
-                                            in zip(status.power_source, status.source_power, status.source_available))
-            line += " LIMITED" if status.power_limited else ""
-    return line
+            figures.append("power " + ", ".join(f"{source} {drawn:.0f}/{available:g} kW" for source, drawn, available
+                                                in zip(status.power_source, status.source_power,
+                                                       status.source_available))
+                           + (" LIMITED" if status.power_limited else ""))
+        lines += wrapped(figures, "|| ")
+    return "\n".join(line.rstrip() for line in lines)
 
 
 WRENCH_TYPES = {"geometry_msgs/msg/Wrench": Wrench, "geometry_msgs/msg/WrenchStamped": WrenchStamped}

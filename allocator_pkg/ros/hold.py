@@ -6,7 +6,7 @@ sample's. When the hold ends the faults in force before it come back.
 
 Plain logic on the allocator, so that it is tested without a node; the runtime keeps the hold
 in force and ends it (its duration, a stale input, a fault service, a parameter change,
-deactivation)."""
+deactivation). A hold is refused while the input is stale, since the next sample would end it."""
 
 from __future__ import annotations
 
@@ -55,11 +55,12 @@ class Hold:
 
 
 def refusal(allocator: Allocator, settings: NodeSettings, actuator: str, thrust: float, duration: float,
-            active: bool) -> str | None:
+            active: bool, stale: bool = False) -> str | None:
     """Why ``actuator`` cannot be held at ``thrust`` [N] for ``duration`` [s], or None: unless
     step_test.enabled, beyond step_test.thrust_share of the actuator's largest thrust or
-    step_test.duration_max, for a control surface, while the runtime is not ``active``, and
-    for an actuator acting on no controlled DOF."""
+    step_test.duration_max, for a control surface, while the runtime is not ``active``, while
+    the wrench input is ``stale`` (the watchdog would end the hold at the next sample), and for
+    an actuator acting on no controlled DOF."""
     if not settings.step_test_enabled:
         return "step_test.enabled is false (enable it on the bench only)"
     names = allocator.names
@@ -79,6 +80,9 @@ def refusal(allocator: Allocator, settings: NodeSettings, actuator: str, thrust:
                f"{settings.step_test_duration_max:g} s"
     if not active:
         return "not active: no samples to hold an actuator in"
+    if stale:
+        return (f"wrench_command is stale (no valid wrench for {settings.wrench_timeout:g} s): send wrenches (zero) "
+                "on it before and during the hold, which the watchdog ends as soon as it is stale")
     column = allocator.configuration_matrix()[list(allocator.vehicle.dof_indices), index]
     if not np.any(column):
         return f"{actuator} acts on none of the controlled DOFs ({', '.join(allocator.dofs)})"

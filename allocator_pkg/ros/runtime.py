@@ -344,11 +344,13 @@ class AllocationRuntime:
         """Hold ``actuator`` at ``thrust`` [N] for ``duration`` [s], every other one FAILED, from
         the next sample; (success, message saying why not, :func:`~allocator_pkg.ros.hold.refusal`)."""
         with self._lock:
-            refused = refusal(self.allocator, self.settings, actuator, thrust, duration, self.active)
+            now = self._clock.now().nanoseconds
+            refused = refusal(self.allocator, self.settings, actuator, thrust, duration, self.active,
+                              self.watchdog.is_stale(now, self._wrench_time))
             if refused is not None:
                 return False, refused
             self._end_hold()
-            end = self._clock.now().nanoseconds + round(duration * S_TO_NS)
+            end = now + round(duration * S_TO_NS)
             self._hold = Hold.start(self.allocator, actuator, thrust, end)
         self._node.get_logger().warn(f"step test: holding {actuator} at {thrust:g} N for {duration:g} s, every "
                                      "other actuator FAILED")

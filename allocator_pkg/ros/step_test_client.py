@@ -5,8 +5,9 @@ largest wrench along it, commands a stated share of that for ``hold`` seconds on
 ``wrench_command``, then zero for ``rest`` seconds, and prints what every actuator was
 commanded at the end of the step and which way the vehicle should move. With ``--actuators``
 it holds one actuator at a time instead, through the node's ``~/hold_actuator`` (refused
-unless the node's ``step_test.enabled``), sending zero wrenches all along so that the watchdog
-keeps working, and prints which way that actuator alone pushes the vehicle. The test ends by
+unless the node's ``step_test.enabled``, and while its input is stale), sending zero wrenches
+all along (service calls included) so that the watchdog keeps working, the first hold only
+once a sample has taken them, and prints which way that actuator alone pushes the vehicle. The test ends by
 itself: every step is bounded, and the last thing sent is a zero wrench.
 """
 
@@ -14,6 +15,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from typing import TextIO
 
 import numpy as np
@@ -40,6 +42,8 @@ MOTIONS = {
 body frame convention. Moments by the right-hand rule: in FRD (z down) a positive yaw turns x
 toward y, the nose to starboard; in FLU (y to port, z up) toward port."""
 
+INPUT_TIMEOUT = 5.0
+"""[s] How long ``--actuators`` waits for the node to take its zero wrenches before the first hold."""
 UNITS = {"surge": "N", "sway": "N", "heave": "N", "roll": "N m", "pitch": "N m", "yaw": "N m"}
 
 
@@ -83,12 +87,20 @@ class DirectionCheck:
         self.commands: ThrusterCommands | None = None
         self.status: AllocationStatus | None = None
         self.held: int | None = None          # the index of the actuator held, with --actuators
+        self.live = False                     # a sample allocated a wrench (not stopped) since the last reset
         self.executor = self.node.executor    # one executor for the topics and the Controller's services
         if self.executor is None:
             self.executor = SingleThreadedExecutor(context=self.node.context)
             self.executor.add_node(self.node)
         self.node.create_subscription(ThrusterCommands, controller.topic("thruster_commands"), self._on_commands, 10)
         self.node.create_subscription(AllocationStatus, controller.topic("allocation_status"), self._on_status, 10)
+        self.message = array_to_wrench([0.0] * 6)
+        # Wrenches go out every period whenever the executor spins, the Controller's service calls
+        # included, so that the node's watchdog never finds the input stale between two steps.
+        self.node.create_timer(self.period, self._publish)
+
+    def _publish(self) -> None:
+        self.controller.wrench.publish(self.message)
 
     def _on_commands(self, message: ThrusterCommands) -> None:
         """The last commands of a step; of a hold, those with the held actuator's largest thrust."""
@@ -98,7 +110,8 @@ class DirectionCheck:
 
     def _on_status(self, message: AllocationStatus) -> None:
         """The last status of a step; of a hold, the one with the largest requested wrench (the
-        held thrust's, while the hold lasts)."""
+        held thrust's, while the hold lasts). A status not stopped says the node takes the wrenches."""
+        self.live = self.live or message.outcome != AllocationStatus.OUTCOME_STOPPED
         if self.held is None or self.status is None or \
                 np.linalg.norm(wrench_to_array(message.requested)) >= np.linalg.norm(wrench_to_array(
                     self.status.requested)):
@@ -108,14 +121,26 @@ class DirectionCheck:
         print(text, file=self.out, flush=True)
 
     def _send(self, wrench: list[float], seconds: float) -> None:
-        """Publish ``wrench`` every period for ``seconds``, spinning in between."""
-        message = array_to_wrench(wrench)
+        """Publish ``wrench`` now and every period (the timer) for ``seconds``, spinning."""
+        self.message = array_to_wrench(wrench)
+        self._publish()
+        self._spin_until(lambda: False, seconds)
+
+    def _spin_until(self, done: Callable[[], bool], seconds: float) -> bool:
+        """Spin until ``done()`` or for ``seconds``; whether ``done()``."""
         end = time.monotonic() + seconds
-        while rclpy.ok(context=self.node.context) and time.monotonic() < end:
-            self.controller.wrench.publish(message)
-            wake = min(time.monotonic() + self.period, end)
-            while time.monotonic() < wake:
-                self.executor.spin_once(timeout_sec=max(wake - time.monotonic(), 0.0))
+        while rclpy.ok(context=self.node.context) and not done() and (left := end - time.monotonic()) > 0.0:
+            self.executor.spin_once(timeout_sec=min(left, self.period))
+        return done()
+
+    def _input_taken(self) -> bool:
+        """Zero wrenches until a sample allocates one, within ``INPUT_TIMEOUT``: the node holds an
+        actuator only while its input is not stale, and its watchdog ends the hold at the first
+        sample that finds it stale."""
+        self.live = False
+        self.message = array_to_wrench([0.0] * 6)
+        self._publish()
+        return self._spin_until(lambda: self.live, INPUT_TIMEOUT)
 
     def _settings(self) -> tuple[list[str], str]:
         values = self.controller.get_parameters(["dofs", "frame"])
@@ -155,6 +180,10 @@ class DirectionCheck:
                     f"thrust, {self.hold:g} s each, {self.rest:g} s of zero between; frame {frame.upper()}")
         failures = 0
         try:
+            if not self._input_taken():
+                self._print(f"no sample took this tool's wrenches within {INPUT_TIMEOUT:g} s (is the allocator "
+                            "active, with wrench_type wrench?)")
+                return 1
             for name in names:
                 key = f"actuators.{name}.thrust_max"
                 thrust_max = self.controller.get_parameters([key])[key]       # none: a control surface

@@ -15,8 +15,13 @@ class Watchdog:
         self.timeout = timeout
         self.stale = False
 
+    def is_stale(self, now_ns: int, last_ns: int | None) -> bool:
+        """Whether the input, last valid at ``last_ns`` (None: never), is stale at ``now_ns``;
+        no state changes."""
+        return self.timeout > 0.0 and (last_ns is None or now_ns - last_ns > round(self.timeout * 1e9))
+
     def check(self, now_ns: int, last_ns: int | None) -> tuple[bool, tuple[str, str] | None]:
-        stale = self.timeout > 0.0 and (last_ns is None or now_ns - last_ns > round(self.timeout * 1e9))
+        stale = self.is_stale(now_ns, last_ns)
         if stale == self.stale:
             return stale, None
         self.stale = stale

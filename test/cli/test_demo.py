@@ -22,6 +22,8 @@ def test_demo_short_run_writes_its_figures(tmp_path):
     assert "cleared faults of azimuth_port" in result.stdout
     table = [line for line in result.stdout.splitlines() if " err " in line and "azimuth_stbd" in line]
     assert len(table) >= 9                                     # a line every 2 s of 20 s
+    took = [line for line in result.stdout.splitlines() if line.startswith("demo: took ")]
+    assert len(took) == 1 and float(took[0].split()[2]) > 0.0 and "on this machine" in took[0]
     for name in ("footprint", "timeline"):
         path = out / f"{name}.png"
         assert f"{name} written to {path}" in result.stdout

@@ -33,7 +33,8 @@ def test_a_sample_line_shows_the_unallocated_wrench_the_actuators_at_a_limit_and
                               unallocated=array_to_wrench([12.5, 0, 0, 0, 0, -3]),
                               at_thrust_limit=[True, False, True], at_rate_limit=[False, False, True], voltage=14.8)
     line = format_sample(commands, status)
-    assert line.endswith("| unallocated 12.5 0.0 0.0 0.0 0.0 -3.0 | at limit (! thrust, ~ rate): a! c!~ | 14.80 V")
+    assert line.split("\n")[1:] == ["|| sat YES       0 us     0 it solved | unallocated 12.5 0.0 0.0 0.0 0.0 -3.0 | "
+                                     "at limit (! thrust, ~ rate): a! c!~", "  | 14.80 V"]
     status.voltage = math.nan
     assert not format_sample(commands, status).endswith(" V")
 
@@ -86,3 +87,22 @@ def test_a_sample_without_a_status_of_its_own_has_empty_status_columns(harness):
     assert 0 < sum(with_status) < len(rows)
     for row, has in zip(rows, with_status):
         assert (row["solver_status"] != "") == has
+
+
+def test_the_live_table_of_a_dp_vessel_keeps_within_its_width():
+    """Four actuators with long names at kN thrusts, saturated, every one at a limit, two sources:
+    each line at most WIDTH characters, every figure still there."""
+    from allocator_pkg.ros.echo import WIDTH
+    names = ["azimuth_stbd", "azimuth_port", "tunnel_fwd", "tunnel_aft"]
+    commands = ThrusterCommands(name=names, thrust=[419999.9, 655000.0, -300000.0, 299999.5],
+                                command=[147.43, 160.0, -155.5, 155.5],
+                                azimuth=[math.radians(47.4), math.radians(-133.0), 0.0, 0.0], mode=[0, 0, 0, 0])
+    status = AllocationStatus(saturated=True, solve_time=1234e-6, iterations=112, solver_status="solved",
+                              at_thrust_limit=[True] * 4, at_rate_limit=[True] * 4, power_source=["swbd_a", "swbd_b"],
+                              source_power=[5599.6, 7800.0], source_available=[5600.0, 7800.0], power_limited=True)
+    lines = format_sample(commands, status).split("\n")
+    assert max(len(line) for line in lines) <= WIDTH
+    text = "\n".join(lines)
+    assert "azimuth_port  655000.0 N cmd   160.00 @-133.0" in text and "tunnel_aft  299999.5 N" in text
+    assert lines[2].startswith("|| sat YES    1234 us   112 it solved | unallocated")
+    assert text.endswith("power swbd_a 5600/5600 kW, swbd_b 7800/7800 kW LIMITED")

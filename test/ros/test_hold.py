@@ -70,6 +70,7 @@ def test_the_held_thrust_ramps_at_the_rate_limit_alone_and_ends_with_the_faults_
 @pytest.mark.params(EXAMPLE, step_test__enabled=True, step_test__thrust_share=0.5)
 def test_the_held_actuator_keeps_its_own_fault(harness):
     assert harness.set_fault("main_port", "degraded", efficiency=0.1)[0]     # 30 N of its 300 N
+    feed(harness, 1)
     assert hold(harness, "main_port", 100.0, 2.0)[0]
     feed(harness, 15)
     assert harness.commands[-1].thrust[MAIN_PORT] == pytest.approx(30.0, abs=1e-3)
@@ -86,6 +87,29 @@ def test_the_watchdog_stops_a_hold(harness):
     assert list(harness.commands[-1].mode) == [0, 0, 0, 0]      # and the hold is over
     feed(harness, 5)
     assert abs(harness.commands[-1].thrust[MAIN_PORT]) < 1e-3              # zero wrench, no hold
+
+
+@pytest.mark.params(EXAMPLE, step_test__enabled=True)
+def test_a_hold_is_refused_while_the_input_is_stale_and_lasts_its_duration_once_fed(harness):
+    """The watchdog ends a hold at the first sample that finds the input stale: a hold accepted
+    before any wrench came (or after wrench_timeout without one) would end at the next sample,
+    1/rate_hz later, whenever the client's first wrench is slower than that."""
+    stale = hold(harness, "azimuth_fwd", 15.0, 1.0)
+    assert stale == (False, "wrench_command is stale (no valid wrench for 0.5 s): send wrenches (zero) on it "
+                            "before and during the hold, which the watchdog ends as soon as it is stale")
+    harness.tick(1)
+    assert list(harness.commands[-1].mode) == [0, 0, 0, 0] and harness.node.allocator.faults == {}
+    feed(harness, 1)
+    assert hold(harness, "azimuth_fwd", 15.0, 1.0)[0]
+    harness.tick(1)                                             # no wrench in this period: 20 ms < 0.5 s
+    assert list(harness.commands[-1].mode) == [0, 2, 2, 2]
+    assert harness.status[-1].requested.force.x == pytest.approx(15.0)       # azimuth_fwd at 0 rad: along x
+    feed(harness, 48)                                           # 0.98 s of the 1 s
+    assert list(harness.commands[-1].mode) == [0, 2, 2, 2]
+    feed(harness, 2)
+    assert list(harness.commands[-1].mode) == [0, 0, 0, 0]
+    harness.step(0.6)                                           # no wrench for 0.5 s: stale again
+    assert hold(harness, "azimuth_fwd", 15.0, 1.0)[0] is False
 
 
 def bench(path, **overrides):

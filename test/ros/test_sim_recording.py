@@ -113,3 +113,14 @@ def test_a_run_records_tf_for_every_odometry_and_the_nodes_markers_and_diagnosti
 
 def _stamp_ns(message) -> int:
     return message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec
+
+
+@pytest.mark.slow
+def test_battery_state_is_recorded_only_for_a_scenario_with_a_supply_voltage(tmp_path_factory):
+    """The DP vessel's scenario gives no voltage: no /battery_state; the ROV's battery sag does; the
+    run.mcap topics of docs/closed_loop.md say so."""
+    assert load_scenario(ROOT / "config" / "scenarios" / "dp_azimuth_failure.yaml").voltage is None
+    assert "/battery_state" not in recorded("dp_azimuth_failure", tmp_path_factory)[2]
+    assert recorded("rov_battery_sag", tmp_path_factory)[2]["/battery_state"]
+    text = " ".join((ROOT / "docs" / "closed_loop.md").read_text().split())
+    assert "`/battery_state` (when the scenario gives a supply `voltage`)" in text

@@ -36,10 +36,13 @@ def test_frd_words_follow_the_axes_and_the_right_hand_rule():
 
 
 def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node():
-    with child_process(node_command(EXAMPLE, parameters=["step_test.enabled:=true"])):
+    """The actuators first, on a node that has had no wrench yet (its input stale): the first
+    actuator is held for the whole step too, not released by the watchdog at the next sample.
+    At 500 Hz that sample comes 2 ms after the hold starts, sooner than a client's first wrench."""
+    with child_process(node_command(EXAMPLE, parameters=["step_test.enabled:=true", "rate_hz:=500.0"])):
         ctl = [str(executable("allocator-ctl")), "step-test", "--share", "0.1", "--hold", "0.6", "--rest", "0.2"]
-        steps = subprocess.run(ctl, capture_output=True, text=True, timeout=60)
         held = subprocess.run([*ctl, "--actuators"], capture_output=True, text=True, timeout=60)
+        steps = subprocess.run(ctl, capture_output=True, text=True, timeout=60)
     assert steps.returncode == 0, steps.stderr
     lines = steps.stdout.splitlines()
     assert lines[0].startswith("step test: 3 DOFs (surge, sway, yaw)")
@@ -51,6 +54,10 @@ def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node():
     assert all(float(lines[surge + k].split()[1]) > 0.0 for k in (3, 4))
     assert any(line.startswith("yaw -:") and line.endswith("should turn nose to port") for line in lines)
     assert held.returncode == 0, held.stdout + held.stderr
+    first = held.stdout.split("azimuth_fwd: +15.0 N alone")[1]
+    assert first.split("\n")[1].split()[:3] == ["azimuth_fwd", "15.00", "N"]
+    # azimuth_fwd at its first angle, 0 rad: along x at y = 0, no yaw moment.
+    assert first.split("\n")[5] == "    pushes the vehicle: surge +15.0 N (move forward)"
     port = held.stdout.split("main_port: +30.0 N alone")[1]
     assert port.split("\n")[3].split()[:3] == ["main_port", "30.00", "N"]
     # main_port alone at 30 N: along x at y = -0.45 m, N = x F_y - y F_x = +13.5 N m

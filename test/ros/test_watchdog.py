@@ -15,3 +15,10 @@ def test_stale_before_any_input_after_the_timeout_and_never_when_disabled():
         (True, ("warn", "no valid wrench for 0.5 s: commanding zero thrust"))
     watchdog.timeout = 0.0
     assert watchdog.check(100 * S, 2 * S) == (False, ("info", "wrench input resumed"))
+
+
+def test_is_stale_answers_without_changing_what_check_reports():
+    watchdog = Watchdog(0.5)
+    assert watchdog.is_stale(1 * S, None) and watchdog.is_stale(2 * S + 1, S + S // 2)
+    assert not watchdog.is_stale(2 * S, S + S // 2)
+    assert watchdog.check(1 * S, None) == (True, ("info", "waiting for wrench_command: commanding zero thrust"))

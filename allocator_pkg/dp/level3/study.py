@@ -110,7 +110,7 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
 
 def published(prepared: Level3Study) -> tuple[Level1Result, Level1Result]:
     """Level 1 and Level 2 of the vessel as ``--dnv-level1`` and ``--dnv-level2`` publish them, at
-    the standard's heading step (:data:`~allocator_pkg.analysis.dp_capability.MAX_STEP_DEG`),
+    the standard's heading step (:data:`~allocator_pkg.dp.level1.MAX_STEP_DEG`),
     for the comparison plots: the study's own Level 2 where its step is that one."""
     analysis, inputs = prepared.analysis, prepared.inputs
     level1 = Level1(analysis.vehicle, analysis.particulars, inputs.method).run(MAX_STEP_DEG)

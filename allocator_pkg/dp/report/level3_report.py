@@ -6,7 +6,8 @@
 - ``_vs_l1_l2_number.png`` / ``_vs_l1_l2_wind.png``: Level 1, 2 and 3 of the vessel on one (Level 1
   and 2 as published, at the standard's 10 deg headings, whatever the study's step);
 - ``_footprints.png``: per heading the x-y track of each case at its number (solid) and at the
-  first condition that failed (dashed), with the position limit;
+  first condition that failed (dashed), with the position limit, every panel on one scale (three
+  times the limit; a track that leaves it says how far it went);
 - ``.csv``, ``_table_a1.csv`` and Tables A-2 to A-5 (:mod:`.dp_report`) as at Level 1;
   ``_limits.csv``: why each number stops where it does; ``_cases.csv``: every case run with its
   excursion statistics;
@@ -129,42 +130,82 @@ def levels_plot(path: Path, results: tuple[Level1Result, Level1Result, Level1Res
     plt.close(figure)
 
 
+FOOTPRINT_VIEW = 3.0
+"""Every footprint panel shows this many times the position limit about the set-point, the same
+scale in each, so that the limit's circle reads alike; a track that leaves the view says how far
+it went."""
+CASE_COLOURS = ("tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
+                "tab:cyan")
+
+
 def footprints(path: Path, prepared: Level3Study, result: Level1Result, finished: dict[tuple, CaseResult],
                title: str) -> None:
+    """:func:`footprints_figure` written to ``path``."""
+    import matplotlib.pyplot as plt
+
+    figure = footprints_figure(prepared, result, finished, title)
+    figure.savefig(path, dpi=90)
+    plt.close(figure)
+
+
+def footprints_figure(prepared: Level3Study, result: Level1Result, finished: dict[tuple, CaseResult], title: str):
     """Per heading, each case's x-y track (seed 0) at its number (solid) and at the first condition
-    that failed (dashed), east to the right, north up, with the position limit's circle."""
+    that failed (dashed), east to the right, north up, with the position limit's circle: every
+    panel :data:`FOOTPRINT_VIEW` times the limit about the set-point, axes in metres on the outer
+    panels, each case's number in the panel's title, one legend under the panels."""
+    import textwrap
+
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.ticker import MaxNLocator
 
     search, limit = prepared.search, prepared.setup.criteria.position_limit
+    view = FOOTPRINT_VIEW * limit
     columns = min(6, len(search.headings))
     rows = math.ceil(len(search.headings) / columns)
-    figure, grid = plt.subplots(rows, columns, figsize=(2.6 * columns, 2.6 * rows + 1.2), squeeze=False)
-    colours = dict(zip(search.cases, ("tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown",
-                                      "tab:pink", "tab:olive", "tab:cyan")))
+    figure, grid = plt.subplots(rows, columns, figsize=(2.6 * columns, 2.7 * rows + 2.0), squeeze=False,
+                                sharex=True, sharey=True, layout="constrained")
+    colours = dict(zip(search.cases, CASE_COLOURS))
     circle = np.linspace(0.0, 2.0 * math.pi, 73)
     for axes, heading in zip(grid.flat, search.headings):
         axes.plot(limit * np.sin(circle), limit * np.cos(circle), color="tab:red", linewidth=0.8)
+        numbers, farthest = [], 0.0
         for case in search.cases:
             number = search.outcome((heading, case), finished).number
+            numbers.append(f"{case} {number}")
             for shown, style in ((number, "-"), (number + 1, "--")):
                 track = finished.get((heading, shown, case, 0))
                 if track is not None:
                     points = np.array(track.track)
-                    axes.plot(points[:, 1], points[:, 0], style, color=colours.get(case, "k"), linewidth=0.9,
-                              label=f"{case} at {shown}")
-        axes.set_title(f"{heading:g} deg", fontsize=9)
+                    axes.plot(points[:, 1], points[:, 0], style, color=colours.get(case, "k"), linewidth=0.9)
+                    farthest = max(farthest, float(np.max(np.abs(points), initial=0.0)))
+        axes.set_title(f"{heading:g} deg\n" + "\n".join(textwrap.wrap(", ".join(numbers), 44)), fontsize=7)
+        if farthest > view:
+            axes.text(0.03, 0.03, f"off view: to {farthest:.0f} m", transform=axes.transAxes, fontsize=6.5,
+                      color="0.25")
+        axes.set_xlim(-view, view)
+        axes.set_ylim(-view, view)
         axes.set_aspect("equal")
         axes.tick_params(labelsize=7)
-        axes.legend(fontsize=5.5, loc="upper right")
+        for axis in (axes.xaxis, axes.yaxis):
+            axis.set_major_locator(MaxNLocator(5, symmetric=True))
     for axes in list(grid.flat)[len(search.headings):]:
         axes.axis("off")
-    figure.suptitle(f"{title}: {result.summary_line()}: x-y track [m] (east right, north up; bow north, environment "
-                    f"from the heading)\nat each case's number (solid) and the first failing condition (dashed), "
-                    f"seed 0; red: the {limit:g} m limit. {prepared.setup.criteria.describe()}. Not verified by DNV.",
-                    fontsize=9)
-    figure.tight_layout()
-    figure.savefig(path, dpi=90)
-    plt.close(figure)
+    for axes in grid[-1, :]:
+        axes.set_xlabel("east [m]", fontsize=8)
+    for axes in grid[:, 0]:
+        axes.set_ylabel("north [m]", fontsize=8)
+    handles = [Line2D([], [], color=colours[case], linewidth=1.2, label=case) for case in search.cases]
+    handles += [Line2D([], [], color="0.3", linestyle="-", label="at the case's number (in the panel's title)"),
+                Line2D([], [], color="0.3", linestyle="--", label="at the first condition that failed"),
+                Line2D([], [], color="tab:red", linewidth=0.8, label=f"position limit {limit:g} m")]
+    figure.legend(handles=handles, loc="outside lower center", ncol=min(len(handles), 4), fontsize=8, frameon=False)
+    heading_text = (f"{title}: {result.summary_line()}. x-y track from the set-point [m] (east right, north up; bow "
+                    f"north, environment from the heading), seed 0. {prepared.setup.criteria.describe()}. "
+                    "Not verified by DNV.")
+    figure.suptitle("\n".join(textwrap.wrap(heading_text, int(26 * columns))), fontsize=9)
+    return figure
+

@@ -1,18 +1,25 @@
 """Figures and tables of allocator-sim: a run's ``footprint.png`` (:mod:`.sim_footprint`) and
 ``timeline.png`` (:mod:`.sim_timeline`), the comparison of methods (a markdown table of metrics
-and one figure; the power and alarm rows for a scenario with power events), and the nominal run
+and one figure: position error and footprint, and every bound of the verdict with each method's
+value; the power and alarm rows of the table for a scenario with power events), and the nominal run
 a failure is read against: the same scenario and seed without its faults, battery ramps,
 changes of available power and parameter changes."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
+
+from ..metrics import METRIC_UNITS
+from ..run_report import report_checks
 from ..run_setup import RunResult
 from ..scenario import Scenario
-from .footprint import footprint_figure
+from ..verdict import RUN
+from .footprint import footprint_figure, mark_setpoints, offsets, origin_of
 from .style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, pyplot, shade_faults
 from .timeline import timeline_figure
 
@@ -84,8 +91,20 @@ def _table(scenario: Scenario, metrics: dict[str, dict[str, float]]) -> list[str
     return lines
 
 
-def _energy(joules: float) -> str:
-    return f"{joules / 1e6:.3g} MJ" if joules > 1e6 else f"{joules:.3g} J"
+def same_lines(series: dict[str, np.ndarray], tolerance: float = 0.01) -> list[list[str]]:
+    """The keys of ``series`` grouped by lines that coincide: within ``tolerance`` of the
+    largest magnitude of all of them at every sample (first key of a group first)."""
+    largest = max((float(np.nanmax(np.abs(v), initial=0.0)) for v in series.values()), default=0.0)
+    groups: list[list[str]] = []
+    for key, values in series.items():
+        twin = next((g for g in groups if series[g[0]].shape == values.shape
+                     and np.nanmax(np.abs(series[g[0]] - values), initial=0.0) <= tolerance * max(largest, 1e-12)),
+                    None)
+        if twin is None:
+            groups.append([key])
+        else:
+            twin.append(key)
+    return groups
 
 
 def plot_compare(path: Path, scenario: Scenario, results: dict[str, RunResult],
@@ -98,48 +117,96 @@ def plot_compare(path: Path, scenario: Scenario, results: dict[str, RunResult],
 
 def compare_figure(scenario: Scenario, results: dict[str, RunResult],
                    nominal_results: dict[str, RunResult] | None = None):
-    """Position error against time for every method, its nominal run dashed in the same colour,
-    and each method's footprint."""
+    """Position error against time for every method (methods whose lines coincide drawn once,
+    named together), the nominal runs dashed; each method's footprint; and under them every
+    bound of the verdict, each method's value as a share of the bound, those that break it red."""
     plt = pyplot()
     nominal_results = nominal_results or {}
-    figure, (timeline, footprint) = plt.subplots(1, 2, figsize=(15, 6), gridspec_kw={"width_ratios": [2, 1]},
-                                                 layout="constrained")
-    for k, (method, result) in enumerate(results.items()):
-        colour = PALETTE[k % len(PALETTE)]
-        a = result.trace.arrays()
-        offset = a["position"] - a["setpoint"]
-        timeline.plot(a["time"], result.trace.position_errors(), color=colour, linewidth=1.1,
-                      label=f"{method}: {_energy(result.metrics['energy'])}")
-        footprint.plot(offset[:, 1], offset[:, 0], color=colour, linewidth=0.9, label=method)
-        if method in nominal_results:
-            quiet = nominal_results[method]
-            b = quiet.trace.arrays()
-            timeline.plot(b["time"], quiet.trace.position_errors(), color=colour, linestyle="--", linewidth=0.9,
-                          label=f"{method}, nominal: {_energy(quiet.metrics['energy'])}")
-            footprint.plot((b["position"] - b["setpoint"])[:, 1], (b["position"] - b["setpoint"])[:, 0],
-                           color=colour, linestyle="--", linewidth=0.8)
+    figure = plt.figure(figsize=(15, 9.5), layout="constrained")
+    grid = figure.add_gridspec(2, 2, width_ratios=[2, 1], height_ratios=[1.6, 1])
+    timeline, footprint = figure.add_subplot(grid[0, 0]), figure.add_subplot(grid[0, 1])
+    checks_axes = figure.add_subplot(grid[1, :])
+    colours = {method: PALETTE[k % len(PALETTE)] for k, method in enumerate(results)}
     first = next(iter(results.values()))
+    origin = origin_of(first)
+    errors = {m: r.trace.position_errors() for m, r in results.items()}
+    for group in same_lines(errors):
+        result = results[group[0]]
+        label = ", ".join(group) + (" (one line)" if len(group) > 1 else "")
+        timeline.plot(result.trace.arrays()["time"], errors[group[0]], color=colours[group[0]], linewidth=1.1,
+                      label=label)
+        offset = offsets(result, origin)
+        footprint.plot(offset[:, 1], offset[:, 0], color=colours[group[0]], linewidth=0.9, label=label)
+    quiet_errors = {m: q.trace.position_errors() for m, q in nominal_results.items()}
+    for k, group in enumerate(same_lines(quiet_errors)):
+        quiet = nominal_results[group[0]]
+        timeline.plot(quiet.trace.arrays()["time"], quiet_errors[group[0]], color=colours[group[0]],
+                      linestyle="--", linewidth=0.9, label="_" if k else f"dashed: {NOMINAL_LABEL}")
+        offset = offsets(quiet, origin)
+        footprint.plot(offset[:, 1], offset[:, 0], color=colours[group[0]], linestyle="--", linewidth=0.8)
     timeline.set_xlim(first.trace.time[0], first.trace.time[-1])
     shade_faults(timeline, first.fault_intervals)
-    rows = mark_events([timeline], scenario.events)
     if first.fault_intervals:
         timeline.axvspan(0.0, 0.0, color=FAULT_COLOUR, alpha=0.1, label="a fault in force")
     timeline.set_xlabel("time [s]")
     timeline.set_ylabel("position error [m]")
-    nominal_note = f"; dashed: {NOMINAL_LABEL}" if nominal_results else ""
-    timeline.set_title(f"{scenario.name} (seed {scenario.seed}): position error, legend: energy{nominal_note}",
-                       loc="left", fontsize=10, pad=6 + rows * 12)
     timeline.grid(True, alpha=0.5)
-    timeline.legend(fontsize=8, loc="upper left", ncol=2 if nominal_results else 1)
-    footprint.plot(0.0, 0.0, "k+", markersize=14)
+    timeline.legend(fontsize=8, loc="upper left")
     bound = scenario.bounds.get("position_error_max")
-    if bound is not None:
-        footprint.add_patch(plt.Circle((0.0, 0.0), bound, fill=False, color=FAULT_COLOUR, linestyle="--",
-                                       linewidth=1.0, label=f"bound {bound:g} m"))
+    mark_setpoints(footprint, first, origin, bound)
     footprint.set_aspect("equal", adjustable="datalim")
-    footprint.set_xlabel("east of the set-point [m]")
-    footprint.set_ylabel("north of the set-point [m]")
+    where = "the set-point" if origin is None else "the first set-point"
+    footprint.set_xlabel(f"east of {where} [m]")
+    footprint.set_ylabel(f"north of {where} [m]")
     footprint.set_title("footprint", loc="left", fontsize=10)
     footprint.grid(True, alpha=0.5)
     legend_beside(footprint)
+    _checks_panel(checks_axes, scenario, results, colours)
+    rows = mark_events([timeline], scenario.events)
+    timeline.set_title(f"{scenario.name} (seed {scenario.seed}): position error", loc="left", fontsize=10,
+                       pad=6 + rows * 12)
     return figure
+
+
+SHARE_CAP = 2.0
+"""The bound panel shows shares of a bound up to this; a value beyond it is written on its bar."""
+
+
+def _checks_panel(axes, scenario: Scenario, results: dict[str, RunResult], colours: dict[str, str]) -> None:
+    """Every bound of the verdict (the whole run's and each window's): each method's value as a
+    share of the bound, a bar per method, red-edged and labelled with its value where it breaks
+    the bound (a bound of 0, whose share is no number: every value written, any above 0 breaks it)."""
+    found = {m: report_checks(scenario, r.report) for m, r in results.items()}
+    checks = next(iter(found.values()))
+    if not checks:
+        axes.text(0.5, 0.5, "the scenario sets no bounds", ha="center", va="center", transform=axes.transAxes)
+        axes.set_axis_off()
+        return
+    width = 0.8 / len(results)
+    highest = 1.0
+    for k, (method, method_checks) in enumerate(found.items()):
+        for j, check in enumerate(method_checks):
+            if check.bound > 0.0:
+                share = check.value / check.bound if math.isfinite(check.value) else math.inf
+            else:
+                share = 0.0 if check.passed else math.inf
+            x = j - 0.4 + (k + 0.5) * width
+            failed = not check.passed
+            axes.bar(x, min(share, SHARE_CAP), width * 0.9, color=colours[method],
+                     edgecolor=FAULT_COLOUR if failed else "none", linewidth=2.0 if failed else 0.0,
+                     label=method if j == 0 else "_")
+            highest = max(highest, min(share, SHARE_CAP))
+            if failed or check.bound == 0.0:
+                axes.annotate(f"{check.value:.3g}", (x, min(share, SHARE_CAP)), xytext=(0, 2),
+                              textcoords="offset points", ha="center", va="bottom", fontsize=7,
+                              color=FAULT_COLOUR if failed else "black")
+    axes.axhline(1.0, color=FAULT_COLOUR, linestyle="--", linewidth=1.0, label="the bound")
+    axes.set_xticks(range(len(checks)))
+    axes.set_xticklabels([f"{c.metric}\n{'' if c.scope == RUN else c.scope + ': '}<= {c.bound:g} "
+                          f"{METRIC_UNITS[c.metric]}" for c in checks], fontsize=8)
+    axes.set_ylim(0.0, highest * 1.15)
+    axes.set_ylabel("value / bound")
+    axes.set_title("the verdict's bounds: each method's value as a share of the bound (red edge: broken, "
+                   "its value written)", loc="left", fontsize=10)
+    axes.grid(True, axis="y", alpha=0.5)
+    legend_beside(axes)

@@ -1,6 +1,7 @@
 """What the figures of ``allocator-sim`` share: matplotlib without a display, one colour and line
 style per actuator, the scenario's events as labelled vertical lines, the fault intervals
-shaded, units scaled to the data, legends beside the axes, and the nominal run's style."""
+shaded, views and units fitted to the data (a limit far beyond it named, not drawn), legends
+beside the axes, and the nominal run's style."""
 
 from __future__ import annotations
 
@@ -54,6 +55,37 @@ def overlaid(values: np.ndarray, share: float = 0.9) -> list[bool]:
     return [any(row) for row in close]
 
 
+VIEW_REACH = 2.0
+"""A limit line is in view when at most this many times the largest magnitude of the data."""
+VIEW_MARGIN = 0.08
+"""The share of a view's span left free above and below the data."""
+
+
+def fit_view(data: np.ndarray, *references: np.ndarray, floor: float | None = None) -> tuple[float, float]:
+    """(low, high) of an axis that shows ``data`` and zero, and the values of ``references``
+    (limits, available power) that lie within :data:`VIEW_REACH` times the data's largest
+    magnitude, with a margin; not below ``floor`` when given. A reference farther out would
+    squeeze the data into a sliver of the axis: the caller names it in the legend instead."""
+    values = np.asarray(data, dtype=float)
+    values = values[np.isfinite(values)]
+    low, high = min(float(values.min(initial=0.0)), 0.0), max(float(values.max(initial=0.0)), 0.0)
+    reach = VIEW_REACH * max(abs(low), abs(high))
+    for reference in references:
+        shown = np.asarray(reference, dtype=float)
+        shown = shown[np.isfinite(shown) & (np.abs(shown) <= reach)]
+        if shown.size:
+            low, high = min(low, float(shown.min())), max(high, float(shown.max()))
+    margin = VIEW_MARGIN * ((high - low) or 1.0)
+    low, high = low - margin, high + margin
+    return (low if floor is None else max(low, floor)), high
+
+
+def in_view(values: np.ndarray, view: tuple[float, float]) -> bool:
+    """Whether some finite value of ``values`` lies inside ``view``."""
+    values = np.asarray(values, dtype=float)
+    return bool(np.any(np.isfinite(values) & (values >= view[0]) & (values <= view[1])))
+
+
 def scale(values: np.ndarray, unit: str) -> tuple[float, str]:
     """(divisor, unit with its prefix): k or M where the largest magnitude reaches 1e4 or 1e7."""
     largest = float(np.nanmax(np.abs(values), initial=0.0)) if np.size(values) else 0.0
@@ -90,10 +122,18 @@ def event_label(event: Event) -> str:
 
 def mark_events(axes_list, events) -> int:
     """Each event as a dotted vertical line on every axes, its label above the first, in as many
-    rows as keep the labels apart; the number of rows."""
+    rows as keep the labels apart; the number of rows. Call it once the figure holds everything
+    that takes room beside the axes (legends): the labels are measured on the laid-out figure."""
+    from matplotlib.font_manager import FontProperties
+
     top = axes_list[0]
+    figure = top.figure
+    figure.draw_without_rendering()
+    renderer = figure.canvas.get_renderer()
     span = top.get_xlim()
-    width = top.get_position().width * top.figure.get_figwidth() * 72.0        # [pt]
+    width = top.get_window_extent(renderer).width                              # [px]
+    font = FontProperties(size=LABEL_SIZE)
+    gap = 8.0 * figure.dpi / 72.0                                              # [px] the offset and a space
     ends: list[float] = []                                                     # per row, where its last label ends
     for event in sorted(events, key=lambda e: e.time):
         colour = EVENT_COLOURS.get(event.kind, "0.2")
@@ -101,7 +141,7 @@ def mark_events(axes_list, events) -> int:
             axes.axvline(event.time, color=colour, linestyle=":", linewidth=1.2)
         text = event_label(event)
         start = (event.time - span[0]) / (span[1] - span[0])
-        length = (len(text) * LABEL_SIZE * 0.6 + 4.0) / width
+        length = (renderer.get_text_width_height_descent(text, font, ismath=False)[0] + gap) / width
         right = start + length > 1.0                                           # written leftward from the line
         first, last = (start - length, start) if right else (start, start + length)
         row = next((r for r, end in enumerate(ends) if end < first), len(ends))

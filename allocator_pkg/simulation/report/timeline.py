@@ -1,7 +1,8 @@
 """``timeline.png`` of an ``allocator-sim`` run, panel under panel against time: position error
 [m] (and depth error, 6 DOF), heading error [deg], roll and pitch [deg] (6 DOF), every
 actuator's thrust against its limits (at the supply voltage in force, for thrust tables measured
-at several voltages), azimuth angles [deg], the supply voltage when it changes, the power
+at several voltages) and its bound from the available power, the view fitted to the thrusts,
+azimuth angles [deg], the supply voltage when it changes, the power
 estimate (1.44) with the saturated samples, and for a vehicle with power sources each source's
 power against its available power with the consequence alarm (:mod:`.sim_power`); the
 scenario's events as labelled lines, the faults shaded, and the
@@ -18,7 +19,7 @@ from ...vehicle.config import Vehicle
 from ..metrics import heading_errors
 from ..run_setup import RunResult
 from ..scenario import Scenario
-from .power_figure import sources_panel
+from .power_figure import power_bounds, sources_panel
 from .style import (
     FAULT_COLOUR,
     LABEL_SIZE,
@@ -27,6 +28,8 @@ from .style import (
     NOMINAL_LABEL,
     OVERLAID,
     actuator_style,
+    fit_view,
+    in_view,
     legend_beside,
     mark_events,
     overlaid,
@@ -93,14 +96,19 @@ def _traces(axes, t: np.ndarray, values: np.ndarray, names: list[str], columns: 
         axes.plot(t, values[:, i], label=names[i] + (" (dashed: along another)" if covering[k] else ""), **style)
 
 
-def _thrust(axes, result: RunResult) -> None:
-    """Every actuator's thrust; its limits dashed, one pair per set of actuators with the same
-    limits all along (grey when shared, in the actuator's colour otherwise; a limit of zero is
-    the axis and not drawn)."""
+def _thrust(axes, result: RunResult, bounds: np.ndarray | None) -> None:
+    """Every actuator's thrust, the view fitted to it (:func:`~.sim_style.fit_view`); its limits
+    dashed, one pair per set of actuators with the same limits all along (grey when shared, in
+    the actuator's colour otherwise; a limit of zero is the axis and not drawn; one beyond the
+    view named in the legend); the power bounds ``bounds`` (:func:`~.sim_power.power_bounds`)
+    dash-dotted in each actuator's colour."""
     a = result.trace.arrays()
     t, thrust, names = a["time"], a["thrust"], result.trace.names
     low, high = thrust_limits_over_time(result.vehicle, a["voltage"])
-    divisor, unit = scale(np.concatenate([thrust.ravel(), low.ravel(), high.ravel()]), "N")
+    references = [low, high] + ([bounds, np.where(np.any(thrust < 0.0, axis=0), -bounds, np.nan)]
+                                if bounds is not None else [])
+    view = fit_view(thrust, *references)
+    divisor, unit = scale(np.array(view), "N")
     _traces(axes, t, thrust / divisor, names, list(range(len(names))))
     groups: dict[bytes, list[int]] = {}
     for i in range(len(names)):
@@ -111,13 +119,27 @@ def _thrust(axes, result: RunResult) -> None:
     for members in groups.values():
         shared = len(members) > 1
         who = "every actuator" if len(members) == len(names) else ", ".join(names[i] for i in members)
-        label = f"limits of {who}{at}"
+        drawn = [bound for bound in (high[:, members[0]], low[:, members[0]]) if np.any(bound != 0.0)]
+        hidden = [float(b[np.argmax(np.abs(b))]) / divisor for b in drawn if not in_view(b, view)]
+        if len(hidden) == 2 and hidden[0] == -hidden[1]:
+            where = f"+/-{abs(hidden[0]):.4g}"
+        else:
+            where = " and ".join(f"{b:+.4g}" for b in hidden)
+        label = f"limits of {who}{at}" + (f", {where} {unit} beyond the view" if hidden else "")
         colour = LIMIT_COLOUR if shared else actuator_style(members[0])["color"]
-        for bound in (high[:, members[0]], low[:, members[0]]):
-            if np.any(bound != 0.0):
-                axes.plot(t, bound / divisor, color=colour, linestyle="--", linewidth=1.0, label=label)
-                label = "_"
+        for bound in drawn:
+            axes.plot(t, bound / divisor, color=colour, linestyle="--", linewidth=1.0, label=label)
+            label = "_"
+    if bounds is not None:
+        label = "power bound: share of the available power"
+        for i in range(len(names)):
+            for sign in (1.0, -1.0) if np.any(thrust[:, i] < 0.0) else (1.0,):
+                if np.isfinite(bounds[:, i]).any():
+                    axes.plot(t, sign * bounds[:, i] / divisor, color=actuator_style(i)["color"], linestyle="-.",
+                              linewidth=1.0, label=label)
+                    label = "_"
     axes.axhline(0.0, color="black", linewidth=0.5)
+    axes.set_ylim(view[0] / divisor, view[1] / divisor)
     axes.set_ylabel(f"thrust [{unit}]")
 
 
@@ -157,7 +179,7 @@ def timeline_figure(result: RunResult, scenario: Scenario, nominal: RunResult | 
                                   gridspec_kw={"height_ratios": ratios}, layout="constrained")
     axes = dict(zip(panels, column))
     _errors(axes, result, nominal, scenario.horizontal)
-    _thrust(axes["thrust"], result)
+    _thrust(axes["thrust"], result, power_bounds(result, scenario))
     if rotating:
         _azimuth(axes["azimuth"], result)
     if "voltage" in axes:
@@ -171,11 +193,11 @@ def timeline_figure(result: RunResult, scenario: Scenario, nominal: RunResult | 
     for panel in column:
         shade_faults(panel, result.fault_intervals)
         panel.grid(True, alpha=0.5)
-    rows = mark_events(list(column), scenario.events)
     if result.fault_intervals:
         column[0].axvspan(0.0, 0.0, color=FAULT_COLOUR, alpha=0.1, label="a fault in force")
     for panel in column:
         legend_beside(panel)
+    rows = mark_events(list(column), scenario.events)
     column[0].set_title(f"{scenario.name} ({scenario.method}, seed {scenario.seed})", loc="left",
                         pad=6 + rows * (LABEL_SIZE + 4))
     column[-1].set_xlabel("time [s]")

@@ -168,3 +168,49 @@ def test_an_unreachable_scheduler_is_refused_before_the_analysis_and_the_journal
                  "--scheduler", "tcp://127.0.0.1:9"]) == 2
     assert "--scheduler tcp://127.0.0.1:9: no Dask scheduler answers there within 1 s" in capsys.readouterr().err
     assert (tmp_path / JOURNAL).read_text() == earlier
+
+
+def test_the_footprints_share_one_scale_about_the_limit_with_labelled_axes_and_no_legend_over_a_track(
+        uninterrupted, tmp_path):
+    """The study again from its journal (nothing runs): every panel 3 times the 0.05 m limit about
+    the set-point, metres on the outer axes, the numbers in the titles, one legend under the
+    panels, titles inside the figure, and how far a track that leaves the view went."""
+    import shutil
+
+    import numpy as np
+
+    from allocator_pkg.dp.level3.case import Criteria
+    from allocator_pkg.dp.level3.study import Level3Inputs, study
+    from allocator_pkg.dp.report.level3_report import footprints_figure
+    from allocator_pkg.simulation.report.style import pyplot
+
+    shutil.copy(uninterrupted / JOURNAL, tmp_path / JOURNAL)
+    inputs = Level3Inputs(*map(ROOT.joinpath, ("config/dp_vessel.yaml", "config/particulars/dp_vessel.yaml")),
+                          site=DATA / "sites" / "level3_site.yaml", heading_step=90.0,
+                          criteria=Criteria(position_limit=0.05, settle=2.0, duration=6.0))
+    prepared, result, finished = study(inputs, tmp_path, workers=1, resume=True, progress=False)
+    figure = footprints_figure(prepared, result, finished, "dp_vessel")
+    panels = [axes for axes in figure.axes if axes.get_title()]
+    assert [axes.get_title().split("\n")[0] for axes in panels] == ["0 deg", "90 deg", "180 deg", "270 deg"]
+    for axes, heading in zip(panels, (0.0, 90.0, 180.0, 270.0)):
+        assert axes.get_xlim() == pytest.approx((-0.15, 0.15)) and axes.get_ylim() == pytest.approx((-0.15, 0.15))
+        assert axes.get_legend() is None
+        numbers = {case: prepared.search.outcome((heading, case), finished).number for case in prepared.search.cases}
+        assert axes.get_title().replace("\n", " ").endswith(", ".join(f"{c} {n}" for c, n in numbers.items()))
+        shown = [finished[key].track for case, n in numbers.items() for key in ((heading, n, case, 0),
+                                                                                 (heading, n + 1, case, 0))
+                 if key in finished]
+        farthest = max(float(np.max(np.abs(np.array(track)))) for track in shown)
+        off = [text.get_text() for text in axes.texts]
+        assert off == ([f"off view: to {farthest:.0f} m"] if farthest > 0.15 else [])
+    assert {axes.get_xlabel() for axes in panels} == {"east [m]"} and {a.get_ylabel() for a in panels[:1]} == \
+        {"north [m]"}
+    legend = [text.get_text() for text in figure.legends[0].get_texts()]
+    assert legend[:len(prepared.search.cases)] == list(prepared.search.cases) and "position limit 0.05 m" in legend
+    figure.draw_without_rendering()
+    renderer = figure.canvas.get_renderer()
+    frame = figure.bbox
+    for text in [figure._suptitle, *(axes.title for axes in panels)]:
+        box = text.get_window_extent(renderer)
+        assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and box.y1 <= frame.y1
+    pyplot().close(figure)

@@ -1,4 +1,4 @@
-"""The figures of allocator-sim (allocator_pkg.simulation.report.figures, sim_timeline, sim_footprint,
+"""The figures of allocator-sim (allocator_pkg.simulation.report.figures, sim_timeline, sim_footprint, sim_power,
 sim_style), read from their artists on made-up runs: panels and units, one line per actuator in
 colours that tell apart, the thrust limits at the supply voltage of each sample, the events
 marked, the nominal run overlaid; the footprint's heading, bound, start and end; the nominal
@@ -96,11 +96,16 @@ def test_the_dp_timeline_has_metres_and_degrees_apart_and_every_thruster_against
     lines = labelled(thrust)
     names = ["azimuth_stbd", "azimuth_port", "tunnel_fwd", "tunnel_aft"]
     assert [name for name in lines if name in names] == names
-    assert legend_texts(thrust) == [*names, "limits of azimuth_stbd", "limits of azimuth_port",
+    # The made-up thrusts reach 0.3 of each limit, azimuth_port's 196.5 kN: a limit is in view up to
+    # twice that (the tunnels' 300 kN), farther ones are named beyond it.
+    assert legend_texts(thrust) == [*names, "limits of azimuth_stbd, +420 kN beyond the view",
+                                    "limits of azimuth_port, +655 kN beyond the view",
                                     "limits of tunnel_fwd, tunnel_aft"]
-    assert lines["limits of azimuth_port"].get_ydata() == pytest.approx(655.0)     # kN, no zero limit drawn
+    assert lines["limits of azimuth_port, +655 kN beyond the view"].get_ydata() == pytest.approx(655.0)   # kN
     tunnels = [line for line in thrust.get_lines() if line.get_color() == LIMIT_COLOUR]
     assert sorted(line.get_ydata()[0] for line in tunnels) == [-300.0, 300.0]
+    low, high = thrust.get_ylim()
+    assert 300.0 < high < 0.5 * (300.0 + 420.0) and -0.5 * (300.0 + 420.0) < low < -300.0
     assert list(labelled(azimuth)) == ["azimuth_stbd", "azimuth_port"]
     assert legend_texts(power) == [POWER_LABEL, "saturated samples"]
     assert "(1.44)" in POWER_LABEL and "1.5" in POWER_LABEL
@@ -127,7 +132,8 @@ def test_the_rov_timeline_has_roll_and_pitch_and_limits_at_the_voltage_of_each_s
     assert list(labelled(figure.axes[2])) == ["roll", "pitch"]
     assert "depth error (down positive)" in labelled(figure.axes[0])
     thrust = figure.axes[3]
-    limits = labelled(thrust)["limits of every actuator at the supply voltage"]
+    limits = next(line for label, line in labelled(thrust).items()
+                  if label.startswith("limits of every actuator at the supply voltage"))
     voltage = np.array(run.trace.voltage)
     for k in (0, len(voltage) // 2, len(voltage) - 1):
         assert limits.get_ydata()[k] == pytest.approx(thrust_limits(run.vehicle, voltage[k])[1][0])
@@ -139,7 +145,7 @@ def test_a_constant_voltage_is_named_in_the_limits_and_gets_no_panel():
     case = scenario("rov_thruster_failure")
     figure = timeline_figure(made_up_run(case, voltage=lambda t: 16.0), case)
     assert "voltage [V]" not in [a.get_ylabel() for a in figure.axes]
-    assert "limits of every actuator at 16 V" in legend_texts(figure.axes[3])
+    assert any(text.startswith("limits of every actuator at 16 V") for text in legend_texts(figure.axes[3]))
 
 
 def test_eight_thrusters_get_eight_colours_none_of_them_the_faults_or_the_limits():
@@ -261,12 +267,38 @@ def test_the_comparison_table_and_figure_show_the_nominal_runs():
     assert "| time over available power [s] | 0.0 |" in power and "| consequence alarm at [s] | inf |" in power
     figure = sim_plots.compare_figure(case, results, nominals)
     timeline = figure.axes[0]
-    assert [t.split(":")[0] for t in legend_texts(timeline)][:3] == ["qp", "qp, nominal", "lp"]
-    dashed = [line for line in timeline.get_lines() if line.get_label().startswith("qp, nominal")]
-    assert dashed[0].get_linestyle() == "--" and dashed[0].get_color() == labelled(timeline)["qp: " + (
-        legend_texts(timeline)[0].split(": ")[1])].get_color()
+    assert legend_texts(timeline) == ["qp", "lp", f"dashed: {NOMINAL_LABEL}", "a fault in force"]
+    dashed = labelled(timeline)[f"dashed: {NOMINAL_LABEL}"]
+    assert dashed.get_linestyle() == "--" and dashed.get_color() == labelled(timeline)["qp"].get_color()
     assert event_lines(timeline) == pytest.approx(sorted(e.time for e in case.events))
     assert "bound 4 m" in legend_texts(figure.axes[1])
+
+
+def test_methods_on_one_line_get_one_legend_entry_and_the_bounds_show_what_broke():
+    """Six methods, five of them on one line, each with its nominal run: two lines and one
+    dashed entry, not twelve; under them every bound of the verdict, the broken one red."""
+    case = scenario("dp_azimuth_failure", 1.0)
+    methods = ["qp", "lp", "pseudoinverse", "nonlinear", "dynamic", "svd_filter"]
+    results = {m: made_up_run(case, amplitude=6.0 if m == "svd_filter" else 1.0) for m in methods}
+    nominals = {m: made_up_run(case, amplitude=0.5) for m in methods}
+    figure = sim_plots.compare_figure(case, results, nominals)
+    timeline, _, checks = figure.axes
+    assert legend_texts(timeline) == ["qp, lp, pseudoinverse, nonlinear, dynamic (one line)", "svd_filter",
+                                      f"dashed: {NOMINAL_LABEL}", "a fault in force"]
+    assert len(timeline.get_lines()) - len(event_lines(timeline)) == 3
+    found = sim_plots.report_checks(case, results["svd_filter"].report)
+    broken = [c for c in found if not c.passed]
+    assert [c.metric for c in broken] == ["position_error_max"]            # about 6 m made up, bound 4 m
+    labels = [label.get_text() for label in checks.get_xticklabels()]
+    assert len(labels) == len(found) and labels[[c.metric for c in found].index("position_error_max")] == \
+        f"position_error_max\n<= {case.bounds['position_error_max']:g} m"
+    bars = [patch for patch in checks.patches if patch.get_width() > 0.0]
+    assert len(bars) == len(methods) * len(found)
+    red = [bar for bar in bars if bar.get_linewidth() > 0.0]
+    assert len(red) == 1 and to_rgba(red[0].get_edgecolor()) == to_rgba(FAULT_COLOUR)
+    check = broken[0]
+    assert red[0].get_height() == pytest.approx(min(check.value / check.bound, sim_plots.SHARE_CAP))
+    assert [text.get_text() for text in checks.texts] == [f"{check.value:.3g}"]
 
 
 def test_a_vehicle_with_power_sources_gets_their_power_against_what_is_available_and_the_alarm():
@@ -280,12 +312,17 @@ def test_a_vehicle_with_power_sources_gets_their_power_against_what_is_available
     figure = timeline_figure(replace(plain, trace=trace), case)
     sources = figure.axes[-1]
     assert sources.get_ylabel() == "power per source [kW]"
-    assert legend_texts(sources) == ["swbd_a drawn", "swbd_a available", "swbd_b drawn", "swbd_b available",
+    # Drawn 300-460 kW: the view keeps to it, and 5600 and 7800 kW available are named above it.
+    assert legend_texts(sources) == ["swbd_a drawn", "swbd_a available (up to 5600 kW, above the view)",
+                                     "swbd_b drawn", "swbd_b available (up to 7800 kW, above the view)",
                                      "consequence alarm"]
+    assert 460.0 < sources.get_ylim()[1] < 920.0 and sources.get_ylim()[0] == 0.0
     lines = labelled(sources)
-    assert lines["swbd_a available"].get_color() == lines["swbd_a drawn"].get_color()
-    assert lines["swbd_a available"].get_linestyle() == "--"
-    assert lines["swbd_b available"].get_ydata()[-1] == 0.0 and lines["swbd_a drawn"].get_ydata()[0] == 300.0
+    available = "swbd_a available (up to 5600 kW, above the view)"
+    assert lines[available].get_color() == lines["swbd_a drawn"].get_color()
+    assert lines[available].get_linestyle() == "--"
+    assert lines["swbd_b available (up to 7800 kW, above the view)"].get_ydata()[-1] == 0.0
+    assert lines["swbd_a drawn"].get_ydata()[0] == 300.0
     assert event_lines(sources) == [100.0, 160.0]
     assert [event_label(e) for e in case.events] == ["switchboard_b FAILED", "swbd_a 450 kW"]
     assert event_label(Event(10.0, "weather_ramp", value=1.5, duration=120.0)) == "weather x1.5 in 120 s"
@@ -295,3 +332,85 @@ def test_the_nominal_run_leaves_out_group_faults_and_power_but_keeps_the_weather
     assert sim_plots.nominal(scenario("dp_switchboard_trip")).events == ()
     kept = sim_plots.nominal(scenario("dp_consequence_alarm")).events
     assert [e.kind for e in kept] == ["weather_ramp"]
+
+
+def power_limited_run(case) -> RunResult:
+    """A made-up run of ``case`` whose power plant gives 450 kW on each switchboard all along."""
+    plain = made_up_run(case)
+    trace = replace(plain.trace, sources=["swbd_a", "swbd_b"])
+    for _ in trace.time:
+        trace.add_power([440.0, 445.0], [450.0, 450.0], False)
+    return replace(plain, trace=trace)
+
+
+def test_the_thrust_panel_draws_each_thrusters_bound_from_the_available_power():
+    """450 kW per switchboard: swbd_a feeds azimuth_stbd (P = 0.0074 W/N^1.5, 420 kN) and tunnel_fwd
+    (0.0113, 300 kN), swbd_b azimuth_port (0.0074, 655 kN) and tunnel_aft (0.0113, 300 kN). Each source's
+    power is shared in proportion to its consumers' largest draws D_j = sum P_i F_i^1.5, so that each
+    thruster's bound is F_i (A_j / D_j)^(2/3)."""
+    case = scenario("dp_power_limited", 1.0)
+    figure = timeline_figure(power_limited_run(case), case)
+    thrust = figure.axes[2]
+    bounds: dict[str, list] = {}
+    for line in thrust.get_lines():
+        if line.get_linestyle() == "-.":
+            bounds.setdefault(line.get_color(), []).append(line.get_ydata())
+    feeds = {"swbd_a": [(0.0074, 420e3, 0), (0.0113, 300e3, 2)], "swbd_b": [(0.0074, 655e3, 1), (0.0113, 300e3, 3)]}
+    expected = {}
+    for consumers in feeds.values():
+        demand = sum(p * f ** 1.5 for p, f, _ in consumers)
+        for _, f, i in consumers:
+            expected[actuator_style(i)["color"]] = f * (450e3 / demand) ** (2.0 / 3.0) / 1e3      # kN
+    assert expected[actuator_style(0)["color"]] == pytest.approx(100.04, abs=0.01)
+    assert set(bounds) == set(expected)
+    for colour, drawn in bounds.items():                        # +bound, and -bound where the thrust goes negative
+        assert [np.abs(values) for values in drawn] == [pytest.approx(expected[colour])] * len(drawn)
+    assert "power bound: share of the available power" in legend_texts(thrust)
+    assert thrust.get_ylim()[1] >= max(expected.values())            # in view: the thrusts reach 0.3 of 655 kN
+
+
+def test_the_consequence_alarm_is_not_drawn_in_the_colour_of_a_fault():
+    from allocator_pkg.simulation.report.power_figure import ALARM_COLOUR
+    case = scenario("dp_consequence_alarm", 1.0)
+    plain = made_up_run(case)
+    trace = replace(plain.trace, sources=["swbd_a", "swbd_b"])
+    for t in trace.time:
+        trace.add_power([300.0, 200.0], [5600.0, 7800.0], t >= 100.0)
+    sources = timeline_figure(replace(plain, trace=trace), case).axes[-1]
+    alarm = next(c for c in sources.collections if c.get_label() == "consequence alarm")
+    assert to_rgba(ALARM_COLOUR) != to_rgba(FAULT_COLOUR)
+    assert to_rgba(alarm.get_edgecolor()[0])[:3] == to_rgba(ALARM_COLOUR)[:3] and alarm.get_hatch() == "///"
+
+
+def test_event_labels_do_not_overlap():
+    """Two events at 0 s and one at 30 s of a 300 s run: the label at 30 s starts within the
+    width of those at 0 s, so it takes a row of its own."""
+    case = scenario("dp_power_limited", 1.0)
+    figure = timeline_figure(power_limited_run(case), case)
+    figure.draw_without_rendering()
+    renderer = figure.canvas.get_renderer()
+    boxes = [text.get_window_extent(renderer) for text in figure.axes[0].texts]
+    assert len(boxes) == 3
+    assert not any(a.overlaps(b) for k, a in enumerate(boxes) for b in boxes[k + 1:])
+
+
+def test_a_footprint_whose_set_point_moves_is_drawn_against_the_first_set_point():
+    """The set-point steps 10 m north at 60 s and the vessel follows it: the track goes north."""
+    case = scenario("dp_setpoint_change", 1.0)
+    run = made_up_run(case, amplitude=0.0)
+    for k, t in enumerate(run.trace.time):
+        north = 0.0 if t < 60.0 else min(10.0, (t - 60.0) / 10.0)
+        run.trace.position[k] = [north, 0.0, 0.0]
+        run.trace.setpoint[k] = [0.0 if t < 60.0 else 10.0, 0.0, 0.0]
+    figure = footprint_figure(run, case)
+    axes = figure.axes[0]
+    assert axes.get_ylabel() == "north of the first set-point [m]"
+    track = labelled(axes)["track"]
+    assert max(track.get_ydata()) == pytest.approx(10.0) and min(track.get_ydata()) == pytest.approx(0.0)
+    assert [t.get_text() for t in axes.texts] == ["set-point from 0 s", "set-point from 60 s"]
+    crosses = [line for line in axes.get_lines() if line.get_marker() == "+"]
+    assert sorted(line.get_ydata()[0] for line in crosses) == [0.0, 10.0]
+    circles = [patch.center for patch in axes.patches if isinstance(patch, Circle)]
+    assert sorted(circles) == [(0.0, 0.0), (0.0, 10.0)]
+    low, high = axes.get_ylim()
+    assert low <= -case.bounds["position_error_max"] and high >= 10.0 + case.bounds["position_error_max"]
