@@ -1,9 +1,9 @@
 """Running the Level 3 cases: a local process pool (``--workers N``) or a Dask distributed
 cluster (``--scheduler ADDRESS``; ``dask[distributed]``, the ``cluster`` extra, imported only
 then), the rising search of :class:`~allocator_pkg.dp.level3.search.Level3Search`
-deciding what runs next, a tqdm progress bar, and a journal (``cases.jsonl``) that takes every
-finished case as it completes (flushed and fsynced), so that a run stopped at any moment
-resumes (``--resume``) without running a finished case again.
+deciding what runs next, a tqdm progress bar, and the journal (:mod:`.journal`, ``cases.jsonl``)
+that takes every finished case as it completes, so that a run stopped at any moment resumes
+(``--resume``) without running a finished case again.
 
 Each case is a pure function of its inputs (the seed among them), so the results are the same
 bit for bit on any number of workers and on either engine. A pool worker that dies mid-case
@@ -14,71 +14,21 @@ breaks the pool: a new one runs every case that had not come back (at most
 from __future__ import annotations
 
 import concurrent.futures
-import json
 import os
 import pickle
 import sys
 from collections.abc import Callable
 from concurrent.futures.process import BrokenProcessPool
-from pathlib import Path
 from typing import Any
 
 from .case import Case, CaseResult, CaseSetup, run_case
+from .journal import Journal
 from .search import Level3Search
 
 MAX_ATTEMPTS = 3
 """Times a pool case runs before the run gives up (a worker died under it each time)."""
 DASK_RETRIES = 2
 Runner = Callable[[Case, CaseSetup], CaseResult]
-
-
-class Journal:
-    """``cases.jsonl``: a header line (the run's inputs), then one finished case a line."""
-
-    def __init__(self, path: Path, header: dict[str, Any], resume: bool) -> None:
-        self.path = path
-        self.finished: dict[tuple, CaseResult] = {}
-        lines = [header]
-        if resume and path.exists():
-            lines = _valid_lines(path)
-            if not lines or lines[0] != header:
-                raise ValueError(f"--resume: {path} was written for other inputs (or is not a Level 3 journal); "
-                                 "run without --resume to start over")
-            for data in lines[1:]:
-                result = CaseResult.from_json(data)
-                self.finished[result.case.key] = result
-        path.parent.mkdir(parents=True, exist_ok=True)
-        temporary = path.with_suffix(".jsonl.tmp")
-        with temporary.open("w") as handle:
-            handle.writelines(json.dumps(data) + "\n" for data in lines)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(temporary, path)
-        self.handle = path.open("a")
-
-    def append(self, result: CaseResult) -> CaseResult:
-        """Write one finished case (flushed and fsynced); the result as read back from its line."""
-        line = json.dumps(result.to_json())
-        self.handle.write(line + "\n")
-        self.handle.flush()
-        os.fsync(self.handle.fileno())
-        stored = CaseResult.from_json(json.loads(line))
-        self.finished[stored.case.key] = stored
-        return stored
-
-    def close(self) -> None:
-        self.handle.close()
-
-
-def _valid_lines(path: Path) -> list[dict[str, Any]]:
-    """The journal's lines up to the first that is not whole (a run killed mid-write)."""
-    lines = []
-    for text in path.read_text().splitlines():
-        try:
-            lines.append(json.loads(text))
-        except json.JSONDecodeError:
-            break
-    return lines
 
 
 class PoolEngine:

@@ -6,9 +6,10 @@ Per heading and case (intact, each redundancy group) the conditions rise per [2.
 or the Level 2 site's) until the first that fails in seeded in-process closed-loop runs
 (:mod:`allocator_pkg.dp.level3.case`); a condition the static Level 2 balance already fails
 is not simulated. :func:`study` checks every input before the first case runs, then runs the
-cases (:mod:`.level3_engine`) and gives the result as a
-:class:`~allocator_pkg.dp.level1.Level1Result` of level 3, written out by
-:mod:`.dp_level3_report`.
+cases (:mod:`.engine`) and gives the result as a
+:class:`~allocator_pkg.dp.capability_result.CapabilityResult` of level 3 with the static Levels
+1 and 2 it rests on (Level 2 given Level 1's result), written out by
+:mod:`allocator_pkg.dp.report.level3_report`.
 """
 
 from __future__ import annotations
@@ -23,24 +24,20 @@ import numpy as np
 from ...configuration.parameters import load_vehicle
 from ...simulation.scenario import load_scenario, vehicle_config
 from ...simulation.scenario_check import check_method_serves, check_vehicle
+from ..capability_result import INTACT, WORST, CapabilityResult
 from ..inputs.particulars import load_particulars
 from ..inputs.site import load_site
-from ..level1 import INTACT, WORST, Level1, Level1Result
+from ..level1 import Level1
 from ..level2 import Level2
 from .case import CRITERIA_NOTE, CaseResult, CaseSetup, Criteria
-from .engine import Journal, run_search
+from .engine import run_search
+from .journal import Journal
 from .search import STATIC, Level3Search
 
 BASE_SCENARIO = Path(__file__).resolve().parents[2] / "config" / "scenarios" / "dp_station_keeping.yaml"
 """The scenario whose controller gains, thruster time constant and environment variations the
 cases use (``--scenario``)."""
 JOURNAL = "cases.jsonl"
-SCOPE_L3 = ("DNV-ST-0111 (Dec 2021) Level 3 as read here (the transcription used has no Level 3 text): seeded "
-            "in-process closed-loop time-domain runs of the vessel with this package's allocator, its station-keeping "
-            "controller and its simulation load model (not the standard's [3.5]-[3.7]); wind, current and waves of "
-            "Table 2-1 (or the Level 2 site's) from each heading; a redundancy group failed after settling on "
-            "station; conditions rising per [2.4.4] to the first that fails; a condition the static Level 2 "
-            "balance fails is not simulated. Not verified by DNV.")
 
 
 @dataclass(frozen=True)
@@ -69,11 +66,11 @@ class Level3Inputs:
 
 @dataclass(frozen=True)
 class Level3Study:
-    """The checked set-up: the static Level 1 and Level 2 analyses, the case set-up and the search."""
+    """The checked set-up: the static Level 2 result (with the Level 1 result it was given) and
+    analysis, the case set-up and the search."""
 
     inputs: Level3Inputs
-    level1: Level1Result
-    level2: Level1Result
+    level2: CapabilityResult
     analysis: Level2
     setup: CaseSetup
     search: Level3Search
@@ -96,8 +93,7 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     check_vehicle("dp_vessel", config, str(inputs.vessel))
     check_method_serves(base.method, config)
     analysis = Level2(vehicle, particulars, inputs.method, load_site(inputs.site) if inputs.site else None)
-    level2 = analysis.run(step)
-    level1 = Level1(vehicle, particulars, inputs.method).run(step)
+    level2 = analysis.run(step, (Level1(vehicle, particulars, inputs.method).run(step),))
     groups = {name: tuple(member for member in members if member in vehicle.names)
               for name, members in analysis.groups.items()}
     setup = CaseSetup(base, tuple(analysis.conditions), groups,
@@ -106,11 +102,12 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     ceilings = {(heading, case): int(level2.numbers[case][k]) for case in (INTACT, *groups)
                 for k, heading in enumerate(headings)}
     search = Level3Search(headings, (INTACT, *groups), inputs.seeds, ceilings, len(analysis.conditions) - 1)
-    return Level3Study(inputs, level1, level2, analysis, setup, search)
+    return Level3Study(inputs, level2, analysis, setup, search)
 
 
 def study(inputs: Level3Inputs, out: Path, workers: int | None = None, scheduler: str | None = None,
-          resume: bool = False, progress: bool = True) -> tuple[Level3Study, Level1Result, dict[tuple, CaseResult]]:
+          resume: bool = False,
+          progress: bool = True) -> tuple[Level3Study, CapabilityResult, dict[tuple, CaseResult]]:
     """Check, run every case (journal ``out/cases.jsonl``), and give (study, Level 3 result, cases)."""
     if workers is not None and workers < 1:
         raise ValueError(f"--workers: an integer >= 1, not {workers}")
@@ -120,7 +117,7 @@ def study(inputs: Level3Inputs, out: Path, workers: int | None = None, scheduler
     return prepared, level3_result(prepared, finished), finished
 
 
-def level3_result(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> Level1Result:
+def level3_result(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> CapabilityResult:
     """Numbers per heading and case, the worst single failure the lowest over the groups per
     heading; the limiting wind speed is the number's condition's (no bisection in the time domain)."""
     search, conditions = prepared.search, prepared.setup.conditions
@@ -130,7 +127,8 @@ def level3_result(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> L
     groups = [case for case in search.cases if case != INTACT]
     numbers[WORST] = np.min([numbers[g] for g in groups], axis=0)
     winds = {case: np.array([conditions[n].wind for n in values]) for case, values in numbers.items()}
-    return Level1Result(headings, numbers, winds, tuple(notes(prepared, finished)), 3, SCOPE_L3, conditions)
+    return CapabilityResult(headings, numbers, winds, tuple(notes(prepared, finished)), 3, conditions,
+                            lower=(*prepared.level2.lower, prepared.level2))
 
 
 def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]:

@@ -2,11 +2,12 @@
 ``<vehicle>_dp_l3...`` in the output folder:
 
 - ``_number.png`` / ``_wind.png``: intact and worst single failure; ``_groups_number.png`` /
-  ``_groups_wind.png``: each group's loss (the Level 1 plots, :mod:`.dp_plots`);
-- ``_vs_l1_l2_number.png`` / ``_vs_l1_l2_wind.png``: Level 1, 2 and 3 of the vessel on one;
+  ``_groups_wind.png``: each group's loss (the Level 1 plots, :mod:`.capability_plots`);
+- ``_vs_l1_l2_number.png`` / ``_vs_l1_l2_wind.png``: Level 1, 2 and 3 of the vessel on one (the
+  result's :attr:`~allocator_pkg.dp.capability_result.CapabilityResult.lower` and itself);
 - ``_footprints.png``: per heading the x-y track of each case at its number (solid) and at the
   first condition that failed (dashed), with the position limit;
-- ``.csv``, ``_table_a1.csv`` and Tables A-2 to A-5 (:mod:`.dp_report`) as at Level 1;
+- ``.csv``, ``_table_a1.csv`` and Tables A-2 to A-5 (:mod:`.summary`) as at Level 1;
   ``_limits.csv``: why each number stops where it does; ``_cases.csv``: every case run with its
   excursion statistics;
 - ``.txt``: the DP capability-L3(A, B, C, D) line, the scope, the criteria and the notes.
@@ -21,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..level1 import INTACT, WORST, Level1Result
+from ..capability_result import INTACT, WORST, CapabilityResult
 from ..level3.case import CaseResult
 from ..level3.study import Level3Study
 from .capability_plots import Outline, polar_figure, polar_plot
@@ -40,7 +41,7 @@ LIMITS_TABLE = ("Level 3 per case and heading: the capability number and what li
                 "simulated; top condition)")
 
 
-def write_level3(prepared: Level3Study, result: Level1Result, finished: dict[tuple, CaseResult],
+def write_level3(prepared: Level3Study, result: CapabilityResult, finished: dict[tuple, CaseResult],
                  out: Path) -> list[Path]:
     """Every output of the study into ``out``; the paths written."""
     out.mkdir(parents=True, exist_ok=True)
@@ -56,7 +57,7 @@ def write_level3(prepared: Level3Study, result: Level1Result, finished: dict[tup
             polar_plot(paths[-1], result, title, f"{caption} ({criteria})", wind, cases, outline, (), suffix == "")
     for wind, quantity in ((False, "number"), (True, "wind")):
         paths.append(out / f"{stem}_vs_l1_l2_{quantity}.png")
-        levels_plot(paths[-1], (prepared.level1, prepared.level2, result), title, wind, outline, criteria)
+        levels_plot(paths[-1], (*result.lower, result), title, wind, outline, criteria)
     paths.append(out / f"{stem}_footprints.png")
     footprints(paths[-1], prepared, result, finished, title)
     paths.append(out / f"{stem}.csv")
@@ -93,7 +94,8 @@ def case_rows(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[
     return rows
 
 
-def levels_plot(path: Path, results: tuple[Level1Result, Level1Result, Level1Result], title: str, wind: bool,
+def levels_plot(path: Path, results: tuple[CapabilityResult, CapabilityResult, CapabilityResult], title: str,
+                wind: bool,
                 outline: Outline, criteria: str) -> None:
     """Level 1, 2 and 3, intact and worst single failure, on one polar figure."""
     import matplotlib.pyplot as plt
@@ -120,7 +122,7 @@ def levels_plot(path: Path, results: tuple[Level1Result, Level1Result, Level1Res
     plt.close(figure)
 
 
-def footprints(path: Path, prepared: Level3Study, result: Level1Result, finished: dict[tuple, CaseResult],
+def footprints(path: Path, prepared: Level3Study, result: CapabilityResult, finished: dict[tuple, CaseResult],
                title: str) -> None:
     """Per heading, each case's x-y track (seed 0) at its number (solid) and at the first condition
     that failed (dashed), east to the right, north up, with the position limit's circle."""

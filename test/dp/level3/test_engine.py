@@ -9,7 +9,8 @@ import pytest
 from conftest import DATA, ROOT
 
 from allocator_pkg.dp.level3.case import CaseResult, Criteria, run_case
-from allocator_pkg.dp.level3.engine import Journal, run_search
+from allocator_pkg.dp.level3.engine import run_search
+from allocator_pkg.dp.level3.journal import Journal
 from allocator_pkg.dp.level3.study import Level3Inputs, prepare
 
 INPUTS = Level3Inputs(ROOT / "config/dp_vessel.yaml", ROOT / "config/particulars/dp_vessel.yaml",
