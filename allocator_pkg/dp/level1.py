@@ -281,9 +281,12 @@ class Level1:
 
     def thruster_use(self, number: int, direction: float, failed: tuple[str, ...] = ()) -> tuple[ThrusterUse, ...]:
         """Each working thruster's thrust in an allocation that holds the condition of ``number`` from
-        ``direction``: the forces of the largest multiple of the load, scaled to the load."""
+        ``direction``: the forces of the largest multiple of the load, scaled to the load (none when
+        the case leaves no thruster working)."""
         condition = self.conditions[number]
         variant = self.variant(condition, direction, failed)
+        if not variant.actuators:
+            return ()
         capability = self.capability(variant, failed)
         model = capability.model
         tau = self.required(condition, direction)

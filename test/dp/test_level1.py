@@ -132,6 +132,7 @@ def test_every_thruster_failed_gives_zero():
     result = level1(vehicle_from_parameters({**BOX, **groups(all=BOX_NAMES)}), SMALL, 30.0)
     assert np.all(result.numbers["all"] == 0) and np.all(result.wind_limits["all"] == 0.0)
     assert result.summary()[2:] == (0, 0)
+    assert [a.uses for a in result.allocations if a.case == "all"] == [()] * len(result.headings_deg)
 
 
 # -- the standard's thrust, zones and loads on dp_vessel ---------------------------------------
