@@ -34,7 +34,7 @@ from .engine import run_search
 from .journal import Journal
 from .search import STATIC, Level3Search
 
-BASE_SCENARIO = Path(__file__).resolve().parents[2] / "config" / "scenarios" / "dp_station_keeping.yaml"
+BASE_SCENARIO = Path(__file__).resolve().parents[3] / "config" / "scenarios" / "dp_station_keeping.yaml"
 """The scenario whose controller gains, thruster time constant and environment variations the
 cases use (``--scenario``)."""
 JOURNAL = "cases.jsonl"
