@@ -11,8 +11,8 @@ for each redundancy group of the vehicle file (actuators and power sources lost 
 thruster fed in part by a lost source keeps its remaining share of P_B, :meth:`Level1.power_share`);
 the worst single failure is, per heading, the lowest over the groups.
 :meth:`~.capability_result.CapabilityResult.summary` gives DP capability-L1(A, B, C, D).
-:meth:`Level1.run` gives the complete result: with the numbers, the allocation behind Tables A-8
-to A-10 of each case and heading (:meth:`Level1.thruster_use`).
+:meth:`Level1.run` gives the complete result: the numbers and, per case and heading, the
+allocation behind Tables A-8 to A-10 (:meth:`Level1.thruster_use`).
 
 Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's thrust from its
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
