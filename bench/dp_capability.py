@@ -2,9 +2,10 @@
 
 One run is that of ``allocator-capability --dnv-level1`` on dp_vessel without its files: a fresh
 :class:`~allocator_pkg.dp.level1.Level1` (nothing cached) run over every heading
-(every 10 deg: 36), intact and for every redundancy group. Each run is timed by the wall clock;
-the figure is the median over the repeats. A balance is one call of ``Level1.balanced`` (one
-condition, heading and case), counted by a subclass.
+(every 10 deg: 36), intact and for every redundancy group, to its complete result (the numbers
+and the allocation behind Tables A-8 to A-10 of each case and heading). Each run is timed by the
+wall clock; the figure is the median over the repeats. A balance is one call of
+``Level1.balanced`` (one condition, heading and case), counted by a subclass.
 
     .venv/bin/python bench/dp_capability.py [--repeats 3] [--heading-step 10]
 """

@@ -25,9 +25,10 @@ import time
 from pathlib import Path
 
 from allocator_pkg.configuration.parameters import load_vehicle
-from allocator_pkg.dp.level3.case import INTACT, Case, CaseResult, CaseSetup, Criteria, run_case
+from allocator_pkg.dp.capability_result import INTACT
+from allocator_pkg.dp.level3.case import Case, CaseResult, CaseSetup, Criteria, run_case
 from allocator_pkg.dp.level3.engine import PoolEngine
-from allocator_pkg.dp.standard.weather import CONDITIONS
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 from allocator_pkg.simulation.scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -40,7 +41,8 @@ def case_setup(settle: float, duration: float) -> CaseSetup:
     scenario = load_scenario(ROOT / "config" / "scenarios" / "dp_station_keeping.yaml")
     vehicle = load_vehicle(scenario.vehicle)
     groups = {g.name: tuple(g.actuators) for g in vehicle.redundancy_groups}
-    return CaseSetup(scenario, CONDITIONS, groups, frozenset(groups), Criteria(settle=settle, duration=duration))
+    return CaseSetup(scenario, WEATHER_CONDITIONS, groups, frozenset(groups),
+                     Criteria(settle=settle, duration=duration))
 
 
 def on_pool(setup: CaseSetup, workers: int) -> tuple[float, dict[tuple, CaseResult]]:

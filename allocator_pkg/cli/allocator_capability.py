@@ -8,11 +8,13 @@ for each group of registered methods whose constraints give another capability t
 file's method. The numbers come from :class:`~allocator_pkg.capability.envelope.Capability`.
 
 ``allocator-capability --dnv-level1 VESSEL.yaml PARTICULARS.yaml [--out folder]`` writes the
-DNV-ST-0111 Level 1 DP capability report of :mod:`.dp_capability` (plots, tables, summary);
-``--dnv-level2`` the same at Level 2 with a plot of Level 1 against it; ``--site SITE.yaml`` gives
+DNV-ST-0111 Level 1 DP capability report (plots, tables, summary): the files read once
+(:mod:`~allocator_pkg.dp.vessel_files`), the complete result of :mod:`~allocator_pkg.dp.level1`,
+then the report of :mod:`~allocator_pkg.dp.report.files`; ``--dnv-level2`` the same at Level 2
+(:mod:`~allocator_pkg.dp.level2`) with a plot of Level 1 against it; ``--site SITE.yaml`` gives
 Level 2 a site environment in place of Table 2-1 (:mod:`~allocator_pkg.dp.inputs.site`);
-``--dnv-level3`` the time-domain Level 3 of :mod:`.dp_level3` (closed-loop runs on a process pool
-or a Dask cluster).
+``--dnv-level3`` the time-domain Level 3 of :mod:`~allocator_pkg.dp.level3.study` (closed-loop
+runs on a process pool or a Dask cluster).
 """
 
 from __future__ import annotations
@@ -25,11 +27,15 @@ from ..allocation.allocator import Allocator
 from ..capability.envelope import Capability, differing_methods, reachable
 from ..capability.report.envelope_files import write_envelopes
 from ..configuration.parameters import load_vehicle
+from ..dp.capability_result import CapabilityResult
+from ..dp.level1 import Level1
+from ..dp.level2 import Level2
 from ..dp.level3.case import Criteria
 from ..dp.level3.engine import CaseLost, Interrupted
 from ..dp.level3.study import BASE_SCENARIO, JOURNAL, Level3Inputs, study
 from ..dp.report.files import write_report
 from ..dp.report.level3_report import write_level3
+from ..dp.vessel_files import read_vessel_files
 from ..methods import METHODS
 from ..vehicle.config import DOF_NAMES
 
@@ -156,12 +162,12 @@ def _print(paths: list[Path]) -> None:
 
 
 def _dnv(arguments: argparse.Namespace) -> int:
-    """--dnv-level1/2: the report of cli/dp_capability.py, the summary and scope lines on stdout."""
+    """--dnv-level1/2: the report of :func:`dnv_report`, the summary and scope lines on stdout."""
     level = 1 if arguments.dnv_level1 else 2
     vessel, particulars = arguments.dnv_level1 or arguments.dnv_level2
     try:
-        result, paths = write_report(vessel, particulars, arguments.out, arguments.heading_step, arguments.method,
-                                     level, arguments.site)
+        result, paths = dnv_report(vessel, particulars, arguments.out, arguments.heading_step, arguments.method,
+                                   level, arguments.site)
     except ValueError as error:                 # a ConfigError too
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2
@@ -170,6 +176,20 @@ def _dnv(arguments: argparse.Namespace) -> int:
     for path in paths:
         print(path)
     return 0
+
+
+def dnv_report(vessel: str | Path, particulars: str | Path, out: str | Path, step_deg: float = 10.0,
+               method: str | None = None, level: int = 1,
+               site: str | Path | None = None) -> tuple[CapabilityResult, list[Path]]:
+    """Level 1 or 2 of a vehicle file and a particulars file (Level 2: with the site environment
+    file ``site`` if given): the files read once, the complete result (Level 2's with the Level 1
+    result it is drawn against), then the report; (result, paths written)."""
+    files = read_vessel_files(vessel, particulars, site)
+    analysis = (Level1(files.vehicle, files.particulars, method) if level == 1 else
+                Level2(files.vehicle, files.particulars, method, files.site))
+    lower = () if level == 1 else (Level1(files.vehicle, files.particulars, method).run(step_deg),)
+    result = analysis.run(step_deg, lower)
+    return result, write_report(out, files, analysis, result)
 
 
 if __name__ == "__main__":

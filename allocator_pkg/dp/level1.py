@@ -3,14 +3,16 @@ condition held per heading.
 
 Level 1 is a quasi-static balance: for each heading of the environment (wind, waves and current
 from the same direction [3.3.1]), the loads of the condition of each DP capability number (0-11,
-Table 2-1: :data:`CONDITIONS`) times the dynamic factor :data:`DYNAMIC_FACTOR` [3.2.2] must be
+Table 2-1: :data:`WEATHER_CONDITIONS`) times the dynamic factor :data:`DYNAMIC_FACTOR` [3.2.2] must be
 balanced by the thrusters. The number of a heading is the highest condition balanced with every
 lower one balanced too; the limiting wind speed the highest wind balanced when the conditions
 between two numbers are interpolated linearly (:func:`condition_at`). This is done intact and
 for each redundancy group of the vehicle file (actuators and power sources lost together; a
 thruster fed in part by a lost source keeps its remaining share of P_B, :meth:`Level1.power_share`);
-the worst single failure is, per heading, the lowest over the groups. :meth:`Level1Result.summary`
-gives DP capability-L1(A, B, C, D).
+the worst single failure is, per heading, the lowest over the groups.
+:meth:`~.capability_result.CapabilityResult.summary` gives DP capability-L1(A, B, C, D).
+:meth:`Level1.run` gives the complete result: the numbers and, per case and heading, the
+allocation behind Tables A-8 to A-10 (:meth:`Level1.thruster_use`).
 
 Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's thrust from its
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
@@ -21,7 +23,8 @@ file's forbidden sectors; the losses flushing the case's dead thrusters [3.11.4]
 Per (condition, heading, case) a variant of the vehicle, its working thrusters with those thrust
 ranges, zones and losses, is balanced by :meth:`~.capability.Capability.reach` (a linear
 programme with the configured method's constraints), jointly with the power of each source that
-could be short ([3.12.3]-[3.12.5], :mod:`.dnv_power`). Not yet: :data:`NOT_YET`. Not verified by DNV.
+could be short ([3.12.3]-[3.12.5], :mod:`.dnv_power`). Not yet: :data:`~.capability_result.NOT_YET`.
+Not verified by DNV.
 """
 
 from __future__ import annotations
@@ -34,6 +37,7 @@ import numpy as np
 from ..capability.envelope import Capability
 from ..capability.thrust_profile import ThrustProfile
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
+from .capability_result import INTACT, SCOPE_L1, WORST, Allocation, CapabilityResult, ThrusterUse
 from .inputs.particulars import Particulars, with_vehicle_geometry
 from .notes import hull_note, source_note, thruster_note
 from .standard.interaction_zones import Unit, Zone, flushing_zones
@@ -42,75 +46,18 @@ from .standard.losses import case_profiles, describe_losses, loss_units
 from .standard.power_balance import PoweredCapability, PowerLimits, demand, feed_share, power_limits
 from .standard.rudders import describe_rudders, force_profiles, rudder_pairs
 from .standard.thrust import BETA_MISC, nominal_thrust, ventilation_factor
-from .standard.weather import CONDITIONS, Condition, condition_at, limit
+from .standard.weather import WEATHER_CONDITIONS, WeatherCondition, condition_at, limit
 
 DYNAMIC_FACTOR = 1.25
 """[3.2.2]: on the sum of the environmental loads."""
-BOW_SECTOR_DEG = 30.0
-"""A and C are the minima within this many degrees of the bow."""
 MAX_STEP_DEG = 10.0
 """The standard asks for headings this far apart or closer."""
-INTACT = "intact"
 LOAD_SOURCES = ("wind", "current", "waves")
-WORST = "worst single failure"
-PER_STANDARD = ("loads [3.5]-[3.7] times the dynamic factor 1.25 [3.2.2]; nominal thrust [3.9.2] times beta_misc "
-                "[3.9.3] and the ventilation loss [3.9.4]; forbidden zones [3.11.3] among the working thrusters; the "
-                "thrust loss flushing a dead thruster [3.11.4] and a skeg [3.11.5] by thrust direction [3.11.6]; "
-                "rudders behind shaft lines [3.10]; the power balance per source [3.12.3]-[3.12.5] jointly with the "
-                "thrust: each source's capacity less the 10 % reserve against the power its thrusters draw at the "
-                "thrust the balance needs")
-NOT_YET = "no clause of [3.2]-[3.12] that the transcription gives"
 POWER_READING = ("A group's loss fails its actuators; a thruster outside it fed in part by a lost source keeps the "
                  "P_B of its remaining feed shares, (1 - s) P_B, so T_nominal (1 - s)^(2/3) [3.9.2] ([3.12] and "
                  "Table A-5 as transcribed: what it can consume from each source). Each source keeps 10 % of its "
                  "capacity for hotel and non-thruster consumers [3.12.3]-[3.12.4]; in each balance the power its "
                  "working thrusters draw, s P_B r^(3/2) at the thrust fraction r, stays within the rest.")
-READINGS = ("g 9.81 m/s^2 ([3.7] fixes none); a thruster that loses the feed share s keeps (1 - s) P_B ([3.12], "
-            "Table A-5); the power at part thrust P_B r^(3/2), [3.9.2] turned around ([3.12] gives none); the "
-            "second range of B in [3.9.4] read as the union of [-pi, -pi/2] and [pi/2, pi]; T_nominal of [3.9.4] "
-            "in N; the columns of Tables A-9 and A-10 (the transcription names their content, the power per thruster "
-            "and per switchboard with its reserve, not their columns)")
-"""Where the text cannot be read as it stands, and how it is read here."""
-SCOPE = (f"Per DNV-ST-0111 (Dec 2021) Level 1: {PER_STANDARD}. Not yet: {NOT_YET}. Read where the text is "
-         f"unclear: {READINGS}. Not verified by DNV.")
-"""What every output says about itself."""
-
-
-@dataclass(frozen=True)
-class Level1Result:
-    """Capability numbers and limiting wind speeds per heading for each case: ``intact``, each
-    redundancy group by name, and ``worst single failure`` (per heading the lowest over the groups)."""
-
-    headings_deg: np.ndarray
-    numbers: dict[str, np.ndarray]
-    wind_limits: dict[str, np.ndarray]
-    notes: tuple[str, ...]
-    level: int = 1
-    """The standard's level of the analysis (1, or 2 with the vessel's own data)."""
-    scope: str = SCOPE
-    """What is per the standard and what is not, for every output."""
-    conditions: tuple[Condition, ...] = CONDITIONS
-    """The condition of each number (Table 2-1, or a site's at Level 2)."""
-
-    def summary(self) -> tuple[int, int, int, int]:
-        """(A, B, C, D): intact minimum within +-30 deg of the bow and over every heading, the
-        same for the worst single failure."""
-        return level1_summary(self.headings_deg, self.numbers[INTACT], self.numbers[WORST])
-
-    def summary_line(self) -> str:
-        return f"DP capability-L{self.level}" + "({}, {}, {}, {})".format(*self.summary())
-
-    def rows(self) -> list[tuple[str, float, int, float]]:
-        """(case, heading_deg, capability_number, wind_speed_limit) for every case and heading."""
-        return [(case, float(heading), int(self.numbers[case][k]), float(self.wind_limits[case][k]))
-                for case in self.numbers for k, heading in enumerate(self.headings_deg)]
-
-
-def level1_summary(headings_deg: np.ndarray, intact: np.ndarray, worst: np.ndarray) -> tuple[int, int, int, int]:
-    """(A, B, C, D) of the numbers per heading."""
-    off_bow = np.abs((np.asarray(headings_deg) + 180.0) % 360.0 - 180.0)
-    bow = off_bow <= BOW_SECTOR_DEG + 1e-9
-    return (int(np.min(intact[bow])), int(np.min(intact)), int(np.min(worst[bow])), int(np.min(worst)))
 
 
 @dataclass(frozen=True)
@@ -131,7 +78,7 @@ class Level1:
     """The Level 1 balance of one vehicle and its particulars."""
 
     level = 1
-    scope = SCOPE
+    scope = SCOPE_L1
 
     def __init__(self, vehicle: Vehicle, particulars: Particulars, method: str | None = None):
         self.vehicle = vehicle
@@ -146,7 +93,7 @@ class Level1:
         self.loss_units = loss_units(vehicle.actuators, particulars.thrusters, particulars.frame)
         self.rudders = rudder_pairs(vehicle, particulars.thrusters, particulars.rudders)
         self.capacities = {source.name: source.capacity for source in vehicle.power_sources}
-        self.conditions = CONDITIONS
+        self.conditions = WEATHER_CONDITIONS
         """The condition of each capability number: Table 2-1."""
         self.method = method or vehicle.method
         self.uncontrolled = [DOF_NAMES.index(d) for d in ("surge", "sway", "yaw") if d not in vehicle.dofs]
@@ -157,12 +104,12 @@ class Level1:
         self._power: dict[tuple[str, ...], PowerLimits | None] = {}
         self.capability(vehicle)                               # the method can serve the vehicle
 
-    def loads(self, condition: Condition, direction: float) -> LoadComponents:
+    def loads(self, condition: WeatherCondition, direction: float) -> LoadComponents:
         """The unfactored wind, current and wave loads [X, Y, N] (body frame) from ``direction``."""
         loads = self.standard_loads(condition, direction)
         return LoadComponents(*(self.particulars.frame.load(loads[source]) for source in LOAD_SOURCES))
 
-    def standard_loads(self, condition: Condition, direction: float) -> dict[str, np.ndarray]:
+    def standard_loads(self, condition: WeatherCondition, direction: float) -> dict[str, np.ndarray]:
         """The unfactored [Fx, Fy, Mz] of wind [3.5], current [3.6] and waves [3.7] in the
         standard's frame [2.8.2] [N, N m]."""
         hull = self.particulars.hull
@@ -192,7 +139,7 @@ class Level1:
             self._power[lost] = power_limits(self.vehicle, self.powers, lost)
         return self._power[lost]
 
-    def thrust_range(self, name: str, condition: Condition, direction: float,
+    def thrust_range(self, name: str, condition: WeatherCondition, direction: float,
                      lost: tuple[str, ...] = ()) -> tuple[float, float]:
         """[low, high] [N] of one thruster: nominal thrust times beta_misc and beta_vent, each way.
         A thruster runs on the P_B times its :meth:`power_share` (what its remaining feeds can give
@@ -233,7 +180,7 @@ class Level1:
             self._profiles[dead] = case_profiles(self.loss_units, dead, self.particulars.skegs)
         return self._profiles[dead]
 
-    def variant(self, condition: Condition, direction: float, failed: tuple[str, ...] = ()) -> Vehicle:
+    def variant(self, condition: WeatherCondition, direction: float, failed: tuple[str, ...] = ()) -> Vehicle:
         """The vehicle's working thrusters (the failed ones left out) with Level 1's thrust ranges and
         zones for the condition, heading and case (a fixed thruster's range times its loss factors):
         the zones of the case, none to lift or add (no ``protects``, ``flushing_zones`` none)."""
@@ -274,7 +221,7 @@ class Level1:
                                        else PoweredCapability(variant, self.method, limits, profiles))
         return self._capabilities[key]
 
-    def required(self, condition: Condition, direction: float) -> np.ndarray:
+    def required(self, condition: WeatherCondition, direction: float) -> np.ndarray:
         """The wrench [X, Y, Z, K, M, N] (body frame) the thrusters must give: -1.25 times the loads."""
         tau = np.zeros(6)
         tau[[0, 1, 5]] = -DYNAMIC_FACTOR * self.loads(condition, direction).total
@@ -302,13 +249,15 @@ class Level1:
         """(capability number, limiting wind speed [m/s]) of one heading."""
         return limit(lambda level: self.balanced(level, direction, failed), self.conditions)
 
-    def run(self, step_deg: float = 10.0) -> Level1Result:
+    def run(self, step_deg: float = 10.0, lower: tuple[CapabilityResult, ...] = ()) -> CapabilityResult:
+        """The complete result: every heading's number and limiting wind speed per case, the notes
+        and the allocations behind Tables A-8 to A-10 (``lower``: the results of the lower levels
+        of the same vessel, kept with it)."""
         if not 0.0 < step_deg <= 90.0 or not math.isclose(360.0 / step_deg, round(360.0 / step_deg)):
             raise ValueError(f"a heading step that divides 360 deg and is at most 90 deg, not {step_deg}")
         headings = np.arange(round(360.0 / step_deg)) * step_deg
-        cases = {INTACT: (), **self.groups}
         numbers, winds = {}, {}
-        for case, failed in cases.items():
+        for case, failed in self.cases().items():
             pairs = [self.heading(math.radians(h), failed) for h in headings]
             numbers[case] = np.array([p[0] for p in pairs], dtype=int)
             winds[case] = np.array([p[1] for p in pairs])
@@ -317,7 +266,49 @@ class Level1:
         notes = self.notes()
         if step_deg > MAX_STEP_DEG:
             notes.append(f"Headings every {step_deg:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
-        return Level1Result(headings, numbers, winds, tuple(notes), self.level, self.scope, self.conditions)
+        return CapabilityResult(headings, numbers, winds, tuple(notes), self.level, self.conditions,
+                                self.allocations(headings, numbers), lower)
+
+    def cases(self) -> dict[str, tuple[str, ...]]:
+        """What each case loses: ``intact`` nothing, then each redundancy group its members."""
+        return {INTACT: (), **self.groups}
+
+    def allocations(self, headings_deg: np.ndarray, numbers: dict[str, np.ndarray]) -> tuple[Allocation, ...]:
+        """Per case and heading, the heading's number and :meth:`thruster_use` at its condition
+        (the allocation Tables A-8 to A-10 report)."""
+        return tuple(Allocation(case, float(heading), int(numbers[case][k]),
+                                self.thruster_use(int(numbers[case][k]), math.radians(heading), tuple(failed)))
+                     for case, failed in self.cases().items() for k, heading in enumerate(headings_deg))
+
+    def thruster_use(self, number: int, direction: float, failed: tuple[str, ...] = ()) -> tuple[ThrusterUse, ...]:
+        """Each working thruster's thrust in an allocation that holds the condition of ``number`` from
+        ``direction``: the forces of the largest multiple of the load, scaled to the load (none when
+        the case leaves no thruster working)."""
+        condition = self.conditions[number]
+        variant = self.variant(condition, direction, failed)
+        if not variant.actuators:
+            return ()
+        capability = self.capability(variant, failed)
+        model = capability.model
+        tau = self.required(condition, direction)
+        force = np.zeros(model.m)
+        if np.any(tau):
+            scale = float(np.max(np.abs(tau[model.dof_index]) / np.maximum(model.authority, 1e-12)))
+            multiple, force = capability.reach_forces(tau / scale)
+            force = force * (scale / multiple) if multiple > 0.0 else np.zeros(model.m)
+        uses = []
+        for index, actuator in enumerate(variant.actuators):
+            start = int(model.starts[index])
+            if actuator.rotatable:
+                fx, fy = force[start], force[start + 1]
+                thrust, angle = float(math.hypot(fx, fy)), math.degrees(math.atan2(fy, fx))
+                available = capability.available(actuator.name, math.atan2(fy, fx))
+            else:
+                thrust = float(force[start])
+                angle = math.degrees(math.atan2(actuator.direction[1], actuator.direction[0]))
+                available = actuator.thrust_max if thrust >= 0.0 else -actuator.thrust_min
+            uses.append(ThrusterUse(actuator.name, thrust, angle, available))
+        return tuple(uses)
 
     def notes(self) -> list[str]:
         """What the numbers rest on, for the output."""
@@ -335,7 +326,7 @@ class Level1:
                                           f"{math.degrees(z.sector[1]):.1f} deg (flushing {z.flushed})"
                                           for z in self.zones()) or "none")
             + " (thrust angle in the body frame, 0 forward, 90 to starboard).",
-            describe_losses({case: self.thrust_profiles(lost) for case, lost in {INTACT: (), **self.groups}.items()}),
+            describe_losses({case: self.thrust_profiles(lost) for case, lost in self.cases().items()}),
             describe_rudders(self.rudders),
             "Redundancy groups (lost together: actuators, then power sources): "
             + "; ".join(f"{g}: {', '.join(m)}" for g, m in self.groups.items()) + ". " + POWER_READING,
@@ -344,7 +335,7 @@ class Level1:
             "that).",
         ]
         if self.capacities:
-            cases = {INTACT: (), **self.groups}
+            cases = self.cases()
             notes.append("Power sources [3.12] (capacity, usable after the 10 % reserve; per case what its working "
                          "thrusters draw at full thrust, s P_B, and whether it can limit the balance): "
                          + "; ".join(source_note(source, self.capacities[source], {
@@ -382,6 +373,6 @@ def _actuators(vehicle: Vehicle, particulars: Particulars) -> dict[str, _Actuato
     return result
 
 def level1(vehicle: Vehicle, particulars: Particulars, step_deg: float = 10.0,
-           method: str | None = None) -> Level1Result:
+           method: str | None = None) -> CapabilityResult:
     """DP capability Level 1 of a vehicle: every heading, intact and for each redundancy group."""
     return Level1(vehicle, particulars, method).run(step_deg)

@@ -21,7 +21,7 @@ are given.
 Kept from Level 1: wave drift [3.7], the dynamic factor 1.25 [3.2.2], a shaft line's rudder
 [3.10], the joint power balance [3.12], the search and the redundancy groups. The public
 transcription of the standard has no Level 2 text: what is replaced, and how, is this package's
-reading (:data:`SCOPE_L2` says so on every output). Not verified by DNV.
+reading (:data:`~.capability_result.SCOPE_L2` says so on every output). Not verified by DNV.
 """
 
 from __future__ import annotations
@@ -33,26 +33,14 @@ import numpy as np
 from ..capability.thrust_profile import ThrustProfile
 from ..hull.environment_loads import RHO_AIR, RHO_WATER
 from ..vehicle.config import ActuatorConfig, Vehicle
+from .capability_result import SCOPE_L2
 from .inputs.loss_tables import check_thrusters
 from .inputs.particulars import Particulars
 from .inputs.site import SiteEnvironment
-from .level1 import NOT_YET, Level1
+from .level1 import Level1
 from .standard.interaction_zones import Zone
-from .standard.weather import Condition
+from .standard.weather import WeatherCondition
 
-OWN_DATA = ("wind and current loads from the particulars' coefficient tables over heading where given ([3.5], [3.6] "
-            "where not); each thruster's thrust from the vehicle file's thrust limits (no [3.9.3]/[3.9.4]/[3.11.4]/"
-            "[3.11.5] loss; a lost feed share s leaves (1 - s)^(2/3) of it), times the particulars' thrust-loss "
-            "tables over the thrust direction and over the current speed where given (the notes list them); "
-            "the vehicle file's forbidden sectors "
-            "(lifted with the thruster they protect); a site environment in place of Table 2-1 where given")
-KEPT = ("wave drift [3.7], the dynamic factor 1.25 [3.2.2], rudders behind shaft lines [3.10], the power balance "
-        "per source [3.12], the redundancy groups")
-NOT_YET_L2 = f"the vessel's wave drift data; {NOT_YET}"
-SCOPE_L2 = (f"DNV-ST-0111 (Dec 2021) Level 2 as read here (the transcription used has no Level 2 text): the Level 1 "
-            f"balance with the vessel's own data: {OWN_DATA}. Kept from Level 1: {KEPT}. Not yet: {NOT_YET_L2}. "
-            "Not verified by DNV.")
-"""What every Level 2 output says about itself."""
 AREA_NOTE = ("coefficients: Fx = q A_F,wind Cx, Fy = q A_L,wind Cy, Mz = q A_L,wind Lpp Cn for wind; B T, "
              "A_L,current and A_L,current Lpp for current; the standard's frame, moment about Lpp/2")
 
@@ -83,7 +71,7 @@ class Level2(Level1):
         if self.site is not None:
             self.conditions = self.site.conditions
 
-    def standard_loads(self, condition: Condition, direction: float) -> dict[str, np.ndarray]:
+    def standard_loads(self, condition: WeatherCondition, direction: float) -> dict[str, np.ndarray]:
         """[Fx, Fy, Mz] per source [N, N m], the standard's frame: the vessel's coefficients where given."""
         loads = super().standard_loads(condition, direction)
         hull, particulars = self.particulars.hull, self.particulars
@@ -96,7 +84,7 @@ class Level2(Level1):
                 loads[source] = 0.5 * rho * speed ** 2 * np.array(areas) * table.at(direction)
         return loads
 
-    def thrust_range(self, name: str, condition: Condition, direction: float,
+    def thrust_range(self, name: str, condition: WeatherCondition, direction: float,
                      lost: tuple[str, ...] = ()) -> tuple[float, float]:
         """[low, high] [N]: the vehicle file's thrust limits, times share^(2/3) of its
         :meth:`power_share` (a lost feed share; a board short of power is the balance's) and the

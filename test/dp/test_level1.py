@@ -13,18 +13,12 @@ from hypothesis import strategies as st
 from scipy.optimize import linprog
 
 from allocator_pkg import load_vehicle, vehicle_from_parameters
-from allocator_pkg.cli.allocator_capability import main
+from allocator_pkg.cli.allocator_capability import dnv_report, main
+from allocator_pkg.dp.capability_result import SCOPE_L1, WORST
 from allocator_pkg.dp.inputs.particulars import load_particulars, particulars_from_mapping
-from allocator_pkg.dp.level1 import (
-    CONDITIONS,
-    SCOPE,
-    WORST,
-    Level1,
-    condition_at,
-    level1,
-)
-from allocator_pkg.dp.report.files import write_level1
+from allocator_pkg.dp.level1 import Level1, level1
 from allocator_pkg.dp.standard.thrust import ThrusterData, nominal_thrust, ventilation_factor
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS, condition_at
 from allocator_pkg.hull.environment_loads import LoadCoefficients
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
@@ -73,8 +67,9 @@ SPLIT = {**BOX, "power.sources": ["bus_a", "bus_b"], "power.bus_a.capacity": 1.0
 
 
 def test_conditions_and_their_interpolation():
-    assert CONDITIONS[5].wind == 10.7 and CONDITIONS[5].hs == 2.1 and CONDITIONS[5].tp == 7.5
-    assert CONDITIONS[8].wind == 20.7 and CONDITIONS[8].hs == 5.7 and CONDITIONS[8].current == 0.75
+    five, eight = WEATHER_CONDITIONS[5], WEATHER_CONDITIONS[8]
+    assert five.wind == 10.7 and five.hs == 2.1 and five.tp == 7.5
+    assert eight.wind == 20.7 and eight.hs == 5.7 and eight.current == 0.75
     # Halfway between 5 and 6: wind (10.7 + 13.8) / 2 = 12.25, Hs 2.6, Tp 8.0; 2.5: current 0.625.
     middle = condition_at(5.5)
     assert (middle.wind, middle.hs, middle.tp, middle.current) == pytest.approx((12.25, 2.6, 8.0, 0.75))
@@ -111,7 +106,7 @@ def test_numbers_and_wind_limits_match_an_independent_balance():
         assert result.numbers["intact"][k] == expected, heading
         wind = result.wind_limits["intact"][k]
         if expected < 11:
-            low, high = CONDITIONS[expected].wind, CONDITIONS[expected + 1].wind
+            low, high = WEATHER_CONDITIONS[expected].wind, WEATHER_CONDITIONS[expected + 1].wind
             level = expected + (wind - low) / (high - low)
             assert _holds(max(level - 1e-3, 0.0), direction)
             assert not _holds(level + 1e-3, direction)
@@ -137,6 +132,7 @@ def test_every_thruster_failed_gives_zero():
     result = level1(vehicle_from_parameters({**BOX, **groups(all=BOX_NAMES)}), SMALL, 30.0)
     assert np.all(result.numbers["all"] == 0) and np.all(result.wind_limits["all"] == 0.0)
     assert result.summary()[2:] == (0, 0)
+    assert [a.uses for a in result.allocations if a.case == "all"] == [()] * len(result.headings_deg)
 
 
 # -- the standard's thrust, zones and loads on dp_vessel ---------------------------------------
@@ -156,10 +152,10 @@ def test_thrust_ranges_by_hand(dp_level1):
     # = Phi(2.356913) = 0.990786.
     nominal = 1200.0 * (3.4 * 2071.0 * 0.93) ** (2.0 / 3.0)
     assert nominal == pytest.approx(420025.7, rel=1e-6)
-    low, high = dp_level1.thrust_range("azimuth_stbd", CONDITIONS[6], 0.0)
+    low, high = dp_level1.thrust_range("azimuth_stbd", WEATHER_CONDITIONS[6], 0.0)
     assert low == 0.0 and high == pytest.approx(nominal * 0.9 * 0.990786, rel=1e-6)
     # The tunnels push either way with the same nominal thrust (Table 3-2).
-    low, high = dp_level1.thrust_range("tunnel_fwd", CONDITIONS[6], 0.0)
+    low, high = dp_level1.thrust_range("tunnel_fwd", WEATHER_CONDITIONS[6], 0.0)
     assert low == pytest.approx(-high) and high < 0.9 * 300000.5
 
 
@@ -167,20 +163,20 @@ def test_zones_replace_the_static_sectors_and_lift_with_a_failure(dp_level1):
     # The azimuths 14 m apart, D 3.4 m (15 D = 51 m): half-angle arctan(0.1 + 3.4 / 14) = 18.94 deg
     # around +90 deg (starboard unit) and -90 deg (port unit); the tunnels are exempt as flushed units
     # and 72 m or more from the azimuths (more than 15 x 2.2 m).
-    intact = dp_level1.variant(CONDITIONS[6], 0.0)
+    intact = dp_level1.variant(WEATHER_CONDITIONS[6], 0.0)
     sectors = {a.name: a.rotation.forbidden_sectors for a in intact.actuators if a.rotatable}
     half = math.atan(0.1 + 3.4 / 14.0)
     assert len(sectors["azimuth_stbd"]) == len(sectors["azimuth_port"]) == 1
     assert sectors["azimuth_stbd"][0] == pytest.approx((math.pi / 2 - half, math.pi / 2 + half))
     assert sectors["azimuth_port"][0] == pytest.approx((-math.pi / 2 - half, -math.pi / 2 + half))
-    lost_port = dp_level1.variant(CONDITIONS[6], 0.0, ("azimuth_port", "tunnel_aft"))
+    lost_port = dp_level1.variant(WEATHER_CONDITIONS[6], 0.0, ("azimuth_port", "tunnel_aft"))
     assert [a.rotation.forbidden_sectors for a in lost_port.actuators if a.name == "azimuth_stbd"] == [()]
 
 
 def test_body_frame_loads_by_hand(dp_level1):
     # Wind 10.7 m/s from starboard: Fy = 1/2 1.226 10.7^2 650 0.9 = 70.18237 585 = 41056.69 N to port (Y < 0 in FRD),
     # acting at x_L,air = 8 m (the lever's shift vanishes abeam): N = 8 Y.
-    wind = dp_level1.loads(CONDITIONS[5], math.pi / 2).wind
+    wind = dp_level1.loads(WEATHER_CONDITIONS[5], math.pi / 2).wind
     assert wind == pytest.approx([0.0, -41056.686, -328453.49], rel=1e-6, abs=1e-6)
 
 
@@ -276,7 +272,7 @@ def test_a_split_fed_thruster_keeps_its_remaining_share():
     split = Level1(vehicle_from_parameters(SPLIT), SMALL)
     assert split.power_share("surge_port", ("bus_a",)) == 0.5 and split.power_share("surge_stbd", ("bus_a",)) == 1.0
     assert split.power_share("surge_port") == 1.0
-    condition, direction = CONDITIONS[5], math.radians(60.0)
+    condition, direction = WEATHER_CONDITIONS[5], math.radians(60.0)
     half = replace(SMALL.thrusters["surge_port"], power=0.5 * SMALL.thrusters["surge_port"].power)
     unit = split.actuators["surge_port"]
     expected = 0.9 * nominal_thrust(half) * ventilation_factor(half, unit.x, unit.submergence, 2.0, condition.hs,
@@ -312,7 +308,7 @@ def test_a_board_short_of_power_limits_the_balance_not_the_thrust_ranges():
     assert board.source_demand("bus") == pytest.approx(0.26, rel=1e-12)
     assert board.power_limits(("surge_port",)) is None                 # 0.13 kW fits in 0.18 kW
     plain = Level1(vehicle_from_parameters(BOX), SMALL)
-    condition = CONDITIONS[5]
+    condition = WEATHER_CONDITIONS[5]
     assert board.thrust_range("surge_stbd", condition, 0.0) == plain.thrust_range("surge_stbd", condition, 0.0)
     full, short = plain.run(30.0), board.run(30.0)
     assert np.all(short.wind_limits["intact"] <= full.wind_limits["intact"])
@@ -339,7 +335,7 @@ def test_a_split_fed_thruster_draws_its_shares_from_each_board():
 def test_a_thruster_left_without_any_feed_is_refused():
     split = Level1(vehicle_from_parameters(SPLIT), SMALL)
     with pytest.raises(ValueError, match="surge_stbd: every feed lost"):
-        split.thrust_range("surge_stbd", CONDITIONS[3], 0.0, ("bus_b",))
+        split.thrust_range("surge_stbd", WEATHER_CONDITIONS[3], 0.0, ("bus_b",))
 
 
 # -- the command line -------------------------------------------------------------------------
@@ -348,7 +344,7 @@ def test_a_thruster_left_without_any_feed_is_refused():
 def dp_vessel(tmp_path_factory):
     """dp_vessel's Level 1 at 30 deg through the library's file writer: (result, output folder)."""
     out = tmp_path_factory.mktemp("dp_l1")
-    return write_level1(DP_VESSEL, DP_PARTICULARS, out, 30.0)[0], out
+    return dnv_report(DP_VESSEL, DP_PARTICULARS, out, 30.0)[0], out
 
 
 def test_cli_writes_the_files(tmp_path, capsys):
@@ -357,7 +353,7 @@ def test_cli_writes_the_files(tmp_path, capsys):
                  "--heading-step", "30"]) == 0
     printed = capsys.readouterr().out.splitlines()
     assert printed[0] == "DP capability-L1(0, 0, 0, 0)"
-    assert printed[1] == SCOPE and "Not verified by DNV." in SCOPE and "[3.11.4]" in SCOPE
+    assert printed[1] == SCOPE_L1 and "Not verified by DNV." in SCOPE_L1 and "[3.11.4]" in SCOPE_L1
     for suffix in ("_dp_l1_number.png", "_dp_l1_wind.png", "_dp_l1.csv", "_dp_l1.txt"):
         assert (tmp_path / f"otter_usv{suffix}").stat().st_size > 0
         assert str(tmp_path / f"otter_usv{suffix}") in printed
@@ -369,7 +365,7 @@ def test_cli_writes_the_files(tmp_path, capsys):
 def test_summary_follows_from_the_csv(dp_vessel):
     result, out = dp_vessel
     with (out / "dp_vessel_dp_l1.csv").open() as handle:
-        assert handle.readline() == f"# {SCOPE}\n"
+        assert handle.readline() == f"# {SCOPE_L1}\n"
         rows = list(csv.DictReader(handle))
     assert list(rows[0]) == ["case", "heading_deg", "capability_number", "wind_speed_limit"]
     table: dict[str, dict[float, int]] = {}
@@ -386,7 +382,7 @@ def test_summary_follows_from_the_csv(dp_vessel):
     line = f"DP capability-L1({a}, {b}, {c}, {d})"
     assert result.summary_line() == line
     text = (out / "dp_vessel_dp_l1.txt").read_text()
-    assert line in text and SCOPE in text and "azimuth_stbd 71.1 to 108.9 deg (flushing azimuth_port)" in text
+    assert line in text and SCOPE_L1 in text and "azimuth_stbd 71.1 to 108.9 deg (flushing azimuth_port)" in text
 
 
 def test_cli_refuses_a_bad_particulars_file(tmp_path, capsys):

@@ -13,11 +13,13 @@ from conftest import ROOT
 
 from allocator_pkg import load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.cli.allocator_capability import main
+from allocator_pkg.dp.capability_result import SCOPE_L2, WORST
 from allocator_pkg.dp.inputs.coefficients import coefficient_table
 from allocator_pkg.dp.inputs.particulars import load_particulars, particulars_from_mapping
-from allocator_pkg.dp.level1 import CONDITIONS, WORST, Level1
-from allocator_pkg.dp.level2 import SCOPE_L2, Level2
+from allocator_pkg.dp.level1 import Level1
+from allocator_pkg.dp.level2 import Level2
 from allocator_pkg.dp.standard.loads import current_load, wave_drift_load, wind_load
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 DP_PARTICULARS = ROOT / "config" / "particulars" / "dp_vessel.yaml"
@@ -42,7 +44,7 @@ def test_coefficients_sampled_from_the_formulas_give_level_1_loads_at_their_rows
     level2 = Level2(load_vehicle(DP_VESSEL), particulars)
     level1 = Level1(load_vehicle(DP_VESSEL), PARTICULARS)
     for heading in HEADINGS:
-        for condition in CONDITIONS[1::3]:
+        for condition in WEATHER_CONDITIONS[1::3]:
             d = math.radians(heading)
             two, one = level2.standard_loads(condition, d), level1.standard_loads(condition, d)
             for source in ("wind", "current"):
@@ -55,23 +57,23 @@ def test_coefficients_sampled_from_the_formulas_give_level_1_loads_at_their_rows
 
 def test_without_tables_the_loads_are_level_1s():
     level2, level1 = Level2(load_vehicle(DP_VESSEL), PARTICULARS), Level1(load_vehicle(DP_VESSEL), PARTICULARS)
-    for key, value in level1.standard_loads(CONDITIONS[6], 1.0).items():
-        np.testing.assert_array_equal(level2.standard_loads(CONDITIONS[6], 1.0)[key], value)
+    for key, value in level1.standard_loads(WEATHER_CONDITIONS[6], 1.0).items():
+        np.testing.assert_array_equal(level2.standard_loads(WEATHER_CONDITIONS[6], 1.0)[key], value)
 
 
 def test_thrust_is_the_vehicle_files_and_a_lost_feed_share_derates_it():
     level2 = Level2(load_vehicle(DP_VESSEL), PARTICULARS)
-    assert level2.thrust_range("azimuth_port", CONDITIONS[9], 1.0) == (0.0, 655000.0)
-    assert level2.thrust_range("tunnel_aft", CONDITIONS[9], 1.0) == (-300000.0, 300000.0)
+    assert level2.thrust_range("azimuth_port", WEATHER_CONDITIONS[9], 1.0) == (0.0, 655000.0)
+    assert level2.thrust_range("tunnel_aft", WEATHER_CONDITIONS[9], 1.0) == (-300000.0, 300000.0)
     # swbd_a (5040 kW usable) is short of the 5045.5 kW its thrusters draw at full thrust: that is the
     # balance's power row [3.12]; the range stays the vehicle file's.
-    assert level2.thrust_range("tunnel_fwd", CONDITIONS[9], 1.0) == (-300000.0, 300000.0)
+    assert level2.thrust_range("tunnel_fwd", WEATHER_CONDITIONS[9], 1.0) == (-300000.0, 300000.0)
     assert level2.power_limits().sources == ("swbd_a",)
     split = {**read_parameters(DP_VESSEL), "actuators.tunnel_fwd.feeds": ["swbd_a", "swbd_b"],
              "actuators.tunnel_fwd.feed_shares": [0.25, 0.75],
              "redundancy_groups.switchboard_a.actuators": ["azimuth_stbd"]}
     level2 = Level2(vehicle_from_parameters(split), PARTICULARS)
-    low, high = level2.thrust_range("tunnel_fwd", CONDITIONS[9], 1.0, level2.groups["switchboard_a"])
+    low, high = level2.thrust_range("tunnel_fwd", WEATHER_CONDITIONS[9], 1.0, level2.groups["switchboard_a"])
     # It keeps the 0.75 share of swbd_b: 0.75^(2/3) = 0.82548 of its thrust. swbd_b now feeds
     # 4033 + 2974.5 + 0.75 2974.5 = 9238.375 kW at full thrust from 7020 kW usable [3.12.3]: a power row.
     assert high == pytest.approx(300000.0 * 0.75 ** (2 / 3), rel=1e-12) and low == pytest.approx(-high)
@@ -114,8 +116,8 @@ def test_bad_level2_data_is_refused_naming_the_key():
 
 # -- a site environment in place of Table 2-1 ---------------------------------------------------
 
-TABLE_2_1 = {"wind": [c.wind for c in CONDITIONS[1:]], "hs": [c.hs for c in CONDITIONS[1:]],
-             "tp": [c.tp for c in CONDITIONS[1:]], "current": [c.current for c in CONDITIONS[1:]]}
+TABLE_2_1 = {"wind": [c.wind for c in WEATHER_CONDITIONS[1:]], "hs": [c.hs for c in WEATHER_CONDITIONS[1:]],
+             "tp": [c.tp for c in WEATHER_CONDITIONS[1:]], "current": [c.current for c in WEATHER_CONDITIONS[1:]]}
 
 
 def with_site(site: dict):

@@ -8,11 +8,12 @@ import numpy as np
 import pytest
 
 from allocator_pkg import vehicle_from_parameters
+from allocator_pkg.dp.capability_result import INTACT, WORST, CapabilityResult, capability_summary
 from allocator_pkg.dp.inputs.particulars import particulars_from_mapping
-from allocator_pkg.dp.level1 import INTACT, WORST, Level1, Level1Result, level1_summary
+from allocator_pkg.dp.level1 import Level1
 from allocator_pkg.dp.report.tables import table_a1
 from allocator_pkg.dp.standard.power_balance import part_load_power
-from allocator_pkg.dp.standard.weather import CONDITIONS
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 
 # The transcription's round test hull (Lpp 80 m, B 18 m, T 6 m), body origin midships in the waterline.
 HULL = {"lpp": 80.0, "beam": 18.0, "draught": 6.0, "wind_area_frontal": 200.0, "wind_area_lateral": 800.0,
@@ -54,11 +55,11 @@ def test_split_feed_derating():
     analysis = Level1(vehicle, PARTICULARS)
     lost = analysis.groups["S1"]
     assert analysis.actuators["F"].forward == pytest.approx(120.99e3, abs=5.0)
-    assert analysis.thrust_range("F", CONDITIONS[0], 0.0)[1] == pytest.approx(108.89e3, abs=5.0)
+    assert analysis.thrust_range("F", WEATHER_CONDITIONS[0], 0.0)[1] == pytest.approx(108.89e3, abs=5.0)
     assert analysis.power_share("F", lost) == 0.5
-    assert analysis.thrust_range("F", CONDITIONS[0], 0.0, lost)[1] == pytest.approx(68.60e3, abs=5.0)
+    assert analysis.thrust_range("F", WEATHER_CONDITIONS[0], 0.0, lost)[1] == pytest.approx(68.60e3, abs=5.0)
     assert 1000.0 * part_load_power(76.22 / 120.99) == pytest.approx(500.0, abs=0.2)
-    assert [a.name for a in analysis.variant(CONDITIONS[0], 0.0, lost).actuators] == ["F"]
+    assert [a.name for a in analysis.variant(WEATHER_CONDITIONS[0], 0.0, lost).actuators] == ["F"]
 
 
 def test_two_azimuths_head_on_by_hand():
@@ -78,9 +79,9 @@ def test_two_azimuths_head_on_by_hand():
       2 681.3 = 1362.6 kW > 1080 kW, not held: number 8."""
     analysis = Level1(vehicle_from_parameters(two_azimuths()), PARTICULARS)
     for number, total in ((7, 82.34e3), (8, 117.31e3), (9, 168.63e3), (10, 221.40e3)):
-        assert analysis.required(CONDITIONS[number], 0.0)[0] == pytest.approx(total, rel=1e-4)
+        assert analysis.required(WEATHER_CONDITIONS[number], 0.0)[0] == pytest.approx(total, rel=1e-4)
     number, wind = analysis.heading(0.0)
-    assert number == 9 and CONDITIONS[9].wind < wind < CONDITIONS[10].wind
+    assert number == 9 and WEATHER_CONDITIONS[9].wind < wind < WEATHER_CONDITIONS[10].wind
     assert analysis.heading(0.0, analysis.groups["F"])[0] == 7 and analysis.heading(0.0, analysis.groups["A"])[0] == 7
     board = Level1(vehicle_from_parameters(two_azimuths(**{
         "power.sources": ["swbd"], "power.swbd.capacity": 1200.0, "actuators.F.feeds": ["swbd"],
@@ -100,10 +101,10 @@ def test_table_a1_of_the_standard():
     numbers = {INTACT: np.array([11, 11, 11, 9]), "swbd_1": np.array([9, 8, 6, 5]),
                "swbd_2": np.array([11, 11, 10, 8])}
     numbers[WORST] = np.minimum(numbers["swbd_1"], numbers["swbd_2"])
-    winds = {case: np.array([CONDITIONS[n].wind for n in values]) for case, values in numbers.items()}
-    result = Level1Result(headings, numbers, winds, ())
+    winds = {case: np.array([WEATHER_CONDITIONS[n].wind for n in values]) for case, values in numbers.items()}
+    result = CapabilityResult(headings, numbers, winds, ())
     columns, rows = table_a1(result)
     assert columns == ("heading_deg", INTACT, "swbd_1", "swbd_2", "combined", "worst_group")
     assert [row[4] for row in rows] == [9, 8, 6, 5] and {row[5] for row in rows} == {"swbd_1"}
-    a, _, c, _ = level1_summary(headings, numbers[INTACT], numbers[WORST])
+    a, _, c, _ = capability_summary(headings, numbers[INTACT], numbers[WORST])
     assert (a, c) == (9, 5)

@@ -30,7 +30,7 @@ from typing import Any
 import yaml
 
 from ..standard.loads import TZ_FROM_TP
-from ..standard.weather import CONDITIONS, TOP, Condition
+from ..standard.weather import TOP, WEATHER_CONDITIONS, WeatherCondition
 
 QUANTITIES = ("wind", "hs", "tp", "tz", "current")
 SITE_KEYS = ("name", *QUANTITIES)
@@ -46,7 +46,7 @@ class SiteEnvironment:
     (``source``), and which quantities the site gives (the rest are Table 2-1's)."""
 
     name: str
-    conditions: tuple[Condition, ...]
+    conditions: tuple[WeatherCondition, ...]
     source: str
     given: tuple[str, ...]
 
@@ -84,15 +84,15 @@ def site_from_mapping(data: Any, prefix: str = "level2.site", source: str = "") 
     columns = {q: _column(data[q], count, f"{prefix}.{q}", q) for q in given}
     if "tz" in columns:
         columns["tp"] = [TZ_FROM_TP * value for value in columns.pop("tz")]
-    table = {q: columns.get(q, [getattr(CONDITIONS[n], q) for n in range(1, count + 1)])
+    table = {q: columns.get(q, [getattr(WEATHER_CONDITIONS[n], q) for n in range(1, count + 1)])
              for q in ("wind", "hs", "tp", "current")}
     wind = [0.0, *table["wind"]]
     for number in range(1, count + 1):
         if wind[number] <= wind[number - 1]:
             raise ValueError(f"{prefix}.wind[{number - 1}]: the wind speed of number {number} must exceed that of "
                              f"number {number - 1} ({wind[number]:g} <= {wind[number - 1]:g} m/s)")
-    conditions = (CONDITIONS[0], *(Condition(*(table[q][k] for q in ("wind", "hs", "tp", "current")))
-                                   for k in range(count)))
+    conditions = (WEATHER_CONDITIONS[0], *(WeatherCondition(*(table[q][k] for q in ("wind", "hs", "tp", "current")))
+                                           for k in range(count)))
     name = data.get("name", "site")
     if not isinstance(name, str):
         raise ValueError(f"{prefix}.name: text, not {name!r}")

@@ -28,9 +28,9 @@ from ...simulation.closed_loop import ClosedLoop
 from ...simulation.in_process import InProcessLink
 from ...simulation.metrics import heading_errors
 from ...simulation.scenario import Event, Scenario
-from ..standard.weather import Condition
+from ..capability_result import INTACT
+from ..standard.weather import WeatherCondition
 
-INTACT = "intact"
 TRACK_PERIOD = 1.0
 """[s] between the samples of a case's x-y track kept for the footprint plots."""
 CRITERIA_NOTE = ("Level 3 criteria: the transcription used has no Level 3 text; a case holds when the horizontal "
@@ -86,7 +86,7 @@ class CaseSetup:
     ``Allocator.set_group_fault``) and the criteria."""
 
     scenario: Scenario
-    conditions: tuple[Condition, ...]
+    conditions: tuple[WeatherCondition, ...]
     groups: dict[str, tuple[str, ...]]
     named_groups: frozenset[str]
     criteria: Criteria

@@ -6,9 +6,10 @@ Per heading and case (intact, each redundancy group) the conditions rise per [2.
 or the Level 2 site's) until the first that fails in seeded in-process closed-loop runs
 (:mod:`allocator_pkg.dp.level3.case`); a condition the static Level 2 balance already fails
 is not simulated. :func:`study` checks every input before the first case runs, then runs the
-cases (:mod:`.level3_engine`) and gives the result as a
-:class:`~allocator_pkg.dp.level1.Level1Result` of level 3, written out by
-:mod:`.dp_level3_report`.
+cases (:mod:`.engine`) and gives the result as a
+:class:`~allocator_pkg.dp.capability_result.CapabilityResult` of level 3 with the static Levels
+1 and 2 it rests on (Level 2 given Level 1's result), written out by
+:mod:`allocator_pkg.dp.report.level3_report`.
 """
 
 from __future__ import annotations
@@ -23,24 +24,20 @@ import numpy as np
 from ...configuration.parameters import load_vehicle
 from ...simulation.scenario import load_scenario, vehicle_config
 from ...simulation.scenario_check import check_method_serves, check_vehicle
+from ..capability_result import INTACT, WORST, CapabilityResult
 from ..inputs.particulars import load_particulars
 from ..inputs.site import load_site
-from ..level1 import INTACT, MAX_STEP_DEG, WORST, Level1, Level1Result
+from ..level1 import MAX_STEP_DEG, Level1
 from ..level2 import Level2
 from .case import CRITERIA_NOTE, CaseResult, CaseSetup, Criteria
-from .engine import Interrupted, Journal, open_engine, run_search
+from .engine import Interrupted, open_engine, run_search
+from .journal import Journal
 from .search import STATIC, Level3Search
 
 BASE_SCENARIO = Path(__file__).resolve().parents[3] / "config" / "scenarios" / "dp_station_keeping.yaml"
 """The scenario whose controller gains, thruster time constant and environment variations the
 cases use (``--scenario``)."""
 JOURNAL = "cases.jsonl"
-SCOPE_L3 = ("DNV-ST-0111 (Dec 2021) Level 3 as read here (the transcription used has no Level 3 text): seeded "
-            "in-process closed-loop time-domain runs of the vessel with this package's allocator, its station-keeping "
-            "controller and its simulation load model (not the standard's [3.5]-[3.7]); wind, current and waves of "
-            "Table 2-1 (or the Level 2 site's) from each heading; a redundancy group failed after settling on "
-            "station; conditions rising per [2.4.4] to the first that fails; a condition the static Level 2 "
-            "balance fails is not simulated. Not verified by DNV.")
 
 
 @dataclass(frozen=True)
@@ -69,11 +66,11 @@ class Level3Inputs:
 
 @dataclass(frozen=True)
 class Level3Study:
-    """The checked set-up: the static Level 2 analysis and its result at the study's headings (the
-    ceilings of the search), the case set-up and the search."""
+    """The checked set-up: the static Level 2 result (with the Level 1 result it was given) and
+    analysis, the case set-up and the search."""
 
     inputs: Level3Inputs
-    level2: Level1Result
+    level2: CapabilityResult
     analysis: Level2
     setup: CaseSetup
     search: Level3Search
@@ -96,7 +93,7 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     check_vehicle("dp_vessel", config, str(inputs.vessel))
     check_method_serves(base.method, config)
     analysis = Level2(vehicle, particulars, inputs.method, load_site(inputs.site) if inputs.site else None)
-    level2 = analysis.run(step)
+    level2 = analysis.run(step, (Level1(vehicle, particulars, inputs.method).run(step),))
     groups = {name: tuple(member for member in members if member in vehicle.names)
               for name, members in analysis.groups.items()}
     setup = CaseSetup(base, tuple(analysis.conditions), groups,
@@ -108,21 +105,13 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     return Level3Study(inputs, level2, analysis, setup, search)
 
 
-def published(prepared: Level3Study) -> tuple[Level1Result, Level1Result]:
-    """Level 1 and Level 2 of the vessel as ``--dnv-level1`` and ``--dnv-level2`` publish them, at
-    the standard's heading step (:data:`~allocator_pkg.dp.level1.MAX_STEP_DEG`),
-    for the comparison plots: the study's own Level 2 where its step is that one."""
-    analysis, inputs = prepared.analysis, prepared.inputs
-    level1 = Level1(analysis.vehicle, analysis.particulars, inputs.method).run(MAX_STEP_DEG)
-    level2 = prepared.level2 if inputs.heading_step == MAX_STEP_DEG else analysis.run(MAX_STEP_DEG)
-    return level1, level2
-
-
 def study(inputs: Level3Inputs, out: Path, workers: int | None = None, scheduler: str | None = None,
-          resume: bool = False, progress: bool = True) -> tuple[Level3Study, Level1Result, dict[tuple, CaseResult]]:
+          resume: bool = False,
+          progress: bool = True) -> tuple[Level3Study, CapabilityResult, dict[tuple, CaseResult]]:
     """Open the engine, check, run every case (journal ``out/cases.jsonl``, touched only once the
-    engine and the inputs are known good), and give (study, Level 3 result, cases).
-    :class:`~.level3_engine.Interrupted` on SIGINT, the journal resumable."""
+    engine and the inputs are known good), and give (study, Level 3 result, cases), the result
+    drawn against Level 1 and 2 as published (:func:`published`).
+    :class:`~.engine.Interrupted` on SIGINT, the journal resumable."""
     try:
         with open_engine(workers, scheduler) as engine:
             prepared = prepare(inputs)
@@ -130,12 +119,26 @@ def study(inputs: Level3Inputs, out: Path, workers: int | None = None, scheduler
             finished = run_search(prepared.search, prepared.setup, journal, engine, progress=progress)
     except KeyboardInterrupt:
         raise Interrupted(0, None) from None
-    return prepared, level3_result(prepared, finished), finished
+    return prepared, level3_result(prepared, finished, published(prepared)), finished
 
 
-def level3_result(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> Level1Result:
+def published(prepared: Level3Study) -> tuple[CapabilityResult, CapabilityResult]:
+    """Level 1 and Level 2 of the vessel as ``--dnv-level1`` and ``--dnv-level2`` publish them, at
+    the standard's heading step (:data:`~allocator_pkg.dp.level1.MAX_STEP_DEG`), for the
+    comparison plots: the study's own where its step is that one."""
+    level2 = prepared.level2
+    if prepared.inputs.heading_step == MAX_STEP_DEG:
+        return level2.lower[0], level2
+    analysis = prepared.analysis
+    level1 = Level1(analysis.vehicle, analysis.particulars, prepared.inputs.method).run(MAX_STEP_DEG)
+    return level1, analysis.run(MAX_STEP_DEG, (level1,))
+
+
+def level3_result(prepared: Level3Study, finished: dict[tuple, CaseResult],
+                  lower: tuple[CapabilityResult, ...]) -> CapabilityResult:
     """Numbers per heading and case, the worst single failure the lowest over the groups per
-    heading; the limiting wind speed is the number's condition's (no bisection in the time domain)."""
+    heading; the limiting wind speed is the number's condition's (no bisection in the time domain);
+    ``lower``: the Level 1 and 2 results it is drawn against."""
     search, conditions = prepared.search, prepared.setup.conditions
     headings = np.array(search.headings)
     numbers = {case: np.array([search.outcome((h, case), finished).number for h in search.headings], dtype=int)
@@ -143,7 +146,8 @@ def level3_result(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> L
     groups = [case for case in search.cases if case != INTACT]
     numbers[WORST] = np.min([numbers[g] for g in groups], axis=0)
     winds = {case: np.array([conditions[n].wind for n in values]) for case, values in numbers.items()}
-    return Level1Result(headings, numbers, winds, tuple(notes(prepared, finished)), 3, SCOPE_L3, conditions)
+    return CapabilityResult(headings, numbers, winds, tuple(notes(prepared, finished)), 3, conditions,
+                            lower=lower)
 
 
 def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]:
@@ -158,8 +162,6 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
              "Environment: Table 2-1 (no site environment given).",
              "Limiting wind speed: the wind of the number's condition (no bisection between conditions in the time "
              "domain)."]
-    if inputs.heading_step > MAX_STEP_DEG:
-        lines.append(f"Headings every {inputs.heading_step:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
     static = []
     for chain in search.chains():
         outcome = search.outcome(chain, finished)

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..level1 import INTACT, NOT_YET, WORST, Level1, Level1Result
-from ..level2 import NOT_YET_L2
+from ..capability_result import INTACT, NOT_YET, NOT_YET_L2, WORST, CapabilityResult
+from ..level1 import Level1
 from .tables import groups_of, worst_groups
 
 FOOTERS = {
@@ -58,7 +58,7 @@ class Outline:
         return points[:, 1], points[:, 0]
 
 
-def group_colours(result: Level1Result) -> dict[str, str]:
+def group_colours(result: CapabilityResult) -> dict[str, str]:
     return {g: GROUP_COLOURS[k % len(GROUP_COLOURS)] for k, g in enumerate(groups_of(result))}
 
 
@@ -71,7 +71,7 @@ def polar_plot(path: Path, *args, **kwargs) -> None:
     plt.close(figure)
 
 
-def polar_figure(result: Level1Result, title: str, caption: str, wind: bool, cases: list[str], outline: Outline,
+def polar_figure(result: CapabilityResult, title: str, caption: str, wind: bool, cases: list[str], outline: Outline,
                  failed: tuple[str, ...] = (), mark_worst: bool = False):
     """One polar figure of ``cases`` (keys of the result); ``caption`` says what it shows."""
     import matplotlib
@@ -117,7 +117,7 @@ def polar_figure(result: Level1Result, title: str, caption: str, wind: bool, cas
     return figure
 
 
-def comparison_plot(path: Path, level1: Level1Result, level2: Level1Result, title: str, wind: bool,
+def comparison_plot(path: Path, level1: CapabilityResult, level2: CapabilityResult, title: str, wind: bool,
                     outline: Outline) -> None:
     """Level 1 and Level 2, intact and worst single failure, on one polar figure."""
     import matplotlib.pyplot as plt

@@ -2,13 +2,14 @@
 ``<vehicle>_dp_l3...`` in the output folder:
 
 - ``_number.png`` / ``_wind.png``: intact and worst single failure; ``_groups_number.png`` /
-  ``_groups_wind.png``: each group's loss (the Level 1 plots, :mod:`.dp_plots`);
+  ``_groups_wind.png``: each group's loss (the Level 1 plots, :mod:`.capability_plots`);
 - ``_vs_l1_l2_number.png`` / ``_vs_l1_l2_wind.png``: Level 1, 2 and 3 of the vessel on one (Level 1
-  and 2 as published, at the standard's 10 deg headings, whatever the study's step);
+  and 2 as published, at the standard's 10 deg headings, whatever the study's step: the result's
+  :attr:`~allocator_pkg.dp.capability_result.CapabilityResult.lower`);
 - ``_footprints.png``: per heading the x-y track of each case at its number (solid) and at the
   first condition that failed (dashed), with the position limit, every panel on one scale (three
   times the limit; a track that leaves it says how far it went);
-- ``.csv``, ``_table_a1.csv`` and Tables A-2 to A-5 (:mod:`.dp_report`) as at Level 1;
+- ``.csv``, ``_table_a1.csv`` and Tables A-2 to A-5 (:mod:`.summary`) as at Level 1;
   ``_limits.csv``: why each number stops where it does; ``_cases.csv``: every case run with its
   excursion statistics;
 - ``.txt``: the DP capability-L3(A, B, C, D) line, the scope, the criteria, the notes and the
@@ -24,9 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..level1 import INTACT, MAX_STEP_DEG, WORST, Level1Result
+from ..capability_result import INTACT, WORST, CapabilityResult
+from ..level1 import MAX_STEP_DEG
 from ..level3.case import CaseResult
-from ..level3.study import Level3Study, published
+from ..level3.study import Level3Study
 from .capability_plots import Outline, polar_figure, polar_plot
 from .files import write_csv
 from .summary import TABLES, input_tables, write_table
@@ -45,7 +47,7 @@ LIMITS_TABLE = ("Level 3 per case and heading: the capability number and what li
                 "simulated; top condition)")
 
 
-def write_level3(prepared: Level3Study, result: Level1Result, finished: dict[tuple, CaseResult],
+def write_level3(prepared: Level3Study, result: CapabilityResult, finished: dict[tuple, CaseResult],
                  out: Path) -> list[Path]:
     """Every output of the study into ``out``; the paths written."""
     out.mkdir(parents=True, exist_ok=True)
@@ -59,10 +61,10 @@ def write_level3(prepared: Level3Study, result: Level1Result, finished: dict[tup
         for wind, quantity in ((False, "number"), (True, "wind")):
             paths.append(out / f"{stem}{suffix}_{quantity}.png")
             polar_plot(paths[-1], result, title, f"{caption} ({criteria})", wind, cases, outline, (), suffix == "")
-    level1, level2 = published(prepared)
+    level1, level2 = result.lower
     for wind, quantity in ((False, "number"), (True, "wind")):
         paths.append(out / f"{stem}_vs_l1_l2_{quantity}.png")
-        levels_plot(paths[-1], (level1, level2, result), title, wind, outline, criteria)
+        levels_plot(paths[-1], (*result.lower, result), title, wind, outline, criteria)
     paths.append(out / f"{stem}_footprints.png")
     footprints(paths[-1], prepared, result, finished, title)
     paths.append(out / f"{stem}.csv")
@@ -103,7 +105,8 @@ def case_rows(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[
     return rows
 
 
-def levels_plot(path: Path, results: tuple[Level1Result, Level1Result, Level1Result], title: str, wind: bool,
+def levels_plot(path: Path, results: tuple[CapabilityResult, CapabilityResult, CapabilityResult], title: str,
+                wind: bool,
                 outline: Outline, criteria: str) -> None:
     """Level 1, 2 and 3, intact and worst single failure, on one polar figure."""
     import matplotlib.pyplot as plt
@@ -138,7 +141,7 @@ CASE_COLOURS = ("tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown"
                 "tab:cyan")
 
 
-def footprints(path: Path, prepared: Level3Study, result: Level1Result, finished: dict[tuple, CaseResult],
+def footprints(path: Path, prepared: Level3Study, result: CapabilityResult, finished: dict[tuple, CaseResult],
                title: str) -> None:
     """:func:`footprints_figure` written to ``path``."""
     import matplotlib.pyplot as plt
@@ -148,7 +151,7 @@ def footprints(path: Path, prepared: Level3Study, result: Level1Result, finished
     plt.close(figure)
 
 
-def footprints_figure(prepared: Level3Study, result: Level1Result, finished: dict[tuple, CaseResult], title: str):
+def footprints_figure(prepared: Level3Study, result: CapabilityResult, finished: dict[tuple, CaseResult], title: str):
     """Per heading, each case's x-y track (seed 0) at its number (solid) and at the first condition
     that failed (dashed), east to the right, north up, with the position limit's circle: every
     panel :data:`FOOTPRINT_VIEW` times the limit about the set-point, axes in metres on the outer

@@ -14,16 +14,18 @@ power per switchboard in Table A-10; it gives neither table's columns. Read here
   [3.12.3], the usable rest, the power its thrusters draw (the sum of its Table A-9 column) and
   that as a share of the usable power.
 
-The allocation is Table A-8's (:func:`~.dp_tables.balances`): the forces of the largest multiple
-of the load, scaled down to the load; another allocation that holds the load can draw less.
+The allocation is Table A-8's (the result's
+:attr:`~allocator_pkg.dp.capability_result.CapabilityResult.allocations`): the forces of the
+largest multiple of the load, scaled down to the load; another allocation that holds the load can
+draw less.
 Not verified by DNV.
 """
 
 from __future__ import annotations
 
-from ..level1 import Level1, Level1Result
+from ..capability_result import CapabilityResult
+from ..level1 import Level1
 from ..standard.power_balance import POWER_RESERVE, part_load_power, usable
-from .tables import Balance, balances
 
 A9_FIXED = ("case", "heading_deg", "capability_number", "thruster", "thrust_fraction", "power_kw")
 A10_COLUMNS = ("case", "heading_deg", "capability_number", "source", "available_kw", "reserved_kw", "usable_kw",
@@ -43,11 +45,11 @@ def source_powers(analysis: Level1, name: str, fraction: float, lost: tuple[str,
     return {feed: share * power for feed, share in zip(actuator.feeds, actuator.feed_shares) if feed not in lost}
 
 
-def table_a9(analysis: Level1, result: Level1Result, balanced: list[Balance] | None = None) -> list[tuple]:
+def table_a9(analysis: Level1, result: CapabilityResult) -> list[tuple]:
     """Per case, heading and working thruster (:func:`a9_columns`): the thrust fraction, the power
     [kW] it draws (without feeds: P_B r^(3/2)) and per source what it draws from there."""
     rows = []
-    for case, heading, number, uses in balanced if balanced is not None else balances(analysis, result):
+    for case, heading, number, uses in result.allocations:
         lost = tuple(analysis.groups.get(case, ()))
         for use in uses:
             drawn = source_powers(analysis, use.name, use.utilisation, lost)
@@ -58,11 +60,11 @@ def table_a9(analysis: Level1, result: Level1Result, balanced: list[Balance] | N
     return rows
 
 
-def table_a10(analysis: Level1, result: Level1Result, balanced: list[Balance] | None = None) -> list[tuple]:
+def table_a10(analysis: Level1, result: CapabilityResult) -> list[tuple]:
     """Per case, heading and working source (:data:`A10_COLUMNS`): available, reserved and usable
     power, what its thrusters draw [kW] and that over the usable power [%]."""
     rows = []
-    for case, heading, number, uses in balanced if balanced is not None else balances(analysis, result):
+    for case, heading, number, uses in result.allocations:
         lost = tuple(analysis.groups.get(case, ()))
         drawn = {source: 0.0 for source in analysis.capacities if source not in lost}
         for use in uses:

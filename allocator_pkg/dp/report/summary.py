@@ -1,22 +1,23 @@
 """The tables and the one-page summary of a DNV-ST-0111 Level 1 report (App. A.3).
 
-:func:`write_tables` writes the CSV tables of :mod:`allocator_pkg.dp.report.input_tables` (A-2 to
-A-5), :mod:`allocator_pkg.dp.report.tables` (A-1, A-6 and its loss sectors, A-7, A-8) and
-:mod:`allocator_pkg.dp.report.power_tables` (A-9, A-10), each after two ``#`` lines (what the
-table is, with its units; the scope); :func:`write_summary` the Markdown summary: the vessel, the
-inputs and where they come from, Tables A-2 to A-5, the DP capability-L1 notation, the tables'
-headlines (the power per switchboard too), the scope and "Not verified by DNV".
-"""
+:func:`appendix_tables` gives every table of a complete result once: those of
+:mod:`allocator_pkg.dp.report.input_tables` (A-2 to A-5), :mod:`allocator_pkg.dp.report.tables`
+(A-1, A-6 and its loss sectors, A-7, A-8) and :mod:`allocator_pkg.dp.report.power_tables` (A-9,
+A-10); :func:`write_tables` writes them as CSV, each after two ``#`` lines (what the table is, with
+its units; the scope); :func:`write_summary` the Markdown summary from the same tables: the vessel,
+the inputs and where they come from, Tables A-2 to A-5, the DP capability-L1 notation, the tables'
+headlines (the power per switchboard too), the scope and "Not verified by DNV"."""
 
 from __future__ import annotations
 
 import csv
-import re
 from pathlib import Path
 
 import numpy as np
 
-from ..level1 import INTACT, WORST, Level1, Level1Result
+from ..capability_result import INTACT, WORST, CapabilityResult
+from ..level1 import Level1
+from ..vessel_files import VesselFiles
 from .input_tables import (
     A2_COLUMNS,
     A3_COLUMNS,
@@ -34,8 +35,6 @@ from .tables import (
     A8_COLUMNS,
     LOAD_COLUMNS,
     LOSS_COLUMNS,
-    Balance,
-    balances,
     groups_of,
     load_table,
     loss_sector_table,
@@ -104,29 +103,37 @@ def write_table(path: Path, what: str, scope: str, columns, rows) -> None:
         writer.writerows([_cell(v) for v in row] for row in rows)
 
 
-def write_tables(out: Path, stem: str, analysis: Level1, result: Level1Result,
-                 balanced: list[Balance] | None = None) -> list[Path]:
-    """The CSV tables, ``<stem>_<table>.csv``; the paths written (``balanced``: the allocations of
-    Tables A-8 to A-10, :func:`~allocator_pkg.dp.report.tables.balances`, computed if None)."""
-    a1_columns, a1_rows = table_a1(result)
-    balanced = balances(analysis, result) if balanced is None else balanced
-    contents = {**input_tables(analysis),
-                "table_a1": (a1_columns, a1_rows), "table_a6": (A6_COLUMNS, table_a6(analysis)),
-                "table_a6_losses": (LOSS_COLUMNS, loss_sector_table(analysis)),
-                "table_a7": (A7_COLUMNS, table_a7(analysis, result)),
-                "table_a8": (A8_COLUMNS, table_a8(analysis, result, balanced)),
-                "table_a9": (a9_columns(analysis), table_a9(analysis, result, balanced)),
-                "table_a10": (A10_COLUMNS, table_a10(analysis, result, balanced)),
-                "loads": (LOAD_COLUMNS, load_table(analysis, result))}
+Table = tuple[tuple[str, ...], list[tuple]]
+"""(columns, rows) of one table."""
+
+
+def appendix_tables(analysis: Level1, result: CapabilityResult) -> dict[str, Table]:
+    """Every CSV table of a Level 1 or 2 report by key (:data:`TABLES`), in the order written:
+    Tables A-2 to A-5, A-1, A-6 and its loss sectors, A-7 to A-10, the loads."""
+    return {**input_tables(analysis),
+            "table_a1": table_a1(result), "table_a6": (A6_COLUMNS, table_a6(analysis)),
+            "table_a6_losses": (LOSS_COLUMNS, loss_sector_table(analysis)),
+            "table_a7": (A7_COLUMNS, table_a7(analysis, result)),
+            "table_a8": (A8_COLUMNS, table_a8(result)),
+            "table_a9": (a9_columns(analysis), table_a9(analysis, result)),
+            "table_a10": (A10_COLUMNS, table_a10(analysis, result)),
+            "loads": (LOAD_COLUMNS, load_table(analysis, result))}
+
+
+def write_tables(out: Path, stem: str, scope: str, tables: dict[str, Table]) -> list[Path]:
+    """Each table as ``<stem>_<key>.csv`` after its two ``#`` lines; the paths written."""
     paths = []
-    for key, (columns, rows) in contents.items():
+    for key, (columns, rows) in tables.items():
         path = out / f"{stem}_{key}.csv"
-        write_table(path, TABLES[key], result.scope, columns, rows)
+        write_table(path, TABLES[key], scope, columns, rows)
         paths.append(path)
     return paths
 
 
-def input_tables(analysis: Level1) -> dict[str, tuple[tuple[str, ...], list[tuple]]]:
+INPUT_TABLES = ("table_a2", "table_a3", "table_a4", "table_a5")
+
+
+def input_tables(analysis: Level1) -> dict[str, Table]:
     """(columns, rows) of Tables A-2 to A-5 by key."""
     return {"table_a2": (A2_COLUMNS, table_a2(analysis)), "table_a3": (A3_COLUMNS, table_a3(analysis)),
             "table_a4": (A4_COLUMNS, table_a4(analysis)), "table_a5": (a5_columns(analysis), table_a5(analysis))}
@@ -138,22 +145,16 @@ def markdown_table(columns, rows) -> list[str]:
             *(f"| {' | '.join(_cell(value) for value in row)} |" for row in rows)]
 
 
-def input_sources(particulars_path: Path) -> list[tuple[str, str, str]]:
-    """(key, value, comment) of each top-level key of a particulars file with a comment beside it:
-    the file's statement of the unit and where the value comes from."""
-    pattern = re.compile(r"^([a-z_]+):\s*([^#]*?)\s*#\s*(.+)$")
-    return [match.groups() for line in particulars_path.read_text().splitlines()
-            if (match := pattern.match(line))]
-
-
-def _headings(result: Level1Result, case: str, value: int) -> str:
+def _headings(result: CapabilityResult, case: str, value: int) -> str:
     where = result.headings_deg[result.numbers[case] == value]
     return ", ".join(f"{h:g}" for h in where)
 
 
-def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_path: Path, particulars_path: Path,
-                  files: list[Path], balanced: list[Balance] | None = None) -> None:
-    """The one-page Markdown summary (``balanced`` as :func:`write_tables` takes it)."""
+def write_summary(path: Path, analysis: Level1, result: CapabilityResult, files: VesselFiles, written: list[Path],
+                  tables: dict[str, Table]) -> None:
+    """The one-page Markdown summary of the result, its input files, the files ``written`` and the
+    ``tables`` of :func:`appendix_tables`."""
+    vehicle_path, particulars_path = files.vehicle_path, files.particulars_path
     title = analysis.particulars.name or vehicle_path.stem
     a, b, c, d = result.summary()
     groups = groups_of(result)
@@ -178,11 +179,11 @@ def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_pa
                                                              for g in groups) + ".",
         "",
     ]
-    sources = input_sources(particulars_path)
-    if sources:
+    if files.stated:
         lines += ["| input | value | unit, source (as the particulars file states) |", "|---|---|---|",
-                  *(f"| `{key}` | {value} | {comment} |" for key, value, comment in sources), ""]
-    for key, (columns, rows) in input_tables(analysis).items():
+                  *(f"| `{key}` | {value} | {comment} |" for key, value, comment in files.stated), ""]
+    for key in INPUT_TABLES:
+        columns, rows = tables[key]
         title, what = TABLES[key].split(": ", 1)
         lines += [f"## {title}", "", what[0].upper() + what[1:] + ".", "",
                   *(markdown_table(columns, rows) if rows else ["(none)"]), ""]
@@ -196,19 +197,19 @@ def write_summary(path: Path, analysis: Level1, result: Level1Result, vehicle_pa
     worst = worst_groups(result)
     counts = ", ".join(f"{g} at {worst.count(g)}" for g in groups)
     lines += ["", f"Worst single failure per heading (Table A-1): {counts} of {len(worst)} headings.", "",
-              *_power_headline(analysis, result, balanced)]
-    lines += ["## Files", "", *(f"- `{p.name}`" for p in files), "",
+              *_power_headline(analysis, tables["table_a10"][1])]
+    lines += ["## Files", "", *(f"- `{p.name}`" for p in written), "",
               "## Scope", "", *(f"- {note}" for note in result.notes), ""]
     path.write_text("\n".join(lines))
 
 
-def _power_headline(analysis: Level1, result: Level1Result, balanced: list[Balance] | None) -> list[str]:
+def _power_headline(analysis: Level1, a10_rows: list[tuple]) -> list[str]:
     """Per case and source the highest share of its usable power its thrusters draw at a heading's
-    number (Table A-10)."""
+    number (the rows of Table A-10)."""
     if not analysis.capacities:
         return []
     highest: dict[tuple[str, str], tuple[float, float]] = {}
-    for case, heading, _, source, *_, share in table_a10(analysis, result, balanced):
+    for case, heading, _, source, *_, share in a10_rows:
         if (case, source) not in highest or share > highest[case, source][0]:
             highest[case, source] = (share, heading)
     return ["## Power per switchboard (Tables A-9, A-10)", "",
@@ -228,7 +229,7 @@ def _power_lines(analysis: Level1) -> list[str]:
             + f"; feeds: {feeds}."]
 
 
-def _step(result: Level1Result) -> float:
+def _step(result: CapabilityResult) -> float:
     headings = result.headings_deg
     return float(headings[1] - headings[0]) if len(headings) > 1 else 360.0
 

@@ -1,5 +1,6 @@
-"""The result tables of a DNV-ST-0111 Level 1 report (App. A.3), from a :class:`~.dp_capability.Level1`
-analysis and its :class:`~.dp_capability.Level1Result`.
+"""The result tables of a DNV-ST-0111 Level 1 report (App. A.3), from a
+:class:`~allocator_pkg.dp.level1.Level1` analysis and its complete
+:class:`~allocator_pkg.dp.capability_result.CapabilityResult`.
 
 - :func:`table_a1`: per heading the capability number intact, after each redundancy group's
   loss and combined (the lowest over the groups, [2.4.7]), and which group is the worst there;
@@ -11,7 +12,8 @@ analysis and its :class:`~.dp_capability.Level1Result`.
   current and wave loads of the number's condition (Table 2-1), unfactored, in the standard's
   frame [2.8.2] (x forward, y to port, moment about Lpp/2 positive bow to port);
 - :func:`table_a8`: per case, heading and thruster the thrust at the number's condition and its
-  share of the thrust available in that direction (the "utilisation" of Table A-8);
+  share of the thrust available in that direction (the "utilisation" of Table A-8), from the
+  result's allocations (:meth:`~allocator_pkg.dp.level1.Level1.thruster_use`);
 - :func:`load_table`: the loads per source for every heading and number from 1, same frame.
 
 Forces in kN, moments in kN m. The utilisation of Table A-8 is that of one allocation which holds
@@ -23,11 +25,9 @@ Not verified by DNV.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
-import numpy as np
-
-from ..level1 import DYNAMIC_FACTOR, INTACT, LOAD_SOURCES, WORST, Level1, Level1Result
+from ..capability_result import INTACT, WORST, CapabilityResult
+from ..level1 import DYNAMIC_FACTOR, LOAD_SOURCES, Level1
 from ..standard.losses import loss_sectors
 
 KILO = 1e3
@@ -42,19 +42,19 @@ LOAD_COLUMNS = ("heading_deg", "capability_number", "wind_speed", "hs", "tp", "c
                 "fy_kn", "mz_knm")
 
 
-def groups_of(result: Level1Result) -> list[str]:
+def groups_of(result: CapabilityResult) -> list[str]:
     """The redundancy groups of a result, in their order."""
     return [case for case in result.numbers if case not in (INTACT, WORST)]
 
 
-def worst_groups(result: Level1Result) -> list[str]:
+def worst_groups(result: CapabilityResult) -> list[str]:
     """Per heading the group whose loss leaves the lowest number (then the lowest wind speed)."""
     groups = groups_of(result)
     return [min(groups, key=lambda g: (result.numbers[g][k], result.wind_limits[g][k]))
             for k in range(len(result.headings_deg))]
 
 
-def table_a1(result: Level1Result) -> tuple[tuple[str, ...], list[tuple]]:
+def table_a1(result: CapabilityResult) -> tuple[tuple[str, ...], list[tuple]]:
     """(columns, rows): heading_deg, intact, each group, ``combined`` (the worst single failure) and
     ``worst_group``."""
     groups = groups_of(result)
@@ -68,23 +68,22 @@ def table_a1(result: Level1Result) -> tuple[tuple[str, ...], list[tuple]]:
 def table_a6(analysis: Level1) -> list[tuple]:
     """(case, thruster, from_deg, to_deg, flushing) of every zone in force, intact and per group;
     angles of the thrust in the body frame (0 forward, 90 to starboard)."""
-    cases = {INTACT: (), **analysis.groups}
     return [(case, zone.thruster, round(math.degrees(zone.sector[0]), 2), round(math.degrees(zone.sector[1]), 2),
              zone.flushed)
-            for case, failed in cases.items() for zone in analysis.zones(tuple(failed))]
+            for case, failed in analysis.cases().items() for zone in analysis.zones(tuple(failed))]
 
 
 def loss_sector_table(analysis: Level1) -> list[tuple]:
     """(case, thruster, from_deg, to_deg, lowest_factor, at_deg) of every [3.11.4]/[3.11.5] loss
     sector, intact and per group; thrust angles in the body frame (0 forward, 90 to starboard), the
     factor [3.11.6] linear between the corners (the case's :meth:`~.dp_capability.Level1.thrust_profiles`)."""
-    cases = {INTACT: (), **analysis.groups}
     return [(case, name, round(start, 2), round(end, 2), round(lowest, 4), round(at, 2))
-            for case, failed in cases.items() for name, profile in analysis.thrust_profiles(tuple(failed)).items()
+            for case, failed in analysis.cases().items()
+            for name, profile in analysis.thrust_profiles(tuple(failed)).items()
             for start, end, lowest, at in loss_sectors(profile)]
 
 
-def table_a7(analysis: Level1, result: Level1Result) -> list[tuple]:
+def table_a7(analysis: Level1, result: CapabilityResult) -> list[tuple]:
     """Per case and heading: number, limiting wind speed, then [Fx, Fy, Mz] of wind, current and
     waves of the number's condition (kN, kN m; unfactored; the standard's frame)."""
     rows = []
@@ -97,7 +96,7 @@ def table_a7(analysis: Level1, result: Level1Result) -> list[tuple]:
     return rows
 
 
-def load_table(analysis: Level1, result: Level1Result) -> list[tuple]:
+def load_table(analysis: Level1, result: CapabilityResult) -> list[tuple]:
     """Per heading and number from 1 (to 11 with Table 2-1): the condition, then [Fx, Fy, Mz] of each source and of
     ``total x 1.25`` (the load to balance), kN and kN m, the standard's frame."""
     rows = []
@@ -111,66 +110,9 @@ def load_table(analysis: Level1, result: Level1Result) -> list[tuple]:
     return rows
 
 
-@dataclass(frozen=True)
-class ThrusterUse:
-    """One thruster in one balance: thrust [N] (signed for a fixed thruster), its angle [deg, body
-    frame] and the effective thrust available in that direction [N]."""
-
-    name: str
-    thrust: float
-    angle_deg: float
-    available: float
-
-    @property
-    def utilisation(self) -> float:
-        return abs(self.thrust) / self.available if self.available > 0.0 else 0.0
-
-
-def thruster_use(analysis: Level1, number: int, direction: float, failed: tuple[str, ...] = ()) -> list[ThrusterUse]:
-    """Each working thruster's thrust in an allocation that holds the condition of ``number`` from
-    ``direction``: the forces of the largest multiple of the load, scaled to the load."""
-    condition = analysis.conditions[number]
-    variant = analysis.variant(condition, direction, failed)
-    capability = analysis.capability(variant, failed)
-    model = capability.model
-    tau = analysis.required(condition, direction)
-    force = np.zeros(model.m)
-    if np.any(tau):
-        scale = float(np.max(np.abs(tau[model.dof_index]) / np.maximum(model.authority, 1e-12)))
-        multiple, force = capability.reach_forces(tau / scale)
-        force = force * (scale / multiple) if multiple > 0.0 else np.zeros(model.m)
-    uses = []
-    for index, actuator in enumerate(variant.actuators):
-        start = int(model.starts[index])
-        if actuator.rotatable:
-            fx, fy = force[start], force[start + 1]
-            thrust, angle = float(math.hypot(fx, fy)), math.degrees(math.atan2(fy, fx))
-            available = capability.available(actuator.name, math.atan2(fy, fx))
-        else:
-            thrust = float(force[start])
-            angle = math.degrees(math.atan2(actuator.direction[1], actuator.direction[0]))
-            available = actuator.thrust_max if thrust >= 0.0 else -actuator.thrust_min
-        uses.append(ThrusterUse(actuator.name, thrust, angle, available))
-    return uses
-
-
-Balance = tuple[str, float, int, list[ThrusterUse]]
-"""(case, heading_deg, capability number, each working thruster's :class:`ThrusterUse` there)."""
-
-
-def balances(analysis: Level1, result: Level1Result) -> list[Balance]:
-    """Per case and heading, the heading's number and :func:`thruster_use` at its condition (the
-    allocation Tables A-8 to A-10 report)."""
-    cases = {INTACT: (), **analysis.groups}
-    return [(case, float(heading), int(result.numbers[case][k]),
-             thruster_use(analysis, int(result.numbers[case][k]), math.radians(heading), tuple(failed)))
-            for case, failed in cases.items() for k, heading in enumerate(result.headings_deg)]
-
-
-def table_a8(analysis: Level1, result: Level1Result, balanced: list[Balance] | None = None) -> list[tuple]:
+def table_a8(result: CapabilityResult) -> list[tuple]:
     """Per case, heading and working thruster at the heading's number: thrust and available thrust
-    [kN], thrust angle [deg] and utilisation [%] (``balanced``: :func:`balances`, computed if None)."""
+    [kN], thrust angle [deg] and utilisation [%] (the result's allocations)."""
     return [(case, heading, number, use.name, use.thrust / KILO, use.angle_deg, use.available / KILO,
              100.0 * use.utilisation)
-            for case, heading, number, uses in (balanced if balanced is not None else balances(analysis, result))
-            for use in uses]
+            for case, heading, number, uses in result.allocations for use in uses]

@@ -16,7 +16,7 @@ BISECTION_STEPS = 14
 
 
 @dataclass(frozen=True)
-class Condition:
+class WeatherCondition:
     """One environmental condition: wind [m/s], Hs [m], Tp [s], current [m/s]."""
 
     wind: float
@@ -25,25 +25,26 @@ class Condition:
     current: float
 
 
-CONDITIONS = (
-    Condition(0.0, 0.0, 0.0, 0.0),
-    Condition(1.5, 0.1, 3.5, 0.25),
-    Condition(3.4, 0.4, 4.5, 0.50),
-    Condition(5.4, 0.8, 5.5, 0.75),
-    Condition(7.9, 1.3, 6.5, 0.75),
-    Condition(10.7, 2.1, 7.5, 0.75),
-    Condition(13.8, 3.1, 8.5, 0.75),
-    Condition(17.1, 4.2, 9.0, 0.75),
-    Condition(20.7, 5.7, 10.0, 0.75),
-    Condition(24.4, 7.4, 10.5, 0.75),
-    Condition(28.4, 9.5, 11.5, 0.75),
-    Condition(32.6, 12.1, 12.0, 0.75),
+WEATHER_CONDITIONS = (
+    WeatherCondition(0.0, 0.0, 0.0, 0.0),
+    WeatherCondition(1.5, 0.1, 3.5, 0.25),
+    WeatherCondition(3.4, 0.4, 4.5, 0.50),
+    WeatherCondition(5.4, 0.8, 5.5, 0.75),
+    WeatherCondition(7.9, 1.3, 6.5, 0.75),
+    WeatherCondition(10.7, 2.1, 7.5, 0.75),
+    WeatherCondition(13.8, 3.1, 8.5, 0.75),
+    WeatherCondition(17.1, 4.2, 9.0, 0.75),
+    WeatherCondition(20.7, 5.7, 10.0, 0.75),
+    WeatherCondition(24.4, 7.4, 10.5, 0.75),
+    WeatherCondition(28.4, 9.5, 11.5, 0.75),
+    WeatherCondition(32.6, 12.1, 12.0, 0.75),
 )
 """The conditions of DP capability numbers 0 to 11 (index = number)."""
-TOP = len(CONDITIONS) - 1
+TOP = len(WEATHER_CONDITIONS) - 1
 
 
-def condition_at(level: float, conditions: tuple[Condition, ...] = CONDITIONS) -> Condition:
+def condition_at(level: float,
+                 conditions: tuple[WeatherCondition, ...] = WEATHER_CONDITIONS) -> WeatherCondition:
     """The condition at a fractional capability number in [0, top] of ``conditions`` (Table 2-1
     unless a site's), each quantity linear between the two numbers around it."""
     top = len(conditions) - 1
@@ -52,10 +53,12 @@ def condition_at(level: float, conditions: tuple[Condition, ...] = CONDITIONS) -
     low = min(math.floor(level), top - 1)
     t = level - low
     a, b = conditions[low], conditions[low + 1]
-    return Condition(*((1.0 - t) * getattr(a, f.name) + t * getattr(b, f.name) for f in fields(Condition)))
+    return WeatherCondition(*((1.0 - t) * getattr(a, f.name) + t * getattr(b, f.name)
+                              for f in fields(WeatherCondition)))
 
 
-def limit(balanced: Callable[[float], bool], conditions: tuple[Condition, ...] = CONDITIONS) -> tuple[int, float]:
+def limit(balanced: Callable[[float], bool],
+          conditions: tuple[WeatherCondition, ...] = WEATHER_CONDITIONS) -> tuple[int, float]:
     """(capability number, limiting wind speed) from a test of a fractional number: the highest
     number held with every lower one, then bisection toward the next (over ``conditions``)."""
     top = len(conditions) - 1

@@ -19,7 +19,7 @@ from allocator_pkg.dp.inputs.loss_tables import loss_tables
 from allocator_pkg.dp.inputs.particulars import load_particulars, particulars_from_mapping
 from allocator_pkg.dp.level2 import Level2
 from allocator_pkg.dp.report.tables import loss_sector_table
-from allocator_pkg.dp.standard.weather import CONDITIONS
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 DP_PARTICULARS = ROOT / "config" / "particulars" / "dp_vessel.yaml"
@@ -98,7 +98,7 @@ def test_level_2_takes_a_fixed_thrusters_direction_and_speed_tables():
     particulars = with_tables({"tunnel_fwd": {"angle_deg": [0.0, 90.0, 180.0, 270.0], "factor": [1.0, 0.8, 1.0, 0.6],
                                               "speed": [0.5, 1.0], "speed_factor": [1.0, 0.5]}})
     level2 = Level2(load_vehicle(DP_VESSEL), particulars)
-    condition = replace(CONDITIONS[6], current=0.75)
+    condition = replace(WEATHER_CONDITIONS[6], current=0.75)
     assert level2.thrust_range("tunnel_fwd", condition, 1.0) == pytest.approx((-225e3, 225e3), rel=1e-12)
     assert level2.thrust_range("tunnel_fwd", replace(condition, current=2.0), 1.0) == pytest.approx((-150e3, 150e3))
     assert level2.thrust_range("tunnel_fwd", replace(condition, current=0.2), 1.0) == (-300e3, 300e3)
@@ -118,7 +118,7 @@ def test_an_azimuths_table_is_its_profile_in_the_balance():
     level2 = Level2(load_vehicle(DP_VESSEL), with_tables({"azimuth_stbd": DIP}))
     profile = level2.thrust_profiles()["azimuth_stbd"]
     assert profile.factor(math.radians(90.0)) == pytest.approx(0.4)
-    variant = level2.variant(CONDITIONS[6], 1.0)
+    variant = level2.variant(WEATHER_CONDITIONS[6], 1.0)
     assert level2.capability(variant).profiles["azimuth_stbd"] is profile
 
 

@@ -4,7 +4,7 @@ site's current, Tz turned into Tp [3.3.3], and bad keys refused by name."""
 import pytest
 
 from allocator_pkg.dp.inputs.site import load_site, site_from_mapping
-from allocator_pkg.dp.standard.weather import CONDITIONS, condition_at, limit
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS, condition_at, limit
 
 TABLE = {"name": "shelf", "wind": [5.0, 10.0, 15.0, 20.0], "hs": [0.5, 1.5, 3.0, 5.0], "tz": [4.0, 5.0, 6.0, 7.0],
          "current": [0.5, 0.8, 1.0, 1.2]}
@@ -12,7 +12,7 @@ TABLE = {"name": "shelf", "wind": [5.0, 10.0, 15.0, 20.0], "hs": [0.5, 1.5, 3.0,
 
 def test_a_sites_own_table_with_tz():
     site = site_from_mapping(TABLE)
-    assert len(site.conditions) == 5 and site.conditions[0] == CONDITIONS[0]
+    assert len(site.conditions) == 5 and site.conditions[0] == WEATHER_CONDITIONS[0]
     third = site.conditions[3]
     assert (third.wind, third.hs, third.current) == (15.0, 3.0, 1.0)
     assert third.tp == pytest.approx(1.4049 * 6.0, rel=1e-12)                 # [3.3.3]
@@ -30,15 +30,16 @@ def test_table_2_1_with_the_sites_current():
     for number in range(1, 12):
         condition = site.conditions[number]
         assert condition.current == 1.2
-        assert (condition.wind, condition.hs, condition.tp) == (CONDITIONS[number].wind, CONDITIONS[number].hs,
-                                                                CONDITIONS[number].tp)
+        assert (condition.wind, condition.hs, condition.tp) == (WEATHER_CONDITIONS[number].wind,
+                                                                WEATHER_CONDITIONS[number].hs,
+                                                                WEATHER_CONDITIONS[number].tp)
     assert "Table 2-1's wind, hs, tp" in site.describe()
 
 
 def test_a_current_relation_over_fewer_numbers_keeps_table_2_1s_first_rows():
     site = site_from_mapping({"current": [0.3, 0.6, 0.9]})
     assert [c.current for c in site.conditions] == [0.0, 0.3, 0.6, 0.9]
-    assert [c.wind for c in site.conditions] == [c.wind for c in CONDITIONS[:4]]
+    assert [c.wind for c in site.conditions] == [c.wind for c in WEATHER_CONDITIONS[:4]]
 
 
 @pytest.mark.parametrize(("data", "message"), [

@@ -17,7 +17,7 @@ from allocator_pkg.dp.level3.case import (
     case_scenario,
     run_case,
 )
-from allocator_pkg.dp.standard.weather import CONDITIONS
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 from allocator_pkg.simulation.closed_loop import ClosedLoop
 from allocator_pkg.simulation.environment import SlowVariation
 from allocator_pkg.simulation.run_setup import build_plant
@@ -29,7 +29,8 @@ GROUPS = {"switchboard_a": ("azimuth_stbd", "tunnel_fwd"), "switchboard_b": ("az
 @pytest.fixture(scope="module")
 def setup() -> CaseSetup:
     scenario = load_scenario(ROOT / "config/scenarios/dp_station_keeping.yaml")
-    return CaseSetup(scenario, CONDITIONS, GROUPS, frozenset(GROUPS), Criteria(1.0, 3.0, settle=5.0, duration=15.0))
+    return CaseSetup(scenario, WEATHER_CONDITIONS, GROUPS, frozenset(GROUPS),
+                     Criteria(1.0, 3.0, settle=5.0, duration=15.0))
 
 
 def test_environment_comes_from_the_heading(setup):

@@ -15,7 +15,8 @@ from conftest import DATA, ROOT
 
 from allocator_pkg.dp.level3 import engine as level3_engine
 from allocator_pkg.dp.level3.case import Case, CaseResult, Criteria, run_case
-from allocator_pkg.dp.level3.engine import DaskEngine, Journal, PoolEngine, open_engine, run_search
+from allocator_pkg.dp.level3.engine import DaskEngine, PoolEngine, open_engine, run_search
+from allocator_pkg.dp.level3.journal import Journal
 from allocator_pkg.dp.level3.study import Level3Inputs, prepare
 
 INPUTS = Level3Inputs(ROOT / "config/dp_vessel.yaml", ROOT / "config/particulars/dp_vessel.yaml",

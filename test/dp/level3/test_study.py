@@ -14,8 +14,9 @@ import pytest
 from conftest import DATA, ROOT
 
 from allocator_pkg.cli.allocator_capability import main
+from allocator_pkg.dp.capability_result import SCOPE_L3
 from allocator_pkg.dp.level3 import engine as level3_engine
-from allocator_pkg.dp.level3.study import JOURNAL, SCOPE_L3
+from allocator_pkg.dp.level3.study import JOURNAL
 
 FILES = [str(ROOT / "config/dp_vessel.yaml"), str(ROOT / "config/particulars/dp_vessel.yaml")]
 SMALL = ["--site", str(DATA / "sites" / "level3_site.yaml"), "--headings", "90", "--position-limit", "0.05",

@@ -9,9 +9,9 @@ from conftest import ROOT
 from test_rudders import twin_screw
 
 from allocator_pkg import load_vehicle, read_parameters, vehicle_from_parameters
+from allocator_pkg.cli.allocator_capability import dnv_report
 from allocator_pkg.dp.inputs.particulars import load_particulars, particulars_from_mapping
 from allocator_pkg.dp.level1 import Level1
-from allocator_pkg.dp.report.files import write_level1
 from allocator_pkg.dp.report.input_tables import (
     A2_COLUMNS,
     A3_COLUMNS,
@@ -94,7 +94,7 @@ def test_table_a5_is_the_feeds_and_capacities():
 
 
 def test_the_report_writes_tables_a2_to_a5(tmp_path):
-    _, paths = write_level1(DP_VESSEL, DP_PARTICULARS, tmp_path, step_deg=90.0)
+    _, paths = dnv_report(DP_VESSEL, DP_PARTICULARS, tmp_path, step_deg=90.0)
     expected = {"a2": A2_COLUMNS, "a3": A3_COLUMNS, "a4": A4_COLUMNS, "a5": None}
     for table, columns in expected.items():
         path = tmp_path / f"dp_vessel_dp_l1_table_{table}.csv"

@@ -10,10 +10,11 @@ import yaml
 from conftest import ROOT
 
 from allocator_pkg import read_parameters, vehicle_from_parameters
+from allocator_pkg.dp.capability_result import INTACT
 from allocator_pkg.dp.inputs.particulars import particulars_from_mapping
-from allocator_pkg.dp.level1 import INTACT, Level1
+from allocator_pkg.dp.level1 import Level1
 from allocator_pkg.dp.report.power_tables import A9_FIXED, A10_COLUMNS, a9_columns, table_a9, table_a10
-from allocator_pkg.dp.report.tables import LOSS_COLUMNS, balances, loss_sector_table
+from allocator_pkg.dp.report.tables import LOSS_COLUMNS, loss_sector_table
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 DP_PARTICULARS = ROOT / "config" / "particulars" / "dp_vessel.yaml"
@@ -23,13 +24,13 @@ DP_PARTICULARS = ROOT / "config" / "particulars" / "dp_vessel.yaml"
 def lossy():
     """dp_vessel with a skeg 6.5 m forward of each azimuth, 3 m inboard (both azimuths lose thrust toward
     it, [3.11.5]), and the boards cut to 2500 and 4000 kW (2250 kW usable against 2071 + 2974.5 kW of
-    thrusters, 3600 kW against 4033 + 2974.5 kW): (analysis, result, balances) at 30 deg. Were a rotatable
+    thrusters, 3600 kW against 4033 + 2974.5 kW): (analysis, result, its allocations) at 30 deg. Were a rotatable
     thruster's fraction taken over its range without the loss, a board would draw up to 165 % here."""
     parameters = {**read_parameters(DP_VESSEL), "power.swbd_a.capacity": 2500.0, "power.swbd_b.capacity": 4000.0}
     data = {**yaml.safe_load(DP_PARTICULARS.read_text()), "skegs": [{"x": -35.0, "y": 4.0}, {"x": -35.0, "y": -4.0}]}
     analysis = Level1(vehicle_from_parameters(parameters), particulars_from_mapping(data))
     result = analysis.run(30.0)
-    return analysis, result, balances(analysis, result)
+    return analysis, result, result.allocations
 
 
 def test_the_skegs_give_loss_sectors_in_every_case(lossy):
@@ -51,7 +52,7 @@ def test_table_a9_is_p_b_r_to_the_three_halves_split_by_the_feeds(lossy):
     assert columns == (*A9_FIXED, "swbd_a_kw", "swbd_b_kw")
     feeds = {"azimuth_stbd": "swbd_a", "tunnel_fwd": "swbd_a", "azimuth_port": "swbd_b", "tunnel_aft": "swbd_b"}
     powers = {"azimuth_stbd": 2071.0, "azimuth_port": 4033.0, "tunnel_fwd": 2974.5, "tunnel_aft": 2974.5}
-    rows = [dict(zip(columns, row)) for row in table_a9(analysis, result, balanced)]
+    rows = [dict(zip(columns, row)) for row in table_a9(analysis, result)]
     assert len(rows) == sum(len(uses) for *_, uses in balanced)
     for row in rows:
         assert 0.0 <= row["thrust_fraction"] <= 1.0 + 1e-9
@@ -60,9 +61,9 @@ def test_table_a9_is_p_b_r_to_the_three_halves_split_by_the_feeds(lossy):
 
 
 def test_table_a10_keeps_every_source_within_its_usable_power(lossy):
-    analysis, result, balanced = lossy
-    a9 = [dict(zip(a9_columns(analysis), row)) for row in table_a9(analysis, result, balanced)]
-    rows = [dict(zip(A10_COLUMNS, row)) for row in table_a10(analysis, result, balanced)]
+    analysis, result, _ = lossy
+    a9 = [dict(zip(a9_columns(analysis), row)) for row in table_a9(analysis, result)]
+    rows = [dict(zip(A10_COLUMNS, row)) for row in table_a10(analysis, result)]
     for row in rows:
         assert (row["reserved_kw"], row["usable_kw"]) == pytest.approx((0.1 * row["available_kw"],
                                                                          0.9 * row["available_kw"]))

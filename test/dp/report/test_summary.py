@@ -10,10 +10,11 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg import load_vehicle
+from allocator_pkg.cli.allocator_capability import dnv_report
+from allocator_pkg.dp.capability_result import INTACT, SCOPE_L1, WORST
 from allocator_pkg.dp.inputs.particulars import load_particulars
-from allocator_pkg.dp.level1 import CONDITIONS, INTACT, SCOPE, WORST, Level1
+from allocator_pkg.dp.level1 import Level1
 from allocator_pkg.dp.report.capability_plots import Outline, polar_figure
-from allocator_pkg.dp.report.files import write_level1
 from allocator_pkg.dp.report.tables import (
     A7_COLUMNS,
     A8_COLUMNS,
@@ -22,10 +23,10 @@ from allocator_pkg.dp.report.tables import (
     table_a6,
     table_a7,
     table_a8,
-    thruster_use,
     worst_groups,
 )
 from allocator_pkg.dp.standard.loads import current_load, wave_drift_load, wind_load
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 DP_PARTICULARS = ROOT / "config" / "particulars" / "dp_vessel.yaml"
@@ -36,7 +37,7 @@ GROUPS = ["switchboard_a", "switchboard_b"]
 def report(tmp_path_factory):
     """dp_vessel's report at 30 deg: (analysis, result, folder)."""
     out = tmp_path_factory.mktemp("dp_report")
-    result, paths = write_level1(DP_VESSEL, DP_PARTICULARS, out, 30.0)
+    result, paths = dnv_report(DP_VESSEL, DP_PARTICULARS, out, 30.0)
     analysis = Level1(load_vehicle(DP_VESSEL), load_particulars(DP_PARTICULARS))
     return analysis, result, out, paths
 
@@ -50,7 +51,7 @@ def read(path):
 def test_table_a1_is_the_result_per_heading(report):
     _, result, out, _ = report
     comments, rows = read(out / "dp_vessel_dp_l1_table_a1.csv")
-    assert comments[1] == f"# {SCOPE}\n" and comments[0].startswith("# Table A-1")
+    assert comments[1] == f"# {SCOPE_L1}\n" and comments[0].startswith("# Table A-1")
     assert rows[0] == ["heading_deg", INTACT, *GROUPS, "combined", "worst_group"]
     assert len(rows) - 1 == len(result.headings_deg) == 12
     for k, row in enumerate(rows[1:]):
@@ -84,7 +85,7 @@ def test_table_a7_loads_are_the_formulas_in_the_standards_frame(report):
     for case, heading, number, wind, *loads in rows:
         k = list(result.headings_deg).index(heading)
         assert number == result.numbers[case][k] and wind == result.wind_limits[case][k]
-        c, d = CONDITIONS[number], math.radians(heading)
+        c, d = WEATHER_CONDITIONS[number], math.radians(heading)
         expected = np.concatenate([wind_load(hull, c.wind, d), current_load(hull, c.current, d),
                                    wave_drift_load(hull, c.hs, c.tp, d)]) / 1e3
         np.testing.assert_allclose(loads, expected, rtol=1e-12, atol=1e-12)
@@ -110,7 +111,7 @@ def test_thrusters_of_table_a8_give_the_load_to_balance(report):
     for case, failed in {INTACT: (), "switchboard_a": ("azimuth_stbd", "tunnel_fwd")}.items():
         for k in (1, 3, 7):
             number, direction = int(result.numbers[case][k]), math.radians(result.headings_deg[k])
-            uses = thruster_use(analysis, number, direction, failed)
+            uses = analysis.thruster_use(number, direction, failed)
             assert {u.name for u in uses} == set(positions) - set(failed)
             wrench = np.zeros(3)
             for use in uses:
@@ -118,16 +119,16 @@ def test_thrusters_of_table_a8_give_the_load_to_balance(report):
                     math.radians(use.angle_deg))
                 x, y, _ = positions[use.name]
                 wrench += [fx, fy, x * fy - y * fx]
-            required = analysis.required(CONDITIONS[number], direction)[[0, 1, 5]]
+            required = analysis.required(WEATHER_CONDITIONS[number], direction)[[0, 1, 5]]
             np.testing.assert_allclose(wrench, required, rtol=1e-6, atol=1e-3 * np.max(np.abs(required)))
             assert max(u.utilisation for u in uses) <= 1.0 + 1e-6
 
 
 def test_table_a8_rows(report):
-    analysis, result, out, _ = report
+    _, result, out, _ = report
     _, rows = read(out / "dp_vessel_dp_l1_table_a8.csv")
     assert rows[0] == list(A8_COLUMNS)
-    assert len(rows) - 1 == len(table_a8(analysis, result)) == 12 * (4 + 2 + 2)
+    assert len(rows) - 1 == len(table_a8(result)) == 12 * (4 + 2 + 2)
     lost = [r for r in rows[1:] if r[0] == "switchboard_b"]
     assert {r[3] for r in lost} == {"azimuth_stbd", "tunnel_fwd"}
     assert all(0.0 <= float(r[7]) <= 100.0 + 1e-4 for r in rows[1:])
@@ -165,7 +166,7 @@ def test_the_report_files_and_summary(report):
     summary = (out / "dp_vessel_dp_l1_report.md").read_text()
     assert f"**{result.summary_line()}**" in summary and "Not verified by DNV" in summary
     assert "| `lpp` | 83.0 | m, osv.m |" in summary and "| loss of switchboard_a | 6 |" in summary
-    assert SCOPE in summary and "dp_vessel_dp_l1_table_a8.csv" in summary
+    assert SCOPE_L1 in summary and "dp_vessel_dp_l1_table_a8.csv" in summary
     assert "Power sources: swbd_a 5600 kW, swbd_b 7800 kW; feeds: azimuth_stbd swbd_a 100 %" in summary
     assert "switchboard_a: azimuth_stbd, tunnel_fwd, swbd_a" in summary
     for table in ("table_a6_losses", "table_a9", "table_a10"):

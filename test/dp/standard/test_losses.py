@@ -11,8 +11,7 @@ from conftest import ROOT
 from allocator_pkg import load_vehicle
 from allocator_pkg.capability.envelope import Capability
 from allocator_pkg.dp.inputs.particulars import load_particulars, particulars_from_mapping
-from allocator_pkg.dp.level1 import CONDITIONS, Level1
-from allocator_pkg.dp.report.tables import thruster_use
+from allocator_pkg.dp.level1 import Level1
 from allocator_pkg.dp.standard.losses import (
     LossUnit,
     Skeg,
@@ -23,6 +22,7 @@ from allocator_pkg.dp.standard.losses import (
     skegs_from_list,
     thrust_profile,
 )
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 DP_PARTICULARS = ROOT / "config" / "particulars" / "dp_vessel.yaml"
@@ -245,12 +245,12 @@ def test_a_fixed_thruster_flushing_a_dead_one_loses_that_way_only(dp_vessel):
     moved = replace(vehicle, actuators=tuple(replace(a, position=(-41.5, 0.0, 3.5)) if a.name == "tunnel_aft" else a
                                              for a in vehicle.actuators))
     analysis = Level1(moved, particulars)
-    intact = analysis.variant(CONDITIONS[5], 0.0).actuator("tunnel_aft")
+    intact = analysis.variant(WEATHER_CONDITIONS[5], 0.0).actuator("tunnel_aft")
     assert intact.thrust_min == intact.thrust_max == 0.0
     failed = analysis.groups["switchboard_a"]
     assert "azimuth_stbd" in failed and "tunnel_aft" not in failed
-    low = analysis.thrust_range("tunnel_aft", CONDITIONS[5], 0.0, failed)[0]
-    tunnel = analysis.variant(CONDITIONS[5], 0.0, failed).actuator("tunnel_aft")
+    low = analysis.thrust_range("tunnel_aft", WEATHER_CONDITIONS[5], 0.0, failed)[0]
+    tunnel = analysis.variant(WEATHER_CONDITIONS[5], 0.0, failed).actuator("tunnel_aft")
     assert dead_flushing_beta(7.0 / 2.2) == pytest.approx(0.545, abs=5e-4)
     assert tunnel.thrust_min == pytest.approx(low * dead_flushing_beta(7.0 / 2.2)) and tunnel.thrust_max == 0.0
 
@@ -259,10 +259,10 @@ def test_table_a8_gives_the_thrust_available_in_the_thrust_direction(dp_vessel):
     vehicle, particulars = dp_vessel
     analysis = Level1(vehicle, replace(particulars, skegs=(Skeg(-30.0, 0.0),)))
     failed = analysis.groups["switchboard_a"]
-    uses = {use.name: use for use in thruster_use(analysis, 10, deg(190.0), failed)}
+    uses = {use.name: use for use in analysis.thruster_use(10, deg(190.0), failed)}
     port = uses["azimuth_port"]
     factor = analysis.thrust_profiles(failed)["azimuth_port"].factor(math.radians(port.angle_deg))
     assert factor < 1.0                                               # it pushes inside its skeg sector
-    high = analysis.thrust_range("azimuth_port", CONDITIONS[10], deg(190.0), failed)[1]
+    high = analysis.thrust_range("azimuth_port", WEATHER_CONDITIONS[10], deg(190.0), failed)[1]
     assert port.available == pytest.approx(high * factor)
     assert port.utilisation <= 1.0 + 1e-6

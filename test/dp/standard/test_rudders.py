@@ -12,9 +12,10 @@ from conftest import ROOT
 from allocator_pkg import vehicle_from_parameters
 from allocator_pkg.capability.envelope import Capability
 from allocator_pkg.dp.inputs.particulars import load_particulars, particulars_from_mapping
-from allocator_pkg.dp.level1 import CONDITIONS, Level1
+from allocator_pkg.dp.level1 import Level1
 from allocator_pkg.dp.standard.rudders import RudderData, RudderFan, rudder_coefficients, rudder_force
 from allocator_pkg.dp.standard.thrust import ThrusterData, nominal_thrust
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 
 NACA = RudderData("r", "p", "naca", 4.0)
 """A_r = D^2 behind a D 2 m propeller."""
@@ -126,11 +127,11 @@ def test_the_shaft_line_s_thrust():
 def test_rudders_turn_the_shaft_lines_and_never_lower_a_number():
     vehicle, particulars = twin_screw()
     analysis = Level1(vehicle, particulars)
-    variant = analysis.variant(CONDITIONS[5], math.pi / 2)
+    variant = analysis.variant(WEATHER_CONDITIONS[5], math.pi / 2)
     turned = {a.name: a for a in variant.actuators}
     assert set(turned) == {"shaft_port", "shaft_stbd", "tunnel_fwd", "tunnel_aft"}   # rudders folded in
     assert turned["shaft_stbd"].rotatable and turned["shaft_stbd"].position == (-40.0, 5.0, 4.0)   # [3.8.3]
-    low, high = analysis.thrust_range("shaft_stbd", CONDITIONS[5], math.pi / 2)
+    low, high = analysis.thrust_range("shaft_stbd", WEATHER_CONDITIONS[5], math.pi / 2)
     assert (turned["shaft_stbd"].thrust_min, turned["shaft_stbd"].thrust_max) == (low, high)
     assert "rudder_stbd behind shaft_stbd: C_Y 0.01386/deg" in " ".join(analysis.notes())
     plain = Level1(*twin_screw(rudders=False))
@@ -146,7 +147,7 @@ def test_rudders_turn_the_shaft_lines_and_never_lower_a_number():
 def test_a_lost_rudder_leaves_its_propeller_pushing_along_its_shaft():
     vehicle, particulars = twin_screw()
     analysis = Level1(vehicle, particulars)
-    variant = analysis.variant(CONDITIONS[5], 0.0, ("rudder_stbd",))
+    variant = analysis.variant(WEATHER_CONDITIONS[5], 0.0, ("rudder_stbd",))
     shafts = {a.name: a for a in variant.actuators if a.name.startswith("shaft")}
     assert not shafts["shaft_stbd"].rotatable and shafts["shaft_port"].rotatable
 
