@@ -85,6 +85,7 @@ class Particulars:
 
 def load_particulars(path: str | Path) -> Particulars:
     """Read a particulars file (YAML); every error names the path."""
+    path = Path(path)
     data = read_mapping(path, "a particulars file")
     try:
         return particulars_from_mapping(data, path.stem)
