@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...capability.report.plotting import pyplot
 from ..level1 import INTACT, WORST, Level1Result
 from ..level3.case import CaseResult
 from ..level3.study import Level3Study
@@ -96,7 +97,7 @@ def case_rows(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[
 def levels_plot(path: Path, results: tuple[Level1Result, Level1Result, Level1Result], title: str, wind: bool,
                 outline: Outline, criteria: str) -> None:
     """Level 1, 2 and 3, intact and worst single failure, on one polar figure."""
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     level1, level2, level3 = results
     figure = polar_figure(level3, title, f"Level 1, 2 and 3 ({criteria})", wind, [INTACT, WORST], outline)
@@ -124,10 +125,7 @@ def footprints(path: Path, prepared: Level3Study, result: Level1Result, finished
                title: str) -> None:
     """Per heading, each case's x-y track (seed 0) at its number (solid) and at the first condition
     that failed (dashed), east to the right, north up, with the position limit's circle."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     search, limit = prepared.search, prepared.setup.criteria.position_limit
     columns = min(6, len(search.headings))

@@ -10,10 +10,11 @@ from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
+from ...capability.report.plotting import pyplot
 from ..run_setup import RunResult
 from ..scenario import Scenario
 from .footprint import footprint_figure
-from .style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, pyplot, shade_faults
+from .style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, shade_faults
 from .timeline import timeline_figure
 
 METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),
