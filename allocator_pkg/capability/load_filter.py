@@ -13,8 +13,7 @@ import math
 
 import numpy as np
 
-NS = 1_000_000_000
-"""Nanoseconds per second: the filter's clock is in ns."""
+from ..allocation.sample_rules import NS
 
 
 class LoadFilter:

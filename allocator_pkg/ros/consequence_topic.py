@@ -27,6 +27,7 @@ from rclpy.node import Node
 from allocator_msgs.msg import ConsequenceAnalysis, GroupConsequence
 
 from ..allocation.allocator import Allocator
+from ..allocation.sample_rules import consequence_period
 from ..capability.consequence import Consequence, GroupUtilisation
 from ..capability.group_loss import InForce
 from ..capability.load_filter import LoadFilter
@@ -121,14 +122,15 @@ class ConsequenceMonitor:
         self._ready = threading.Condition()
         self._pending: Snapshot | None = None
         self._closed = False
-        self._timer = node.create_timer(self._period(settings), self._on_timer, autostart=False)
+        self._timer = node.create_timer(self._period(settings) / S_TO_NS, self._on_timer, autostart=False)
         self._thread = threading.Thread(target=self._work, name="consequence analysis", daemon=True)
         self._thread.start()
 
     @staticmethod
-    def _period(settings: NodeSettings) -> float:
-        rate = settings.consequence_rate
-        return 1.0 / rate if rate > 0.0 else 1.0
+    def _period(settings: NodeSettings) -> int:
+        """[ns] of the timer (:func:`~allocator_pkg.allocation.sample_rules.consequence_period`;
+        one second while the analysis is off)."""
+        return consequence_period(settings.consequence_rate) or S_TO_NS
 
     def observe(self, wrench: np.ndarray, now: int) -> None:
         """One sample's requested wrench (FRD) at ``now`` [ns] into the low-pass filter, with
@@ -160,7 +162,7 @@ class ConsequenceMonitor:
             self._set_alarm(False)
             self.groups = None
             return
-        self._timer.timer_period_ns = round(S_TO_NS * self._period(settings))
+        self._timer.timer_period_ns = self._period(settings)
         if self._active:
             self._timer.reset()
 

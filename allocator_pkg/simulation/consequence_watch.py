@@ -18,9 +18,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..allocation.allocator import Allocator
+from ..allocation.sample_rules import consequence_period
 from ..capability.consequence import Consequence
 from ..capability.group_loss import InForce
-from ..capability.load_filter import NS, LoadFilter
+from ..capability.load_filter import LoadFilter
 from ..vehicle.node_settings import NodeSettings
 
 
@@ -47,11 +48,10 @@ class ConsequenceWatch:
         """The clock at ``now`` [ns]: at the first tick at or after each multiple of the analysis
         period (as a timer on the clock fires), analyse the load filtered so far and set the
         alarm; with the analysis off (rate 0), no alarm."""
-        rate = settings.consequence_rate
-        if rate <= 0.0:
+        period = consequence_period(settings.consequence_rate)
+        if period is None:
             self.alarm, self._due = False, None
             return
-        period = round(NS / rate)
         if self._due is None:
             self._due = -(-now // period) * period
         if now < self._due:

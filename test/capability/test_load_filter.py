@@ -6,7 +6,8 @@ import math
 
 import numpy as np
 
-from allocator_pkg.capability.load_filter import NS, LoadFilter
+from allocator_pkg.allocation.sample_rules import NS
+from allocator_pkg.capability.load_filter import LoadFilter
 
 AHEAD = np.array([500e3, 0.0, 0.0, 0.0, 0.0, 30e3])
 
