@@ -33,7 +33,6 @@ from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import linprog
 
 from ..allocation.power_budget import PowerBudget, PowerLimit
 from ..allocation.solve import check_method
@@ -43,6 +42,8 @@ from ..effectiveness.sectors import allowed_arcs, can_push_along, in_forbidden_s
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
+from ..solvers.linear_program import solve_linear_programme
+from ..solvers.outcome import Solution
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import ActuatorConfig, Vehicle
 from .thrust_profile import ForceProfile
@@ -269,14 +270,14 @@ class Capability:
         cost = np.zeros(columns)
         cost[-1] = -1.0
         result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
-        if result.status != 0:
+        if not result.usable:
             return 0.0, np.zeros(model.m)
         return float(result.x[-1]), result.x[:model.m]
 
-    def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces):
-        """linprog of :meth:`_solve`'s programme (a subclass may add rows, and columns after its own)."""
-        return linprog(cost, A_ub=np.array(a_ub) if a_ub else None, b_ub=np.array(b_ub) if b_ub else None,
-                       A_eq=a_eq, b_eq=b_eq, bounds=bounds, method="highs")
+    def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces) -> Solution:
+        """:meth:`_solve`'s programme on HiGHS (a subclass may add rows, and columns after its own)."""
+        return solve_linear_programme(cost, bounds, np.array(a_ub) if a_ub else None,
+                                      np.array(b_ub) if b_ub else None, a_eq, b_eq)
 
     def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, faults: FaultSet, low: np.ndarray,
                               high: np.ndarray) -> tuple[float, np.ndarray]:
