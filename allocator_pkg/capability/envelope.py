@@ -34,11 +34,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..allocation.pieces import convex_pieces
 from ..allocation.power_budget import PowerBudget, PowerLimit
 from ..allocation.solve import check_method
 from ..effectiveness.faults import Fault, FaultMode, FaultSet, static_ranges
 from ..effectiveness.model import Model
-from ..effectiveness.sectors import allowed_arcs, can_push_along, in_forbidden_sector
+from ..effectiveness.sectors import allowed_arcs, can_push_along
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
@@ -46,7 +47,7 @@ from ..solvers.linear_program import solve_linear_programme
 from ..solvers.outcome import Solution
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import ActuatorConfig, Vehicle
-from .thrust_profile import ForceProfile
+from .thrust_profile import ForcePiece, ForceProfile
 
 FORCE_DOFS = ("surge", "sway", "heave")
 
@@ -243,7 +244,7 @@ class Capability:
             if radius <= 0.0:
                 bounds[c1] = bounds[c2] = (0.0, 0.0)
                 continue
-            for nx, ny, apothem in faces:                           # the method's polygon of the radius
+            for nx, ny, apothem in () if line else faces:          # the method's polygon of the radius
                 row = np.zeros(columns)
                 row[c1], row[c2] = nx, ny
                 a_ub.append(row)
@@ -261,6 +262,8 @@ class Capability:
                 row[c1], row[c2] = nx, ny
                 a_ub.append(row)
                 b_ub.append(radius * offset)
+            if line:                                                # a stuck thruster: both ways
+                continue
             middle = 0.5 * (start + end)
             row = np.zeros(columns)
             row[c1], row[c2] = -math.cos(middle), -math.sin(middle)
@@ -314,31 +317,25 @@ class Capability:
 
 
 def _pieces(actuator: ActuatorConfig, fault: Fault | None, low: float, high: float,
-            profile: ForceProfile | None = None) -> list[tuple]:
-    """Convex pieces (start, end, radius, line, half-planes) of the forces a rotatable thruster
-    can give (:data:`~.thrust_profile.ForcePiece`): with a ``profile`` those it gives, stuck its
-    limit times the profile's factor at that angle; without, cones of the allowed arcs."""
-    rotation = actuator.rotation
-    if fault is not None and fault.mode == FaultMode.STUCK:
-        angle = fault.angle
-        share = (lambda a: 1.0) if profile is None else profile.factor
-        pieces = [] if in_forbidden_sector(rotation, angle) else [(angle, angle, high * share(angle), True, ())]
-        if low < 0.0 and not in_forbidden_sector(rotation, angle):
-            pieces.append((angle + math.pi, angle + math.pi, -low * share(angle + math.pi), True, ()))
-        return pieces or [(angle, angle, 0.0, True, ())]
-    arcs = allowed_arcs(rotation)
-    if profile is not None:
-        return profile.force_pieces(arcs, low, high)
-    pieces = [(start, end, high) for start, end in arcs]
-    if low < 0.0:
-        pieces += [(start + math.pi, end + math.pi, -low) for start, end in arcs]
-    split = []
-    for start, end, radius in pieces:
-        while end - start > math.pi:
-            split.append((start, start + math.pi, radius, False, ()))
-            start += math.pi
-        split.append((start, end, radius, False, ()))
-    return split
+            profile: ForceProfile | None = None) -> list[ForcePiece]:
+    """Convex pieces of the forces a rotatable thruster can give (:data:`~.thrust_profile.ForcePiece`):
+    with a ``profile`` (and not stuck) those it gives; else the allocator's
+    :func:`~allocator_pkg.allocation.pieces.convex_pieces` (forward and reverse cones apart), a
+    stuck thruster's line with its signed thrust in [low, high] as two half-planes along it, each
+    way times the profile's factor there."""
+    stuck = fault.angle if fault is not None and fault.mode == FaultMode.STUCK else None
+    if profile is not None and stuck is None:
+        return profile.force_pieces(allowed_arcs(actuator.rotation), low, high)
+    pieces = []
+    for piece in convex_pieces(actuator.rotation, low, high, stuck, whole=False):
+        planes: tuple = ()
+        if piece.line and piece.radius > 0.0:
+            share = (lambda a: 1.0) if profile is None else profile.factor
+            c, s = math.cos(piece.start), math.sin(piece.start)
+            planes = ((c, s, high * share(piece.start) / piece.radius),
+                      (-c, -s, -low * share(piece.start + math.pi) / piece.radius))
+        pieces.append((piece.start, piece.end, piece.radius, piece.line, planes))
+    return pieces
 
 
 def default_plane(vehicle: Vehicle) -> tuple[str, str]:
