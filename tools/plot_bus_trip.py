@@ -13,15 +13,13 @@ from each switchboard against what it can give, with the consequence alarm shade
 import tempfile
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
+from allocator_pkg.capability.report.plotting import pyplot
 from allocator_pkg.simulation.closed_loop import ClosedLoop
 from allocator_pkg.simulation.in_process import in_process_link
 from allocator_pkg.simulation.report.timeline import timeline_figure
 from allocator_pkg.simulation.scenario import load_scenario
+
+plt = pyplot()
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENARIO = ROOT / "config" / "scenarios" / "dp_switchboard_trip.yaml"

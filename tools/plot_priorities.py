@@ -15,15 +15,14 @@ factor) and leaves yaw more."""
 import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 
 from allocator_pkg import Allocator, load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.capability.envelope import Capability
+from allocator_pkg.capability.report.plotting import pyplot
 from allocator_pkg.vehicle.config import DOF_NAMES
+
+plt = pyplot()
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIG = ROOT / "config" / "bluerov2_heavy.yaml"

@@ -5,16 +5,15 @@ MarkerArray the node publishes (allocator_pkg.ros.markers), for the BlueROV2 Hea
 import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 from std_msgs.msg import Header
 
 from allocator_pkg import Allocator, FaultMode, load_vehicle
+from allocator_pkg.capability.report.plotting import pyplot
 from allocator_pkg.effectiveness.faults import static_ranges
 from allocator_pkg.ros.markers import thrust_markers
 from allocator_pkg.vehicle.frames import wrench_between
+
+plt = pyplot()
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "docs" / "thrust_markers.png"

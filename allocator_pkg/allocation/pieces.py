@@ -56,14 +56,19 @@ class Piece:
         return offset <= self.end - self.start + 1e-9
 
 
-def convex_pieces(rotation: RotationConfig, low: float, high: float, stuck: float | None = None) -> list[Piece]:
-    """The convex pieces of the forces a rotatable thruster can give with signed thrust in
-    [low, high] (faults applied): forward arcs with radius ``high``, and for negative ``low``
-    the opposite arcs with radius ``-low``; a stuck thruster is a line."""
+def convex_pieces(rotation: RotationConfig, low: float, high: float, stuck: float | None = None,
+                  whole: bool = True) -> list[Piece]:
+    """The convex pieces (survey 4.2) of the forces a rotatable thruster can give with signed
+    thrust in [low, high] (faults applied): forward arcs with radius ``high``, and for negative
+    ``low`` the opposite arcs with radius ``-low``, each cut into cones at most pi wide; a stuck
+    thruster is a line, its signed thrust in [low, high] (radius 0 stuck in a forbidden sector).
+    A thruster that turns all round without a forbidden sector is the whole disk of radius
+    max(high, -low), or with ``whole`` False its forward and reverse cones (where a caller
+    needs to tell thrust ahead from thrust astern, as the power at part thrust does)."""
     if stuck is not None:
         radius = 0.0 if in_forbidden_sector(rotation, stuck) else max(high, -low)
         return [Piece(stuck, stuck, radius, line=True)]
-    if rotation.continuous and not rotation.forbidden_sectors:
+    if whole and rotation.continuous and not rotation.forbidden_sectors:
         return [Piece(-math.inf, math.inf, max(high, -low))]
     arcs = allowed_arcs(rotation)
     pieces = [(start, end, high) for start, end in arcs]

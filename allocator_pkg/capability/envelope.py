@@ -38,21 +38,23 @@ from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import linprog
 
 from ..allocation.conditions import Conditions
+from ..allocation.pieces import convex_pieces
 from ..allocation.power_budget import PowerBudget, PowerLimit
 from ..allocation.solve import check_method
 from ..effectiveness.faults import Fault, FaultMode, FaultSet
 from ..effectiveness.flushing import DeadFlushing
 from ..effectiveness.model import Model
-from ..effectiveness.sectors import allowed_arcs, can_push_along, in_forbidden_sector
+from ..effectiveness.sectors import allowed_arcs, can_push_along
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
+from ..solvers.linear_program import solve_linear_programme
+from ..solvers.outcome import Solution
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import RotationConfig, Vehicle
-from .thrust_profile import ForceProfile
+from .thrust_profile import ForcePiece, ForceProfile
 
 FORCE_DOFS = ("surge", "sway", "heave")
 
@@ -257,7 +259,7 @@ class Capability:
             if radius <= 0.0:
                 bounds[c1] = bounds[c2] = (0.0, 0.0)
                 continue
-            for nx, ny, apothem in faces:                           # the method's polygon of the radius
+            for nx, ny, apothem in () if line else faces:          # the method's polygon of the radius
                 row = np.zeros(columns)
                 row[c1], row[c2] = nx, ny
                 a_ub.append(row)
@@ -275,6 +277,8 @@ class Capability:
                 row[c1], row[c2] = nx, ny
                 a_ub.append(row)
                 b_ub.append(radius * offset)
+            if line:                                                # a stuck thruster: both ways
+                continue
             middle = 0.5 * (start + end)
             row = np.zeros(columns)
             row[c1], row[c2] = -math.cos(middle), -math.sin(middle)
@@ -284,14 +288,14 @@ class Capability:
         cost = np.zeros(columns)
         cost[-1] = -1.0
         result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
-        if result.status != 0:
+        if not result.usable:
             return 0.0, np.zeros(model.m)
         return float(result.x[-1]), result.x[:model.m]
 
-    def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces):
-        """linprog of :meth:`_solve`'s programme (a subclass may add rows, and columns after its own)."""
-        return linprog(cost, A_ub=np.array(a_ub) if a_ub else None, b_ub=np.array(b_ub) if b_ub else None,
-                       A_eq=a_eq, b_eq=b_eq, bounds=bounds, method="highs")
+    def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces) -> Solution:
+        """:meth:`_solve`'s programme on HiGHS (a subclass may add rows, and columns after its own)."""
+        return solve_linear_programme(cost, bounds, np.array(a_ub) if a_ub else None,
+                                      np.array(b_ub) if b_ub else None, a_eq, b_eq)
 
     def _pseudo_inverse_limit(self, unit: np.ndarray, fixed: np.ndarray, conditions: Conditions, low: np.ndarray,
                               high: np.ndarray) -> tuple[float, np.ndarray]:
@@ -329,7 +333,7 @@ class Capability:
 
 
 def _pieces(rotation: RotationConfig, fault: Fault | None, low: float, high: float,
-            profile: ForceProfile | None = None, losses: tuple[DeadFlushing, ...] = ()) -> list[tuple]:
+            profile: ForceProfile | None = None, losses: tuple[DeadFlushing, ...] = ()) -> list[ForcePiece]:
     """Convex pieces (start, end, radius, line, half-planes) of the forces a rotatable thruster
     of ``rotation`` (the zones in force) can give (:data:`~.thrust_profile.ForcePiece`): with a
     ``profile`` those it gives, stuck its limit times the profile's factor at that angle;
@@ -349,28 +353,24 @@ def _pieces(rotation: RotationConfig, fault: Fault | None, low: float, high: flo
 
 
 def _plain_pieces(rotation: RotationConfig, fault: Fault | None, low: float, high: float,
-                  profile: ForceProfile | None) -> list[tuple]:
-    """:func:`_pieces` without losses."""
-    if fault is not None and fault.mode == FaultMode.STUCK:
-        angle = fault.angle
-        share = (lambda a: 1.0) if profile is None else profile.factor
-        pieces = [] if in_forbidden_sector(rotation, angle) else [(angle, angle, high * share(angle), True, ())]
-        if low < 0.0 and not in_forbidden_sector(rotation, angle):
-            pieces.append((angle + math.pi, angle + math.pi, -low * share(angle + math.pi), True, ()))
-        return pieces or [(angle, angle, 0.0, True, ())]
-    arcs = allowed_arcs(rotation)
-    if profile is not None:
-        return profile.force_pieces(arcs, low, high)
-    pieces = [(start, end, high) for start, end in arcs]
-    if low < 0.0:
-        pieces += [(start + math.pi, end + math.pi, -low) for start, end in arcs]
-    split = []
-    for start, end, radius in pieces:
-        while end - start > math.pi:
-            split.append((start, start + math.pi, radius, False, ()))
-            start += math.pi
-        split.append((start, end, radius, False, ()))
-    return split
+                  profile: ForceProfile | None) -> list[ForcePiece]:
+    """:func:`_pieces` without losses: with a ``profile`` (and not stuck) those it gives; else the
+    allocator's :func:`~allocator_pkg.allocation.pieces.convex_pieces` (forward and reverse cones
+    apart), a stuck thruster's line with its signed thrust in [low, high] as two half-planes along
+    it, each way times the profile's factor there."""
+    stuck = fault.angle if fault is not None and fault.mode == FaultMode.STUCK else None
+    if profile is not None and stuck is None:
+        return profile.force_pieces(allowed_arcs(rotation), low, high)
+    pieces = []
+    for piece in convex_pieces(rotation, low, high, stuck, whole=False):
+        planes: tuple = ()
+        if piece.line and piece.radius > 0.0:
+            share = (lambda a: 1.0) if profile is None else profile.factor
+            c, s = math.cos(piece.start), math.sin(piece.start)
+            planes = ((c, s, high * share(piece.start) / piece.radius),
+                      (-c, -s, -low * share(piece.start + math.pi) / piece.radius))
+        pieces.append((piece.start, piece.end, piece.radius, piece.line, planes))
+    return pieces
 
 
 def default_plane(vehicle: Vehicle) -> tuple[str, str]:

@@ -26,6 +26,7 @@ import numpy as np
 
 from ..effectiveness.faults import FaultSet, static_ranges
 from ..effectiveness.model import Model
+from ..solvers.linear_program import solve_linear_programme
 from ..vehicle.config import Vehicle
 from .explicit import ExplicitAllocation
 from .explicit_law import Law
@@ -52,8 +53,6 @@ def candidates(r: int):
 def has_interior(law: Law, key: int, model: Model, low: np.ndarray, high: np.ndarray) -> bool:
     """Whether the region of ``key`` holds a ball of radius INTERIOR of parameters the vehicle
     can meet (see the module's docstring)."""
-    from scipy.optimize import linprog
-
     region = law.region(key)
     if region is None:
         return False
@@ -72,8 +71,8 @@ def has_interior(law: Law, key: int, model: Model, low: np.ndarray, high: np.nda
     bounds = [(-TAU_RANGE, TAU_RANGE)] * n + force + force + [(0.0, 1.0)]
     cost = np.zeros(a.shape[1])
     cost[-1] = -1.0
-    result = linprog(cost, A_ub=a, b_ub=b, bounds=bounds, method="highs")
-    return result.status == 0 and -result.fun > INTERIOR
+    result = solve_linear_programme(cost, bounds, a, b)
+    return result.usable and float(result.x[-1]) > INTERIOR
 
 
 def precompute(vehicle: Vehicle, speed: float) -> tuple[list[int], int, float, Law]:

@@ -14,6 +14,7 @@ from rclpy.node import Node
 from sensor_msgs.msg import BatteryState
 
 from ..allocation.allocator import Allocator
+from ..allocation.sample_rules import set_supply_voltage
 from . import qos
 from .diagnostics import LOG_THROTTLE, Counters
 
@@ -42,7 +43,7 @@ class BatteryInput:
         voltage = message.voltage
         with self._lock:
             try:
-                self._allocator.set_voltage(voltage)
+                set_supply_voltage(self._allocator, voltage)
             except ValueError as error:
                 self._counters.rejected_battery += 1
                 self._counters.rejected_in_period += 1

@@ -1,15 +1,16 @@
 """The online consequence analysis in the node (docs/power.md): ``~/consequence``, the status's
 ``consequence_alarm`` and a diagnostic status, for a vehicle with redundancy groups.
 
-The sample path only feeds the load filter (:meth:`ConsequenceMonitor.observe`: a first-order
-low-pass of the requested wrench, a few operations on six numbers, under the runtime's lock). A
-timer at ``consequence.rate`` on the node's clock takes a snapshot under that lock (the filtered
-load, the configuration, and what the allocator has in force: its faults, the available power
-with the failed groups' sources at 0 kW, speed and voltage,
-:class:`~allocator_pkg.capability.group_loss.InForce`) and hands it to a thread of the monitor's
-own, which solves each group's programme (:class:`~allocator_pkg.capability.consequence.Consequence`;
-HiGHS lets go of the GIL while it solves), publishes the answer and sets the alarm. That thread
-never takes the runtime's lock, so no sample waits for an analysis.
+The sample path only feeds the load filter (:meth:`ConsequenceMonitor.observe`: the first-order
+low-pass of the requested wrench of :class:`~allocator_pkg.capability.load_filter.LoadFilter`, a
+few operations on six numbers, under the runtime's lock). A timer at ``consequence.rate`` on the
+node's clock takes a snapshot under that lock (the filtered load, the configuration, and what the
+allocator has in force: its faults, the available power with the failed groups' sources at 0 kW,
+speed and voltage, :class:`~allocator_pkg.capability.group_loss.InForce`) and hands it to a thread
+of the monitor's own, which solves each group's programme
+(:class:`~allocator_pkg.capability.consequence.Consequence`; HiGHS lets go of the GIL while it
+solves), publishes the answer and sets the alarm. That thread never takes the runtime's lock, so
+no sample waits for an analysis.
 """
 
 from __future__ import annotations
@@ -26,8 +27,10 @@ from rclpy.node import Node
 from allocator_msgs.msg import ConsequenceAnalysis, GroupConsequence
 
 from ..allocation.allocator import Allocator
+from ..allocation.sample_rules import consequence_period
 from ..capability.consequence import Consequence, GroupUtilisation
 from ..capability.group_loss import InForce
+from ..capability.load_filter import LoadFilter
 from ..vehicle.config import Vehicle
 from ..vehicle.node_settings import NodeSettings
 from .conversions import fill_wrench_in
@@ -111,8 +114,7 @@ class ConsequenceMonitor:
         self._allocator = allocator
         self._outputs = outputs
         self._settings = settings
-        self._load = np.zeros(6)
-        self._observed: int | None = None
+        self._filter = LoadFilter()
         self._active = False
         self.groups: tuple[GroupUtilisation, ...] | None = None
         self.lost: tuple[str, ...] = ()
@@ -120,26 +122,21 @@ class ConsequenceMonitor:
         self._ready = threading.Condition()
         self._pending: Snapshot | None = None
         self._closed = False
-        self._timer = node.create_timer(self._period(settings), self._on_timer, autostart=False)
+        self._timer = node.create_timer(self._period(settings) / S_TO_NS, self._on_timer, autostart=False)
         self._thread = threading.Thread(target=self._work, name="consequence analysis", daemon=True)
         self._thread.start()
 
     @staticmethod
-    def _period(settings: NodeSettings) -> float:
-        rate = settings.consequence_rate
-        return 1.0 / rate if rate > 0.0 else 1.0
+    def _period(settings: NodeSettings) -> int:
+        """[ns] of the timer (:func:`~allocator_pkg.allocation.sample_rules.consequence_period`;
+        one second while the analysis is off)."""
+        return consequence_period(settings.consequence_rate) or S_TO_NS
 
     def observe(self, wrench: np.ndarray, now: int) -> None:
         """One sample's requested wrench (FRD) at ``now`` [ns] into the low-pass filter, with
         the weight 1 - exp(-dt / consequence.filter_time) (the first, after the clock went back
         or without a filter: the wrench itself). Lock held."""
-        last, self._observed = self._observed, now
-        time_constant = self._settings.consequence_filter_time
-        if last is None or now < last or time_constant <= 0.0:
-            self._load[:] = wrench
-            return
-        load = self._load
-        load += (1.0 - math.exp((last - now) / (S_TO_NS * time_constant))) * (wrench - load)
+        self._filter.observe(wrench, now, self._settings.consequence_filter_time)
 
     def diagnostic(self, node_name: str) -> DiagnosticStatus:
         return consequence_status(node_name, self._settings.consequence_rate, self.groups, self.lost)
@@ -147,7 +144,7 @@ class ConsequenceMonitor:
     def activate(self) -> None:
         """Start analysing (lock held)."""
         self._active = True
-        self._observed = None
+        self._filter.restart()
         if self._settings.consequence_rate > 0.0:
             self._timer.reset()
 
@@ -165,7 +162,7 @@ class ConsequenceMonitor:
             self._set_alarm(False)
             self.groups = None
             return
-        self._timer.timer_period_ns = round(S_TO_NS * self._period(settings))
+        self._timer.timer_period_ns = self._period(settings)
         if self._active:
             self._timer.reset()
 
@@ -184,7 +181,7 @@ class ConsequenceMonitor:
         with self._lock:
             if not self._active:
                 return
-            snapshot = Snapshot(allocator.vehicle, allocator.method, self._load.copy(), InForce.of(allocator),
+            snapshot = Snapshot(allocator.vehicle, allocator.method, self._filter.load.copy(), InForce.of(allocator),
                                 self._node.get_clock().now().nanoseconds, settings.frame, settings.base_frame)
         with self._ready:
             self._pending = snapshot

@@ -15,6 +15,8 @@ from std_srvs.srv import Trigger
 from allocator_msgs.msg import ActuatorFault
 from allocator_msgs.srv import GetCapability, SetActuatorFault, SetGroupFault
 
+from ..allocation.sample_rules import fault_request
+from ..effectiveness.faults import FaultMode
 from ..vehicle.node_settings import NODE_NAME
 from .conversions import array_to_wrench
 
@@ -72,11 +74,8 @@ class Controller:
             self.node.destroy_client(client)
 
     def set_fault(self, actuator: str, mode: str, value: float = 0.0) -> SetActuatorFault.Response:
-        fault = ActuatorFault(actuator=actuator, mode=FAULT_MODES[mode])
-        if mode == "degraded":
-            fault.efficiency = value
-        elif mode == "stuck":
-            fault.azimuth = value
+        efficiency, angle = fault_request(FaultMode(FAULT_MODES[mode]), value)
+        fault = ActuatorFault(actuator=actuator, mode=FAULT_MODES[mode], efficiency=efficiency, azimuth=angle)
         return self.call(SetActuatorFault, "set_actuator_fault", SetActuatorFault.Request(fault=fault))
 
     def set_group_fault(self, group: str) -> SetGroupFault.Response:

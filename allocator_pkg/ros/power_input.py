@@ -20,6 +20,7 @@ from rclpy.node import Node
 from allocator_msgs.msg import PowerAvailable
 
 from ..allocation.allocator import Allocator
+from ..allocation.sample_rules import set_available_power
 from . import qos
 from .diagnostics import LOG_THROTTLE, Counters
 from .power_report import available_text
@@ -53,9 +54,7 @@ class PowerInput:
         with self._lock:
             self.received += 1
             try:
-                if len(message.source) != len(message.available):
-                    raise ValueError(f"{len(message.source)} sources but {len(message.available)} values")
-                self.allocator.set_available_power(dict(zip(message.source, message.available)))
+                set_available_power(self.allocator, message.source, message.available)
             except ValueError as error:
                 self._counters.rejected_power += 1
                 self._counters.rejected_in_period += 1

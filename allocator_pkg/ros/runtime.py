@@ -39,6 +39,7 @@ from rclpy.node import Node
 from allocator_msgs.msg import ActuatorFault
 
 from ..allocation.allocator import AllocationResult, Allocator
+from ..allocation.sample_rules import Watchdog, set_fault
 from ..effectiveness.faults import FaultMode
 from ..vehicle.config import Vehicle
 from ..vehicle.node_settings import INPUT, TIMER, NodeSettings
@@ -50,7 +51,6 @@ from .diagnostics import LOG_THROTTLE, Counters, diagnostic_statuses
 from .hold import Hold, refusal
 from .outputs import Outputs
 from .power_input import PowerInput
-from .watchdog import Watchdog
 
 DIAGNOSTICS_PERIOD = 1.0     # s between two reports on /diagnostics
 
@@ -291,10 +291,9 @@ class AllocationRuntime:
         with self._lock:
             self._end_hold()
             try:
-                self.allocator.set_fault(fault.actuator, mode, efficiency=fault.efficiency, angle=fault.azimuth)
+                return True, set_fault(self.allocator, fault.actuator, mode, fault.efficiency, fault.azimuth)
             except ValueError as error:
                 return False, str(error)
-        return True, f"{fault.actuator}: {mode.name} from the next sample"
 
     def set_group_fault(self, group: str) -> tuple[bool, str]:
         """Fail a redundancy group from the next sample; (success, message naming the groups)."""

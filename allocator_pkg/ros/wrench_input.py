@@ -13,7 +13,8 @@ import numpy as np
 from geometry_msgs.msg import Wrench, WrenchStamped
 from rclpy.node import Node
 
-from ..vehicle.node_settings import FLU, WRENCH_STAMPED, NodeSettings
+from ..vehicle.frames import wrench_between
+from ..vehicle.node_settings import WRENCH_STAMPED, NodeSettings
 
 TYPE_NAMES = {Wrench: "geometry_msgs/msg/Wrench", WrenchStamped: "geometry_msgs/msg/WrenchStamped"}
 
@@ -33,7 +34,8 @@ class Verdict(NamedTuple):
 
 
 def accept(message: Wrench | WrenchStamped, settings: NodeSettings) -> Verdict:
-    """A stamped wrench must be in ``base_frame``; every value must be finite."""
+    """A stamped wrench must be in ``base_frame``; every value must be finite. The wrench in FRD
+    (:func:`~allocator_pkg.vehicle.frames.wrench_between` from the node's ``frame``)."""
     if isinstance(message, WrenchStamped):
         if message.header.frame_id != settings.base_frame:
             return Verdict(None, "frame", f"rejected a wrench in frame '{message.header.frame_id}': this node "
@@ -43,9 +45,7 @@ def accept(message: Wrench | WrenchStamped, settings: NodeSettings) -> Verdict:
     values = [force.x, force.y, force.z, torque.x, torque.y, torque.z]
     if not all(map(math.isfinite, values)):
         return Verdict(None, "values", f"rejected a wrench with non-finite values {values}")
-    if settings.frame == FLU:
-        values[1], values[2], values[4], values[5] = -values[1], -values[2], -values[4], -values[5]
-    return Verdict(np.array(values))
+    return Verdict(wrench_between(values, settings.frame))
 
 
 def foreign_publishers(node: Node, topic: str, expected: str) -> list[str]:

@@ -1,11 +1,8 @@
 """The online consequence analysis of the in-process link (docs/power.md, "Consequence
 analysis"): what ``allocator_node`` does for a vehicle with redundancy groups
-(``ros/consequence.py``), sample by sample in this process. Each allocated sample feeds the
-first-order low-pass filter of the requested wrench
-
-    y_k = y_(k-1) + (1 - exp(-dt_k / T)) (tau_k - y_(k-1)),    T = consequence.filter_time
-
-(the first sample, or any without a filter, sets y to its request); at every multiple of the
+(``ros/consequence_topic.py``), sample by sample in this process. Each allocated sample feeds
+the node's low-pass filter of the requested wrench
+(:class:`~allocator_pkg.capability.load_filter.LoadFilter`); at every multiple of the
 analysis period 1 / ``consequence.rate`` of the sim clock, the
 :class:`~allocator_pkg.capability.consequence.Consequence` analysis of the load filtered up to
 the sample before, under what the allocator has in force (``InForce``), sets the alarm that
@@ -18,47 +15,43 @@ period; everything else of a run is the same."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ..allocation.allocator import Allocator
+from ..allocation.sample_rules import consequence_period
 from ..capability.consequence import Consequence
 from ..capability.group_loss import InForce
+from ..capability.load_filter import LoadFilter
 from ..vehicle.node_settings import NodeSettings
-
-NS = 1_000_000_000
 
 
 class ConsequenceWatch:
     """The load filter and the periodic analysis of one allocator; ``alarm`` is the last one's."""
 
     def __init__(self, allocator: Allocator):
-        self.load = np.zeros(6)
+        self.filter = LoadFilter()
         self.alarm = False
-        self._observed: int | None = None
         self._analysis: Consequence | None = None
         self._due: int | None = None
         self._allocator = allocator
 
     def observe(self, wrench: np.ndarray, now: int, settings: NodeSettings) -> None:
         """One allocated sample's requested wrench (FRD) at ``now`` [ns] into the filter."""
-        last, self._observed = self._observed, now
-        time_constant = settings.consequence_filter_time
-        if last is None or now < last or time_constant <= 0.0:
-            self.load[:] = wrench
-            return
-        self.load += (1.0 - math.exp((last - now) / (NS * time_constant))) * (wrench - self.load)
+        self.filter.observe(wrench, now, settings.consequence_filter_time)
+
+    @property
+    def load(self) -> np.ndarray:
+        """The load filtered so far [X, Y, Z, K, M, N] (FRD)."""
+        return self.filter.load
 
     def tick(self, now: int, settings: NodeSettings) -> None:
         """The clock at ``now`` [ns]: at the first tick at or after each multiple of the analysis
         period (as a timer on the clock fires), analyse the load filtered so far and set the
         alarm; with the analysis off (rate 0), no alarm."""
-        rate = settings.consequence_rate
-        if rate <= 0.0:
+        period = consequence_period(settings.consequence_rate)
+        if period is None:
             self.alarm, self._due = False, None
             return
-        period = round(NS / rate)
         if self._due is None:
             self._due = -(-now // period) * period
         if now < self._due:
@@ -68,4 +61,4 @@ class ConsequenceWatch:
         analysis = self._analysis
         if analysis is None or analysis.vehicle is not allocator.vehicle or analysis.method != allocator.method:
             analysis = self._analysis = Consequence(allocator.vehicle, allocator.method)
-        self.alarm = any(group.alarm for group in analysis.utilisation(self.load, InForce.of(allocator)))
+        self.alarm = any(group.alarm for group in analysis.utilisation(self.filter.load, InForce.of(allocator)))

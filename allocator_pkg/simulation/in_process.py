@@ -4,7 +4,8 @@
 a run gives the same trace and metrics as with the node in the loop
 (``allocator_pkg.ros.sim_loop``), thousands of times faster to repeat.
 
-What the node does, and so what this does:
+What the node does, and so what this does, by the node's own rules
+(:mod:`allocator_pkg.allocation.sample_rules`):
 
 - configuration: the vehicle file's node section with ``trigger: input``, the scenario's
   ``method`` and ``parameters`` over it, parsed and checked as a whole (``parse_parameters``;
@@ -12,18 +13,19 @@ What the node does, and so what this does:
   allocator built on it;
 - supply voltage (``battery_state``, a float32 field): with thrust tables at several voltages,
   each step's voltage, rounded to float32, sets the thrust limits; one the allocator refuses
-  leaves the last (``ros/battery.py``);
+  leaves the last (``set_supply_voltage``);
 - speed (``odometry``): with control surfaces, each step's surge speed;
 - the wrench: taken in the node's ``frame`` (FLU turned to FRD), allocated; the unallocated
-  wrench given back in that frame (``ros/wrench_input.py``, ``ros/conversions.py``);
-- before the first wrench, the watchdog's zero thrust (``Allocator.stop``), angles held;
+  wrench given back in that frame (``wrench_between``);
+- before the first wrench, the watchdog's zero thrust (``Watchdog``, ``Allocator.stop``),
+  angles held;
 - a fault: ``set_fault`` with the efficiency (DEGRADED) or angle (STUCK) and 0 otherwise, as
-  ``~/set_actuator_fault`` carries it; ``set_group_fault`` as ``~/set_group_fault``;
-  ``clear_faults``;
+  ``~/set_actuator_fault`` carries it (``fault_request``); ``set_group_fault`` as
+  ``~/set_group_fault``; ``clear_faults``;
 - available power (``power_available``): each step's reported values, ``set_available_power``;
   the status's power per source (``Allocator.power.reading``);
 - with redundancy groups, the consequence analysis at its rate on the sim clock
-  (:mod:`.consequence_watch`) and its alarm in the answer;
+  (:mod:`.consequence_watch`, ``consequence_period``) and its alarm in the answer;
 - a parameter: refused when read-only or not declared; else checked with the node's declared
   values and the change over them, and the running allocator reconfigured
   (``check_reconfigure``, ``reconfigure``), as the node's parameter callbacks do
@@ -42,6 +44,7 @@ import numpy as np
 
 from ..allocation.allocator import Allocator
 from ..allocation.result import AllocationResult
+from ..allocation.sample_rules import Watchdog, fault_request, set_available_power, set_fault, set_supply_voltage
 from ..configuration.declared import declared, declared_keys, typed_value
 from ..configuration.parameters import parse_parameters
 from ..configuration.params_file import read_parameters
@@ -85,13 +88,14 @@ class InProcessLink:
         self.rejected_voltages = 0
         self._last: AllocationResult | None = None
         self.watch = ConsequenceWatch(self.allocator) if vehicle.redundancy_groups else None
+        self.watchdog = Watchdog(self.settings.wrench_timeout)
 
     # -- the samples ----------------------------------------------------------------------
 
     def begin(self, t_ns: int, period_ns: int, supply: float | None, wrench: np.ndarray) -> tuple[int, Answer]:
         """The node's zero thrust while no wrench has come (its watchdog on), at ``supply``,
         then the first sample of ``wrench`` at the step after."""
-        if self.settings.wrench_timeout > 0.0:
+        if self.watchdog.check(t_ns, None)[0]:                  # no wrench yet: stale unless disabled
             for _ in range(STOPS):
                 t_ns += period_ns
                 self._supply(supply)
@@ -107,7 +111,7 @@ class InProcessLink:
         surge speed, then ``wrench``."""
         self._supply(supply)
         if power:
-            self.allocator.set_available_power(power)
+            set_available_power(self.allocator, list(power), list(power.values()))
         if self.follows_speed:
             speed = float(pose.velocity[0])
             if math.isfinite(speed):
@@ -123,13 +127,14 @@ class InProcessLink:
         if volts is None or not self.follows_battery:
             return
         try:
-            self.allocator.set_voltage(float(np.float32(volts)))
+            set_supply_voltage(self.allocator, volts)
         except ValueError:
             self.rejected_voltages += 1
 
     def _allocate(self, wrench: np.ndarray, t_ns: int) -> Answer:
         frame = self.settings.frame
         allocator = self.allocator
+        self.watchdog.check(t_ns, t_ns)
         self._tick(t_ns)
         result = self._last = allocator.allocate(wrench_between(wrench, frame))
         if self.watch is not None:
@@ -156,13 +161,10 @@ class InProcessLink:
 
     def set_fault(self, actuator: str, mode: str, value: float) -> str:
         fault = FaultMode[mode.upper()]
-        efficiency = value if fault == FaultMode.DEGRADED else 0.0
-        angle = value if fault == FaultMode.STUCK else 0.0
         try:
-            self.allocator.set_fault(actuator, fault, efficiency=efficiency, angle=angle)
+            return set_fault(self.allocator, actuator, fault, *fault_request(fault, value))
         except ValueError as error:
             raise SimulationError(f"set_actuator_fault refused: {error}") from error
-        return f"{actuator}: {fault.name} from the next sample"
 
     def set_group_fault(self, group: str) -> str:
         try:
@@ -192,6 +194,7 @@ class InProcessLink:
             raise SimulationError(f"parameter {name} refused: {error}") from error
         self.allocator.reconfigure(vehicle)
         self.settings, self.parameters = settings, candidate
+        self.watchdog.timeout = settings.wrench_timeout
         return f"{name} = {value}"
 
 

@@ -6,7 +6,10 @@ LP, section 5.3):
 
 Between solves only values change: row bounds (``low`` and ``up``, filled in by the caller),
 column bounds, and single coefficients of A (sent only when they differ from the value HiGHS
-has)."""
+has).
+
+:func:`solve_linear_programme` solves one programme once, given as inequality rows, equality
+rows and column bounds (with HiGHS's presolve: nothing is kept for a next solve)."""
 
 from __future__ import annotations
 
@@ -21,11 +24,12 @@ from .outcome import Outcome, Solution
 class LinearProgram:
     """One HiGHS model; :meth:`setup` gives it its structure and first values."""
 
-    def __init__(self, dual_tolerance: float | None = None) -> None:
-        """``dual_tolerance``: HiGHS's dual feasibility tolerance (None: its default)."""
+    def __init__(self, dual_tolerance: float | None = None, presolve: bool = False) -> None:
+        """``dual_tolerance``: HiGHS's dual feasibility tolerance (None: its default);
+        ``presolve``: HiGHS's presolve before each solve (off: a warm start keeps its basis)."""
         self._highs = highspy.Highs()
         self._highs.setOptionValue("output_flag", False)
-        self._highs.setOptionValue("presolve", "off")
+        self._highs.setOptionValue("presolve", "on" if presolve else "off")
         if dual_tolerance is not None:
             self._highs.setOptionValue("dual_feasibility_tolerance", dual_tolerance)
 
@@ -78,3 +82,28 @@ class LinearProgram:
                             iterations=iterations, outcome=Outcome.FAILED)
         return Solution(x=np.asarray(highs.getSolution().col_value), status="solved", iterations=iterations,
                         outcome=Outcome.SOLVED)
+
+
+def solve_linear_programme(cost: np.ndarray, bounds: list[tuple[float | None, float | None]],
+                           a_ub: np.ndarray | None = None, b_ub: np.ndarray | None = None,
+                           a_eq: np.ndarray | None = None, b_eq: np.ndarray | None = None) -> Solution:
+    """minimise cost'x subject to a_ub x <= b_ub, a_eq x = b_eq and each column's ``bounds``
+    (low, up; None: unbounded), solved once. ``outcome`` SOLVED with the optimum in ``x``,
+    else FAILED (infeasible, unbounded, or no optimum found) with ``x`` zero."""
+    columns = len(cost)
+    blocks, low, up = [], [], []
+    if a_ub is not None and len(a_ub):
+        blocks.append(np.asarray(a_ub, dtype=float).reshape(-1, columns))
+        up.append(np.asarray(b_ub, dtype=float))
+        low.append(np.full(len(up[-1]), -np.inf))
+    if a_eq is not None and len(a_eq):
+        blocks.append(np.asarray(a_eq, dtype=float).reshape(-1, columns))
+        up.append(np.asarray(b_eq, dtype=float))
+        low.append(up[-1])
+    a = sp.csc_matrix(np.vstack(blocks)) if blocks else sp.csc_matrix((0, columns))
+    column_low = np.array([-np.inf if lo is None else lo for lo, _ in bounds], dtype=float)
+    column_up = np.array([np.inf if hi is None else hi for _, hi in bounds], dtype=float)
+    programme = LinearProgram(presolve=True)
+    programme.setup(np.asarray(cost, dtype=float), column_low, column_up, a,
+                    np.concatenate(low) if low else np.zeros(0), np.concatenate(up) if up else np.zeros(0), 0.0)
+    return programme.solve()

@@ -13,6 +13,7 @@ from conftest import ROOT
 
 from allocator_pkg import METHODS, Allocator, FaultMode, load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.capability.envelope import Capability
+from allocator_pkg.effectiveness.faults import Fault
 
 # A symmetric vessel: surge thrusters at y = -+1 m, sway thrusters at x = -+1 m, +-100 N each.
 SYMMETRIC = {
@@ -70,6 +71,27 @@ def test_an_azimuth_gives_its_whole_thrust_circle_at_rest(method):
         assert math.hypot(*result.achieved[:2]) == pytest.approx(100.0, rel=1e-6)
     stuck = Capability(vehicle, method).max_force(math.pi / 2, faults={"a": FaultMode.STUCK})   # stuck at 0 rad
     assert stuck == pytest.approx(0.0, abs=1e-6)
+
+
+@pytest.mark.parametrize("method", ["qp", "lp"])
+def test_a_stuck_azimuth_gives_its_signed_thrust_along_its_line_as_the_allocator_does(method):
+    """Stuck at 0.3 rad (between the octagon's corners and the circle's), the azimuth gives its
+    whole signed thrust [-60, 100] N along its line, as the allocator gives it held there (a
+    stuck thruster's one convex piece, survey 4.2; no polygon cuts the line)."""
+    parameters = {"dofs": ["surge", "sway"], "actuators.names": ["a"], "actuators.a.type": "azimuth",
+                  "actuators.a.position": [0.0, 0.0, 0.0], "actuators.a.thrust_max": 100.0,
+                  "actuators.a.thrust_min": -60.0, "actuators.a.reversible": True, "azimuth_polygon_sides": 8}
+    vehicle = vehicle_from_parameters(parameters)
+    capability = Capability(vehicle, method)
+    for direction, expected in ((0.3, 100.0), (0.3 + math.pi, 60.0)):
+        stuck = {"a": Fault(FaultMode.STUCK, angle=0.3)}
+        assert capability.max_force(direction, faults=stuck) == pytest.approx(expected, rel=1e-9)
+        allocator = Allocator(vehicle, method=method)
+        allocator.set_fault("a", FaultMode.STUCK, angle=0.3)
+        for _ in range(80):
+            result = allocator.allocate([150.0 * math.cos(direction), 150.0 * math.sin(direction), 0, 0, 0, 0])
+        assert math.hypot(*result.achieved[:2]) == pytest.approx(expected, rel=1e-9)
+    assert capability.max_force(1.0, faults=stuck) == pytest.approx(0.0, abs=1e-6)      # off the line
 
 
 def test_forbidden_sector_removes_directions():

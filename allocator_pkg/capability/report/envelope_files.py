@@ -12,6 +12,7 @@ import numpy as np
 
 from ...effectiveness.faults import FaultMode
 from ..envelope import FORCE_DOFS, Capability, Envelope
+from .plotting import pyplot
 
 
 def write_csv(path: Path, plane: tuple[str, str], cases: dict[str, Envelope]) -> None:
@@ -33,10 +34,7 @@ def write_csv(path: Path, plane: tuple[str, str], cases: dict[str, Envelope]) ->
 
 def plot(path: Path, title: str, plane: tuple[str, str], cases: dict[str, Envelope], polar: bool) -> None:
     """The envelopes as a PNG: polar (surge ahead, sway to starboard) or in the plane's axes."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     figure = plt.figure(figsize=(8.5, 7.5))
     axes = figure.add_subplot(projection="polar" if polar else None)

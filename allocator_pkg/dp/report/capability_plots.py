@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...capability.report.plotting import pyplot
 from ..capability_result import INTACT, NOT_YET, NOT_YET_L2, WORST, CapabilityResult
 from ..level1 import Level1
 from .tables import groups_of, worst_groups
@@ -66,7 +67,7 @@ def polar_plot(path: Path, *args, **kwargs) -> None:
     """:func:`polar_figure` written to ``path``."""
     figure = polar_figure(*args, **kwargs)
     figure.savefig(path, dpi=100)
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     plt.close(figure)
 
@@ -74,10 +75,7 @@ def polar_plot(path: Path, *args, **kwargs) -> None:
 def polar_figure(result: CapabilityResult, title: str, caption: str, wind: bool, cases: list[str], outline: Outline,
                  failed: tuple[str, ...] = (), mark_worst: bool = False):
     """One polar figure of ``cases`` (keys of the result); ``caption`` says what it shows."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     values = result.wind_limits if wind else result.numbers
     colours = group_colours(result)
@@ -120,7 +118,7 @@ def polar_figure(result: CapabilityResult, title: str, caption: str, wind: bool,
 def comparison_plot(path: Path, level1: CapabilityResult, level2: CapabilityResult, title: str, wind: bool,
                     outline: Outline) -> None:
     """Level 1 and Level 2, intact and worst single failure, on one polar figure."""
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     figure = polar_figure(level2, title, f"Level 1 ({level1.summary_line()}) against Level 2", wind,
                           [INTACT, WORST], outline)

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...capability.report.plotting import pyplot
 from ..capability_result import INTACT, WORST, CapabilityResult
 from ..level1 import MAX_STEP_DEG
 from ..level3.case import CaseResult
@@ -109,7 +110,7 @@ def levels_plot(path: Path, results: tuple[CapabilityResult, CapabilityResult, C
                 wind: bool,
                 outline: Outline, criteria: str) -> None:
     """Level 1, 2 and 3, intact and worst single failure, on one polar figure."""
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     level1, level2, level3 = results
     figure = polar_figure(level3, title, f"Level 1, 2 and 3 ({criteria})", wind, [INTACT, WORST], outline)
@@ -144,11 +145,9 @@ CASE_COLOURS = ("tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown"
 def footprints(path: Path, prepared: Level3Study, result: CapabilityResult, finished: dict[tuple, CaseResult],
                title: str) -> None:
     """:func:`footprints_figure` written to ``path``."""
-    import matplotlib.pyplot as plt
-
     figure = footprints_figure(prepared, result, finished, title)
     figure.savefig(path, dpi=90)
-    plt.close(figure)
+    pyplot().close(figure)
 
 
 def footprints_figure(prepared: Level3Study, result: CapabilityResult, finished: dict[tuple, CaseResult], title: str):
@@ -158,12 +157,10 @@ def footprints_figure(prepared: Level3Study, result: CapabilityResult, finished:
     panels, each case's number in the panel's title, one legend under the panels."""
     import textwrap
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
     from matplotlib.ticker import MaxNLocator
+
+    plt = pyplot()
 
     search, limit = prepared.search, prepared.setup.criteria.position_limit
     view = FOOTPRINT_VIEW * limit

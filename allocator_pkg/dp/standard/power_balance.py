@@ -149,7 +149,7 @@ class PoweredCapability(Capability):
         Within :meth:`attains`, the programme without the power rows where it decides the answer."""
         if self._enough is not None and not np.any(b_eq):
             plain = super()._programme(cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces)
-            if plain.status != 0 or plain.x[-1] < self._enough or self._within(
+            if not plain.usable or plain.x[-1] < self._enough or self._within(
                     plain.x[:-1] * (self._enough / plain.x[-1]), pieces):
                 return plain
         base, extra = len(cost), 2 * len(self.limits.thrusters)
@@ -162,7 +162,7 @@ class PoweredCapability(Capability):
         result = super()._programme(np.concatenate([cost, np.zeros(extra)]), list(a_all), [*b_ub, *right],
                                     np.hstack([a_eq, np.zeros((a_eq.shape[0], extra))]), b_eq,
                                     [*bounds, *[(0.0, None)] * extra], pieces)
-        if result.status == 0:
+        if result.usable:
             result.x = result.x[:base]
         return result
 

@@ -14,13 +14,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ...capability.report.plotting import pyplot
 from ..metrics import METRIC_UNITS
 from ..run_report import report_checks
 from ..run_setup import RunResult
 from ..scenario import Scenario
 from ..verdict import RUN
 from .footprint import footprint_figure, mark_setpoints, offsets, origin_of
-from .style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, pyplot, shade_faults
+from .style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, shade_faults
 from .timeline import timeline_figure
 
 METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),

@@ -10,9 +10,10 @@ import math
 
 import numpy as np
 
+from ...capability.report.plotting import pyplot
 from ..run_setup import RunResult
 from ..scenario import Scenario
-from .style import FAULT_COLOUR, NOMINAL, NOMINAL_LABEL, pyplot
+from .style import FAULT_COLOUR, NOMINAL, NOMINAL_LABEL
 
 ARROWS = 12
 """About how many heading arrows a track gets."""

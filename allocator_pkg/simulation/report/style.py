@@ -1,7 +1,7 @@
-"""What the figures of ``allocator-sim`` share: matplotlib without a display, one colour and line
-style per actuator, the scenario's events as labelled vertical lines, the fault intervals
-shaded, views and units fitted to the data (a limit far beyond it named, not drawn), legends
-beside the axes, and the nominal run's style."""
+"""What the figures of ``allocator-sim`` share: one colour and line style per actuator, the
+scenario's events as labelled vertical lines, the fault intervals shaded, views and units fitted
+to the data (a limit far beyond it named, not drawn), legends beside the axes, and the nominal
+run's style (matplotlib itself from :func:`allocator_pkg.capability.report.plotting.pyplot`)."""
 
 from __future__ import annotations
 
@@ -27,15 +27,6 @@ NOMINAL_LABEL = "nominal run: same seed, no failure"
 EVENT_COLOURS = {"fault": FAULT_COLOUR, "group_fault": FAULT_COLOUR, "clear_faults": "tab:green"}
 LABEL_SIZE = 8
 """[pt] of the events' labels."""
-
-
-def pyplot() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def actuator_style(index: int) -> dict[str, Any]:

@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from ...capability.report.plotting import pyplot
 from ...effectiveness.faults import thrust_limits
 from ...vehicle.config import Vehicle
 from ..metrics import heading_errors
@@ -33,7 +34,6 @@ from .style import (
     legend_beside,
     mark_events,
     overlaid,
-    pyplot,
     scale,
     shade_faults,
 )

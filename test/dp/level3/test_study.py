@@ -180,10 +180,10 @@ def test_the_footprints_share_one_scale_about_the_limit_with_labelled_axes_and_n
 
     import numpy as np
 
+    from allocator_pkg.capability.report.plotting import pyplot
     from allocator_pkg.dp.level3.case import Criteria
     from allocator_pkg.dp.level3.study import Level3Inputs, study
     from allocator_pkg.dp.report.level3_report import footprints_figure
-    from allocator_pkg.simulation.report.style import pyplot
 
     shutil.copy(uninterrupted / JOURNAL, tmp_path / JOURNAL)
     inputs = Level3Inputs(*map(ROOT.joinpath, ("config/dp_vessel.yaml", "config/particulars/dp_vessel.yaml")),

@@ -33,7 +33,7 @@ def test_the_report_solves_nothing_and_reads_no_file(computed, tmp_path, monkeyp
     def refused(*_, **__):
         raise AssertionError("the report writer solved a linear programme or read a file")
 
-    monkeypatch.setattr(envelope, "linprog", refused)
+    monkeypatch.setattr(envelope, "solve_linear_programme", refused)
     monkeypatch.setattr(Path, "read_text", refused)
     for analysis, result in levels:
         paths = write_report(tmp_path, files, analysis, result)

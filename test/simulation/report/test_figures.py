@@ -15,6 +15,7 @@ from matplotlib.colors import to_rgba
 from matplotlib.patches import Circle
 from matplotlib.quiver import Quiver
 
+from allocator_pkg.capability.report.plotting import pyplot
 from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.effectiveness.faults import thrust_limits
 from allocator_pkg.simulation.report import figures as sim_plots
@@ -27,7 +28,6 @@ from allocator_pkg.simulation.report.style import (
     actuator_style,
     event_label,
     overlaid,
-    pyplot,
     scale,
 )
 from allocator_pkg.simulation.report.timeline import POWER_LABEL, thrust_limits_over_time, timeline_figure
