@@ -68,9 +68,9 @@ class VesselParticulars:
     draught: float
     wind_area_frontal: float
     wind_area_lateral: float
-    wind_centre_x: float = 0.0
+    wind_centre_x: float
     """x of the centre of the lateral wind area."""
-    underwater_centre_x: float = 0.0
+    underwater_centre_x: float
     """x of the centre of the lateral underwater area (current and waves)."""
     coefficients: LoadCoefficients = field(default_factory=LoadCoefficients)
 
