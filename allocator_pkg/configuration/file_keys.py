@@ -50,6 +50,8 @@ class FileKey:
     range_doc: str = ""
     keys: tuple[FileKey, ...] = ()
     item: str = ""
+    list_keys: bool = True
+    """False: the docs' table names this key only, not each of its ``keys`` (one per metric, say)."""
 
     def holds(self, value: float) -> bool:
         """Whether the number ``value`` is within this key's bounds."""
@@ -146,6 +148,8 @@ def _flattened(keys: Sequence[FileKey], prefix: str) -> Iterator[tuple[str, File
     for key in keys:
         path = prefix + key.name
         yield path, key
+        if not key.list_keys:
+            continue
         inner = f"{path}[]." if key.item == EACH else f"{path}.{key.item}." if key.item else f"{path}."
         yield from _flattened(key.keys, inner)
 
