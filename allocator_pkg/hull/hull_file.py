@@ -6,18 +6,12 @@ Other keys of the file are the DP analysis' and are not read here."""
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import MISSING, fields
 from pathlib import Path
 from typing import Any
 
 from ..configuration.file_keys import MAPPING, NUMBER, FileKey, check_keys, check_required, finite_number
 from ..configuration.yaml_file import read_mapping
-from .environment_loads import LoadCoefficients, VesselParticulars
-
-COEFFICIENT_KEYS = tuple(
-    FileKey(f.name, NUMBER, "a load coefficient of the simulation's load model (environment_loads.py)",
-            default=f.default, minimum=0.0) for f in fields(LoadCoefficients) if f.default is not MISSING)
-"""The ``coefficients`` of a particulars file: the fields of :class:`LoadCoefficients`, with its defaults."""
+from .environment_loads import COEFFICIENT_KEYS, LoadCoefficients, VesselParticulars
 
 HULL_KEYS = (
     FileKey("lpp", NUMBER, "Lpp", required=True, unit="m", minimum=0.0, exclusive_minimum=True),
