@@ -24,7 +24,7 @@ from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec
 from .scenario_check import check_member, check_method_serves, check_parameter, check_vehicle, unknown_keys
-from .scenario_keys import EVENT_KEYS, FAULT_MODES, MODELS
+from .scenario_keys import EVENT_KEYS, FAULT_MODES, MODELS, scenario_default
 from .scenario_values import (
     ScenarioError,
     environment,
@@ -87,7 +87,7 @@ class Scenario:
     windows: tuple[Window, ...] = ()
     """The named windows of the file (the automatic ones: :meth:`all_windows`)."""
     description: str = ""
-    position_limit: float = 5.0
+    position_limit: float = scenario_default("position_limit")
     """[m] The vessel has lost its position once its position error exceeds this."""
 
     @property

@@ -5,6 +5,9 @@
 
 from __future__ import annotations
 
+import re
+from typing import Any
+
 from ..configuration.file_keys import (
     BOOLEAN,
     EACH,
@@ -135,3 +138,22 @@ SCENARIO_KEYS = (
                   WINDOW_BOUNDS), item=EACH),
 )
 """Every key of a scenario file, nested as the file nests them."""
+
+
+def scenario_key(path: str) -> FileKey | None:
+    """The key of :data:`SCENARIO_KEYS` at ``path`` (``events[2].fault.value``), or None."""
+    keys, found = SCENARIO_KEYS, None
+    for name in re.sub(r"\[\d+\]", "", path).split("."):
+        found = next((key for key in keys if key.name == name), None)
+        if found is None:
+            return None
+        keys = found.keys
+    return found
+
+
+def scenario_default(path: str) -> Any:
+    """The default of the key of :data:`SCENARIO_KEYS` at ``path``."""
+    key = scenario_key(path)
+    if key is None:
+        raise KeyError(path)
+    return key.default

@@ -11,7 +11,7 @@ from typing import Any
 from ..configuration.file_keys import FileKey
 from .environment import EnvironmentSpec, SlowVariation
 from .metrics import BOUNDED_METRICS
-from .scenario_keys import SCENARIO_KEYS
+from .scenario_keys import scenario_key
 from .setpoint import SetpointTarget
 from .windows import Window
 
@@ -21,17 +21,6 @@ DECLARED: Any = object()
 
 class ScenarioError(ValueError):
     pass
-
-
-def scenario_key(path: str) -> FileKey | None:
-    """The key of :data:`SCENARIO_KEYS` at ``path`` (``events[2].fault.value``), or None."""
-    keys, found = SCENARIO_KEYS, None
-    for name in re.sub(r"\[\d+\]", "", path).split("."):
-        found = next((key for key in keys if key.name == name), None)
-        if found is None:
-            return None
-        keys = found.keys
-    return found
 
 
 def number(data: dict, key: str, where: str, default: Any = DECLARED, minimum: Any = DECLARED) -> float:

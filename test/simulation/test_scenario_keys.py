@@ -3,8 +3,7 @@
 from conftest import ROOT
 
 from allocator_pkg.configuration.file_keys import markdown_table
-from allocator_pkg.simulation.scenario_keys import SCENARIO_KEYS
-from allocator_pkg.simulation.scenario_values import scenario_key
+from allocator_pkg.simulation.scenario_keys import SCENARIO_KEYS, scenario_key
 
 
 def test_closed_loop_doc_lists_the_scenario_keys():
