@@ -29,7 +29,7 @@ help:
 	@echo "make sim     every scenario in config/scenarios/ under SIM_METHODS, side by side, into build/sim/"
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
-	@echo "make docs    regenerate docs/configuration.md (schema), docs/faults.md, docs/thrust_markers.png, docs/priorities.png"
+	@echo "make docs    regenerate docs/configuration.md (schema), the file key tables of docs/closed_loop.md and docs/dp_capability.md, docs/faults.md, docs/thrust_markers.png, docs/priorities.png"
 	@echo "make capability  capability plots of every shipped vehicle (and of each method that differs) into docs/capability/"
 	@echo "make dp-capability  DNV-ST-0111 Level 1 DP capability of every vessel in config/particulars/, Level 2 of dp_vessel, into docs/dp_capability/"
 	@echo "make bench   solver and node benchmarks into bench/results/latest.json and docs/performance.md"

@@ -26,11 +26,12 @@ from pathlib import Path
 from ..allocation.allocator import Allocator
 from ..capability.envelope import Capability, differing_methods, reachable
 from ..capability.report.envelope_files import write_envelopes
+from ..configuration.file_keys import key_named
 from ..configuration.parameters import load_vehicle
 from ..dp.capability_result import CapabilityResult
 from ..dp.level1 import Level1
 from ..dp.level2 import Level2
-from ..dp.level3.case import Criteria
+from ..dp.level3.case import CRITERIA_KEYS, Criteria
 from ..dp.level3.engine import CaseLost, Interrupted
 from ..dp.level3.study import BASE_SCENARIO, JOURNAL, Level3Inputs, study
 from ..dp.report.files import write_report
@@ -41,6 +42,9 @@ from ..vehicle.config import DOF_NAMES
 
 INTERRUPTED = 130
 """The exit status of a run stopped by SIGINT (128 + the signal's number, as a shell gives)."""
+CRITERIA_OPTIONS = (("--position-limit", "position_limit"), ("--heading-limit", "heading_limit_deg"),
+                    ("--settle", "settle"), ("--duration", "duration"))
+"""The options of the Level 3 criteria, each a key of :data:`CRITERIA_KEYS` (its default, unit and text)."""
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -100,7 +104,6 @@ def main(argv: list[str] | None = None) -> int:
 
 def add_level3_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``--dnv-level3`` on the ``allocator-capability`` parser."""
-    defaults = Criteria()
     parser.add_argument("--dnv-level3", nargs=2, metavar=("VESSEL", "PARTICULARS"),
                         help="DNV-ST-0111 Level 3 as read here: seeded closed-loop time-domain runs per heading, "
                              "condition and redundancy group (<vehicle>_dp_l3..., cases.jsonl)")
@@ -111,14 +114,10 @@ def add_level3_arguments(parser: argparse.ArgumentParser) -> None:
                         help="--dnv-level3: run the cases on the Dask distributed scheduler at ADDRESS")
     parser.add_argument("--resume", action="store_true",
                         help="--dnv-level3: keep the finished cases of DIR/cases.jsonl and run only the rest")
-    parser.add_argument("--position-limit", type=float, default=defaults.position_limit,
-                        help="--dnv-level3: largest position excursion held [m] (default %(default)s)")
-    parser.add_argument("--heading-limit", type=float, default=defaults.heading_limit_deg,
-                        help="--dnv-level3: largest heading deviation held [deg] (default %(default)s)")
-    parser.add_argument("--settle", type=float, default=defaults.settle,
-                        help="--dnv-level3: seconds on station before a group fails (default %(default)s)")
-    parser.add_argument("--duration", type=float, default=defaults.duration,
-                        help="--dnv-level3: seconds simulated after settling (default %(default)s)")
+    for option, name in CRITERIA_OPTIONS:
+        key = key_named(CRITERIA_KEYS, name)
+        parser.add_argument(option, type=float, default=key.default,
+                            help=f"--dnv-level3: {key.text} [{key.unit}] (default %(default)s)")
     parser.add_argument("--scenario", type=Path, default=BASE_SCENARIO,
                         help="--dnv-level3: the dp_vessel scenario giving controller gains, thruster time constant "
                              "and the environment's variations (default config/scenarios/dp_station_keeping.yaml)")

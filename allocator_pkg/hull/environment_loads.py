@@ -12,8 +12,8 @@ Every load is a drag-like force with a constant coefficient over a reference are
 current) or a reflecting length (wave drift), resolved along the body axes with cos and sin
 of the direction; the yaw moment is the side force times a lever that moves from the centre of
 the lateral area toward the end facing the flow (:func:`lever`). The coefficients are the
-fields of :class:`LoadCoefficients`, each with its default and where it comes from in
-``docs/dp_capability.md``.
+fields of :class:`LoadCoefficients` (:data:`COEFFICIENT_KEYS`), each with its default and where it
+comes from in ``docs/dp_capability.md``.
 """
 
 from __future__ import annotations
@@ -23,6 +23,8 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
+from ..configuration.file_keys import NUMBER, FileKey, key_named
+
 RHO_AIR = 1.226
 """Air density [kg/m^3]."""
 RHO_WATER = 1026.0
@@ -31,25 +33,35 @@ GRAVITY = 9.81
 """[m/s^2]."""
 
 
+COEFFICIENT_KEYS = (
+    FileKey("wind_surge", NUMBER, "head-on wind drag over the frontal wind area", default=0.7, minimum=0.0),
+    FileKey("wind_sway", NUMBER, "beam wind drag over the lateral wind area", default=0.9, minimum=0.0),
+    FileKey("current_surge", NUMBER, "head-on current drag over beam x draught", default=0.6, minimum=0.0),
+    FileKey("current_sway", NUMBER, "beam current drag over length x draught (two-dimensional cross-flow drag of "
+            "a hull section)", default=0.7, minimum=0.0),
+    FileKey("drift_surge", NUMBER, "fraction of a flat wall's wave drift the bow gives, over the beam", default=0.5,
+            minimum=0.0),
+    FileKey("drift_sway", NUMBER, "fraction of a flat wall's wave drift the side gives, over the length",
+            default=1.0, minimum=0.0),
+    FileKey("lever_shift", NUMBER, "how far [fraction of Lpp] the centre of a side load moves toward the end "
+            "facing the flow when the flow comes along the hull (a flat plate's quarter chord); none for beam flow",
+            default=0.25, minimum=0.0),
+)
+"""The ``coefficients`` of a particulars file, the fields of :class:`LoadCoefficients`."""
+
+
 @dataclass(frozen=True)
 class LoadCoefficients:
-    """Dimensionless load coefficients (the defaults are stated assumptions, see the docs)."""
+    """Dimensionless load coefficients, each a key of :data:`COEFFICIENT_KEYS` with its default
+    (stated assumptions, see the docs)."""
 
-    wind_surge: float = 0.7
-    """Head-on wind drag over the frontal wind area."""
-    wind_sway: float = 0.9
-    """Beam wind drag over the lateral wind area."""
-    current_surge: float = 0.6
-    """Head-on current drag over beam x draught."""
-    current_sway: float = 0.7
-    """Beam current drag over length x draught (two-dimensional cross-flow drag of a hull section)."""
-    drift_surge: float = 0.5
-    """Fraction of a flat wall's wave drift the bow gives, over the beam."""
-    drift_sway: float = 1.0
-    """Fraction of a flat wall's wave drift the side gives, over the length."""
-    lever_shift: float = 0.25
-    """How far [fraction of Lpp] the centre of a side load moves toward the end facing the flow
-    when the flow comes along the hull (a flat plate's quarter chord); none for beam flow."""
+    wind_surge: float = key_named(COEFFICIENT_KEYS, "wind_surge").default
+    wind_sway: float = key_named(COEFFICIENT_KEYS, "wind_sway").default
+    current_surge: float = key_named(COEFFICIENT_KEYS, "current_surge").default
+    current_sway: float = key_named(COEFFICIENT_KEYS, "current_sway").default
+    drift_surge: float = key_named(COEFFICIENT_KEYS, "drift_surge").default
+    drift_sway: float = key_named(COEFFICIENT_KEYS, "drift_sway").default
+    lever_shift: float = key_named(COEFFICIENT_KEYS, "lever_shift").default
 
     def __post_init__(self) -> None:
         for item in fields(self):
@@ -68,9 +80,9 @@ class VesselParticulars:
     draught: float
     wind_area_frontal: float
     wind_area_lateral: float
-    wind_centre_x: float = 0.0
+    wind_centre_x: float
     """x of the centre of the lateral wind area."""
-    underwater_centre_x: float = 0.0
+    underwater_centre_x: float
     """x of the centre of the lateral underwater area (current and waves)."""
     coefficients: LoadCoefficients = field(default_factory=LoadCoefficients)
 

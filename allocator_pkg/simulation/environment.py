@@ -21,14 +21,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..hull.environment_loads import VesselParticulars, wave_drift_load, wind_load
+from .scenario_keys import scenario_default
 
 
 @dataclass(frozen=True)
 class SlowVariation:
     """sigma (stationary standard deviation) and T [s] (correlation time) of a Gauss-Markov process."""
 
-    sigma: float = 0.0
-    time_constant: float = 60.0
+    sigma: float = scenario_default("environment.current.speed_sigma")
+    time_constant: float = scenario_default("environment.current.time_constant")
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.sigma) and self.sigma >= 0.0):
@@ -53,20 +54,21 @@ class GaussMarkov:
 
 @dataclass(frozen=True)
 class EnvironmentSpec:
-    """Mean values and variations of a scenario's environment (speeds [m/s], directions [deg])."""
+    """Mean values and variations of a scenario's environment (speeds [m/s], directions [deg]);
+    the defaults of a scenario file's ``environment`` keys."""
 
-    current_speed: float = 0.0
-    current_direction: float = 0.0
+    current_speed: float = scenario_default("environment.current.speed")
+    current_direction: float = scenario_default("environment.current.direction")
     current_speed_variation: SlowVariation = SlowVariation()
     current_direction_variation: SlowVariation = SlowVariation()
-    current_down: float = 0.0
+    current_down: float = scenario_default("environment.current.down")
     """Vertical current [m/s] (ROV)."""
-    wind_speed: float = 0.0
-    wind_direction: float = 0.0
+    wind_speed: float = scenario_default("environment.wind.speed")
+    wind_direction: float = scenario_default("environment.wind.direction")
     gusts: SlowVariation = SlowVariation()
-    wave_height: float = 0.0
-    wave_period: float = 8.0
-    wave_direction: float = 0.0
+    wave_height: float = scenario_default("environment.waves.hs")
+    wave_period: float = scenario_default("environment.waves.peak_period")
+    wave_direction: float = scenario_default("environment.waves.direction")
     drift_variation: SlowVariation = SlowVariation()
 
 

@@ -14,10 +14,9 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from ..configuration.parameters import vehicle_from_parameters
 from ..configuration.params_file import read_parameters
+from ..configuration.yaml_file import read_mapping
 from ..effectiveness.faults import FaultMode, FaultSet
 from ..hull.environment_loads import VesselParticulars
 from ..hull.hull_file import load_hull
@@ -25,6 +24,7 @@ from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec
 from .scenario_check import check_member, check_method_serves, check_parameter, check_vehicle, unknown_keys
+from .scenario_keys import EVENT_KEYS, FAULT_MODES, MODELS, scenario_default
 from .scenario_values import (
     ScenarioError,
     environment,
@@ -38,10 +38,7 @@ from .scenario_values import (
 from .setpoint import SetpointSchedule
 from .windows import Window, fault_windows
 
-MODELS = ("dp_vessel", "bluerov2_heavy")
-FAULT_MODES = ("failed", "stuck", "degraded")
-EVENT_KINDS = ("fault", "clear_faults", "battery_ramp", "parameter", "setpoint", "group_fault", "power",
-               "weather_ramp")
+EVENT_KINDS = tuple(key.name for key in EVENT_KEYS[1:])
 
 
 @dataclass(frozen=True)
@@ -90,7 +87,7 @@ class Scenario:
     windows: tuple[Window, ...] = ()
     """The named windows of the file (the automatic ones: :meth:`all_windows`)."""
     description: str = ""
-    position_limit: float = 5.0
+    position_limit: float = scenario_default("position_limit")
     """[m] The vessel has lost its position once its position error exceeds this."""
 
     @property
@@ -140,7 +137,7 @@ def _event(data: Any, index: int) -> Event:
     where = f"events[{index}]."
     if not isinstance(data, dict):
         raise ScenarioError(f"events[{index}]: a mapping, not {data!r}")
-    time = number(data, "time", where, minimum=0.0)
+    time = number(data, "time", where)
     kinds = [k for k in EVENT_KINDS if k in data]
     if len(kinds) != 1:
         raise ScenarioError(f"{where[:-1]}: exactly one of {', '.join(EVENT_KINDS)}")
@@ -159,11 +156,11 @@ def _event(data: Any, index: int) -> Event:
             raise ScenarioError(f"{where}fault.actuator: an actuator name, not {body.get('actuator')!r}")
         if mode == "degraded" and "value" not in body:
             raise ScenarioError(f"{where}fault.value: required for degraded, the share of force left in (0, 1]")
-        value = None if mode == "stuck" and "value" not in body else number(body, "value", where + "fault.", 0.0)
+        value = None if mode == "stuck" and "value" not in body else number(body, "value", where + "fault.")
         return Event(time, kind, actuator=body["actuator"], mode=mode, value=value)
     if kind in ("battery_ramp", "weather_ramp"):
-        return Event(time, kind, value=number(body, "to", f"{where}{kind}.", minimum=0.0),
-                     duration=number(body, "duration", f"{where}{kind}.", 0.0, 0.0))
+        return Event(time, kind, value=number(body, "to", f"{where}{kind}."),
+                     duration=number(body, "duration", f"{where}{kind}."))
     if kind == "group_fault":
         if not isinstance(body.get("group"), str):
             raise ScenarioError(f"{where}group_fault.group: a redundancy group's name, not {body.get('group')!r}")
@@ -171,7 +168,7 @@ def _event(data: Any, index: int) -> Event:
     if kind == "power":
         if not isinstance(body.get("source"), str):
             raise ScenarioError(f"{where}power.source: a power source's name, not {body.get('source')!r}")
-        return Event(time, kind, name=body["source"], value=number(body, "available", where + "power.", minimum=0.0))
+        return Event(time, kind, name=body["source"], value=number(body, "available", where + "power."))
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
@@ -210,11 +207,9 @@ def load_scenario(path: str | Path) -> Scenario:
     """Read and check a scenario file."""
     path = Path(path)
     try:
-        data = yaml.safe_load(path.read_text())
-    except (OSError, yaml.YAMLError) as error:
-        raise ScenarioError(f"{path}: {error}") from error
-    if not isinstance(data, dict):
-        raise ScenarioError(f"{path}: a mapping of scenario keys")
+        data = read_mapping(path, "a scenario file")
+    except ValueError as error:
+        raise ScenarioError(str(error)) from error
     unknown = unknown_keys(data)
     if unknown:
         raise ScenarioError("; ".join(unknown))
@@ -245,8 +240,8 @@ def load_scenario(path: str | Path) -> Scenario:
         except ValueError as error:
             raise ScenarioError(f"particulars: {error}") from error
     setpoint, initial = section(data, "setpoint"), section(data, "initial")
-    position = vector(setpoint, "position", "setpoint.", 3, [0.0, 0.0, 0.0])
-    heading = number(setpoint, "heading", "setpoint.", 0.0)
+    position = vector(setpoint, "position", "setpoint.", 3)
+    heading = number(setpoint, "heading", "setpoint.")
     controller = section(data, "controller")
     try:
         gains = Gains(**{k: tuple(controller.get(k, ())) for k in ("kp", "kd", "ki", "unallocated_threshold")})
@@ -254,7 +249,7 @@ def load_scenario(path: str | Path) -> Scenario:
         raise ScenarioError(str(error)) from error
     if len(gains.kp) != (3 if model == "dp_vessel" else 6):
         raise ScenarioError(f"controller.kp: {3 if model == 'dp_vessel' else 6} values for {model}")
-    duration = number(data, "duration", "", minimum=1e-3)
+    duration = number(data, "duration", "")
     named = read_windows(data.get("windows", []) or [], duration)
     battery = section(data, "battery")
     events = data.get("events", []) or []
@@ -272,15 +267,15 @@ def load_scenario(path: str | Path) -> Scenario:
                 raise ScenarioError(f"events[{index}].parameter: the allocator refuses it: {error}") from error
     return Scenario(
         name=str(data.get("name", path.stem)), path=path, vehicle=vehicle, model=model, method=data["method"],
-        duration=duration, seed=int(number(data, "seed", "", 0.0, 0.0)),
-        thruster_time_constant=number(data, "thruster_time_constant", "", 1.0, 1e-6),
+        duration=duration, seed=int(number(data, "seed", "")),
+        thruster_time_constant=number(data, "thruster_time_constant", ""),
         setpoint_position=position, setpoint_heading=math.radians(heading),
         initial_position=vector(initial, "position", "initial.", 3, list(position)),
         initial_heading=math.radians(number(initial, "heading", "initial.", heading)),
         gains=gains, environment=environment(section(data, "environment")), particulars=particulars,
-        parameters=dict(parameters), voltage=number(battery, "voltage", "battery.", minimum=0.0) if battery else None,
+        parameters=dict(parameters), voltage=number(battery, "voltage", "battery.") if battery else None,
         events=tuple(sorted(checked, key=lambda e: e.time)),
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
         description=str(data.get("description", "")),
-        position_limit=number(data, "position_limit", "", 5.0, 1e-6))
+        position_limit=number(data, "position_limit", ""))
 

@@ -6,49 +6,15 @@ run starts."""
 from __future__ import annotations
 
 import difflib
+from collections.abc import Sequence
 from typing import Any
 
 from ..allocation.solve import check_method
+from ..configuration.file_keys import EACH, FileKey
 from ..configuration.schema import key_for
 from ..methods import METHODS
 from ..vehicle.config import Vehicle
-from .metrics import BOUNDED_METRICS
-
-ANY = None
-"""A key whose value is a free mapping (node parameters, checked against the schema instead)."""
-
-ENVIRONMENT_KEYS = {
-    "current": {"speed": {}, "direction": {}, "speed_sigma": {}, "direction_sigma": {}, "time_constant": {},
-                "down": {}},
-    "wind": {"speed": {}, "direction": {}, "gust_sigma": {}, "gust_time_constant": {}},
-    "waves": {"hs": {}, "peak_period": {}, "direction": {}, "drift_sigma": {}, "drift_time_constant": {}},
-}
-EVENT_KEYS = {
-    "time": {},
-    "fault": {"actuator": {}, "mode": {}, "value": {}},
-    "clear_faults": {},
-    "battery_ramp": {"to": {}, "duration": {}},
-    "parameter": {"name": {}, "value": {}},
-    "setpoint": {"position": {}, "heading": {}, "speed": {}, "heading_rate": {}},
-    "group_fault": {"group": {}},
-    "power": {"source": {}, "available": {}},
-    "weather_ramp": {"to": {}, "duration": {}},
-}
-BOUND_KEYS = {name: {} for name in BOUNDED_METRICS}
-SCENARIO_KEYS: dict[str, Any] = {
-    "name": {}, "description": {}, "model": {}, "vehicle": {}, "particulars": {}, "method": {}, "duration": {},
-    "seed": {}, "thruster_time_constant": {}, "position_limit": {},
-    "setpoint": {"position": {}, "heading": {}},
-    "initial": {"position": {}, "heading": {}},
-    "controller": {"kp": {}, "kd": {}, "ki": {}, "unallocated_threshold": {}},
-    "environment": ENVIRONMENT_KEYS,
-    "parameters": ANY,
-    "battery": {"voltage": {}},
-    "events": [EVENT_KEYS],
-    "bounds": BOUND_KEYS,
-    "windows": [{"name": {}, "start": {}, "end": {}, "bounds": BOUND_KEYS}],
-}
-"""Every key of a scenario file, nested as the file nests them; a list holds the keys of each item."""
+from .scenario_keys import SCENARIO_KEYS
 
 MODEL_DOFS = {"dp_vessel": ("surge", "sway", "yaw"), "bluerov2_heavy": ("surge", "sway", "heave", "yaw")}
 """The DOFs each hull model needs its vehicle to control: the vessel moves in the horizontal
@@ -67,23 +33,25 @@ def nearest(word: str, choices: list[str]) -> str:
     return abbreviated[0] if abbreviated else ""
 
 
-def unknown_keys(data: Any, known: Any = None, where: str = "") -> list[str]:
-    """Every key of ``data`` that ``known`` (default: :data:`SCENARIO_KEYS`) does not have, at
-    any depth, each as 'path: unknown key; did you mean ...?'."""
-    known = SCENARIO_KEYS if known is None and not where else known
-    found = []
-    if isinstance(known, list) and isinstance(data, list):
-        for index, item in enumerate(data):
-            found += unknown_keys(item, known[0], f"{where}[{index}]")
-    elif isinstance(known, dict) and isinstance(data, dict):
-        for key, value in data.items():
-            path = f"{where}.{key}" if where else str(key)
-            if key not in known:
-                guess = nearest(str(key), list(known))
-                found.append(f"{path}: unknown key" + (f"; did you mean {guess}?" if guess else
-                                                        f" (known: {', '.join(known)})"))
-            elif known[key]:
-                found += unknown_keys(value, known[key], path)
+def unknown_keys(data: Any, known: Sequence[FileKey] = SCENARIO_KEYS, where: str = "") -> list[str]:
+    """Every key of ``data`` that the table ``known`` (:data:`~.scenario_keys.SCENARIO_KEYS`)
+    does not have, at any depth, each as 'path: unknown key; did you mean ...?'."""
+    found: list[str] = []
+    if not isinstance(data, dict):
+        return found
+    by_name = {key.name: key for key in known}
+    for name, value in data.items():
+        path = f"{where}.{name}" if where else str(name)
+        key = by_name.get(name)
+        if key is None:
+            guess = nearest(str(name), list(by_name))
+            found.append(f"{path}: unknown key" + (f"; did you mean {guess}?" if guess else
+                                                    f" (known: {', '.join(by_name)})"))
+        elif key.keys and key.item == EACH and isinstance(value, list):
+            for index, item in enumerate(value):
+                found += unknown_keys(item, key.keys, f"{path}[{index}]")
+        elif key.keys and key.item != EACH:
+            found += unknown_keys(value, key.keys, path)
     return found
 
 

@@ -1,6 +1,6 @@
 """Reading the values of a scenario file: numbers, vectors and mappings, each refused with
-its key (``ScenarioError``); the environment, a set-point event's target, the bounds and the
-named windows."""
+its key (``ScenarioError``), their defaults and lower bounds those of :data:`SCENARIO_KEYS`; the
+environment, a set-point event's target, the bounds and the named windows."""
 
 from __future__ import annotations
 
@@ -8,28 +8,45 @@ import math
 import re
 from typing import Any
 
+from ..configuration.file_keys import FileKey
 from .environment import EnvironmentSpec, SlowVariation
 from .metrics import BOUNDED_METRICS
+from .scenario_keys import scenario_key
 from .setpoint import SetpointTarget
 from .windows import Window
+
+DECLARED: Any = object()
+"""A default or lower bound as :data:`SCENARIO_KEYS` declares it for the key."""
 
 
 class ScenarioError(ValueError):
     pass
 
 
-def number(data: dict, key: str, where: str, default: float | None = None, minimum: float | None = None) -> float:
+def number(data: dict, key: str, where: str, default: Any = DECLARED, minimum: Any = DECLARED) -> float:
+    """``data[key]`` (or ``default``) as a finite float of at least ``minimum``; both as
+    :data:`SCENARIO_KEYS` declares them unless given (None: required, no bound)."""
+    declared = scenario_key(where + key) or FileKey(key, "", "")
+    default = declared.default if default is DECLARED else default
+    exclusive = declared.exclusive_minimum and minimum is DECLARED
+    minimum = declared.minimum if minimum is DECLARED else minimum
     value = data.get(key, default)
     if value is None:
         raise ScenarioError(f"{where}{key}: required")
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise ScenarioError(f"{where}{key}: a finite number, not {value!r}")
+    if minimum is not None and exclusive and value <= minimum:
+        raise ScenarioError(f"{where}{key}: a number > {minimum:g}, not {value!r}")
     if minimum is not None and value < minimum:
         raise ScenarioError(f"{where}{key}: at least {minimum:g}, not {value!r}")
     return float(value)
 
 
-def vector(data: dict, key: str, where: str, size: int, default: list | None = None) -> tuple[float, ...]:
+def vector(data: dict, key: str, where: str, size: int, default: Any = DECLARED) -> tuple[float, ...]:
+    """``data[key]`` (or ``default``, else :data:`SCENARIO_KEYS`' default) as ``size`` finite floats."""
+    if default is DECLARED:
+        declared = scenario_key(where + key)
+        default = list(declared.default) if declared is not None and declared.default is not None else None
     value = data.get(key, default)
     if not isinstance(value, list) or len(value) != size or not all(
             isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value):
@@ -45,23 +62,23 @@ def section(data: dict, key: str) -> dict:
 
 
 def _variation(data: dict, sigma: str, time: str, where: str) -> SlowVariation:
-    return SlowVariation(number(data, sigma, where, 0.0, 0.0), number(data, time, where, 60.0, 1e-6))
+    return SlowVariation(number(data, sigma, where), number(data, time, where))
 
 
 def environment(data: dict) -> EnvironmentSpec:
     current, wind, waves = (section(data, k) for k in ("current", "wind", "waves"))
     return EnvironmentSpec(
-        current_speed=number(current, "speed", "environment.current.", 0.0, 0.0),
-        current_direction=number(current, "direction", "environment.current.", 0.0),
+        current_speed=number(current, "speed", "environment.current."),
+        current_direction=number(current, "direction", "environment.current."),
         current_speed_variation=_variation(current, "speed_sigma", "time_constant", "environment.current."),
         current_direction_variation=_variation(current, "direction_sigma", "time_constant", "environment.current."),
-        current_down=number(current, "down", "environment.current.", 0.0),
-        wind_speed=number(wind, "speed", "environment.wind.", 0.0, 0.0),
-        wind_direction=number(wind, "direction", "environment.wind.", 0.0),
+        current_down=number(current, "down", "environment.current."),
+        wind_speed=number(wind, "speed", "environment.wind."),
+        wind_direction=number(wind, "direction", "environment.wind."),
         gusts=_variation(wind, "gust_sigma", "gust_time_constant", "environment.wind."),
-        wave_height=number(waves, "hs", "environment.waves.", 0.0, 0.0),
-        wave_period=number(waves, "peak_period", "environment.waves.", 8.0, 0.0),
-        wave_direction=number(waves, "direction", "environment.waves.", 0.0),
+        wave_height=number(waves, "hs", "environment.waves."),
+        wave_period=number(waves, "peak_period", "environment.waves."),
+        wave_direction=number(waves, "direction", "environment.waves."),
         drift_variation=_variation(waves, "drift_sigma", "drift_time_constant", "environment.waves."))
 
 
@@ -74,8 +91,8 @@ def setpoint_target(body: Any, where: str) -> SetpointTarget:
     for rate, of in (("speed", "position"), ("heading_rate", "heading")):
         if rate in body and of not in body:
             raise ScenarioError(f"{where}.{rate}: a ramp of the {of}, which the event does not change")
-        if rate in body and number(body, rate, where + ".") <= 0.0:
-            raise ScenarioError(f"{where}.{rate}: a number > 0, not {body[rate]!r}")
+        if rate in body:
+            number(body, rate, where + ".")
     return SetpointTarget(
         position=vector(body, "position", where + ".", 3) if "position" in body else None,
         heading=math.radians(number(body, "heading", where + ".")) if "heading" in body else None,
@@ -90,7 +107,7 @@ def read_bounds(data: Any, where: str) -> dict[str, float]:
     for key in data:
         if key not in BOUNDED_METRICS:
             raise ScenarioError(f"{where}.{key}: not one of {', '.join(BOUNDED_METRICS)}")
-        number(data, key, where + ".", minimum=0.0)
+        number(data, key, where + ".")
     return {key: float(value) for key, value in data.items()}
 
 
@@ -105,7 +122,7 @@ def read_windows(data: Any, duration: float) -> list[Window]:
         where = f"windows[{index}]"
         if not isinstance(item, dict) or not isinstance(item.get("name"), str) or not item["name"]:
             raise ScenarioError(f"{where}: a mapping with a name")
-        start = number(item, "start", where + ".", minimum=0.0)
+        start = number(item, "start", where + ".")
         end = number(item, "end", where + ".", duration)
         if not start < end <= duration:
             raise ScenarioError(f"{where}: start < end <= duration ({duration:g} s), not {start:g} to {end:g}")

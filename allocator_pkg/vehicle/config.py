@@ -219,10 +219,10 @@ class Vehicle:
     nominal_voltage: float | None
     explicit_regions: str
     bias: BiasSettings
+    flushing_zones: str
+    power_phase_back: bool
     power_sources: tuple[PowerSource, ...] = ()
     redundancy_groups: tuple[RedundancyGroup, ...] = ()
-    flushing_zones: str = "none"
-    power_phase_back: bool = True
 
     @property
     def priority_levels(self) -> tuple[tuple[int, ...], ...]:

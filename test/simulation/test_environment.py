@@ -10,7 +10,7 @@ from allocator_pkg.hull.environment_loads import VesselParticulars, wave_drift_l
 from allocator_pkg.simulation.environment import Environment, EnvironmentSpec, GaussMarkov, SlowVariation
 
 HULL = VesselParticulars(lpp=83.0, beam=18.0, draught=5.0, wind_area_frontal=230.0, wind_area_lateral=650.0,
-                         wind_centre_x=8.0)
+                         wind_centre_x=8.0, underwater_centre_x=0.0)
 
 
 def test_a_current_from_the_north_flows_south():

@@ -93,7 +93,8 @@ def test_vessel_surge_speed_balances_the_blended_surge_damping():
 
 def test_a_beam_current_loads_the_vessel_at_rest_as_the_capability_analysis_does():
     vessel = Vessel()
-    particulars = VesselParticulars(lpp=83.0, beam=18.0, draught=5.0, wind_area_frontal=1.0, wind_area_lateral=1.0)
+    particulars = VesselParticulars(lpp=83.0, beam=18.0, draught=5.0, wind_area_frontal=1.0, wind_area_lateral=1.0,
+                                    wind_centre_x=0.0, underwater_centre_x=0.0)
     crossflow = vessel.crossflow(1.0, 0.0)      # water from starboard at 1 m/s: the hull moves through it to starboard
     load = current_load(particulars, 1.0, math.pi / 2)
     assert crossflow[1] == pytest.approx(load[1] * 1025.0 / 1026.0, rel=1e-12)
@@ -111,7 +112,8 @@ def test_quaternion_round_trip_and_rotation_is_orthonormal():
 
 def test_a_beam_current_loads_the_hull_at_rest_with_the_analysis_drag_plus_the_linear_damping():
     vessel = Vessel()
-    particulars = VesselParticulars(lpp=83.0, beam=18.0, draught=5.0, wind_area_frontal=1.0, wind_area_lateral=1.0)
+    particulars = VesselParticulars(lpp=83.0, beam=18.0, draught=5.0, wind_area_frontal=1.0, wind_area_lateral=1.0,
+                                    wind_centre_x=0.0, underwater_centre_x=0.0)
     _, nu_dot = vessel.derivative(np.zeros(3), np.zeros(3), np.zeros(3), np.array([0.0, 0.75]))
     felt = vessel.mass @ nu_dot
     balance = current_load(particulars, 0.75, math.pi / 2)[1] * 1025.0 / 1026.0

@@ -22,7 +22,17 @@ from typing import Any
 
 import numpy as np
 
-COLUMNS = ("heading_deg", "cx", "cy", "cn")
+from ...configuration.file_keys import NUMBERS, FileKey, names
+
+COEFFICIENT_COLUMNS = (
+    FileKey("heading_deg", NUMBERS, "the headings the flow comes from (0 head on, 90 from starboard)", required=True,
+            unit="deg", range_doc="at least two, strictly increasing, in [0, 360)"),
+    FileKey("cx", NUMBERS, "Cx at each heading", required=True, range_doc="one per heading"),
+    FileKey("cy", NUMBERS, "Cy at each heading", required=True, range_doc="one per heading"),
+    FileKey("cn", NUMBERS, "Cn at each heading", required=True, range_doc="one per heading"),
+)
+"""The keys of a coefficient table, every one given."""
+COLUMNS = names(COEFFICIENT_COLUMNS)
 
 
 @dataclass(frozen=True)

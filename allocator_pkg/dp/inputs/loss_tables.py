@@ -29,9 +29,22 @@ from typing import Any
 import numpy as np
 
 from ...capability.thrust_profile import TWO_PI, ThrustProfile
+from ...configuration.file_keys import NUMBERS, FileKey, key_named, names
 from ..standard.losses import CHORD_STEP
 
-TABLE_KEYS = ("angle_deg", "factor", "speed", "speed_factor")
+LOSS_TABLE_KEYS = (
+    FileKey("angle_deg", NUMBERS, "the thrust directions of the thruster's loss table over direction (with "
+            "`factor`)", unit="deg, body frame (0 forward, 90 to starboard)",
+            range_doc="at least two, strictly increasing, spanning less than 360"),
+    FileKey("factor", NUMBERS, "the factor on the thrust limit along each direction (with `angle_deg`)",
+            minimum=0.0, maximum=1.0, range_doc="one per `angle_deg`, no two neighbours (cyclically) at 0"),
+    FileKey("speed", NUMBERS, "the current speeds of the thruster's loss table over speed (with `speed_factor`)",
+            unit="m/s", minimum=0.0, range_doc="at least two, strictly increasing"),
+    FileKey("speed_factor", NUMBERS, "the factor on both thrust limits at each current speed (with `speed`)",
+            minimum=0.0, maximum=1.0, range_doc="one per `speed`"),
+)
+"""The keys of one thruster's loss tables: ``angle_deg`` with ``factor`` and/or ``speed`` with ``speed_factor``."""
+TABLE_KEYS = names(LOSS_TABLE_KEYS)
 FACTOR_STEP = 0.02
 """The largest change of the factor between two corners of a direction table's profile (a steep
 row pair: chords nearly radial, each within about a sixth of it of the linear factor)."""
@@ -112,7 +125,7 @@ def loss_tables(data: Any, prefix: str = "level2.thrust_loss") -> dict[str, Loss
             raise ValueError(f"{key}.factor: no two neighbouring rows at 0 (a direction without thrust is a "
                              "forbidden sector of the vehicle file)")
         speeds, speed_factors = _pair(row, key, "speed", "speed_factor")
-        if speeds and speeds[0] < 0.0:
+        if speeds and not key_named(LOSS_TABLE_KEYS, "speed").holds(speeds[0]):
             raise ValueError(f"{key}.speed: at least 0 m/s")
         tables[str(name)] = LossTable(str(name), tuple(math.radians(a) for a in angles), factors, speeds,
                                       speed_factors)
@@ -146,6 +159,7 @@ def _pair(row: Mapping[str, Any], key: str, column: str, values: str) -> tuple[t
         raise ValueError(f"{key}: {column} and {values} need one value per row")
     if not all(b > a for a, b in pairwise(result[0])):
         raise ValueError(f"{key}.{column}: strictly increasing")
-    if not all(0.0 <= v <= 1.0 for v in result[1]):
-        raise ValueError(f"{key}.{values}: each in [0, 1]")
+    bounds = key_named(LOSS_TABLE_KEYS, values)
+    if not all(bounds.holds(v) for v in result[1]):
+        raise ValueError(f"{key}.{values}: each in {bounds.interval()}")
     return result[0], result[1]

@@ -1,31 +1,20 @@
 """A vessel's particulars file (YAML, not a ROS params file): the hull for the simulation's load
-model and for DNV-ST-0111 Level 1, and the actuators' Level 1 data.
+model and for DNV-ST-0111 Level 1, and the actuators' Level 1 data. Its keys, one table
+(:data:`PARTICULARS_KEYS`, lengths [m], areas [m^2], x positions in the vehicle file's body
+frame, forward positive):
 
-Keys (lengths [m], areas [m^2]; x positions in the vehicle file's body frame, forward positive):
-
-- ``lpp``, ``beam``, ``draught``, ``wind_area_frontal``, ``wind_area_lateral`` (> 0), ``wind_centre_x``
-  (centre of the lateral wind area), ``underwater_centre_x`` (centre of the lateral underwater
-  area, the standard's x_L,current), ``coefficients`` (the simulation's load model only,
-  :class:`~allocator_pkg.hull.environment_loads.LoadCoefficients`): shared by both models;
-- ``body_origin_x`` (the body origin's x forward of Lpp/2), ``body_origin_height`` (its height
-  above the keel), ``los`` and ``los_centre_x`` (the length under water and the x of its middle),
-  ``bow_angle`` [deg, 0-90] (Figure 3-2), ``waterplane_area_aft`` (A_WLaft, aft of Lpp/2),
-  ``current_area_lateral`` (A_L,current): Level 1's hull (:class:`~.dnv_loads.DnvHull`);
+- the hull keys the simulation's load model shares (:data:`~allocator_pkg.hull.hull_file.HULL_KEYS`);
+- Level 1's hull (:data:`LEVEL1_KEYS`, :class:`~..standard.loads.DnvHull`): the body origin's x
+  forward of Lpp/2 and height above the keel, the length under water and its middle, the bow
+  angle (Figure 3-2), A_WLaft and A_L,current;
 - ``thrusters``: per actuator of the vehicle file, by its name, its Table A-3 row
-  (:class:`~.dnv_thrust.ThrusterData`: ``kind``, ``diameter`` [m], ``power`` P_B [kW], ``pitch``,
-  ``ducted``, ``contra_rotating``, ``permanent_magnet``, ``tunnel_inlet``); ``diameter`` and
-  ``ducted`` may be left to the vehicle file's ``actuators.<name>.diameter`` / ``.ducted``, which
-  the analysis checks them against (:func:`with_vehicle_geometry`);
-- ``level2`` (optional): the vessel's own data for Level 2, ``wind_coefficients`` and
-  ``current_coefficients`` (:class:`~.dnv_coefficients.CoefficientTable`: ``heading_deg``,
-  ``cx``, ``cy``, ``cn``), ``site``: a site environment in place of Table 2-1
-  (:mod:`.dnv_site`), and ``thrust_loss``: per thruster, by its name, its loss tables over the
-  thrust direction and over the current speed (:mod:`.dnv_loss_tables`);
-- ``skegs`` (optional): the aft most point of each skeg or gondola, ``x`` and ``y`` [m] in the
-  body frame (Table A-2), for the skeg loss of [3.11.5] (:func:`~.dnv_losses.skegs_from_list`);
-- ``rudders`` (optional): per rudder of the vehicle file, by its name, its Table A-4 row for
-  [3.10] (:class:`~.dnv_rudders.RudderData`: ``propeller``, ``profile``, ``area`` A_r [m^2],
-  ``behind_fixed_nozzle``);
+  (:data:`~..standard.thrust.THRUSTER_KEYS`); ``diameter`` and ``ducted`` may be left to the
+  vehicle file's ``actuators.<name>.diameter`` / ``.ducted``, which the analysis checks them
+  against (:func:`with_vehicle_geometry`);
+- ``level2`` (optional, :data:`LEVEL2_KEYS`): the vessel's own coefficients, a site environment
+  in place of Table 2-1 (:mod:`.site`) and thrust-loss tables per thruster (:mod:`.loss_tables`);
+- ``skegs`` (optional, :data:`~..standard.losses.SKEG_KEYS`) for [3.11.5] and ``rudders``
+  (optional, :data:`~..standard.rudders.RUDDER_KEYS`) for [3.10];
 - ``name``. The redundancy groups are the vehicle file's (``redundancy_groups.*``, with
   ``power.*`` and each thruster's ``feeds``): a ``failure_groups`` key is refused, saying so.
 """
@@ -34,27 +23,77 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ...configuration.file_keys import (
+    EACH,
+    LIST,
+    MAPPING,
+    NUMBER,
+    TEXT,
+    FileKey,
+    check_keys,
+    finite_number,
+    key_named,
+    names,
+)
 from ...configuration.yaml_file import read_mapping
 from ...hull.environment_loads import VesselParticulars
-from ...hull.hull_file import HULL_KEYS, finite_number, hull_from_mapping
+from ...hull.hull_file import HULL_KEYS, hull_from_mapping
 from ..standard.loads import BodyFrame, DnvHull
-from ..standard.losses import Skeg, skegs_from_list
-from ..standard.rudders import RudderData, rudders_from_mapping
-from ..standard.thrust import ThrusterData
-from .coefficients import CoefficientTable, coefficient_table
-from .loss_tables import LossTable, loss_tables
-from .site import SiteEnvironment, site_from_mapping
+from ..standard.losses import SKEG_KEYS, Skeg, skegs_from_list
+from ..standard.rudders import RUDDER_KEYS, RudderData, rudders_from_mapping
+from ..standard.thrust import THRUSTER_KEYS, ThrusterData
+from .coefficients import COEFFICIENT_COLUMNS, CoefficientTable, coefficient_table
+from .loss_tables import LOSS_TABLE_KEYS, LossTable, loss_tables
+from .site import SITE_KEYS, SiteEnvironment, site_from_mapping
 
 if TYPE_CHECKING:
     from ...vehicle.config import Vehicle
 
-LEVEL1_KEYS = ("body_origin_x", "body_origin_height", "los", "los_centre_x", "bow_angle", "waterplane_area_aft",
-               "current_area_lateral")
-THRUSTER_KEYS = tuple(f.name for f in fields(ThrusterData) if f.name != "name")
+LEVEL1_KEYS = (
+    FileKey("body_origin_x", NUMBER, "the vehicle file's origin: forward of Lpp/2", required=True, unit="m",
+            range_doc="finite"),
+    FileKey("body_origin_height", NUMBER, "the vehicle file's origin: above the keel", required=True, unit="m",
+            range_doc="finite"),
+    FileKey("los", NUMBER, "Los (foremost to aftmost point under water)", required=True, unit="m",
+            minimum=0.0, exclusive_minimum=True),
+    FileKey("los_centre_x", NUMBER, "the x of the middle of Los", required=True, unit="m, body frame",
+            range_doc="finite"),
+    FileKey("bow_angle", NUMBER, "Figure 3-2", required=True, unit="deg", minimum=0.0, maximum=90.0,
+            exclusive_minimum=True, exclusive_maximum=True),
+    FileKey("waterplane_area_aft", NUMBER, "A_WLaft, aft of Lpp/2 (C_WLaft outside [0.85, 1.15] is clipped as "
+            "[3.7] says)", required=True, unit="m^2", minimum=0.0, exclusive_minimum=True),
+    FileKey("current_area_lateral", NUMBER, "A_L,current", required=True, unit="m^2", minimum=0.0,
+            exclusive_minimum=True),
+)
+"""Level 1's hull, beside the hull keys (:data:`~allocator_pkg.hull.hull_file.HULL_KEYS`)."""
+LEVEL2_KEYS = (
+    FileKey("wind_coefficients", MAPPING, "Level 2 only: the vessel's own wind coefficients over heading",
+            default_doc="[3.5]", keys=COEFFICIENT_COLUMNS),
+    FileKey("current_coefficients", MAPPING, "Level 2 only: the vessel's own current coefficients over heading",
+            default_doc="[3.6]", keys=COEFFICIENT_COLUMNS),
+    FileKey("site", MAPPING, "Level 2 only: a site environment in place of Table 2-1 (the site file's keys)",
+            default_doc="Table 2-1", keys=SITE_KEYS),
+    FileKey("thrust_loss", MAPPING, "Level 2 only: per thruster of the vehicle file, by its name, its loss tables",
+            default_doc="no loss", keys=LOSS_TABLE_KEYS, item="<thruster>"),
+)
+"""The vessel's own data for Level 2, each optional."""
+PARTICULARS_KEYS = (
+    *HULL_KEYS,
+    *LEVEL1_KEYS,
+    FileKey("thrusters", MAPPING, "per thruster of the vehicle file, by its name, its Table A-3 row; every one "
+            "needs a row", required=True, keys=THRUSTER_KEYS, item="<actuator>"),
+    FileKey("name", TEXT, "the vessel's name", default_doc="the file's name"),
+    FileKey("level2", MAPPING, "the vessel's own data for Level 2", keys=LEVEL2_KEYS),
+    FileKey("skegs", LIST, "the aft most point of each skeg or gondola (Table A-2), for [3.11.5]",
+            default_doc="none: no skeg loss", keys=SKEG_KEYS, item=EACH),
+    FileKey("rudders", MAPPING, "per control surface of the vehicle file, by its name, its Table A-4 row for "
+            "[3.10]", default_doc="none", keys=RUDDER_KEYS, item="<rudder>"),
+)
+"""Every key of a particulars file."""
 MOVED_GROUPS = ("failure_groups: the redundancy groups are in the vehicle params file: redundancy_groups.names and "
                 "redundancy_groups.<group>.actuators / .sources, with power.sources and actuators.<name>.feeds")
 
@@ -99,18 +138,14 @@ def particulars_from_mapping(data: Mapping[str, Any], name: str = "") -> Particu
         raise ValueError("a particulars file is a mapping of keys to values")
     if "failure_groups" in data:
         raise ValueError(MOVED_GROUPS)
-    known = {*HULL_KEYS, *LEVEL1_KEYS, "coefficients", "thrusters", "name", "level2", "skegs", "rudders"}
-    unknown = sorted(set(data) - known)
-    if unknown:
-        raise ValueError(f"unknown key(s): {', '.join(unknown)}; known: {', '.join(sorted(known))}")
-    missing = [key for key in (*HULL_KEYS[:5], *LEVEL1_KEYS, "thrusters") if key not in data]
-    if missing:
-        raise ValueError(f"missing key(s): {', '.join(missing)}")
-    numbers = {key: finite_number(data, key) for key in LEVEL1_KEYS}
+    check_keys(data, PARTICULARS_KEYS, sort_known=True)
+    numbers = {key.name: finite_number(data[key.name], key.name) for key in LEVEL1_KEYS}
     vessel = hull_from_mapping(data)
     frame = BodyFrame(numbers["body_origin_x"], numbers["body_origin_height"])
-    if not 0.0 < numbers["bow_angle"] < 90.0:
-        raise ValueError(f"bow_angle: between 0 and 90 deg, not {numbers['bow_angle']:g}")
+    bow = key_named(LEVEL1_KEYS, "bow_angle")
+    if not bow.holds(numbers["bow_angle"]):
+        raise ValueError(f"bow_angle: between {bow.minimum:g} and {bow.maximum:g} {bow.unit}, not "
+                         f"{numbers['bow_angle']:g}")
     hull = DnvHull(lpp=vessel.lpp, beam=vessel.beam, draught=vessel.draught, los=numbers["los"],
                    los_centre_x=frame.standard_x(numbers["los_centre_x"]),
                    bow_angle=math.radians(numbers["bow_angle"]), waterplane_area_aft=numbers["waterplane_area_aft"],
@@ -159,14 +194,8 @@ def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
     result = {}
     for name, row in thrusters.items():
         if not isinstance(row, Mapping):
-            raise ValueError(f"thrusters.{name}: a mapping with keys {', '.join(THRUSTER_KEYS)}")
-        unknown = sorted(set(row) - set(THRUSTER_KEYS))
-        if unknown:
-            raise ValueError(f"thrusters.{name}: unknown key(s) {', '.join(unknown)}; "
-                             f"known: {', '.join(THRUSTER_KEYS)}")
-        missing = [key for key in ("kind", "power") if key not in row]
-        if missing:
-            raise ValueError(f"thrusters.{name}: missing key(s) {', '.join(missing)}")
+            raise ValueError(f"thrusters.{name}: a mapping with keys {', '.join(names(THRUSTER_KEYS))}")
+        check_keys(row, THRUSTER_KEYS, f"thrusters.{name}")
         result[str(name)] = ThrusterData(name=str(name), **{"diameter": None, "ducted": None, **row})
     return result
 
@@ -174,7 +203,7 @@ def _thrusters(thrusters: Any) -> dict[str, ThrusterData]:
 def _level2(level2: Any) -> dict[str, Any]:
     if level2 is None:
         return {}
-    keys = ("wind_coefficients", "current_coefficients", "site", "thrust_loss")
+    keys = names(LEVEL2_KEYS)
     if not isinstance(level2, Mapping) or set(level2) - set(keys):
         raise ValueError(f"level2: a mapping with {', '.join(keys)} (each optional)")
     result: dict[str, Any] = {

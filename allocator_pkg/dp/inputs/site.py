@@ -2,14 +2,9 @@
 
 A site environment is a table of conditions over the capability numbers 1 to n (n at most 11;
 number 0 is calm), each a wind speed [m/s], a significant wave height Hs [m], a peak period Tp
-[s] (or a zero-crossing period Tz, Tp = 1.4049 Tz [3.3.3]) and a current speed [m/s]. Keys, each
-optional but at least one of them given:
-
-- ``name``: what the site is (text);
-- ``wind``: a list, one speed per number, rising, in (0, 70];
-- ``hs``: a value for every number or a list, in [0, 25];
-- ``tp`` or ``tz`` (not both): a value or a list, in (0, 30];
-- ``current``: a value or a list, in [0, 5].
+[s] (or a zero-crossing period Tz, Tp = 1.4049 Tz [3.3.3]) and a current speed [m/s]. Keys
+(:data:`SITE_KEYS`), each optional but at least one quantity given: ``name``, ``wind`` (a
+rising list), ``hs``, ``tp`` or ``tz`` (not both) and ``current`` (each a value or a list).
 
 Lists have one entry per number and the same length n; a quantity not given is Table 2-1's for
 numbers 1 to n (n = 11 when no list is given). So ``current: 1.2`` is Table 2-1 with the site's
@@ -27,17 +22,25 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import yaml
-
+from ...configuration.file_keys import NUMBERS, TEXT, FileKey, check_keys, key_named, names
+from ...configuration.yaml_file import read_mapping
 from ..standard.loads import TZ_FROM_TP
 from ..standard.weather import TOP, WEATHER_CONDITIONS, WeatherCondition
 
-QUANTITIES = ("wind", "hs", "tp", "tz", "current")
-SITE_KEYS = ("name", *QUANTITIES)
-RANGES = {"wind": (0.0, 70.0, False), "hs": (0.0, 25.0, True), "tp": (0.0, 30.0, False),
-          "tz": (0.0, 30.0, False), "current": (0.0, 5.0, True)}
-"""(low, high, low included) of each quantity: wind [m/s], Hs [m], Tp and Tz [s], current [m/s]."""
-UNITS = {"wind": "m/s", "hs": "m", "tp": "s", "tz": "s", "current": "m/s"}
+SITE_KEYS = (
+    FileKey("name", TEXT, "what the site is (the notes name it)", default="site"),
+    FileKey("wind", NUMBERS, "a list: the wind speed of each number", unit="m/s", minimum=0.0, maximum=70.0,
+            exclusive_minimum=True, range_doc="rising"),
+    FileKey("hs", NUMBERS, "Hs: one value for every number, or a list", unit="m", minimum=0.0, maximum=25.0),
+    FileKey("tp", NUMBERS, "the peak period: a value or a list (not with tz)", unit="s", minimum=0.0, maximum=30.0,
+            exclusive_minimum=True),
+    FileKey("tz", NUMBERS, "the zero-crossing period (Tp = 1.4049 Tz, [3.3.3]): a value or a list (not with tp)",
+            unit="s", minimum=0.0, maximum=30.0, exclusive_minimum=True),
+    FileKey("current", NUMBERS, "a value or a list", unit="m/s", minimum=0.0, maximum=5.0),
+)
+"""The keys of a site environment, each optional, at least one quantity (all but ``name``) given;
+a quantity not given is Table 2-1's."""
+QUANTITIES = names(SITE_KEYS[1:])
 
 
 @dataclass(frozen=True)
@@ -64,10 +67,8 @@ class SiteEnvironment:
 def site_from_mapping(data: Any, prefix: str = "level2.site", source: str = "") -> SiteEnvironment:
     """The site environment of a mapping with the keys above; refused naming the key."""
     if not isinstance(data, Mapping):
-        raise ValueError(f"{prefix}: a mapping with keys {', '.join(SITE_KEYS)}")
-    unknown = sorted(set(data) - set(SITE_KEYS))
-    if unknown:
-        raise ValueError(f"{prefix}: unknown key(s) {', '.join(map(str, unknown))}; known: {', '.join(SITE_KEYS)}")
+        raise ValueError(f"{prefix}: a mapping with keys {', '.join(names(SITE_KEYS))}")
+    check_keys(data, SITE_KEYS, prefix)
     given = tuple(q for q in QUANTITIES if q in data)
     if not given:
         raise ValueError(f"{prefix}: give at least one of {', '.join(QUANTITIES)}")
@@ -93,35 +94,30 @@ def site_from_mapping(data: Any, prefix: str = "level2.site", source: str = "") 
                              f"number {number - 1} ({wind[number]:g} <= {wind[number - 1]:g} m/s)")
     conditions = (WEATHER_CONDITIONS[0], *(WeatherCondition(*(table[q][k] for q in ("wind", "hs", "tp", "current")))
                                            for k in range(count)))
-    name = data.get("name", "site")
+    name = data.get("name", key_named(SITE_KEYS, "name").default)
     if not isinstance(name, str):
         raise ValueError(f"{prefix}.name: text, not {name!r}")
     return SiteEnvironment(name, conditions, source or prefix, given)
 
 
 def load_site(path: str | Path) -> SiteEnvironment:
-    """A site environment file (YAML, the keys above at its top)."""
-    path = Path(path)
-    try:
-        data = yaml.safe_load(path.read_text())
-    except (OSError, yaml.YAMLError) as error:
-        raise ValueError(f"{path}: {error}") from error
+    """A site environment file (YAML, the keys above at its top); every error names the path."""
+    data = read_mapping(path, "a site environment file")
     try:
         return site_from_mapping(data, "site", str(path))
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from error
 
 
-def _column(value: Any, count: int, key: str, quantity: str) -> list[float]:
+def _column(value: Any, count: int, where_key: str, quantity: str) -> list[float]:
     values = list(value) if isinstance(value, (list, tuple)) else [value] * count
-    low, high, closed = RANGES[quantity]
+    key = key_named(SITE_KEYS, quantity)
     result = []
     for k, item in enumerate(values):
-        where = f"{key}[{k}]" if isinstance(value, (list, tuple)) else key
+        where = f"{where_key}[{k}]" if isinstance(value, (list, tuple)) else where_key
         if isinstance(item, bool) or not isinstance(item, (int, float)) or not math.isfinite(item):
-            raise ValueError(f"{where}: a finite number [{UNITS[quantity]}], not {item!r}")
-        if not (low <= item if closed else low < item) or item > high:
-            bracket = "[" if closed else "("
-            raise ValueError(f"{where}: {item:g} {UNITS[quantity]} outside {bracket}{low:g}, {high:g}]")
+            raise ValueError(f"{where}: a finite number [{key.unit}], not {item!r}")
+        if not key.holds(item):
+            raise ValueError(f"{where}: {item:g} {key.unit} outside {key.interval()}")
         result.append(float(item))
     return result

@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from ...configuration.file_keys import NUMBER, FileKey, key_named
 from ...simulation.closed_loop import ClosedLoop
 from ...simulation.in_process import InProcessLink
 from ...simulation.metrics import heading_errors
@@ -38,20 +39,35 @@ CRITERIA_NOTE = ("Level 3 criteria: the transcription used has no Level 3 text; 
                  "within the heading limit over the whole run (this package's defaults, not the standard's)")
 
 
+CRITERIA_KEYS = (
+    FileKey("position_limit", NUMBER, "largest horizontal excursion from the set-point", default=5.0, unit="m",
+            minimum=0.0, exclusive_minimum=True),
+    FileKey("heading_limit_deg", NUMBER, "largest heading deviation", default=3.0, unit="deg", minimum=0.0,
+            exclusive_minimum=True),
+    FileKey("settle", NUMBER, "on station before a group fails", default=60.0, unit="s", minimum=0.0,
+            exclusive_minimum=True),
+    FileKey("duration", NUMBER, "simulated after settling", default=600.0, unit="s", minimum=0.0,
+            exclusive_minimum=True),
+)
+"""The Level 3 criteria (``--position-limit``, ``--heading-limit``, ``--settle``, ``--duration``
+of allocator-capability): this package's defaults, the transcription having no Level 3 text."""
+
+
 @dataclass(frozen=True)
 class Criteria:
     """What a case must hold [m, deg] and how long it runs [s]: ``settle`` on station, then
-    ``duration`` (a group fails at the end of ``settle``)."""
+    ``duration`` (a group fails at the end of ``settle``); the defaults of :data:`CRITERIA_KEYS`."""
 
-    position_limit: float = 5.0
-    heading_limit_deg: float = 3.0
-    settle: float = 60.0
-    duration: float = 600.0
+    position_limit: float = key_named(CRITERIA_KEYS, "position_limit").default
+    heading_limit_deg: float = key_named(CRITERIA_KEYS, "heading_limit_deg").default
+    settle: float = key_named(CRITERIA_KEYS, "settle").default
+    duration: float = key_named(CRITERIA_KEYS, "duration").default
 
     def __post_init__(self) -> None:
         for name, value in asdict(self).items():
-            if not (math.isfinite(value) and value > 0.0):
-                raise ValueError(f"{name}: a finite number > 0, not {value!r}")
+            key = key_named(CRITERIA_KEYS, name)
+            if not (math.isfinite(value) and key.holds(value)):
+                raise ValueError(f"{name}: a finite number > {key.minimum:g}, not {value!r}")
 
     def describe(self) -> str:
         return (f"position limit {self.position_limit:g} m, heading limit {self.heading_limit_deg:g} deg, "

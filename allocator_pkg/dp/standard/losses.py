@@ -55,6 +55,7 @@ from typing import Any
 import numpy as np
 
 from ...capability.thrust_profile import TWO_PI, ThrustProfile
+from ...configuration.file_keys import NUMBER, FileKey, names
 from ...vehicle.config import ActuatorConfig
 from .loads import BodyFrame
 from .thrust import ThrusterData
@@ -65,6 +66,12 @@ DEAD_FLUSHING_SPREAD = {False: 0.6, True: 0.35}
 """[3.11.4]: phi = arctan(k D / s), open and ducted."""
 SKEG_DISTANCE = {False: 15.0, True: 8.0}
 """[3.11.5], in diameters of the thruster: open and ducted."""
+SKEG_KEYS = (
+    FileKey("x", NUMBER, "the aft most point of a skeg or gondola (Table A-2), for [3.11.5]", required=True,
+            unit="m, body frame", range_doc="finite"),
+    FileKey("y", NUMBER, "its y", required=True, unit="m, body frame", range_doc="finite"),
+)
+"""One item of a particulars file's ``skegs``."""
 CHORD_STEP = math.radians(1.0)
 """The largest angle between two corners of a loss that is not straight in Cartesian coordinates."""
 READINGS = ("[3.11.4]/[3.11.5] read as the public transcription reads them: the dead sector centred on the "
@@ -299,9 +306,9 @@ def skegs_from_list(data: Any) -> tuple[Skeg, ...]:
         raise ValueError("skegs: a list of mappings with x and y [m] (the aft most point of each skeg, body frame)")
     skegs = []
     for k, item in enumerate(data):
-        if not isinstance(item, dict) or set(item) != {"x", "y"} or not all(
+        if not isinstance(item, dict) or set(item) != set(names(SKEG_KEYS)) or not all(
                 isinstance(item[key], (int, float)) and not isinstance(item[key], bool)
-                and math.isfinite(item[key]) for key in ("x", "y")):
+                and math.isfinite(item[key]) for key in names(SKEG_KEYS)):
             raise ValueError(f"skegs[{k}]: a mapping with finite numbers x and y [m], not {item!r}")
         skegs.append(Skeg(float(item["x"]), float(item["y"])))
     return tuple(skegs)

@@ -33,6 +33,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from ...capability.thrust_profile import ForcePiece, ForceProfile, HalfPlane
+from ...configuration.file_keys import BOOLEAN, NUMBER, TEXT, FileKey, check_keys, key_named, names
 from ...vehicle.config import AZIMUTH, RUDDER, ActuatorConfig, RotationConfig, Vehicle
 from .thrust import ThrusterData
 
@@ -49,7 +50,14 @@ K2_FIXED_NOZZLE = 1.15
 """Table 3-6: a rudder behind a fixed propeller nozzle (all other arrangements 1.0)."""
 ANGLE_STEP_DEG = 1.0
 """The fan's corners: every this many degrees of rudder angle."""
-RUDDER_KEYS = ("propeller", "profile", "area", "behind_fixed_nozzle")
+RUDDER_KEYS = (
+    FileKey("propeller", TEXT, "the propeller it is behind", required=True, range_doc="a `shaft_line` of `thrusters`"),
+    FileKey("profile", TEXT, "Table 3-5", required=True, choices=tuple(K1)),
+    FileKey("area", NUMBER, "A_r: the movable part directly behind the propeller, chord at most 1.0 D",
+            required=True, unit="m^2", minimum=0.0, exclusive_minimum=True),
+    FileKey("behind_fixed_nozzle", BOOLEAN, "Table 3-6", default=False),
+)
+"""A rudder's row of Table A-4 in a particulars file (``rudders.<rudder>``); the defaults of :class:`RudderData`."""
 READINGS = ("[3.10] read as the public transcription reads it: behind shaft lines only; A_r as given (the chord "
             "limit of 1.0 D is the user's); the largest rudder angle the vehicle file's deflection_max, at most "
             "30 deg; the fan drawn by chords every 1 deg of rudder angle (inside it); the [3.11] zones and losses "
@@ -66,7 +74,7 @@ class RudderData:
     propeller: str
     profile: str
     area: float
-    behind_fixed_nozzle: bool = False
+    behind_fixed_nozzle: bool = key_named(RUDDER_KEYS, "behind_fixed_nozzle").default
 
     def __post_init__(self) -> None:
         key = f"rudders.{self.name}"
@@ -227,12 +235,7 @@ def rudders_from_mapping(data: Any) -> dict[str, RudderData]:
     rudders = {}
     for name, row in data.items():
         if not isinstance(row, Mapping):
-            raise ValueError(f"rudders.{name}: a mapping with keys {', '.join(RUDDER_KEYS)}")
-        unknown = sorted(set(row) - set(RUDDER_KEYS))
-        missing = [key for key in RUDDER_KEYS[:3] if key not in row]
-        if unknown or missing:
-            raise ValueError(f"rudders.{name}: " + (f"unknown key(s) {', '.join(unknown)}" if unknown else
-                                                     f"missing key(s) {', '.join(missing)}")
-                             + f"; keys: {', '.join(RUDDER_KEYS)}")
+            raise ValueError(f"rudders.{name}: a mapping with keys {', '.join(names(RUDDER_KEYS))}")
+        check_keys(row, RUDDER_KEYS, f"rudders.{name}")
         rudders[str(name)] = RudderData(name=str(name), **row)
     return rudders

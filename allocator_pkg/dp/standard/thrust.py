@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ...configuration.file_keys import BOOLEAN, NUMBER, TEXT, FileKey, key_named
 from .loads import TZ_FROM_TP
 
 KINDS = ("azimuth", "pod", "shaft_line", "tunnel", "cycloidal")
@@ -36,6 +37,20 @@ BETA_MISC = 0.9
 """[3.9.3]."""
 K_V = (2.0, 1.5, 15.2, 0.85, 0.38)
 """k_V1 ... k_V5 of [3.9.4]."""
+THRUSTER_KEYS = (
+    FileKey("kind", TEXT, "the actuator type of Tables 3-1 to 3-4", required=True, choices=KINDS),
+    FileKey("diameter", NUMBER, "D of [3.9.2], [3.11]", unit="m", minimum=0.0, exclusive_minimum=True,
+            default_doc="the vehicle file's `actuators.<actuator>.diameter`"),
+    FileKey("power", NUMBER, "P_B of [3.9.2]", required=True, unit="kW", minimum=0.0, exclusive_minimum=True),
+    FileKey("pitch", TEXT, "Table 3-3", default="FPP", choices=PITCHES),
+    FileKey("ducted", BOOLEAN, "Tables 3-1, 3-3, [3.11.4]",
+            default_doc="the vehicle file's `actuators.<actuator>.ducted` (default false)"),
+    FileKey("contra_rotating", BOOLEAN, "Table 3-1", default=False),
+    FileKey("permanent_magnet", BOOLEAN, "Table 3-4", default=False),
+    FileKey("tunnel_inlet", TEXT, "Table 3-2, tunnels only", choices=tuple(TUNNEL_INLETS)),
+)
+"""An actuator's row of Table A-3 in a particulars file (``thrusters.<actuator>``); the defaults
+of :class:`ThrusterData`."""
 
 
 @dataclass(frozen=True)
@@ -49,11 +64,12 @@ class ThrusterData:
     kind: str
     diameter: float | None
     power: float
-    pitch: str = "FPP"
+    pitch: str = key_named(THRUSTER_KEYS, "pitch").default
     ducted: bool | None = False
-    contra_rotating: bool = False
-    permanent_magnet: bool = False
-    tunnel_inlet: str | None = None
+    """False: not ducted; the particulars' reader gives None when the file leaves it to the vehicle file."""
+    contra_rotating: bool = key_named(THRUSTER_KEYS, "contra_rotating").default
+    permanent_magnet: bool = key_named(THRUSTER_KEYS, "permanent_magnet").default
+    tunnel_inlet: str | None = key_named(THRUSTER_KEYS, "tunnel_inlet").default
 
     def __post_init__(self) -> None:
         key = f"thrusters.{self.name}"

@@ -6,8 +6,11 @@ import yaml
 from conftest import ROOT
 
 from allocator_pkg import read_parameters, vehicle_from_parameters
-from allocator_pkg.dp.inputs.particulars import particulars_from_mapping, with_vehicle_geometry
+from allocator_pkg.configuration.file_keys import markdown_table
+from allocator_pkg.dp.inputs.particulars import PARTICULARS_KEYS, particulars_from_mapping, with_vehicle_geometry
+from allocator_pkg.dp.inputs.site import SITE_KEYS
 from allocator_pkg.dp.level1 import Level1
+from allocator_pkg.dp.level3.case import CRITERIA_KEYS
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
 DP_PARTICULARS = ROOT / "config" / "particulars" / "dp_vessel.yaml"
@@ -57,3 +60,9 @@ def test_a_disagreement_is_refused_naming_both_keys(changes, rows, message):
     vehicle, particulars = files(changes, **rows)
     with pytest.raises(ValueError, match=message):
         Level1(vehicle, particulars)
+
+
+def test_dp_capability_doc_lists_the_particulars_and_site_keys():
+    text = (ROOT / "docs" / "dp_capability.md").read_text()
+    for keys in (PARTICULARS_KEYS, SITE_KEYS, CRITERIA_KEYS):
+        assert markdown_table(keys) in text, "docs/dp_capability.md is out of date: run `make docs`"
