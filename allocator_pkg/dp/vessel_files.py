@@ -11,7 +11,7 @@ from pathlib import Path
 
 from ..configuration.parameters import load_vehicle
 from ..vehicle.config import Vehicle
-from .inputs.particulars import Particulars, load_particulars
+from .inputs.particulars import Particulars, read_particulars
 from .inputs.site import SiteEnvironment, load_site
 
 STATED = re.compile(r"^([a-z_]+):\s*([^#]*?)\s*#\s*(.+)$")
@@ -36,10 +36,10 @@ def read_vessel_files(vehicle_path: str | Path, particulars_path: str | Path,
     """Read the vehicle file, the particulars file and the site file if given, in that order; a
     ``ValueError`` (a ``ConfigError`` too) naming the file and the key when one is refused."""
     vehicle_path, particulars_path = Path(vehicle_path), Path(particulars_path)
-    vehicle, particulars = load_vehicle(vehicle_path), load_particulars(particulars_path)
+    vehicle = load_vehicle(vehicle_path)
+    particulars, text = read_particulars(particulars_path)
     site = load_site(site_path) if site_path else None
-    return VesselFiles(vehicle_path, particulars_path, vehicle, particulars, site,
-                       stated_values(particulars_path.read_text()))
+    return VesselFiles(vehicle_path, particulars_path, vehicle, particulars, site, stated_values(text))
 
 
 def stated_values(text: str) -> tuple[tuple[str, str, str], ...]:

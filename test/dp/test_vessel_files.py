@@ -26,3 +26,19 @@ def test_the_files_of_dp_vessel():
 def test_a_missing_particulars_file_is_refused_naming_it(tmp_path):
     with pytest.raises(ValueError, match=r"missing\.yaml"):
         read_vessel_files(DP_VESSEL, tmp_path / "missing.yaml")
+
+
+def test_the_particulars_file_is_read_once(monkeypatch):
+    """Its keys and its comments come from one read of the file."""
+    from pathlib import Path
+
+    reads: list[Path] = []
+    read_text = Path.read_text
+
+    def counted(path, *args, **kwargs):
+        reads.append(Path(path))
+        return read_text(path, *args, **kwargs)
+
+    monkeypatch.setattr(Path, "read_text", counted)
+    read_vessel_files(DP_VESSEL, DP_PARTICULARS)
+    assert reads.count(DP_PARTICULARS) == 1

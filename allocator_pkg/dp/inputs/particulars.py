@@ -39,7 +39,7 @@ from ...configuration.file_keys import (
     key_named,
     names,
 )
-from ...configuration.yaml_file import read_mapping
+from ...configuration.yaml_file import read_yaml
 from ...hull.environment_loads import VesselParticulars
 from ...hull.hull_file import HULL_KEYS, hull_from_mapping
 from ..standard.loads import BodyFrame, DnvHull
@@ -124,10 +124,16 @@ class Particulars:
 
 def load_particulars(path: str | Path) -> Particulars:
     """Read a particulars file (YAML); every error names the path."""
+    return read_particulars(path)[0]
+
+
+def read_particulars(path: str | Path) -> tuple[Particulars, str]:
+    """A particulars file and its text (what its comments state), from one read; every error
+    names the path."""
     path = Path(path)
-    data = read_mapping(path, "a particulars file")
+    data, text = read_yaml(path, "a particulars file")
     try:
-        return particulars_from_mapping(data, path.stem)
+        return particulars_from_mapping(data, path.stem), text
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from error
 
