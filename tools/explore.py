@@ -16,14 +16,16 @@ import time
 import traceback
 from pathlib import Path
 
+import pytest
+from hypothesis import HealthCheck, Phase, given, seed, settings
+from hypothesis import strategies as st
+
+from allocator_pkg.configuration.params_file import params_text
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "test"))
-
-from hypothesis import HealthCheck, Phase, given, seed, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
-from test_generated import CASES  # noqa: E402
-
-from allocator_pkg.configuration.params_file import params_text  # noqa: E402
+GENERATED = ROOT / "test" / "allocation" / "test_generated.py"
+"""The suite's module of generated cases; pytest collects it (the suite's own imports, its
+conftest's environment), and the cases are taken from the module it imported."""
 
 
 def explore(case, method: str, examples: int, run_seed: int) -> str | None:
@@ -64,19 +66,41 @@ def explore(case, method: str, examples: int, run_seed: int) -> str | None:
     return None
 
 
+class Cases:
+    """A pytest plugin that keeps the collected module's ``CASES`` and runs no test."""
+
+    def __init__(self) -> None:
+        self.cases: dict = {}
+
+    def pytest_collection_modifyitems(self, items: list, config) -> None:
+        if items:
+            self.cases = items[0].module.CASES
+        items.clear()
+
+
+def generated_cases() -> dict:
+    """``CASES`` of the suite's generated-vehicle module, as pytest imports it."""
+    plugin = Cases()
+    pytest.main([str(GENERATED), "-q", "-p", "no:cacheprovider", "--collect-only"], plugins=[plugin])
+    if not plugin.cases:
+        raise RuntimeError(f"no cases collected from {GENERATED}")
+    return plugin.cases
+
+
 def main(argv: list[str] | None = None) -> int:
+    cases = generated_cases()
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--examples", type=int, default=300, help="draws per case and method (default %(default)s)")
     parser.add_argument("--seed", type=int, default=None, help="default: a fresh one, printed")
     parser.add_argument("--minutes", type=float, default=None, help="stop starting new cases after this")
-    parser.add_argument("--case", choices=list(CASES), action="append", help="default: every case")
+    parser.add_argument("--case", choices=list(cases), action="append", help="default: every case")
     arguments = parser.parse_args(argv)
     run_seed = arguments.seed if arguments.seed is not None else random.SystemRandom().randrange(2 ** 32)
     print(f"explore: seed {run_seed}, {arguments.examples} draws per case and method", flush=True)
     start = time.monotonic()
     found = 0
-    for name in arguments.case or list(CASES):
-        case, methods = CASES[name]
+    for name in arguments.case or list(cases):
+        case, methods = cases[name]
         for method in methods:
             if arguments.minutes is not None and time.monotonic() - start > 60.0 * arguments.minutes:
                 print("explore: time is up", flush=True)
