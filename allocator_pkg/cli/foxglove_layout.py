@@ -4,7 +4,7 @@ thrust markers and the set-point; the track (north against east); each actuator'
 against its limits (at the nominal voltage for thrust tables measured at several voltages,
 with the supply voltage beside); the azimuth angles; the saturation flags; the unallocated
 wrench in the controlled DOFs; the diagnostics. Only topics and fields the recording holds
-(:mod:`.sim_recording`).
+(:mod:`..ros.sim_recording`).
 
     python -m allocator_pkg.cli.foxglove_layout config/dp_vessel.yaml > config/foxglove/dp_vessel.json
 

@@ -14,16 +14,16 @@ the worst single failure is, per heading, the lowest over the groups.
 :meth:`Level1.run` gives the complete result: the numbers and, per case and heading, the
 allocation behind Tables A-8 to A-10 (:meth:`Level1.thruster_use`).
 
-Per the standard: the loads of [3.5]-[3.7] (:mod:`.dnv_loads`); each actuator's thrust from its
+Per the standard: the loads of [3.5]-[3.7] (:mod:`.standard.loads`); each actuator's thrust from its
 type, diameter and power, T_nominal [3.9.2] times beta_misc [3.9.3] and the ventilation loss
-beta_vent [3.9.4] of the condition and heading (:mod:`.dnv_thrust`); the forbidden zones of
-[3.11.3] among the thrusters working in the case (:mod:`.dnv_zones`), in place of the vehicle
+beta_vent [3.9.4] of the condition and heading (:mod:`.standard.thrust`); the forbidden zones of
+[3.11.3] among the thrusters working in the case (:mod:`.standard.interaction_zones`), in place of the vehicle
 file's forbidden sectors; the losses flushing the case's dead thrusters [3.11.4] and skegs
-[3.11.5] by thrust direction (:mod:`.dnv_losses`); a shaft line's rudder [3.10] (:mod:`.dnv_rudders`).
+[3.11.5] by thrust direction (:mod:`.standard.losses`); a shaft line's rudder [3.10] (:mod:`.standard.rudders`).
 Per (condition, heading, case) a variant of the vehicle, its working thrusters with those thrust
-ranges, zones and losses, is balanced by :meth:`~.capability.Capability.reach` (a linear
+ranges, zones and losses, is balanced by :meth:`~..capability.envelope.Capability.reach` (a linear
 programme with the configured method's constraints), jointly with the power of each source that
-could be short ([3.12.3]-[3.12.5], :mod:`.dnv_power`). Not yet: :data:`~.capability_result.NOT_YET`.
+could be short ([3.12.3]-[3.12.5], :mod:`.standard.power_balance`). Not yet: :data:`~.capability_result.NOT_YET`.
 Not verified by DNV.
 """
 
@@ -133,7 +133,7 @@ class Level1:
         return {name: self.particulars.thrusters[name].power for name in self.actuators}
 
     def power_limits(self, lost: tuple[str, ...] = ()) -> PowerLimits | None:
-        """The power rows of a case ([3.12.3]-[3.12.5], :func:`.dnv_power.power_limits`); None when
+        """The power rows of a case ([3.12.3]-[3.12.5], :func:`.standard.power_balance.power_limits`); None when
         no working source could be short."""
         if lost not in self._power:
             self._power[lost] = power_limits(self.vehicle, self.powers, lost)
@@ -174,7 +174,7 @@ class Level1:
         return self._zones[failed]
 
     def thrust_profiles(self, failed: tuple[str, ...] = ()) -> dict[str, ThrustProfile]:
-        """Per working thruster with a loss, its [3.11.4] and [3.11.5] factor by direction (:mod:`.dnv_losses`)."""
+        """Per working thruster with a loss, its [3.11.4] and [3.11.5] factor by direction (:mod:`.standard.losses`)."""
         dead = tuple(name for name in self.actuators if name in failed)
         if dead not in self._profiles:
             self._profiles[dead] = case_profiles(self.loss_units, dead, self.particulars.skegs)

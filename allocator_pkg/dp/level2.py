@@ -1,20 +1,20 @@
 """DP capability Level 2 of DNV-ST-0111 as this package reads it: the Level 1 balance
-(:class:`~.dp_capability.Level1`) with its prescriptive parts replaced where the vessel's own data
+(:class:`~.level1.Level1`) with its prescriptive parts replaced where the vessel's own data
 are given.
 
 - Wind and current: the particulars' coefficient tables over heading
-  (:mod:`.dnv_coefficients`) where given, else [3.5] and [3.6];
+  (:mod:`.inputs.coefficients`) where given, else [3.5] and [3.6];
 - thrust: each thruster's ``thrust_min`` and ``thrust_max`` of the vehicle file, taken as the
   thrust it delivers (no [3.9.3], [3.9.4], [3.11.4] or [3.11.5] loss applied), times share^(2/3)
   (the power-to-thrust relation of [3.9.2]) of the share of its P_B its feeds give it, as in Level
   1 (a lost feed share, a board short of power [3.12]);
 - thrust losses: the particulars' ``level2.thrust_loss`` tables where given
-  (:mod:`.dnv_loss_tables`): over the thrust direction as a thrust profile (the capability
+  (:mod:`.inputs.loss_tables`): over the thrust direction as a thrust profile (the capability
   programme takes it as it takes Level 1's [3.11.4]/[3.11.5] losses), over the current speed a
   factor on both limits at each condition's current;
 - forbidden directions: the vehicle file's ``forbidden_sectors`` instead of the [3.11.3] zones; a
   sector whose race points only at failed thrusters lifts in that case, as a zone does;
-- environment: a site's (:mod:`.dnv_site`: its own condition table, or Table 2-1 with the site's
+- environment: a site's (:mod:`.inputs.site`: its own condition table, or Table 2-1 with the site's
   current, waves or periods) where given, in a file of its own or the particulars'
   ``level2.site``, else Table 2-1.
 
@@ -88,7 +88,7 @@ class Level2(Level1):
                      lost: tuple[str, ...] = ()) -> tuple[float, float]:
         """[low, high] [N]: the vehicle file's thrust limits, times share^(2/3) of its
         :meth:`power_share` (a lost feed share; a board short of power is the balance's) and the
-        speed table's factor at the condition's current (:mod:`.dnv_loss_tables`)."""
+        speed table's factor at the condition's current (:mod:`.inputs.loss_tables`)."""
         actuator = self.actuators[name].config
         share = self.power_share(name, lost)
         if share <= 0.0:

@@ -1,5 +1,5 @@
 """A vessel's own wind or current load coefficients over heading, for DNV-ST-0111 Level 2
-(:mod:`.dp_level2`), in place of the prescriptive formulas of [3.5] and [3.6].
+(:mod:`..level2`), in place of the prescriptive formulas of [3.5] and [3.6].
 
 Non-dimensional, in the standard's frame [2.8.2] (x forward, y to port, the moment about Lpp/2
 positive turning the bow to port), over the direction the flow comes *from* (0 deg head on,

@@ -1,12 +1,12 @@
-"""A vessel's own thrust-loss tables per thruster, for DNV-ST-0111 Level 2 (:mod:`.dp_level2`), in
+"""A vessel's own thrust-loss tables per thruster, for DNV-ST-0111 Level 2 (:mod:`..level2`), in
 place of the prescriptive losses of [3.9.3], [3.9.4], [3.11.4] and [3.11.5]: the factors of its
 model tests or CFD (thruster-thruster and thruster-hull interaction, and the loss in a current).
 
 - Over the thrust direction (``angle_deg``, ``factor``): beta(theta) in [0, 1] over the thrust
   angle theta in the body frame (0 forward, 90 deg to starboard), linear in the angle between the
   rows and around 360 deg. It scales the thrust limit the way a [3.11.4]/[3.11.5] loss does (a
-  :class:`~.thrust_profile.ThrustProfile`, drawn by chords between corners at most
-  :data:`~.dnv_losses.CHORD_STEP` apart and :data:`FACTOR_STEP` of the factor apart wherever it is
+  :class:`~...capability.thrust_profile.ThrustProfile`, drawn by chords between corners at most
+  :data:`~..standard.losses.CHORD_STEP` apart and :data:`FACTOR_STEP` of the factor apart wherever it is
   below 1, exactly at the rows and never above the linear factor, the spiral r = a + b theta being
   convex; beside a row at 0 the last chord runs into the origin, so the factor is 0 over that
   step); a fixed

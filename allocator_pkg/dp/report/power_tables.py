@@ -8,7 +8,7 @@ power per switchboard in Table A-10; it gives neither table's columns. Read here
 
 - :func:`table_a9`: per case, heading and working thruster at the heading's number, its thrust
   fraction r (Table A-8's utilisation: its thrust over what it can give that way), the power it
-  draws, s P_B r^(3/2) with s the sum of its working feed shares (:mod:`.dnv_power`), and that
+  draws, s P_B r^(3/2) with s the sum of its working feed shares (:mod:`..standard.power_balance`), and that
   power per source (its feed share of it, Table A-5);
 - :func:`table_a10`: per case, heading and working source, its available power, the 10 % reserved
   [3.12.3], the usable rest, the power its thrusters draw (the sum of its Table A-9 column) and

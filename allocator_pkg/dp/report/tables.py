@@ -76,7 +76,7 @@ def table_a6(analysis: Level1) -> list[tuple]:
 def loss_sector_table(analysis: Level1) -> list[tuple]:
     """(case, thruster, from_deg, to_deg, lowest_factor, at_deg) of every [3.11.4]/[3.11.5] loss
     sector, intact and per group; thrust angles in the body frame (0 forward, 90 to starboard), the
-    factor [3.11.6] linear between the corners (the case's :meth:`~.dp_capability.Level1.thrust_profiles`)."""
+    factor [3.11.6] linear between the corners (the case's :meth:`~..level1.Level1.thrust_profiles`)."""
     return [(case, name, round(start, 2), round(end, 2), round(lowest, 4), round(at, 2))
             for case, failed in analysis.cases().items()
             for name, profile in analysis.thrust_profiles(tuple(failed)).items()

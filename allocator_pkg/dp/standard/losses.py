@@ -29,7 +29,7 @@ linear in the angle between the points ("linear interpolation in polar coordinat
 
 [3.11.6]: beta_T = beta_misc beta_vent beta_T,flushing_dead beta_T,flushing_skeg, either
 flushing factor 1 where it does not apply. The direction-dependent pair is a
-:class:`~.thrust_profile.ThrustProfile`: several dead thrusters, or several skegs, take the
+:class:`~...capability.thrust_profile.ThrustProfile`: several dead thrusters, or several skegs, take the
 lowest factor per direction; the Figure 3-6 notch alone is drawn exactly (its corners), anything
 else (the skeg's polar ramps, overlaps) by chords between corners at most :data:`CHORD_STEP`
 apart. A thruster of fixed direction takes the factor of that direction (and of the opposite

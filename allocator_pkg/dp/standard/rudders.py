@@ -16,7 +16,7 @@ force acts where the rudder stock meets the propeller axis.
 So the forces of the pair are a fan (the origin and the curve of the forward thrust over
 alpha in [-alpha_max, alpha_max], convex: a parabola bulging away from the origin, drawn by chords
 every degree of alpha, inside it) or the reversed thrust along the shaft, one or the other
-(:class:`RudderFan`, a :class:`~.thrust_profile.ForceProfile`). The forbidden zones and losses of
+(:class:`RudderFan`, a :class:`~...capability.thrust_profile.ForceProfile`). The forbidden zones and losses of
 [3.11] take the shaft direction, as for the propeller alone.
 
 After the public transcription in the repository WilliamBoland1/Prosjektoppgave_Collab

@@ -58,7 +58,7 @@ class ThrusterData:
     """One actuator's row of Table A-3. ``power`` is P_B [kW]: the MCR brake power available in
     DP mode with the power and torque limits taken into account; ``diameter`` D [m] as [3.9.2]
     defines it per type. ``diameter`` and ``ducted`` None: not given here, the vehicle file's
-    (:func:`~.dp_particulars.with_vehicle_geometry`)."""
+    (:func:`~..inputs.particulars.with_vehicle_geometry`)."""
 
     name: str
     kind: str

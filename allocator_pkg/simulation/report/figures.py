@@ -1,5 +1,5 @@
-"""Figures and tables of allocator-sim: a run's ``footprint.png`` (:mod:`.sim_footprint`) and
-``timeline.png`` (:mod:`.sim_timeline`), the comparison of methods (a markdown table of metrics
+"""Figures and tables of allocator-sim: a run's ``footprint.png`` (:mod:`.footprint`) and
+``timeline.png`` (:mod:`.timeline`), the comparison of methods (a markdown table of metrics
 and one figure: position error and footprint, and every bound of the verdict with each method's
 value; the power and alarm rows of the table for a scenario with power events), and the nominal run
 a failure is read against: the same scenario and seed without its faults, battery ramps,

@@ -1,4 +1,4 @@
-"""The power of ``timeline.png`` (:mod:`.sim_timeline`), for a vehicle with power sources: each
+"""The power of ``timeline.png`` (:mod:`.timeline`), for a vehicle with power sources: each
 source's power drawn [kW], as the node's status reports it, against what the simulated power
 plant could give (dashed, the same colour), the stretches of the consequence alarm hatched in a
 colour of their own (faults are red), and each actuator's thrust bound from the available power

@@ -4,7 +4,7 @@ actuator's thrust against its limits (at the supply voltage in force, for thrust
 at several voltages) and its bound from the available power, the view fitted to the thrusts,
 azimuth angles [deg], the supply voltage when it changes, the power
 estimate (1.44) with the saturated samples, and for a vehicle with power sources each source's
-power against its available power with the consequence alarm (:mod:`.sim_power`); the
+power against its available power with the consequence alarm (:mod:`.power_figure`); the
 scenario's events as labelled lines, the faults shaded, and the
 nominal run (same seed, nothing going wrong) dashed under the errors and the power."""
 
@@ -97,10 +97,10 @@ def _traces(axes, t: np.ndarray, values: np.ndarray, names: list[str], columns: 
 
 
 def _thrust(axes, result: RunResult, bounds: np.ndarray | None) -> None:
-    """Every actuator's thrust, the view fitted to it (:func:`~.sim_style.fit_view`); its limits
+    """Every actuator's thrust, the view fitted to it (:func:`~.style.fit_view`); its limits
     dashed, one pair per set of actuators with the same limits all along (grey when shared, in
     the actuator's colour otherwise; a limit of zero is the axis and not drawn; one beyond the
-    view named in the legend); the power bounds ``bounds`` (:func:`~.sim_power.power_bounds`)
+    view named in the legend); the power bounds ``bounds`` (:func:`~.power_figure.power_bounds`)
     dash-dotted in each actuator's colour."""
     a = result.trace.arrays()
     t, thrust, names = a["time"], a["thrust"], result.trace.names
