@@ -24,7 +24,17 @@ from ..effectiveness.faults import FaultMode, FaultSet
 from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec
-from .scenario_check import check_member, check_method_serves, check_parameter, check_vehicle, unknown_keys
+from .scenario_check import (
+    check_depth,
+    check_environment,
+    check_member,
+    check_method_serves,
+    check_parameter,
+    check_particulars,
+    check_vehicle,
+    check_voltage,
+    unknown_keys,
+)
 from .scenario_values import (
     ScenarioError,
     environment,
@@ -47,7 +57,8 @@ EVENT_KINDS = ("fault", "clear_faults", "battery_ramp", "parameter", "setpoint",
 @dataclass(frozen=True)
 class Event:
     """At ``time`` [s]: one of a fault (``fault``: actuator, mode, value: the share of force
-    left when ``degraded``, the angle [rad] when ``stuck``, None for the angle it has then),
+    left when ``degraded``, the angle [rad] when ``stuck`` (the file gives it in degrees), None
+    for the angle it has then),
     clearing every fault, a battery voltage ramp (``ramp``: to [V], duration [s]), a node
     parameter, a new set-point (``setpoint``: value a SetpointTarget), a redundancy group's
     loss (``group_fault``: name the group), the available power of a source changing
@@ -159,8 +170,12 @@ def _event(data: Any, index: int) -> Event:
             raise ScenarioError(f"{where}fault.actuator: an actuator name, not {body.get('actuator')!r}")
         if mode == "degraded" and "value" not in body:
             raise ScenarioError(f"{where}fault.value: required for degraded, the share of force left in (0, 1]")
-        value = None if mode == "stuck" and "value" not in body else number(body, "value", where + "fault.", 0.0)
-        return Event(time, kind, actuator=body["actuator"], mode=mode, value=value)
+        if mode == "failed" and "value" in body:
+            raise ScenarioError(f"{where}fault.value: a failed actuator gives nothing; failed takes no value")
+        if mode == "stuck":
+            return Event(time, kind, actuator=body["actuator"], mode=mode, value=_stuck_angle(body, where))
+        return Event(time, kind, actuator=body["actuator"], mode=mode,
+                     value=number(body, "value", where + "fault.", 0.0))
     if kind in ("battery_ramp", "weather_ramp"):
         return Event(time, kind, value=number(body, "to", f"{where}{kind}.", minimum=0.0),
                      duration=number(body, "duration", f"{where}{kind}.", 0.0, 0.0))
@@ -175,6 +190,17 @@ def _event(data: Any, index: int) -> Event:
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
+
+
+def _stuck_angle(body: dict, where: str) -> float | None:
+    """A stuck fault's ``value``: the angle [deg in the file, like every angle of it] the
+    azimuth is stuck at, in radians; None (absent) for the angle it has then."""
+    if "value" not in body:
+        return None
+    degrees = number(body, "value", where + "fault.")
+    if not -180.0 <= degrees <= 180.0:
+        raise ScenarioError(f"{where}fault.value: the stuck angle in degrees, -180 to 180, not {degrees!r}")
+    return math.radians(degrees)
 
 
 def _check_event(event: Event, index: int, vehicle: Vehicle) -> None:
@@ -204,6 +230,30 @@ def _check_event(event: Event, index: int, vehicle: Vehicle) -> None:
             check_member(event.name, [s.name for s in vehicle.power_sources], f"{where}.power.source", "power source")
     except ValueError as error:
         raise ScenarioError(str(error)) from error
+
+
+def _check_run(model: str, vehicle: Vehicle, duration: float, voltage: float | None, events: list[Event],
+               environment_data: dict, positions: dict[str, tuple[float, ...]]) -> None:
+    """Raise ValueError when the run would not be what the file says: an event at or after its
+    end, a supply voltage (or a battery ramp's) outside the vehicle's thrust tables or without
+    them, a ramp without a voltage to start from, an environment the hull model does not take
+    or no sea gives, a position above the surface (the ROV) or off it (the vessel)."""
+    for index, event in enumerate(events):
+        if event.time >= duration:
+            raise ValueError(f"events[{index}].time: {event.time:g} s is not within the run (0 to {duration:g} s); "
+                             "the run ends before it")
+        if event.kind == "battery_ramp":
+            check_voltage(vehicle, float(event.value), f"events[{index}].battery_ramp.to")
+            if voltage is None:
+                raise ValueError(f"events[{index}].battery_ramp: needs battery.voltage, the voltage it starts from")
+        if event.kind == "setpoint" and event.value.position is not None:
+            check_depth(model, event.value.position, f"events[{index}].setpoint.position")
+    if voltage is not None:
+        check_voltage(vehicle, voltage, "battery.voltage")
+    scale = max([1.0] + [float(e.value) for e in events if e.kind == "weather_ramp"])
+    check_environment(model, environment_data, scale)
+    for where, position in positions.items():
+        check_depth(model, position, where)
 
 
 def load_scenario(path: str | Path) -> Scenario:
@@ -241,9 +291,14 @@ def load_scenario(path: str | Path) -> Scenario:
         if not isinstance(data.get("particulars"), str):
             raise ScenarioError("particulars: required for dp_vessel, a particulars file")
         try:
-            particulars = load_particulars(path.parent / data["particulars"]).vessel
+            read = load_particulars(path.parent / data["particulars"])
         except ValueError as error:
             raise ScenarioError(f"particulars: {error}") from error
+        try:
+            check_particulars(model, config, read, data["particulars"])
+        except ValueError as error:
+            raise ScenarioError(str(error)) from error
+        particulars = read.vessel
     setpoint, initial = section(data, "setpoint"), section(data, "initial")
     position = vector(setpoint, "position", "setpoint.", 3, [0.0, 0.0, 0.0])
     heading = number(setpoint, "heading", "setpoint.", 0.0)
@@ -261,6 +316,15 @@ def load_scenario(path: str | Path) -> Scenario:
     if not isinstance(events, list):
         raise ScenarioError("events: a list")
     checked = [_event(e, i) for i, e in enumerate(events)]
+    voltage = number(battery, "voltage", "battery.", minimum=0.0) if battery else None
+    initial_position = vector(initial, "position", "initial.", 3, list(position))
+    environment_data = section(data, "environment")
+    spec = environment(environment_data)
+    try:
+        _check_run(model, config, duration, voltage, checked, environment_data,
+                   {"setpoint.position": position, "initial.position": initial_position})
+    except ValueError as error:
+        raise ScenarioError(str(error)) from error
     changed = dict(parameters)
     for index, event in sorted(enumerate(checked), key=lambda item: item[1].time):
         _check_event(event, index, config)
@@ -275,10 +339,10 @@ def load_scenario(path: str | Path) -> Scenario:
         duration=duration, seed=int(number(data, "seed", "", 0.0, 0.0)),
         thruster_time_constant=number(data, "thruster_time_constant", "", 1.0, 1e-6),
         setpoint_position=position, setpoint_heading=math.radians(heading),
-        initial_position=vector(initial, "position", "initial.", 3, list(position)),
+        initial_position=initial_position,
         initial_heading=math.radians(number(initial, "heading", "initial.", heading)),
-        gains=gains, environment=environment(section(data, "environment")), particulars=particulars,
-        parameters=dict(parameters), voltage=number(battery, "voltage", "battery.", minimum=0.0) if battery else None,
+        gains=gains, environment=spec, particulars=particulars,
+        parameters=dict(parameters), voltage=voltage,
         events=tuple(sorted(checked, key=lambda e: e.time)),
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
         description=str(data.get("description", "")),
