@@ -270,3 +270,43 @@ def test_a_stuck_angle_is_in_degrees_like_every_angle_of_the_file(tmp_path):
     where = load_scenario(_bad(tmp_path, "{actuator: azimuth_port, mode: failed}",
                                "{actuator: azimuth_port, mode: stuck}"))
     assert where.events[0].value is None                        # stuck at the angle it has then
+
+
+def test_a_method_held_to_bounds_of_its_own():
+    scenario = load_scenario(ROOT / "config" / "scenarios" / "rov_battery_sag.yaml")
+    assert scenario.run_bounds() == {"position_error_max": 0.5, "heading_error_max": 5.0, "depth_error_max": 0.3}
+    own = scenario.with_method("pseudoinverse")
+    assert own.run_bounds() == {"position_error_max": 0.5, "heading_error_max": 50.0, "depth_error_max": 0.3}
+    assert "clipping" in own.method_bounds["pseudoinverse"].note
+
+
+def test_a_method_holds_its_own_bounds_over_a_window(tmp_path):
+    path = _bad(tmp_path, "bounds: {position_error_max: 11.0, heading_error_max: 5.0}",
+                "bounds: {position_error_max: 11.0, heading_error_max: 5.0}\nmethods:\n  lp:\n"
+                "    windows: {moved: {position_error_max: 2.5}}\n", base="dp_setpoint_change.yaml")
+    scenario = load_scenario(path)
+    assert scenario.window_bounds()["moved"] == {"position_error_max": 2.0, "heading_error_max": 1.0}
+    assert scenario.with_method("lp").window_bounds()["moved"] == {"position_error_max": 2.5, "heading_error_max": 1.0}
+    assert scenario.with_method("lp").run_bounds() == scenario.run_bounds()
+
+
+@pytest.mark.parametrize("methods, message", [
+    ("  qpp: {bounds: {heading_error_max: 50.0}}", r"methods\.qpp: method: 'qpp' is not a method; did you mean qp"),
+    ("  svd_filter: {bounds: {heading_error_max: 50.0}}", r"methods\.svd_filter: .*cannot serve this vehicle"),
+    ("  lp: {bounds: {heading_eror_max: 50.0}}", r"methods\.lp\.bounds\.heading_eror_max: unknown key; did you mean "
+                                                 "heading_error_max"),
+    ("  lp: {bound: {heading_error_max: 50.0}}", r"methods\.lp\.bound: unknown key; did you mean bounds"),
+    ("  lp: {bounds: {heading_error_max: -1.0}}", r"methods\.lp\.bounds\.heading_error_max: at least 0"),
+    ("  lp: {windows: {settled: {heading_error_max: 1.0}}}", r"methods\.lp\.windows\.settled: not a window of the "
+                                                             r"file \(it has none\)"),
+    ("  lp: {note: [a]}", r"methods\.lp\.note: a text"),
+    ("  lp: {}", r"methods\.lp: a mapping of bounds, windows and a note"),
+])
+def test_what_a_scenario_expects_of_a_method_is_checked_at_load(tmp_path, methods, message):
+    old = "bounds: {position_error_max: 0.5, heading_error_max: 5.0, depth_error_max: 0.3}\n"
+    text = (ROOT / "config" / "scenarios" / "rov_battery_sag.yaml").read_text().replace("../", f"{ROOT}/config/")
+    start = text.index(old) + len(old)
+    path = tmp_path / "bad.yaml"
+    path.write_text(text[:start] + "methods:\n" + methods + "\n")
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(path)

@@ -39,7 +39,8 @@ def run_report(scenario: Scenario, trace: Trace, vehicle: Vehicle, realtime_fact
 
 
 def report_checks(scenario: Scenario, report: dict) -> list[Check]:
-    """The scenario's bounds against a run's report: ``bounds`` over the run, each window's
-    bounds over that window."""
-    return checks(report["metrics"], scenario.bounds, {name: w["metrics"] for name, w in report["windows"].items()},
-                  {window.name: window.bounds for window in scenario.windows if window.bounds})
+    """The bounds the scenario holds its method to against a run's report: over the run, and
+    each window's over that window (``Scenario.run_bounds`` and ``window_bounds``: the method's
+    own where the scenario gives them)."""
+    return checks(report["metrics"], scenario.run_bounds(),
+                  {name: w["metrics"] for name, w in report["windows"].items()}, scenario.window_bounds())

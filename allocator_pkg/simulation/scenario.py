@@ -25,6 +25,7 @@ from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec
 from .scenario_check import (
+    METHOD_KEYS,
     check_depth,
     check_environment,
     check_member,
@@ -75,6 +76,18 @@ class Event:
 
 
 @dataclass(frozen=True)
+class MethodBounds:
+    """What a scenario expects of one method other than of the rest (its ``methods.<name>``):
+    bounds over the run and over named windows, each in place of the scenario's own bound of
+    that metric, and why."""
+
+    bounds: dict[str, float] = field(default_factory=dict)
+    windows: dict[str, dict[str, float]] = field(default_factory=dict)
+    """Window name: its bounds for this method."""
+    note: str = ""
+
+
+@dataclass(frozen=True)
 class Scenario:
     name: str
     path: Path
@@ -103,6 +116,8 @@ class Scenario:
     description: str = ""
     position_limit: float = 5.0
     """[m] The vessel has lost its position once its position error exceeds this."""
+    method_bounds: dict[str, MethodBounds] = field(default_factory=dict)
+    """Per method, what the scenario expects of it in place of ``bounds`` (``methods`` of the file)."""
 
     @property
     def horizontal(self) -> bool:
@@ -127,6 +142,19 @@ class Scenario:
     def all_windows(self) -> tuple[Window, ...]:
         """The file's windows, then the automatic ones of the faults (``windows.fault_windows``)."""
         return self.windows + tuple(fault_windows(self.events, self.duration))
+
+    def run_bounds(self) -> dict[str, float]:
+        """The bounds over the run that ``method`` is held to: ``bounds``, each replaced by the
+        method's own where the scenario gives one."""
+        own = self.method_bounds.get(self.method)
+        return {**self.bounds, **own.bounds} if own else dict(self.bounds)
+
+    def window_bounds(self) -> dict[str, dict[str, float]]:
+        """Per named window with bounds, those ``method`` is held to (the window's, each
+        replaced by the method's own where the scenario gives one)."""
+        own = self.method_bounds.get(self.method, MethodBounds())
+        found = {w.name: {**w.bounds, **own.windows.get(w.name, {})} for w in self.windows}
+        return {name: limits for name, limits in found.items() if limits}
 
     def with_method(self, method: str) -> Scenario:
         """The same scenario under another method; ScenarioError when it cannot serve the vehicle."""
@@ -190,6 +218,40 @@ def _event(data: Any, index: int) -> Event:
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
+
+
+def _method_bounds(data: Any, windows: list[Window], vehicle: Vehicle) -> dict[str, MethodBounds]:
+    """The ``methods`` section: per method (one that can serve the vehicle), its own ``bounds``
+    over the run, ``windows`` (a named window's name: its bounds) and a ``note``."""
+    if not isinstance(data, dict):
+        raise ScenarioError(f"methods: a mapping of method names to what the scenario expects of each, not {data!r}")
+    found = {}
+    names = [w.name for w in windows]
+    for method, body in data.items():
+        where = f"methods.{method}"
+        try:
+            check_method_serves(str(method), vehicle)
+        except ValueError as error:
+            raise ScenarioError(f"{where}: {error}") from error
+        if not isinstance(body, dict) or not body:
+            raise ScenarioError(f"{where}: a mapping of bounds, windows and a note, not {body!r}")
+        unknown = unknown_keys(body, METHOD_KEYS, where)
+        if unknown:
+            raise ScenarioError("; ".join(unknown))
+        own_windows = body.get("windows", {}) or {}
+        if not isinstance(own_windows, dict):
+            raise ScenarioError(f"{where}.windows: a mapping of window names to bounds, not {own_windows!r}")
+        for name in own_windows:
+            if name not in names:
+                raise ScenarioError(f"{where}.windows.{name}: not a window of the file ("
+                                    + (", ".join(names) if names else "it has none") + ")")
+        if "note" in body and not isinstance(body["note"], str):
+            raise ScenarioError(f"{where}.note: a text, not {body['note']!r}")
+        found[str(method)] = MethodBounds(
+            bounds=read_bounds(body.get("bounds", {}) or {}, f"{where}.bounds"),
+            windows={name: read_bounds(limits, f"{where}.windows.{name}") for name, limits in own_windows.items()},
+            note=body.get("note", ""))
+    return found
 
 
 def _stuck_angle(body: dict, where: str) -> float | None:
@@ -346,5 +408,6 @@ def load_scenario(path: str | Path) -> Scenario:
         events=tuple(sorted(checked, key=lambda e: e.time)),
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
         description=str(data.get("description", "")),
-        position_limit=number(data, "position_limit", "", 5.0, 1e-6))
+        position_limit=number(data, "position_limit", "", 5.0, 1e-6),
+        method_bounds=_method_bounds(data.get("methods", {}) or {}, named, config))
 

@@ -38,6 +38,9 @@ EVENT_KEYS = {
     "weather_ramp": {"to": {}, "duration": {}},
 }
 BOUND_KEYS = {name: {} for name in BOUNDED_METRICS}
+METHOD_KEYS = {"bounds": BOUND_KEYS, "windows": ANY, "note": {}}
+"""The keys of what a scenario expects of one method (``methods.<name>``); its windows are
+named by the file's windows."""
 SCENARIO_KEYS: dict[str, Any] = {
     "name": {}, "description": {}, "model": {}, "vehicle": {}, "particulars": {}, "method": {}, "duration": {},
     "seed": {}, "thruster_time_constant": {}, "position_limit": {},
