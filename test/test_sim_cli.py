@@ -1,11 +1,16 @@
 """allocator-sim's command line with the allocator in process: the help names both forms, and
 the verdict tells a method that broke a bound (exit status 1) from a run that failed (3) and
-from a scenario refused before anything ran (2); a method held to bounds of its own."""
+from a scenario refused before anything ran (2); a method held to bounds of its own;
+metrics.json is strict JSON."""
+
+import json
+import math
 
 import pytest
 from conftest import ROOT
 
 from allocator_pkg.cli.sim import EXIT_BROKEN, EXIT_FAILED, EXIT_HELD, EXIT_REFUSED, main
+from allocator_pkg.simulation.report import read_report
 
 
 def station_keeping(tmp_path, bound: float, more: str = "", event: str = "") -> str:
@@ -65,3 +70,22 @@ def test_a_method_is_held_to_the_bounds_the_scenario_gives_it(tmp_path, capsys):
     held = station_keeping(tmp_path, 3.0, more)
     assert main([arguments[0], held, *arguments[2:]]) == EXIT_HELD
     assert "PASS: 2 method(s) held every bound" in capsys.readouterr().out
+
+
+def refuse(constant: str):
+    raise ValueError(f"{constant} is not JSON")
+
+
+def test_metrics_json_is_strict_json_and_reads_back(tmp_path):
+    """No alarm and no loss of position: the alarm times are infinite, written as strings that
+    JSON.parse takes, and read back as numbers."""
+    out = tmp_path / "run"
+    assert main([station_keeping(tmp_path, 3.0), "--out", str(out), "--duration-scale", "0.02", "--in-process"]) == 0
+    text = (out / "metrics.json").read_text()
+    data = json.loads(text, parse_constant=refuse)                     # bare Infinity or NaN would raise
+    assert data["metrics"]["consequence_alarm_time"] == "Infinity"
+    assert data["metrics"]["alarm_lead_time"] == "-Infinity" and data["metrics"]["position_lost_time"] == "Infinity"
+    report = read_report(out / "metrics.json")
+    assert report["metrics"]["alarm_lead_time"] == -math.inf and report["metrics"]["consequence_alarm_time"] == math.inf
+    assert report["metrics"]["alarm_after_position_loss"] == 0.0 and report["scenario"] == "dp_station_keeping"
+    assert report["windows"] == {} and isinstance(report["metrics"]["energy"], float)
