@@ -1,11 +1,14 @@
 """Scenario files (``config/scenarios/*.yaml``): the vehicle, the method and node parameters,
 the duration and seed, the hull model, the environment, the set-point, the controller's
-gains, timed events (set-point steps and ramps among them), named windows and the bounds the
-run must stay within (over the run, or over a window). Paths are relative to the
-scenario file. Bad input raises ``ScenarioError`` naming the key, before anything runs: an
-unknown key at any depth (with the nearest known one), a vehicle file that does not fit the hull
-model or whose parameters the allocator refuses, a method that cannot serve it, an event the
-vehicle cannot take (:mod:`.scenario_check`)."""
+gains, timed events (set-point steps and ramps among them), named windows, the bounds the
+run must stay within (over the run, or over a window) and, under ``methods``, the bounds a
+method is held to in place of those. Paths are relative to the scenario file; every angle is
+in degrees. Bad input raises ``ScenarioError`` naming the key, before anything runs: an
+unknown key at any depth (with the nearest known one), a vehicle file or particulars that do
+not fit the hull model or whose parameters the allocator refuses, a method that cannot serve
+it, an event the vehicle cannot take or that comes after the end, a supply voltage outside the
+thrust tables, an environment no sea gives or the hull does not take, a depth off the hull's
+(:mod:`.scenario_check`)."""
 
 from __future__ import annotations
 
