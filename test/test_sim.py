@@ -197,7 +197,7 @@ def test_compare_gives_a_verdict_per_method(tmp_path, capsys):
     assert main(["compare", str(path), "--methods", "qp", "pseudoinverse", "--out", str(tmp_path / "cmp"),
                  "--duration-scale", "0.02"]) == 1
     text = capsys.readouterr().out
-    assert "sim: qp: FAIL, run position_error_max" in text and "sim: pseudoinverse: FAIL" in text
+    assert "sim: qp: FAIL, broke run position_error_max" in text and "sim: pseudoinverse: FAIL" in text
     assert "| thrust reversals [count] |" in text
 
 
@@ -214,7 +214,7 @@ def test_a_bad_scenario_is_refused_with_its_key(tmp_path, capsys):
     bad = tmp_path / "bad.yaml"
     text = (ROOT / "config" / "scenarios" / "dp_station_keeping.yaml").read_text().replace("../", f"{ROOT}/config/")
     bad.write_text(text.replace("thruster_time_constant: 2.0", "thruster_time_constant: -1.0"))
-    assert main([str(bad), "--out", str(tmp_path / "out")]) == 1
+    assert main([str(bad), "--out", str(tmp_path / "out")]) == 2          # refused, not a broken bound
     assert "thruster_time_constant" in capsys.readouterr().err
 
 
