@@ -193,7 +193,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--live", type=float, nargs="?", const=1.0, default=0.0, metavar="SECONDS",
                         help="a live table, one line every SECONDS of simulated time (default 1)")
     parser.add_argument("--no-verdict", action="store_true",
-                        help="no verdict against the scenario's bounds (exit status 0 whatever the run did)")
+                        help="no verdict against the scenario's bounds (exit status 0 unless refused or failed)")
     parser.add_argument("--in-process", action="store_true", help=IN_PROCESS_HELP)
     arguments = parser.parse_args(argv)
     try:
