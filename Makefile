@@ -26,7 +26,7 @@ help:
 	@echo "make run     set up (first time) and start allocator_node with CONFIG=$(CONFIG)"
 	@echo "make test    set up (first time), lint, and run the whole pytest suite"
 	@echo "make demo    closed loop: a DP vessel on station while an azimuth fails, live table, footprint and timeline PNGs"
-	@echo "make sim     every scenario in config/scenarios/ under SIM_METHODS, side by side, into build/sim/"
+	@echo "make sim     every scenario in config/scenarios/ under SIM_METHODS, side by side, into build/sim/ (SIM_ARGS=--in-process: no node)"
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
 	@echo "make lint    ruff"
 	@echo "make docs    regenerate docs/configuration.md (schema), the file key tables of docs/closed_loop.md and docs/dp_capability.md, docs/faults.md, docs/thrust_markers.png, docs/priorities.png"
@@ -80,10 +80,16 @@ demo: setup
 
 SCENARIOS := $(wildcard config/scenarios/*.yaml)
 SIM_METHODS ?= qp lp pseudoinverse nonlinear dynamic svd_filter explicit
+SIM_ARGS ?=
 sim: setup
-	@broken=""; for scenario in $(SCENARIOS); do $(VENV)/bin/allocator-sim compare $$scenario --methods $(SIM_METHODS) \
-	  --out build/sim/$$(basename $$scenario .yaml) || broken="$$broken $$(basename $$scenario .yaml)"; done; \
-	  if [ -n "$$broken" ]; then echo "sim: a method broke the bounds (or a run failed) in:$$broken"; exit 1; fi
+	@broken=""; refused=""; failed=""; for scenario in $(SCENARIOS); do name=$$(basename $$scenario .yaml); \
+	  $(VENV)/bin/allocator-sim compare $$scenario --methods $(SIM_METHODS) --out build/sim/$$name $(SIM_ARGS); \
+	  case $$? in 0) ;; 1) broken="$$broken $$name";; 2) refused="$$refused $$name";; *) failed="$$failed $$name";; \
+	  esac; done; \
+	  if [ -n "$$broken" ]; then echo "sim: a method broke a bound (its verdict line says which) in:$$broken"; fi; \
+	  if [ -n "$$refused" ]; then echo "sim: the scenario was refused before anything ran:$$refused"; fi; \
+	  if [ -n "$$failed" ]; then echo "sim: a run failed (crashed, no verdict) in:$$failed"; fi; \
+	  if [ -n "$$broken$$refused$$failed" ]; then exit 1; fi; echo "sim: every method held the bounds of every scenario"
 
 lint: setup
 	@$(VENV)/bin/ruff check .

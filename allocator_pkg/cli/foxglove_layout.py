@@ -1,10 +1,13 @@
 """Foxglove layouts of an ``allocator-sim`` recording (``config/foxglove/<vehicle>.json``), made
 from the vehicle: a 3-D panel following ``base_link`` over a grid in ``map`` with the node's
-thrust markers and the set-point; the track (north against east); each actuator's thrust
-against its limits (at the nominal voltage for thrust tables measured at several voltages,
-with the supply voltage beside); the azimuth angles; the saturation flags; the unallocated
-wrench in the controlled DOFs; the diagnostics. Only topics and fields the recording holds
-(:mod:`..ros.sim_recording`).
+thrust markers and the set-point; the track (north against east); the heading and its
+set-point [deg]; the depth and its set-point [m] (a vehicle that controls heave); each
+actuator's thrust against its limits (at the nominal voltage for thrust tables measured at
+several voltages, with the supply voltage beside); the azimuth angles [deg]; the saturation
+flags; the unallocated wrench in the controlled DOFs; the diagnostics. Angles in degrees as the
+figures of ``allocator-sim`` give them, through the message path functions ``@ypr`` (a
+quaternion's yaw, pitch and roll, ZYX as the odometry's attitude) and ``@degrees``. Only topics
+and fields the recording holds (:mod:`..ros.sim_recording`).
 
     python -m allocator_pkg.cli.foxglove_layout config/dp_vessel.yaml > config/foxglove/dp_vessel.json
 
@@ -29,6 +32,8 @@ from ..simulation.report.style import LIMIT_COLOUR, PALETTE
 from ..vehicle.config import Vehicle
 
 COMMANDS, STATUS = "/thruster_commands", "/allocation_status"
+HEADING = ".pose.pose.orientation.@ypr.yaw.@degrees"
+"""The heading [deg] of an odometry's attitude (NED to FRD, ZYX)."""
 UNALLOCATED = {"surge": ("force.x", "N"), "sway": ("force.y", "N"), "heave": ("force.z", "N"),
                "roll": ("torque.x", "N m"), "pitch": ("torque.y", "N m"), "yaw": ("torque.z", "N m")}
 
@@ -108,11 +113,19 @@ def layout(vehicle: Vehicle) -> dict[str, Any]:
         "DiagnosticSummary!diagnostics": {"foxglovePanelTitle": "diagnostics", "minLevel": 0, "pinnedIds": [],
                                           "hardwareIdFilter": "", "topicToRender": TOPICS["diagnostics"],
                                           "sortByLevel": True},
-        "Plot!thrust": _thrust(vehicle),
     }
+    panels["Plot!heading"] = _plot("heading [deg] and its set-point", [
+        _series(f"/odometry{HEADING}", "heading [deg]", "#1f77b4"),
+        _series(f"/setpoint{HEADING.replace('pose.pose', 'pose')}", "set-point [deg]", LIMIT_COLOUR)])
+    if "heave" in vehicle.dofs:
+        panels["Plot!depth"] = _plot("depth [m] (down) and its set-point", [
+            _series("/odometry.pose.pose.position.z", "depth [m]", "#1f77b4"),
+            _series("/setpoint.pose.position.z", "set-point [m]", LIMIT_COLOUR)])
+    panels["Plot!thrust"] = _thrust(vehicle)
     if rotating:
-        panels["Plot!azimuth"] = _plot("azimuth [rad]", [_series(f"{COMMANDS}.azimuth[{i}]", f"{names[i]} [rad]",
-                                                                 PALETTE[i % len(PALETTE)]) for i in rotating])
+        panels["Plot!azimuth"] = _plot("azimuth [deg]", [_series(f"{COMMANDS}.azimuth[{i}].@degrees",
+                                                                 f"{names[i]} [deg]", PALETTE[i % len(PALETTE)])
+                                                         for i in rotating])
     panels["StateTransitions!saturation"] = {
         "foxglovePanelTitle": "saturation: the request not met; each actuator at its thrust limit",
         "paths": [{"value": f"{STATUS}.saturated", "timestampMethod": "receiveTime", "label": "saturated"}]

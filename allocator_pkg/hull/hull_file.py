@@ -6,6 +6,7 @@ Other keys of the file are the DP analysis' and are not read here."""
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -47,10 +48,21 @@ def hull_from_mapping(data: Mapping[str, Any]) -> VesselParticulars:
     return VesselParticulars(**numbers, coefficients=load_coefficients(data.get("coefficients") or {}))
 
 
-def load_hull(path: str | Path) -> VesselParticulars:
-    """The hull of a particulars file (YAML); every error names the path."""
+@dataclass(frozen=True)
+class HullFile:
+    """What the simulation reads of a particulars file: the hull, and the names of the thrusters
+    the file describes (to tell whether it is the vehicle file's vessel)."""
+
+    vessel: VesselParticulars
+    thrusters: tuple[str, ...]
+
+
+def read_hull(path: str | Path) -> HullFile:
+    """The hull of a particulars file (YAML) and its thrusters' names; every error names the path."""
     data = read_mapping(path, "a particulars file")
+    thrusters = data.get("thrusters")
     try:
-        return hull_from_mapping(data)
+        return HullFile(hull_from_mapping(data), tuple(str(name) for name in thrusters)
+                        if isinstance(thrusters, Mapping) else ())
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from error

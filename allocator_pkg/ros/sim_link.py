@@ -229,6 +229,8 @@ class NodeLink:
         self.last = status, commands
         if not record:
             return _answer(status, commands)
+        if self.recording.origin is None:
+            self.recording.start(t_ns)
         for topic, item in (("clock", clock), ("battery", battery), ("power", available), ("odometry", odometry),
                             ("setpoint", goal), ("wrench", message), ("commands", commands),
                             ("status", status)):

@@ -12,7 +12,13 @@ Frames (one tree, every frame the recording names):
 Every ``/tf`` message (tf2_msgs/msg/TFMessage, :data:`~.recording.TF_MESSAGE`) carries map ->
 ned (a constant rotation, in every message so that a seek anywhere finds it) and ned ->
 base_link (the odometry's pose), stamped with the odometry. The markers and diagnostics are
-logged at their header stamps (sim time), from the first odometry on.
+logged at their header stamps, from the run's first step on.
+
+Times are the run's: the node's sim time less that of the run's first step (:meth:`RunRecording.start`;
+the node's clock starts before the warm-up, which is not recorded), in every log and publish time
+and in every time the messages carry (each ``header.stamp``, ``/clock``), so that the recording
+starts at 0 s as the scenario's events, ``metrics.json`` and the figures do: a fault at 100 s is
+at 100 s in Foxglove.
 """
 
 from __future__ import annotations
@@ -29,7 +35,7 @@ from visualization_msgs.msg import MarkerArray
 
 from ..vehicle.node_settings import NODE_NAME
 from . import qos
-from .recording import TF_MESSAGE, Recording
+from .recording import TF_MESSAGE, Recording, fields, type_name
 
 WORLD, NED, BODY = "map", "ned", "base_link"
 TOPICS = {"tf": "/tf", "markers": f"/{NODE_NAME}/thrust_markers", "diagnostics": "/diagnostics"}
@@ -64,14 +70,31 @@ def transforms(odometry: Odometry) -> dict[str, Any]:
                    {"x": q.x, "y": q.y, "z": q.z, "w": q.w})]}
 
 
+def shifted(fields: Any, origin: int, stamps: tuple[str, ...] = ("stamp",)) -> Any:
+    """A message as a mapping of its fields (:func:`~.recording.fields`) with every time under
+    a key of ``stamps`` (``builtin_interfaces/Time``: sec, nanosec) ``origin`` [ns] earlier, at
+    any depth; durations (a marker's ``lifetime``) stay as they are."""
+    if isinstance(fields, dict):
+        return {key: _stamp(_nanoseconds_of(value) - origin) if key in stamps and isinstance(value, dict)
+                else shifted(value, origin, stamps) for key, value in fields.items()}
+    if isinstance(fields, list):
+        return [shifted(item, origin, stamps) for item in fields]
+    return fields
+
+
+def _nanoseconds_of(time: dict[str, int]) -> int:
+    return time["sec"] * 1_000_000_000 + time["nanosec"]
+
+
 class RunRecording(Recording):
-    """A :class:`~.recording.Recording` that writes ``/tf`` after each ``/odometry`` and records
-    the node's thrust markers and diagnostics, which ``node`` subscribes to (the node builds its
-    markers only while someone subscribes)."""
+    """A :class:`~.recording.Recording` of a run, on the run's time (:meth:`start`): writes
+    ``/tf`` after each ``/odometry`` and records the node's thrust markers and diagnostics,
+    which ``node`` subscribes to (the node builds its markers only while someone subscribes)."""
 
     def __init__(self, path: str | Path, node: Node) -> None:
         super().__init__(path)
-        self._start: int | None = None
+        self.origin: int | None = None
+        """Sim time [ns] of the run's first step: 0 s of the recording (None before :meth:`start`)."""
         self.add_topic(TOPICS["tf"], TF_MESSAGE)
         self.add_topic(TOPICS["markers"], MarkerArray, [qos.output()])
         self.add_topic(TOPICS["diagnostics"], DiagnosticArray, [qos.diagnostics()])
@@ -79,17 +102,29 @@ class RunRecording(Recording):
         node.create_subscription(MarkerArray, TOPICS["markers"], self._on_markers, received)
         node.create_subscription(DiagnosticArray, TOPICS["diagnostics"], self._on_diagnostics, received)
 
+    def start(self, t_ns: int) -> None:
+        """The run's first step is at sim time ``t_ns`` [ns]: 0 s of the recording."""
+        self.origin = t_ns
+
     def write(self, topic: str, message: Any, log_time: int, publish_time: int | None = None) -> None:
-        """:meth:`Recording.write`; after an ``/odometry``, its ``/tf``."""
-        super().write(topic, message, log_time, publish_time)
+        """:meth:`Recording.write` of ``message`` at sim time ``log_time`` [ns], every time of it
+        on the run's time (:func:`shifted`); after an ``/odometry``, its ``/tf``."""
+        if self.origin is None:
+            raise ValueError("the recording has no start (RunRecording.start) to put its times on")
+        if topic not in self:
+            self.add_topic(topic, type(message))
+        if type(message) is not dict and type_name(type(message)) != self._topics[topic].type:
+            raise ValueError(f"{topic} carries {self._topics[topic].type}, not {type_name(type(message))}")
+        stamps = ("stamp", "clock") if topic == "/clock" else ("stamp",)
+        super().write(topic, shifted(fields(message), self.origin, stamps), log_time - self.origin,
+                      None if publish_time is None else publish_time - self.origin)
         if topic == "/odometry":
-            self._start = log_time if self._start is None else self._start
-            super().write(TOPICS["tf"], transforms(message), log_time)
+            super().write(TOPICS["tf"], shifted(transforms(message), self.origin), log_time - self.origin)
 
     def _record_stamped(self, topic: str, message: Any, t_ns: int) -> None:
         """``message`` at its stamp ``t_ns``, once the run has begun (not the warm-up's)."""
-        if self._start is not None and t_ns >= self._start:
-            super().write(topic, message, t_ns)
+        if self.origin is not None and t_ns >= self.origin:
+            self.write(topic, message, t_ns)
 
     def _on_markers(self, message: MarkerArray) -> None:
         if message.markers:

@@ -11,7 +11,6 @@ node does per sample (:mod:`.in_process`). The loop, its warm-up, events, trace 
 from __future__ import annotations
 
 import contextlib
-import json
 import math
 import time
 from collections.abc import Callable
@@ -25,7 +24,7 @@ from ..configuration.parameters import load_vehicle
 from .controller import StationKeeping
 from .plant import PLANAR, Pose
 from .power_plant import PowerPlant
-from .run_report import run_report
+from .run_report import report_json, run_report
 from .run_setup import RunResult, Voltage, WeatherScale, build_plant, setpoint_vector, warm_up_steps
 from .scenario import Event, Scenario
 from .trace import Trace
@@ -117,7 +116,7 @@ class ClosedLoop:
             wall = time.monotonic() - wall_start
         report = run_report(self.scenario, self.trace, self.vehicle,
                             self.scenario.duration / wall if wall > 0 else math.inf)
-        (self.out / "metrics.json").write_text(json.dumps(report, indent=2) + "\n")
+        (self.out / "metrics.json").write_text(report_json(report))
         return RunResult(report["metrics"], self.trace, self.vehicle, self.faults, report)
 
     def _wrench(self, setpoint: np.ndarray) -> np.ndarray:

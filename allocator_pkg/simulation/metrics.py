@@ -18,7 +18,9 @@ and of the power and the consequence analysis (:func:`power_metrics`, :func:`ala
   with its peak power [kW] (:func:`source_figures`);
 - ``consequence_alarm_time`` [s]: when the status's ``consequence_alarm`` first rose (inf: never);
 - ``position_lost_time`` [s]: when the position error first exceeded the scenario's
-  ``position_limit`` (inf: never);
+  ``position_limit`` while the set-point held still (inf: never); a commanded move (a step or
+  ramp of the set-point's position) is not a loss: the error counts again from the first
+  sample after it that is back within the limit (:func:`settled_samples`);
 - ``alarm_lead_time`` [s]: how long before the position was lost the alarm rose (inf: the
   position was never lost; -inf: no alarm);
 - ``alarm_after_position_loss`` [s]: how long the position had been lost when the alarm rose
@@ -128,11 +130,31 @@ def first_time(time: np.ndarray, flags: np.ndarray) -> float:
     return float(np.asarray(time)[flagged[0]]) if flagged.size else math.inf
 
 
-def alarm_metrics(time: np.ndarray, alarm: np.ndarray, distance: np.ndarray, limit: float) -> dict[str, float]:
+def settled_samples(setpoint: np.ndarray, distance: np.ndarray, limit: float) -> np.ndarray:
+    """Per sample (n x 3 set-point positions, n position errors [m]): whether its error can
+    count as a loss of position. A sample whose set-point moved from the one before starts (or
+    continues) a commanded move; the samples of a move do not count, nor those after it until
+    the first whose set-point holds still and whose error is within ``limit``."""
+    setpoint = np.asarray(setpoint, dtype=float)
+    moved = np.zeros(len(setpoint), dtype=bool)
+    moved[1:] = np.any(setpoint[1:] != setpoint[:-1], axis=1)
+    counted = np.ones(len(setpoint), dtype=bool)
+    moving = False
+    for k, (step, error) in enumerate(zip(moved, distance)):
+        moving = step or (moving and error > limit)
+        counted[k] = not moving
+    return counted
+
+
+def alarm_metrics(time: np.ndarray, alarm: np.ndarray, distance: np.ndarray, limit: float,
+                  counted: np.ndarray | None = None) -> dict[str, float]:
     """The consequence alarm's time against the loss of position (the module's last four metrics):
-    ``distance`` [m] the position error of each sample, ``limit`` [m] the scenario's ``position_limit``."""
+    ``distance`` [m] the position error of each sample, ``limit`` [m] the scenario's
+    ``position_limit``, ``counted`` the samples whose error can count as a loss
+    (:func:`settled_samples`; default all)."""
     raised = first_time(time, alarm)
-    lost = first_time(time, np.asarray(distance) > limit)
+    beyond = np.asarray(distance) > limit
+    lost = first_time(time, beyond if counted is None else beyond & np.asarray(counted, dtype=bool))
     return {"consequence_alarm_time": raised, "position_lost_time": lost,
             "alarm_lead_time": -math.inf if math.isinf(raised) else lost - raised,
             "alarm_after_position_loss": 0.0 if math.isinf(lost) else max(0.0, raised - lost)}

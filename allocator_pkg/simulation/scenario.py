@@ -1,11 +1,14 @@
 """Scenario files (``config/scenarios/*.yaml``): the vehicle, the method and node parameters,
 the duration and seed, the hull model, the environment, the set-point, the controller's
-gains, timed events (set-point steps and ramps among them), named windows and the bounds the
-run must stay within (over the run, or over a window). Paths are relative to the
-scenario file. Bad input raises ``ScenarioError`` naming the key, before anything runs: an
-unknown key at any depth (with the nearest known one), a vehicle file that does not fit the hull
-model or whose parameters the allocator refuses, a method that cannot serve it, an event the
-vehicle cannot take (:mod:`.scenario_check`)."""
+gains, timed events (set-point steps and ramps among them), named windows, the bounds the
+run must stay within (over the run, or over a window) and, under ``methods``, the bounds a
+method is held to in place of those. Paths are relative to the scenario file; every angle is
+in degrees. Bad input raises ``ScenarioError`` naming the key, before anything runs: an
+unknown key at any depth (with the nearest known one), a vehicle file or particulars that do
+not fit the hull model or whose parameters the allocator refuses, a method that cannot serve
+it, an event the vehicle cannot take or that comes after the end, a supply voltage outside the
+thrust tables, an environment no sea gives or the hull does not take, a depth off the hull's
+(:mod:`.scenario_check`)."""
 
 from __future__ import annotations
 
@@ -19,12 +22,22 @@ from ..configuration.params_file import read_parameters
 from ..configuration.yaml_file import read_mapping
 from ..effectiveness.faults import FaultMode, FaultSet
 from ..hull.environment_loads import VesselParticulars
-from ..hull.hull_file import load_hull
+from ..hull.hull_file import read_hull
 from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec
-from .scenario_check import check_member, check_method_serves, check_parameter, check_vehicle, unknown_keys
-from .scenario_keys import EVENT_KEYS, FAULT_MODES, MODELS, scenario_default
+from .scenario_check import (
+    check_depth,
+    check_environment,
+    check_member,
+    check_method_serves,
+    check_parameter,
+    check_particulars,
+    check_vehicle,
+    check_voltage,
+    unknown_keys,
+)
+from .scenario_keys import EVENT_KEYS, FAULT_MODES, METHOD_KEYS, MODELS, scenario_default
 from .scenario_values import (
     ScenarioError,
     environment,
@@ -44,7 +57,8 @@ EVENT_KINDS = tuple(key.name for key in EVENT_KEYS[1:])
 @dataclass(frozen=True)
 class Event:
     """At ``time`` [s]: one of a fault (``fault``: actuator, mode, value: the share of force
-    left when ``degraded``, the angle [rad] when ``stuck``, None for the angle it has then),
+    left when ``degraded``, the angle [rad] when ``stuck`` (the file gives it in degrees), None
+    for the angle it has then),
     clearing every fault, a battery voltage ramp (``ramp``: to [V], duration [s]), a node
     parameter, a new set-point (``setpoint``: value a SetpointTarget), a redundancy group's
     loss (``group_fault``: name the group), the available power of a source changing
@@ -58,6 +72,18 @@ class Event:
     value: Any = 0.0
     duration: float = 0.0
     name: str = ""
+
+
+@dataclass(frozen=True)
+class MethodBounds:
+    """What a scenario expects of one method other than of the rest (its ``methods.<name>``):
+    bounds over the run and over named windows, each in place of the scenario's own bound of
+    that metric, and why."""
+
+    bounds: dict[str, float] = field(default_factory=dict)
+    windows: dict[str, dict[str, float]] = field(default_factory=dict)
+    """Window name: its bounds for this method."""
+    note: str = ""
 
 
 @dataclass(frozen=True)
@@ -89,6 +115,8 @@ class Scenario:
     description: str = ""
     position_limit: float = scenario_default("position_limit")
     """[m] The vessel has lost its position once its position error exceeds this."""
+    method_bounds: dict[str, MethodBounds] = field(default_factory=dict)
+    """Per method, what the scenario expects of it in place of ``bounds`` (``methods`` of the file)."""
 
     @property
     def horizontal(self) -> bool:
@@ -113,6 +141,19 @@ class Scenario:
     def all_windows(self) -> tuple[Window, ...]:
         """The file's windows, then the automatic ones of the faults (``windows.fault_windows``)."""
         return self.windows + tuple(fault_windows(self.events, self.duration))
+
+    def run_bounds(self) -> dict[str, float]:
+        """The bounds over the run that ``method`` is held to: ``bounds``, each replaced by the
+        method's own where the scenario gives one."""
+        own = self.method_bounds.get(self.method)
+        return {**self.bounds, **own.bounds} if own else dict(self.bounds)
+
+    def window_bounds(self) -> dict[str, dict[str, float]]:
+        """Per named window with bounds, those ``method`` is held to (the window's, each
+        replaced by the method's own where the scenario gives one)."""
+        own = self.method_bounds.get(self.method, MethodBounds())
+        found = {w.name: {**w.bounds, **own.windows.get(w.name, {})} for w in self.windows}
+        return {name: limits for name, limits in found.items() if limits}
 
     def with_method(self, method: str) -> Scenario:
         """The same scenario under another method; ScenarioError when it cannot serve the vehicle."""
@@ -156,8 +197,12 @@ def _event(data: Any, index: int) -> Event:
             raise ScenarioError(f"{where}fault.actuator: an actuator name, not {body.get('actuator')!r}")
         if mode == "degraded" and "value" not in body:
             raise ScenarioError(f"{where}fault.value: required for degraded, the share of force left in (0, 1]")
-        value = None if mode == "stuck" and "value" not in body else number(body, "value", where + "fault.")
-        return Event(time, kind, actuator=body["actuator"], mode=mode, value=value)
+        if mode == "failed" and "value" in body:
+            raise ScenarioError(f"{where}fault.value: a failed actuator gives nothing; failed takes no value")
+        if mode == "stuck":
+            return Event(time, kind, actuator=body["actuator"], mode=mode, value=_stuck_angle(body, where))
+        return Event(time, kind, actuator=body["actuator"], mode=mode,
+                     value=number(body, "value", where + "fault."))
     if kind in ("battery_ramp", "weather_ramp"):
         return Event(time, kind, value=number(body, "to", f"{where}{kind}."),
                      duration=number(body, "duration", f"{where}{kind}."))
@@ -172,6 +217,51 @@ def _event(data: Any, index: int) -> Event:
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
+
+
+def _method_bounds(data: Any, windows: list[Window], vehicle: Vehicle) -> dict[str, MethodBounds]:
+    """The ``methods`` section: per method (one that can serve the vehicle), its own ``bounds``
+    over the run, ``windows`` (a named window's name: its bounds) and a ``note``."""
+    if not isinstance(data, dict):
+        raise ScenarioError(f"methods: a mapping of method names to what the scenario expects of each, not {data!r}")
+    found = {}
+    names = [w.name for w in windows]
+    for method, body in data.items():
+        where = f"methods.{method}"
+        try:
+            check_method_serves(str(method), vehicle)
+        except ValueError as error:
+            raise ScenarioError(f"{where}: {error}") from error
+        if not isinstance(body, dict) or not body:
+            raise ScenarioError(f"{where}: a mapping of bounds, windows and a note, not {body!r}")
+        unknown = unknown_keys(body, METHOD_KEYS, where)
+        if unknown:
+            raise ScenarioError("; ".join(unknown))
+        own_windows = body.get("windows", {}) or {}
+        if not isinstance(own_windows, dict):
+            raise ScenarioError(f"{where}.windows: a mapping of window names to bounds, not {own_windows!r}")
+        for name in own_windows:
+            if name not in names:
+                raise ScenarioError(f"{where}.windows.{name}: not a window of the file ("
+                                    + (", ".join(names) if names else "it has none") + ")")
+        if "note" in body and not isinstance(body["note"], str):
+            raise ScenarioError(f"{where}.note: a text, not {body['note']!r}")
+        found[str(method)] = MethodBounds(
+            bounds=read_bounds(body.get("bounds", {}) or {}, f"{where}.bounds"),
+            windows={name: read_bounds(limits, f"{where}.windows.{name}") for name, limits in own_windows.items()},
+            note=body.get("note", ""))
+    return found
+
+
+def _stuck_angle(body: dict, where: str) -> float | None:
+    """A stuck fault's ``value``: the angle [deg in the file, like every angle of it] the
+    azimuth is stuck at, in radians; None (absent) for the angle it has then."""
+    if "value" not in body:
+        return None
+    degrees = number(body, "value", where + "fault.")
+    if not -180.0 <= degrees <= 180.0:
+        raise ScenarioError(f"{where}fault.value: the stuck angle in degrees, -180 to 180, not {degrees!r}")
+    return math.radians(degrees)
 
 
 def _check_event(event: Event, index: int, vehicle: Vehicle) -> None:
@@ -201,6 +291,30 @@ def _check_event(event: Event, index: int, vehicle: Vehicle) -> None:
             check_member(event.name, [s.name for s in vehicle.power_sources], f"{where}.power.source", "power source")
     except ValueError as error:
         raise ScenarioError(str(error)) from error
+
+
+def _check_run(model: str, vehicle: Vehicle, duration: float, voltage: float | None, events: list[Event],
+               environment_data: dict, positions: dict[str, tuple[float, ...]]) -> None:
+    """Raise ValueError when the run would not be what the file says: an event at or after its
+    end, a supply voltage (or a battery ramp's) outside the vehicle's thrust tables or without
+    them, a ramp without a voltage to start from, an environment the hull model does not take
+    or no sea gives, a position above the surface (the ROV) or off it (the vessel)."""
+    for index, event in enumerate(events):
+        if event.time >= duration:
+            raise ValueError(f"events[{index}].time: {event.time:g} s is not within the run (0 to {duration:g} s); "
+                             "the run ends before it")
+        if event.kind == "battery_ramp":
+            check_voltage(vehicle, float(event.value), f"events[{index}].battery_ramp.to")
+            if voltage is None:
+                raise ValueError(f"events[{index}].battery_ramp: needs battery.voltage, the voltage it starts from")
+        if event.kind == "setpoint" and event.value.position is not None:
+            check_depth(model, event.value.position, f"events[{index}].setpoint.position")
+    if voltage is not None:
+        check_voltage(vehicle, voltage, "battery.voltage")
+    scale = max([1.0] + [float(e.value) for e in events if e.kind == "weather_ramp"])
+    check_environment(model, environment_data, scale)
+    for where, position in positions.items():
+        check_depth(model, position, where)
 
 
 def load_scenario(path: str | Path) -> Scenario:
@@ -236,9 +350,14 @@ def load_scenario(path: str | Path) -> Scenario:
         if not isinstance(data.get("particulars"), str):
             raise ScenarioError("particulars: required for dp_vessel, a particulars file")
         try:
-            particulars = load_hull(path.parent / data["particulars"])
+            read = read_hull(path.parent / data["particulars"])
         except ValueError as error:
             raise ScenarioError(f"particulars: {error}") from error
+        try:
+            check_particulars(model, config, read, data["particulars"])
+        except ValueError as error:
+            raise ScenarioError(str(error)) from error
+        particulars = read.vessel
     setpoint, initial = section(data, "setpoint"), section(data, "initial")
     position = vector(setpoint, "position", "setpoint.", 3)
     heading = number(setpoint, "heading", "setpoint.")
@@ -256,6 +375,15 @@ def load_scenario(path: str | Path) -> Scenario:
     if not isinstance(events, list):
         raise ScenarioError("events: a list")
     checked = [_event(e, i) for i, e in enumerate(events)]
+    voltage = number(battery, "voltage", "battery.", minimum=0.0) if battery else None
+    initial_position = vector(initial, "position", "initial.", 3, list(position))
+    environment_data = section(data, "environment")
+    spec = environment(environment_data)
+    try:
+        _check_run(model, config, duration, voltage, checked, environment_data,
+                   {"setpoint.position": position, "initial.position": initial_position})
+    except ValueError as error:
+        raise ScenarioError(str(error)) from error
     changed = dict(parameters)
     for index, event in sorted(enumerate(checked), key=lambda item: item[1].time):
         _check_event(event, index, config)
@@ -270,12 +398,13 @@ def load_scenario(path: str | Path) -> Scenario:
         duration=duration, seed=int(number(data, "seed", "")),
         thruster_time_constant=number(data, "thruster_time_constant", ""),
         setpoint_position=position, setpoint_heading=math.radians(heading),
-        initial_position=vector(initial, "position", "initial.", 3, list(position)),
+        initial_position=initial_position,
         initial_heading=math.radians(number(initial, "heading", "initial.", heading)),
-        gains=gains, environment=environment(section(data, "environment")), particulars=particulars,
-        parameters=dict(parameters), voltage=number(battery, "voltage", "battery.") if battery else None,
+        gains=gains, environment=spec, particulars=particulars,
+        parameters=dict(parameters), voltage=voltage,
         events=tuple(sorted(checked, key=lambda e: e.time)),
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
         description=str(data.get("description", "")),
-        position_limit=number(data, "position_limit", ""))
+        position_limit=number(data, "position_limit", ""),
+        method_bounds=_method_bounds(data.get("methods", {}) or {}, named, config))
 

@@ -1,7 +1,8 @@
 """What a scenario file may say, and whether its parts fit together: every key known at every
-depth (an unknown one is named with the nearest known one), the vehicle file fit for the hull
-model, the method able to serve the vehicle, and every event valid for that vehicle before the
-run starts."""
+depth (an unknown one is named with the nearest known one), the vehicle file and the particulars
+fit for the hull model, the method able to serve the vehicle, a supply voltage within the
+vehicle's thrust tables, an environment the hull model takes and within what the sea gives, and
+every event valid for that vehicle before the run starts."""
 
 from __future__ import annotations
 
@@ -12,9 +13,11 @@ from typing import Any
 from ..allocation.solve import check_method
 from ..configuration.file_keys import EACH, FileKey
 from ..configuration.schema import key_for
+from ..hull.hull_file import HullFile
 from ..methods import METHODS
 from ..vehicle.config import Vehicle
 from .scenario_keys import SCENARIO_KEYS
+from .vessel import VesselParameters
 
 MODEL_DOFS = {"dp_vessel": ("surge", "sway", "yaw"), "bluerov2_heavy": ("surge", "sway", "heave", "yaw")}
 """The DOFs each hull model needs its vehicle to control: the vessel moves in the horizontal
@@ -22,6 +25,13 @@ plane only; the ROV's station keeping holds depth and heading, its roll and pitc
 self-righting."""
 
 PLANAR_DOFS = ("surge", "sway", "yaw")
+SEA_LIMITS = {"wind": 70.0, "current": 10.0, "waves": 25.0}
+"""The largest mean wind speed [m/s], current speed [m/s] and significant wave height [m] a
+scenario may reach (with its weather ramps): above the sustained wind of the strongest
+hurricanes (about 70 m/s), the fastest tidal races (about 20 knots) and the highest significant
+wave heights measured (about 20 m). More is a slip of a unit or a digit, not weather."""
+SUBMERGED_MODELS = ("bluerov2_heavy",)
+"""Hull models under water: no wind or waves act on them, and their depth is at least 0."""
 
 
 def nearest(word: str, choices: list[str]) -> str:
@@ -50,6 +60,9 @@ def unknown_keys(data: Any, known: Sequence[FileKey] = SCENARIO_KEYS, where: str
         elif key.keys and key.item == EACH and isinstance(value, list):
             for index, item in enumerate(value):
                 found += unknown_keys(item, key.keys, f"{path}[{index}]")
+        elif key.keys and key.item.startswith("<") and isinstance(value, dict):
+            for item_name, item in value.items():
+                found += unknown_keys(item, key.keys, f"{path}.{item_name}")
         elif key.keys and key.item != EACH:
             found += unknown_keys(value, key.keys, path)
     return found
@@ -94,3 +107,67 @@ def check_member(name: str, known: list[str], where: str, what: str) -> None:
     if name not in known:
         raise ValueError(f"{where}: '{name}' is not a {what} of the vehicle ("
                          + (", ".join(known) if known else "it has none") + ")")
+
+
+def check_particulars(model: str, vehicle: Vehicle, hull_file: HullFile, name: str) -> None:
+    """Raise ValueError when the particulars (``name``, the file) are not those of the hull
+    ``model`` simulates or do not describe the vehicle's thrusters: the dp_vessel model is one
+    hull (:class:`~.vessel.VesselParameters`), and the particulars name each actuator of its
+    vehicle file among their thrusters."""
+    if model != "dp_vessel":
+        return
+    hull = VesselParameters()
+    vessel = hull_file.vessel
+    given, simulated = (vessel.lpp, vessel.beam, vessel.draught), (hull.length, hull.beam, hull.draught)
+    if any(abs(a - b) > 1e-6 * b for a, b in zip(given, simulated)):
+        raise ValueError(f"particulars: {name} is a hull of {given[0]:g} x {given[1]:g} x {given[2]:g} m "
+                         f"(length, beam, draught), not the dp_vessel model's {simulated[0]:g} x {simulated[1]:g} x "
+                         f"{simulated[2]:g} m")
+    if set(hull_file.thrusters) != set(vehicle.names):
+        raise ValueError(f"vehicle: its actuators ({', '.join(vehicle.names)}) are not the thrusters of the "
+                         f"dp_vessel's particulars {name} ({', '.join(hull_file.thrusters)}); is it a vehicle "
+                         "file for dp_vessel?")
+
+
+def check_voltage(vehicle: Vehicle, voltage: float, where: str) -> None:
+    """Raise ValueError when the vehicle's thrust tables do not cover the supply ``voltage`` [V]
+    (or it has none measured at several voltages): the allocator would refuse it and keep the
+    limits of another voltage."""
+    covered = vehicle.voltage_range
+    if covered is None:
+        raise ValueError(f"{where}: the vehicle has no thrust tables measured at several supply voltages, so a "
+                         "voltage changes nothing; leave it out")
+    if not covered[0] <= voltage <= covered[1]:
+        raise ValueError(f"{where}: {voltage:g} V is outside the vehicle's thrust tables ({covered[0]:g} to "
+                         f"{covered[1]:g} V)")
+
+
+def check_environment(model: str, data: dict[str, Any], scale: float) -> None:
+    """Raise ValueError when the environment section (``data``, as the file gives it) asks what
+    the hull ``model`` does not take (wind and waves on a submerged one) or, at the largest
+    scale the weather ramps reach (``scale``), more than :data:`SEA_LIMITS`."""
+    if model in SUBMERGED_MODELS:
+        for key in ("wind", "waves"):
+            if key in data:
+                raise ValueError(f"environment.{key}: the {model} model is submerged: no wind or waves act on it "
+                                 "(its environment is the current)")
+    for key, speed in (("wind", "speed"), ("current", "speed"), ("waves", "hs")):
+        value = (data.get(key) or {}).get(speed, 0.0)
+        if isinstance(value, (int, float)) and abs(value) * scale > SEA_LIMITS[key]:
+            reached = f" ({scale:g} times {value:g} with the weather ramps)" if scale != 1.0 else ""
+            raise ValueError(f"environment.{key}.{speed}: at most {SEA_LIMITS[key]:g} "
+                             f"{'m' if key == 'waves' else 'm/s'}, not {abs(value) * scale:g}{reached}: no sea "
+                             "gives it; is the unit or a digit wrong?")
+    down = (data.get("current") or {}).get("down", 0.0)
+    if isinstance(down, (int, float)) and abs(down) * scale > SEA_LIMITS["current"]:
+        raise ValueError(f"environment.current.down: at most {SEA_LIMITS['current']:g} m/s, not {down!r}")
+
+
+def check_depth(model: str, position: tuple[float, ...], where: str) -> None:
+    """Raise ValueError when a position's down [m] does not fit the hull ``model``: a submerged
+    one stays at or below the surface (down >= 0), the vessel floats on it (down 0)."""
+    down = position[2]
+    if model in SUBMERGED_MODELS and down < 0.0:
+        raise ValueError(f"{where}: down {down:g} m is above the surface; the {model} model's depth is down >= 0")
+    if model not in SUBMERGED_MODELS and down != 0.0:
+        raise ValueError(f"{where}: down {down:g} m; the {model} model floats at the surface (down 0)")

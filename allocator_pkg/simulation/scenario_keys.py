@@ -39,6 +39,14 @@ def _variation(sigma: str, time: str, unit: str, text: str) -> tuple[FileKey, Fi
 BOUND_KEYS = tuple(FileKey(name, NUMBER, "the largest value of the metric", unit=METRIC_UNITS[name], minimum=0.0)
                    for name in BOUNDED_METRICS)
 """A bound per metric of metrics.json but the real-time factor and the moments."""
+METHOD_KEYS = (
+    FileKey("bounds", MAPPING, "the method's own bounds over the run, each in place of the scenario's bound of "
+            "that metric", default_doc="the scenario's", range_doc="each >= 0", keys=BOUND_KEYS, list_keys=False),
+    FileKey("windows", MAPPING, "per window of the file, by its name, the method's own bounds over it",
+            default_doc="the window's"),
+    FileKey("note", TEXT, "why the method is held to other bounds", default="", default_doc="none"),
+)
+"""What a scenario expects of one method (``methods.<method>``)."""
 BOUNDS = FileKey("bounds", MAPPING, "the largest value of any metric but the real-time factor, "
                  "`position_lost_time` and `alarm_lead_time` (metric name: bound, in the metric's unit), over the "
                  "whole run", default_doc="none", range_doc="each >= 0", keys=BOUND_KEYS, list_keys=False)
@@ -73,7 +81,8 @@ EVENT_KEYS = (
         FileKey("actuator", TEXT, "an actuator of the vehicle", required=True),
         FileKey("mode", TEXT, "the fault mode", required=True, choices=FAULT_MODES),
         FileKey("value", NUMBER, "the share of force left when degraded (then required, in (0, 1]), the angle "
-                "[rad] when stuck", default=0.0, default_doc="0; stuck: the angle it has then"))),
+                "when stuck [deg, -180 to 180, as every angle of the file]; failed takes none", default=0.0,
+                default_doc="stuck: the angle it has then"))),
     FileKey("clear_faults", BOOLEAN, "every fault cleared (`clear_faults: true`)"),
     FileKey("battery_ramp", MAPPING, "the battery voltage ramps linearly to `to` [V]", keys=RAMP_KEYS),
     FileKey("parameter", MAPPING, "a node parameter changes", keys=(
@@ -130,6 +139,9 @@ SCENARIO_KEYS = (
     FileKey("events", LIST, "timed events, each `time` and one of the others", default_doc="none", keys=EVENT_KEYS,
             item=EACH),
     BOUNDS,
+    FileKey("methods", MAPPING, "per method that can serve the vehicle, what the scenario expects of it in place of "
+            "`bounds`; a method not named is held to `bounds`", default_doc="none", keys=METHOD_KEYS,
+            item="<method>"),
     FileKey("windows", LIST, "named stretches of the run over which every metric is taken again", default_doc="none",
             keys=(FileKey("name", TEXT, "not that of an automatic window", required=True),
                   FileKey("start", NUMBER, "its start", required=True, unit="s", minimum=0.0),
@@ -141,13 +153,17 @@ SCENARIO_KEYS = (
 
 
 def scenario_key(path: str) -> FileKey | None:
-    """The key of :data:`SCENARIO_KEYS` at ``path`` (``events[2].fault.value``), or None."""
-    keys, found = SCENARIO_KEYS, None
+    """The key of :data:`SCENARIO_KEYS` at ``path`` (``events[2].fault.value``,
+    ``methods.qp.bounds``), or None."""
+    keys, found, named = SCENARIO_KEYS, None, False
     for name in re.sub(r"\[\d+\]", "", path).split("."):
+        if named:                                  # a name the file chooses (``methods.<method>``)
+            named = False
+            continue
         found = next((key for key in keys if key.name == name), None)
         if found is None:
             return None
-        keys = found.keys
+        keys, named = found.keys, found.item.startswith("<")
     return found
 
 

@@ -12,7 +12,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..vehicle.config import Vehicle
-from .metrics import alarm_metrics, heading_errors, position_errors, power_metrics, run_metrics, source_figures
+from .metrics import (
+    alarm_metrics,
+    heading_errors,
+    position_errors,
+    power_metrics,
+    run_metrics,
+    settled_samples,
+    source_figures,
+)
 from .setpoint import Step
 from .step_response import StepFigures, step_figures
 
@@ -90,6 +98,7 @@ class Trace:
         """run_metrics, and the largest heading [deg] and depth [m] errors, over the samples in
         [start, end) [s] (default: all)."""
         a = self.arrays() | self.power_arrays()
+        a["counted"] = settled_samples(a["setpoint"], self.position_errors(), self.position_limit)
         keep = self._kept(a["time"], start, end)
         a = {name: values[keep] for name, values in a.items()}
         result = run_metrics(position=a["position"], position_setpoint=a["setpoint"], heading=a["attitude"][:, 2],
@@ -105,7 +114,8 @@ class Trace:
             np.max(np.abs(a["position"][:, 2] - a["setpoint"][:, 2])))
         result |= power_metrics(a["source_power"], a["source_available"], self.period)
         result |= alarm_metrics(a["time"], a["consequence_alarm"],
-                                position_errors(a["position"], a["setpoint"], self.horizontal), self.position_limit)
+                                position_errors(a["position"], a["setpoint"], self.horizontal), self.position_limit,
+                                a["counted"])
         return result
 
     def source_figures(self, start: float = -math.inf, end: float = math.inf) -> dict[str, dict[str, float]]:

@@ -5,7 +5,6 @@ the run starts in equilibrium with the thrusters loaded; the same seed gives the
 metrics; the metrics agree with what the MCAP holds; every recorded command is within the
 limits in force; the command line prints the verdict and its exit status follows it."""
 
-import json
 import math
 from dataclasses import replace
 
@@ -19,7 +18,7 @@ from allocator_msgs.msg import ActuatorFault
 from allocator_pkg.cli.allocator_sim import main, run
 from allocator_pkg.effectiveness.faults import thrust_limits
 from allocator_pkg.ros.recording_metrics import metrics_from_recording
-from allocator_pkg.simulation.run_report import report_checks
+from allocator_pkg.simulation.run_report import read_report, report_checks
 from allocator_pkg.simulation.scenario import Event, load_scenario
 from allocator_pkg.simulation.verdict import broken, verdict_lines
 from allocator_pkg.vehicle.angles import wrap
@@ -54,7 +53,7 @@ def finished(request, tmp_path_factory):
 
 def test_the_loop_holds_the_scenario_within_its_bounds(finished):
     case, result, out = finished
-    report = json.loads((out / "metrics.json").read_text())
+    report = read_report(out / "metrics.json")
     assert report["metrics"] == pytest.approx(result.metrics)
     assert report["units"]["energy"] == "J" and set(report["units"]) == set(report["metrics"])
     checks = report_checks(case, report)
@@ -138,7 +137,7 @@ def test_the_same_seed_gives_the_same_metrics(tmp_path_factory, tmp_path):
 
 def test_the_set_point_step_is_measured(tmp_path_factory):
     _, result, out = finished_run("dp_setpoint_change", tmp_path_factory)
-    report = json.loads((out / "metrics.json").read_text())
+    report = read_report(out / "metrics.json")
     (step,) = report["steps"]
     assert (step["channel"], step["time"], step["size"]) == ("position", 60.0, 10.0)
     assert 0.0 < step["rise_time"] < 60.0 and step["overshoot"] >= 0.0
@@ -198,7 +197,7 @@ def test_compare_gives_a_verdict_per_method(tmp_path, capsys):
     assert main(["compare", str(path), "--methods", "qp", "pseudoinverse", "--out", str(tmp_path / "cmp"),
                  "--duration-scale", "0.02"]) == 1
     text = capsys.readouterr().out
-    assert "sim: qp: FAIL, run position_error_max" in text and "sim: pseudoinverse: FAIL" in text
+    assert "sim: qp: FAIL, broke run position_error_max" in text and "sim: pseudoinverse: FAIL" in text
     assert "| thrust reversals [count] |" in text
 
 
@@ -215,7 +214,7 @@ def test_a_bad_scenario_is_refused_with_its_key(tmp_path, capsys):
     bad = tmp_path / "bad.yaml"
     text = (ROOT / "config" / "scenarios" / "dp_station_keeping.yaml").read_text().replace("../", f"{ROOT}/config/")
     bad.write_text(text.replace("thruster_time_constant: 2.0", "thruster_time_constant: -1.0"))
-    assert main([str(bad), "--out", str(tmp_path / "out")]) == 1
+    assert main([str(bad), "--out", str(tmp_path / "out")]) == 2          # refused, not a broken bound
     assert "thruster_time_constant" in capsys.readouterr().err
 
 

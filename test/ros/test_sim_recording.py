@@ -1,6 +1,7 @@
 """The frames of an allocator-sim recording (allocator_pkg.ros.sim_recording): /tf chains map
 (ENU) -> ned -> base_link (FRD) so that a point of the body lands where the odometry puts it; a
-short run records /tf with every odometry, the node's thrust markers and its diagnostics.
+short run records /tf with every odometry, the node's thrust markers and its diagnostics, all
+on the run's time (0 s at its first step, as its events).
 
 :func:`recorded` runs a shipped scenario short once per session (test_foxglove_layout reads
 the same recordings)."""
@@ -11,12 +12,16 @@ import numpy as np
 import pytest
 from conftest import ROOT
 from mcap.reader import make_reader
+from mcap_ros2.decoder import DecoderFactory
 from nav_msgs.msg import Odometry
 from rosbags.typesys import Stores, get_typestore
 from test_recording import rosbags_messages
+from visualization_msgs.msg import Marker, MarkerArray
 
+from allocator_msgs.msg import ActuatorFault
 from allocator_pkg.configuration.parameters import load_vehicle
-from allocator_pkg.ros.sim_recording import TOPICS, transforms
+from allocator_pkg.ros.recording import fields
+from allocator_pkg.ros.sim_recording import TOPICS, shifted, transforms
 from allocator_pkg.simulation.kinematics import quaternion, rotation
 from allocator_pkg.simulation.scenario import load_scenario
 
@@ -124,3 +129,38 @@ def test_battery_state_is_recorded_only_for_a_scenario_with_a_supply_voltage(tmp
     assert recorded("rov_battery_sag", tmp_path_factory)[2]["/battery_state"]
     text = " ".join((ROOT / "docs" / "closed_loop.md").read_text().split())
     assert "`/battery_state` (when the scenario gives a supply `voltage`)" in text
+
+
+def test_every_time_of_a_message_moves_onto_the_runs_time_but_durations():
+    markers = MarkerArray(markers=[Marker()])
+    markers.markers[0].header.stamp.sec, markers.markers[0].header.stamp.nanosec = 130, 250_000_000
+    markers.markers[0].lifetime.sec = 130
+    moved = shifted(fields(markers), 120_500_000_000)
+    assert moved["markers"][0]["header"]["stamp"] == {"sec": 9, "nanosec": 750_000_000}
+    assert moved["markers"][0]["lifetime"] == {"sec": 130, "nanosec": 0}          # a duration, not a time
+    clock = {"clock": {"sec": 121, "nanosec": 0}}
+    assert shifted(clock, 120_500_000_000, ("stamp", "clock")) == {"clock": {"sec": 0, "nanosec": 500_000_000}}
+
+
+@pytest.mark.slow
+def test_the_recording_starts_at_0_s_with_the_run_and_its_events(tmp_path_factory):
+    """The port azimuth fails at 5 s of the shortened dp_azimuth_failure: the node's commands say
+    FAILED from the step at 5 s of the recording on, as in metrics.json and the figures."""
+    case, out, _ = recorded("dp_azimuth_failure", tmp_path_factory)
+    fault = next(e for e in case.events if e.kind == "fault")
+    port = load_vehicle(case.vehicle).names.index(fault.actuator)
+    times: dict[str, list[int]] = {}
+    failed_at = None
+    with open(out / "run.mcap", "rb") as stream:
+        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+        for _, channel, record, message in reader.iter_decoded_messages():
+            times.setdefault(channel.topic, []).append(record.log_time)
+            stamp = getattr(message, "header", None)
+            if stamp is not None:
+                assert _stamp_ns(message) == record.log_time, channel.topic       # stamps on the same time
+            failing = channel.topic == "/thruster_commands" and message.mode[port] == ActuatorFault.FAILED
+            if failing and failed_at is None:
+                failed_at = record.log_time
+        assert reader.get_summary().statistics.message_start_time == 0
+    assert times["/clock"][0] == times["/odometry"][0] == 0
+    assert failed_at * 1e-9 == pytest.approx(fault.time, abs=1e-6)

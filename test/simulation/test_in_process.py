@@ -7,7 +7,6 @@ analysis period and a few samples (the node analyses on a thread of its own); th
 and writes the unallocated wrench in the node's frame, takes the battery's voltage as float32,
 and refuses the faults and parameters the node refuses, leaving the allocator as it was."""
 
-import json
 from dataclasses import replace
 
 import numpy as np
@@ -21,6 +20,7 @@ from allocator_pkg.configuration.params_file import read_parameters
 from allocator_pkg.effectiveness.faults import FaultMode
 from allocator_pkg.simulation.in_process import InProcessLink, node_parameters
 from allocator_pkg.simulation.plant import Pose
+from allocator_pkg.simulation.run_report import read_report
 from allocator_pkg.simulation.run_setup import SimulationError
 from allocator_pkg.simulation.scenario import load_scenario
 from allocator_pkg.vehicle.frames import wrench_between
@@ -55,7 +55,7 @@ def test_the_in_process_run_gives_the_node_runs_metrics_and_commands(name, tmp_p
     case = scenario(name, SCENARIOS[name])
     node = run(case, tmp_path / "node", log=lambda _: None)
     own = run(case, tmp_path / "in_process", log=lambda _: None, in_process=True)
-    reports = [json.loads((tmp_path / folder / "metrics.json").read_text()) for folder in ("node", "in_process")]
+    reports = [read_report(tmp_path / folder / "metrics.json") for folder in ("node", "in_process")]
     for report in reports:
         assert report["metrics"].pop("realtime_factor") > 0.0
     assert_same_metrics(reports[0]["metrics"], reports[1]["metrics"], "run")

@@ -4,7 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from conftest import ROOT
 
+from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.simulation.metrics import (
     alarm_metrics,
     azimuth_travel,
@@ -13,9 +15,11 @@ from allocator_pkg.simulation.metrics import (
     position_errors,
     power_metrics,
     run_metrics,
+    settled_samples,
     source_figures,
     thrust_reversals,
 )
+from allocator_pkg.simulation.trace import Trace
 
 
 def test_position_error_is_horizontal_for_a_vessel_and_3d_for_an_rov():
@@ -82,3 +86,29 @@ def test_the_alarm_is_timed_against_the_loss_of_position():
     held = alarm_metrics(time, np.zeros(6), distance, 10.0)
     assert held["position_lost_time"] == math.inf and held["alarm_after_position_loss"] == 0.0
     assert alarm_metrics(time, np.ones(6), distance, 10.0)["alarm_lead_time"] == math.inf
+
+
+def test_a_commanded_move_is_not_a_loss_of_position():
+    """A 10 m step with a 5 m limit: the error is 10 m at the step, but the position is lost
+    only when the error exceeds the limit again after it came back within it."""
+    setpoint = np.array([[0.0, 0.0, 0.0]] * 2 + [[10.0, 0.0, 0.0]] * 6)
+    distance = np.array([0.5, 0.5, 10.0, 6.0, 4.0, 2.0, 6.0, 1.0])
+    counted = settled_samples(setpoint, distance, 5.0)
+    assert counted.tolist() == [True, True, False, False, True, True, True, True]
+    time = np.arange(8.0)
+    assert alarm_metrics(time, np.zeros(8), distance, 5.0)["position_lost_time"] == 2.0      # the step itself
+    assert alarm_metrics(time, np.zeros(8), distance, 5.0, counted)["position_lost_time"] == 6.0
+    ramp = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [4.0, 0.0, 0.0], [6.0, 0.0, 0.0], [6.0, 0.0, 0.0]])
+    assert settled_samples(ramp, np.array([0.0, 2.0, 5.5, 6.0, 5.5]), 5.0).tolist() == [True, False, False, False,
+                                                                                        False]
+    assert settled_samples(ramp, np.array([0.0, 2.0, 5.5, 6.0, 3.0]), 5.0).tolist()[-1]     # back within: counted
+
+
+def test_the_trace_leaves_a_set_point_step_out_of_the_loss_of_position():
+    vehicle = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
+    trace = Trace(names=list(vehicle.names), period=1.0, horizontal=True, position_limit=5.0)
+    thrust = [0.0] * len(vehicle.names)
+    for t, north, goal in [(0.0, 0.0, 0.0), (1.0, 0.0, 10.0), (2.0, 7.0, 10.0), (3.0, 10.0, 10.0), (4.0, 16.0, 10.0)]:
+        trace.add(t, [north, 0.0, 0.0], [0.0, 0.0, 0.0], [goal, 0.0, 0.0], 0.0, thrust, thrust, False, 0.0, False)
+    assert trace.metrics(vehicle)["position_lost_time"] == 4.0
+    assert trace.metrics(vehicle, 1.0, 3.0)["position_lost_time"] == math.inf      # a window inside the move

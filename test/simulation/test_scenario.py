@@ -216,3 +216,97 @@ def test_a_vehicle_without_groups_or_sources_refuses_their_events(tmp_path):
                                             r"\(it has none\)"):
         load_scenario(_bad(tmp_path, "events:\n", "events:\n  - {time: 1.0, group_fault: {group: a}}\n",
                            base="rov_thruster_failure.yaml"))
+
+
+@pytest.mark.parametrize("base, old, new, message", [
+    ("dp_azimuth_failure.yaml", "{time: 220.0, clear_faults: true}", "{time: 220.0, battery_ramp: {to: 12.0, "
+     "duration: 10.0}}", r"events\[1\]\.battery_ramp\.to: the vehicle has no thrust tables measured at several"),
+    ("dp_azimuth_failure.yaml", "seed: 2", "seed: 2\nbattery: {voltage: 16.0}",
+     r"battery\.voltage: the vehicle has no thrust tables"),
+    ("rov_battery_sag.yaml", "battery: {voltage: 16.0}", "battery: {voltage: 80.0}",
+     r"battery\.voltage: 80 V is outside the vehicle's thrust tables \(10 to 20 V\)"),
+    ("rov_battery_sag.yaml", "battery_ramp: {to: 12.0", "battery_ramp: {to: 5.0",
+     r"events\[0\]\.battery_ramp\.to: 5 V is outside the vehicle's thrust tables"),
+    ("rov_battery_sag.yaml", "battery: {voltage: 16.0}\n", "",
+     r"events\[0\]\.battery_ramp: needs battery\.voltage"),
+    ("dp_azimuth_failure.yaml", "{time: 220.0, clear_faults: true}", "{time: 300.0, clear_faults: true}",
+     r"events\[1\]\.time: 300 s is not within the run \(0 to 300 s\)"),
+    ("dp_azimuth_failure.yaml", "{actuator: azimuth_port, mode: failed}",
+     "{actuator: azimuth_port, mode: stuck, value: 200.0}", r"events\[0\]\.fault\.value: the stuck angle in degrees"),
+    ("dp_azimuth_failure.yaml", "{actuator: azimuth_port, mode: failed}",
+     "{actuator: azimuth_port, mode: failed, value: 0.5}", r"events\[0\]\.fault\.value: .* failed takes no value"),
+    ("dp_azimuth_failure.yaml", "wind: {speed: 12.0", "wind: {speed: 300.0",
+     r"environment\.wind\.speed: at most 70 m/s, not 300"),
+    ("dp_azimuth_failure.yaml", "current: {speed: 0.5", "current: {speed: 50.0",
+     r"environment\.current\.speed: at most 10 m/s, not 50"),
+    ("dp_azimuth_failure.yaml", "{time: 220.0, clear_faults: true}",
+     "{time: 220.0, weather_ramp: {to: 8.0, duration: 10.0}}",
+     r"environment\.wind\.speed: at most 70 m/s, not 96 \(8 times 12 with the weather ramps\)"),
+    ("dp_azimuth_failure.yaml", "vehicle: ../dp_vessel.yaml", "vehicle: ../example1_rov.yaml",
+     r"vehicle: its actuators \(azimuth_fwd, azimuth_aft, main_port, main_stbd\) are not the thrusters of the "
+     r"dp_vessel's particulars"),
+    ("dp_azimuth_failure.yaml", "particulars: ../particulars/dp_vessel.yaml",
+     "particulars: ../particulars/otter_usv.yaml", r"particulars: .*otter_usv\.yaml is a hull of .* not the "
+                                                   r"dp_vessel model's 83 x 18 x 5 m"),
+    ("rov_thruster_failure.yaml", "environment:\n", "environment:\n  wind: {speed: 5.0, direction: 0.0}\n",
+     r"environment\.wind: the bluerov2_heavy model is submerged"),
+    ("rov_thruster_failure.yaml", "setpoint: {position: [0.0, 0.0, 5.0]", "setpoint: {position: [0.0, 0.0, -5.0]",
+     r"setpoint\.position: down -5 m is above the surface"),
+    ("rov_thruster_failure.yaml", "{time: 40.0, fault: {actuator: thruster_1, mode: failed}}",
+     "{time: 40.0, setpoint: {position: [0.0, 0.0, -1.0]}}",
+     r"events\[0\]\.setpoint\.position: down -1 m is above the surface"),
+    ("dp_azimuth_failure.yaml", "setpoint: {position: [0.0, 0.0, 0.0]", "setpoint: {position: [0.0, 0.0, 3.0]",
+     r"setpoint\.position: down 3 m; the dp_vessel model floats at the surface"),
+])
+def test_a_file_that_would_run_other_than_it_says_is_refused(tmp_path, base, old, new, message):
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(_bad(tmp_path, old, new, base=base))
+
+
+def test_a_stuck_angle_is_in_degrees_like_every_angle_of_the_file(tmp_path):
+    scenario = load_scenario(_bad(tmp_path, "{actuator: azimuth_port, mode: failed}",
+                                  "{actuator: azimuth_port, mode: stuck, value: 30.0}"))
+    assert scenario.events[0].value == pytest.approx(math.pi / 6.0)
+    where = load_scenario(_bad(tmp_path, "{actuator: azimuth_port, mode: failed}",
+                               "{actuator: azimuth_port, mode: stuck}"))
+    assert where.events[0].value is None                        # stuck at the angle it has then
+
+
+def test_a_method_held_to_bounds_of_its_own():
+    scenario = load_scenario(ROOT / "config" / "scenarios" / "rov_battery_sag.yaml")
+    assert scenario.run_bounds() == {"position_error_max": 0.5, "heading_error_max": 5.0, "depth_error_max": 0.3}
+    own = scenario.with_method("pseudoinverse")
+    assert own.run_bounds() == {"position_error_max": 0.5, "heading_error_max": 50.0, "depth_error_max": 0.3}
+    assert "clipping" in own.method_bounds["pseudoinverse"].note
+
+
+def test_a_method_holds_its_own_bounds_over_a_window(tmp_path):
+    path = _bad(tmp_path, "bounds: {position_error_max: 11.0, heading_error_max: 5.0}",
+                "bounds: {position_error_max: 11.0, heading_error_max: 5.0}\nmethods:\n  lp:\n"
+                "    windows: {moved: {position_error_max: 2.5}}\n", base="dp_setpoint_change.yaml")
+    scenario = load_scenario(path)
+    assert scenario.window_bounds()["moved"] == {"position_error_max": 2.0, "heading_error_max": 1.0}
+    assert scenario.with_method("lp").window_bounds()["moved"] == {"position_error_max": 2.5, "heading_error_max": 1.0}
+    assert scenario.with_method("lp").run_bounds() == scenario.run_bounds()
+
+
+@pytest.mark.parametrize("methods, message", [
+    ("  qpp: {bounds: {heading_error_max: 50.0}}", r"methods\.qpp: method: 'qpp' is not a method; did you mean qp"),
+    ("  svd_filter: {bounds: {heading_error_max: 50.0}}", r"methods\.svd_filter: .*cannot serve this vehicle"),
+    ("  lp: {bounds: {heading_eror_max: 50.0}}", r"methods\.lp\.bounds\.heading_eror_max: unknown key; did you mean "
+                                                 "heading_error_max"),
+    ("  lp: {bound: {heading_error_max: 50.0}}", r"methods\.lp\.bound: unknown key; did you mean bounds"),
+    ("  lp: {bounds: {heading_error_max: -1.0}}", r"methods\.lp\.bounds\.heading_error_max: at least 0"),
+    ("  lp: {windows: {settled: {heading_error_max: 1.0}}}", r"methods\.lp\.windows\.settled: not a window of the "
+                                                             r"file \(it has none\)"),
+    ("  lp: {note: [a]}", r"methods\.lp\.note: a text"),
+    ("  lp: {}", r"methods\.lp: a mapping of bounds, windows and a note"),
+])
+def test_what_a_scenario_expects_of_a_method_is_checked_at_load(tmp_path, methods, message):
+    old = "bounds: {position_error_max: 0.5, heading_error_max: 5.0, depth_error_max: 0.3}\n"
+    text = (ROOT / "config" / "scenarios" / "rov_battery_sag.yaml").read_text().replace("../", f"{ROOT}/config/")
+    start = text.index(old) + len(old)
+    path = tmp_path / "bad.yaml"
+    path.write_text(text[:start] + "methods:\n" + methods + "\n")
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(path)

@@ -50,11 +50,35 @@ def verdict(scenario: Scenario, report: dict) -> tuple[bool, list[str]]:
 
 
 def method_verdict(scenario: Scenario, method: str, report: dict) -> tuple[bool, str]:
-    """(whether the run holds every bound, one line: the method, PASS or FAIL and what broke)."""
+    """(whether the run holds every bound ``scenario`` holds ``method`` to, one line: the
+    method, PASS or FAIL and each bound it broke, and the bounds of its own the scenario gives
+    it, with why)."""
     checks = report_checks(scenario, report)
     failed = broken(checks)
+    own = scenario.method_bounds.get(method)
+    expected = ""
+    if own is not None:
+        given = [f"{name} {value:g}" for name, value in own.bounds.items()] + [
+            f"{window} {name} {value:g}" for window, limits in own.windows.items() for name, value in limits.items()]
+        expected = " (its own bounds: " + ", ".join(given) + (f"; {own.note}" if own.note else "") + ")"
     if not failed:
-        return True, f"{method}: PASS, {count(checks)} held"
+        return True, f"{method}: PASS, {count(checks)} held{expected}"
     units = report["units"]
-    return False, f"{method}: FAIL, " + "; ".join(
-        f"{c.scope} {c.metric} {c.value:.4g} {units[c.metric]} > {c.bound:g}" for c in failed)
+    return False, f"{method}: FAIL, broke " + "; ".join(
+        f"{c.scope} {c.metric} {c.value:.4g} {units[c.metric]} > {c.bound:g}" for c in failed) + expected
+
+
+def compare_summary(judged: list[str], broke: list[str], failed: list[str], no_verdict: bool) -> str:
+    """The last line of ``compare``: how many methods held their bounds, which broke one, and
+    which runs failed (told apart: a failed run has no verdict)."""
+    parts = []
+    if no_verdict:
+        parts.append(f"{len(judged)} run(s) without a verdict")
+    else:
+        held = len(judged) - len(broke)
+        parts.append(f"{held} method(s) held every bound")
+        if broke:
+            parts.append(f"bounds broken by {', '.join(broke)}")
+    if failed:
+        parts.append(f"run failed (crashed, no verdict): {', '.join(failed)}")
+    return ("FAIL: " if broke or failed else "PASS: ") + "; ".join(parts)
