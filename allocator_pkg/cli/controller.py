@@ -34,7 +34,8 @@ class Controller:
     def __init__(self, node: Node, target: str = NODE_NAME, namespace: str = ""):
         self.node = node
         self.namespace = f"/{namespace.strip('/')}" if namespace.strip("/") else ""
-        self.service_prefix = f"{self.namespace}/{target}"
+        self.service_prefix = node.resolve_service_name(f"{self.namespace}/{target}" if self.namespace else target)
+        """The node's fully qualified name: ``target`` in ``namespace``, else in the client node's namespace."""
         self.wrench = node.create_publisher(Wrench, self.topic("wrench_command"), 10)
 
     def topic(self, name: str) -> str:
