@@ -11,7 +11,10 @@
     allocator-ctl params set NAME=VALUE [NAME=VALUE ...]      (applied atomically)
 
 ``--node`` names the allocator node (default ``thrust_allocator``) and ``--namespace`` its
-namespace; the same options work with ``ros2 run allocator_pkg allocator-ctl``.
+namespace; the same options work with ``ros2 run allocator_pkg allocator-ctl``. Every command
+says on stderr which node it reached (and when several nodes have that name), or, when none
+answers within ``--timeout``, what to check, and ends with exit code 1. SIGINT and SIGTERM end
+``wrench`` and ``echo`` cleanly (exit code 0).
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ import sys
 import time
 
 import rclpy
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from allocator_msgs.srv import GetCapability
@@ -31,10 +35,11 @@ from ..configuration import params_file
 from ..ros.conversions import array_to_wrench, wrench_to_array
 from ..ros.process import dds_environment
 from ..vehicle.node_settings import NODE_NAME
-from .controller import FAULT_MODES, Controller, ServiceTimeout
+from .controller import FAULT_MODES, NOT_REACHED, Controller, ServiceTimeout
 from .direction_check import DirectionCheck
 from .echo import Echo
 from .recording import Recording
+from .sim_link import UNKNOWN_NODE
 
 
 def unknown_parameters(names: list[str], declared: list[str], node: str) -> list[str]:
@@ -139,27 +144,68 @@ def main(argv: list[str] | None = None) -> int:
     node = rclpy.create_node("allocator_ctl")
     controller = Controller(node, arguments.node, arguments.namespace)
     try:
-        return _run(arguments, controller)
+        code = _run(arguments, controller)
+        if arguments.command not in ("wrench", "echo"):
+            _say_reached(controller)
+        return code
     except ServiceTimeout as error:
         print(f"allocator-ctl: {error}", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ExternalShutdownException):
         return 0
     finally:
+        controller.close()
+        if node.executor is not None:             # step-test's and spin_once's executors end before the node
+            node.executor.shutdown()
         node.destroy_node()
         rclpy.try_shutdown()
 
 
-def _spin_for(node: Node, duration: float | None) -> None:
-    end = None if duration is None else time.monotonic() + duration
-    while rclpy.ok() and (end is None or time.monotonic() < end):
+def _say_reached(controller: Controller) -> None:
+    """Which node answered, on stderr; a warning when several nodes have its name."""
+    print(f"allocator-ctl: reached {controller.service_prefix}", file=sys.stderr)
+    named = controller.nodes_named()
+    if named > 1:
+        print(f"allocator-ctl: warning: {named} nodes are named {controller.service_prefix} in this domain; any of "
+              "them may have answered (give each run a namespace of its own)", file=sys.stderr)
+
+
+def _nodes(infos) -> str:
+    return ", ".join(sorted({f"{info.node_namespace.rstrip('/')}/{info.node_name}" for info in infos}))
+
+
+def _wait_for(node: Node, found, timeout: float) -> list:
+    """Spin until ``found()`` (a list of endpoints) is not empty and the graph knows each one's
+    node, for at most ``timeout`` s; the last ``found()``."""
+    end = time.monotonic() + timeout
+    while True:
+        endpoints = found()
+        known = all(info.node_name != UNKNOWN_NODE for info in endpoints)
+        if (endpoints and known) or time.monotonic() > end or not rclpy.ok():
+            return endpoints
         rclpy.spin_once(node, timeout_sec=0.05)
+
+
+def _spin_for(node: Node, duration: float | None) -> None:
+    """Spin until ``duration`` s have passed (None: until SIGINT or SIGTERM shuts rclpy down)."""
+    end = None if duration is None else time.monotonic() + duration
+    try:
+        while rclpy.ok() and (end is None or time.monotonic() < end):
+            rclpy.spin_once(node, timeout_sec=0.05)
+    except ExternalShutdownException:
+        return
 
 
 def _run(arguments: argparse.Namespace, controller: Controller) -> int:
     node = controller.node
     if arguments.command == "wrench":
         message = array_to_wrench([arguments.FX, arguments.FY, arguments.FZ, arguments.MX, arguments.MY, arguments.MZ])
+        topic = controller.wrench.topic_name
+        takers = _wait_for(node, lambda: node.get_subscriptions_info_by_topic(topic), arguments.timeout)
+        if not takers:
+            print(f"allocator-ctl: no node takes {topic} ({NOT_REACHED})", file=sys.stderr)
+            return 1
+        print(f"allocator-ctl: {topic} taken by {_nodes(takers)}", file=sys.stderr)
         node.create_timer(1.0 / arguments.rate, lambda: controller.wrench.publish(message))
         controller.wrench.publish(message)
         _spin_for(node, arguments.duration)
@@ -181,6 +227,12 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
         print(format_capability(direction, response))
         return 0 if response.success else 1
     if arguments.command == "echo":
+        topic = node.resolve_topic_name(controller.topic("allocation_status"))
+        publishers = _wait_for(node, lambda: node.get_publishers_info_by_topic(topic), arguments.timeout)
+        if not publishers:
+            print(f"allocator-ctl: no node publishes {topic} ({NOT_REACHED})", file=sys.stderr)
+            return 1
+        print(f"allocator-ctl: echoing {_nodes(publishers)} ({topic})", file=sys.stderr)
         recording = Recording(arguments.mcap) if arguments.mcap else None
         try:
             echo = Echo(controller, sys.stdout, arguments.csv, arguments.rate, recording)
