@@ -7,7 +7,7 @@ import numpy as np
 from conftest import ROOT
 
 from allocator_pkg.cli.direction_check import MOTIONS, describe, motion
-from allocator_pkg.ros.process import child_process, executable, node_command
+from allocator_pkg.ros.process import child_process, executable, namespace_arguments, node_command
 from allocator_pkg.vehicle.config import DOF_NAMES
 from allocator_pkg.vehicle.frames import wrench_between
 from allocator_pkg.vehicle.node_settings import FLU, FRD
@@ -35,9 +35,10 @@ def test_frd_words_follow_the_axes_and_the_right_hand_rule():
         "surge +40.0 N (move forward), yaw +18.0 N m (turn nose to starboard)"
 
 
-def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node():
-    with child_process(node_command(EXAMPLE, parameters=["step_test.enabled:=true"])):
-        ctl = [str(executable("allocator-ctl")), "step-test", "--share", "0.1", "--hold", "0.6", "--rest", "0.2"]
+def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node(namespace):
+    with child_process(node_command(EXAMPLE, *namespace_arguments(namespace), parameters=["step_test.enabled:=true"])):
+        ctl = [str(executable("allocator-ctl")), "--namespace", namespace, "step-test", "--share", "0.1", "--hold",
+               "0.6", "--rest", "0.2"]
         steps = subprocess.run(ctl, capture_output=True, text=True, timeout=60)
         held = subprocess.run([*ctl, "--actuators"], capture_output=True, text=True, timeout=60)
     assert steps.returncode == 0, steps.stderr
