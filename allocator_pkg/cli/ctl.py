@@ -33,13 +33,12 @@ from allocator_msgs.srv import GetCapability
 
 from ..configuration import params_file
 from ..ros.conversions import array_to_wrench, wrench_to_array
-from ..ros.process import dds_environment
+from ..ros.process import UNKNOWN_NODE, dds_environment, node_of
 from ..vehicle.node_settings import NODE_NAME
 from .controller import FAULT_MODES, NOT_REACHED, Controller, ServiceTimeout
 from .direction_check import DirectionCheck
 from .echo import Echo
 from .recording import Recording
-from .sim_link import UNKNOWN_NODE
 
 
 def unknown_parameters(names: list[str], declared: list[str], node: str) -> list[str]:
@@ -170,8 +169,8 @@ def _say_reached(controller: Controller) -> None:
               "them may have answered (give each run a namespace of its own)", file=sys.stderr)
 
 
-def _nodes(infos) -> str:
-    return ", ".join(sorted({f"{info.node_namespace.rstrip('/')}/{info.node_name}" for info in infos}))
+def _nodes(endpoints) -> str:
+    return ", ".join(sorted({node_of(endpoint) for endpoint in endpoints}))
 
 
 def _wait_for(node: Node, found, timeout: float) -> list:

@@ -35,7 +35,7 @@ from allocator_msgs.msg import AllocationStatus, PowerAvailable, ThrusterCommand
 
 from ..ros import qos
 from ..ros.conversions import array_to_wrench, wrench_to_array
-from ..ros.process import namespace_arguments
+from ..ros.process import UNKNOWN_NODE, namespace_arguments, node_of
 from ..simulation.closed_loop import Answer
 from ..simulation.kinematics import quaternion
 from ..simulation.plant import Pose
@@ -62,15 +62,6 @@ POWER_DELAY = 0.1
 TOPICS = {"clock": "/clock", "odometry": "/odometry", "setpoint": "/setpoint", "battery": "/battery_state",
           "power": "/power_available",
           "wrench": "/wrench_command", "commands": "/thruster_commands", "status": "/allocation_status"}
-
-
-UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
-"""The node name of an endpoint whose node the graph does not know yet (its discovery comes later)."""
-
-
-def node_of(info) -> str:
-    """The fully qualified name of the node of a publisher or subscription (its TopicEndpointInfo)."""
-    return f"{info.node_namespace.rstrip('/')}/{info.node_name}"
 
 
 def _clock(t_ns: int) -> Clock:
@@ -169,8 +160,9 @@ class NodeLink:
             self.executor.spin_once(timeout_sec=0.05)
             if not running() or time.monotonic() - started > START_TIMEOUT:
                 raise SimulationError(f"allocator_node did not start (see {self.node_log})")
-        if self.foreign_nodes():
-            raise self._foreign(f"the node in {self.services.wrench.topic_name}'s namespace")
+        if found := self.foreign_nodes():
+            raise SimulationError(f"other nodes than this run's {self.expected} on its topics: {', '.join(found)} "
+                                  f"(see {self.node_log})")
 
     def begin(self, t_ns: int, period_ns: int, supply: float | None, wrench: np.ndarray) -> tuple[int, Answer]:
         """:meth:`synchronise` from ``t_ns``, then :meth:`first_sample` of ``wrench``."""

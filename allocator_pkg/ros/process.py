@@ -68,6 +68,16 @@ def namespace_arguments(namespace: str) -> list[str]:
     return [argument for remap in remaps for argument in ("-r", remap)]
 
 
+UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
+"""The node name the ROS graph gives an endpoint whose node it has not discovered yet."""
+
+
+def node_of(endpoint) -> str:
+    """The fully qualified name of the node of a publisher or subscription (an rclpy
+    ``TopicEndpointInfo``)."""
+    return f"{endpoint.node_namespace.rstrip('/')}/{endpoint.node_name}"
+
+
 def executable(name: str) -> Path:
     """The console script ``name`` installed beside this Python (``allocator_node``, ``allocator-ctl``)."""
     return Path(sys.executable).parent / name

@@ -40,6 +40,7 @@ from ..effectiveness.faults import FaultMode
 from ..ros.conversions import array_to_wrench, wrench_to_array
 from ..ros.lifecycle_node import AllocatorLifecycleNode
 from ..ros.node import AllocatorNode
+from ..ros.process import UNKNOWN_NODE, node_of
 from ..ros.wrench_input import message_type
 from ..vehicle.node_settings import NODE_NAME
 
@@ -53,15 +54,6 @@ START_NS = 1_000_000_000
 
 class ForeignNodeError(RuntimeError):
     """Another node than the harness's answers on its topics."""
-
-
-UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
-"""The node name of an endpoint whose node the graph does not know yet (its discovery comes later)."""
-
-
-def node_of(info) -> str:
-    """The fully qualified name of the node of a publisher or subscription (its TopicEndpointInfo)."""
-    return f"{info.node_namespace.rstrip('/')}/{info.node_name}"
 
 
 class Harness:
