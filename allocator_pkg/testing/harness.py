@@ -106,7 +106,7 @@ class Harness:
         # The jump from time 0 to the first /clock makes the timer fire once.
         self.spin_until(lambda: self.node.samples >= 1 and len(self.commands) >= 1 and len(self.status) >= 1)
         if self.foreign_nodes():
-            raise self._foreign("its topics")
+            raise self._foreign("publishers on the node's topics")
 
     # -- whose output --------------------------------------------------------------------
 
