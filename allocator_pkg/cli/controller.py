@@ -87,9 +87,11 @@ class Controller:
 
     def nodes_named(self) -> int:
         """How many nodes of the graph have the allocator's fully qualified name (more than one:
-        any of them may answer)."""
-        return sum(f"{namespace.rstrip('/')}/{name}" == self.service_prefix
-                   for name, namespace in self.node.get_node_names_and_namespaces())
+        any of them may answer): by their names, or by the servers of its parameter service,
+        whichever the graph knows more of."""
+        named = sum(f"{namespace.rstrip('/')}/{name}" == self.service_prefix
+                    for name, namespace in self.node.get_node_names_and_namespaces())
+        return max(named, self.node.count_services(f"{self.service_prefix}/get_parameters"))
 
     def set_fault(self, actuator: str, mode: str, value: float = 0.0) -> SetActuatorFault.Response:
         fault = ActuatorFault(actuator=actuator, mode=FAULT_MODES[mode])

@@ -27,6 +27,7 @@ import time
 
 import rclpy
 from rclpy.executors import ExternalShutdownException
+from rclpy.impl.implementation_singleton import rclpy_implementation
 from rclpy.node import Node
 
 from allocator_msgs.srv import GetCapability
@@ -39,6 +40,9 @@ from .controller import FAULT_MODES, NOT_REACHED, Controller, ServiceTimeout
 from .direction_check import DirectionCheck
 from .echo import Echo
 from .recording import Recording
+
+RCLError = rclpy_implementation.RCLError
+"""rcl's error, raised by a wait on a context a signal has just shut down."""
 
 
 def unknown_parameters(names: list[str], declared: list[str], node: str) -> list[str]:
@@ -152,6 +156,10 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     except (KeyboardInterrupt, ExternalShutdownException):
         return 0
+    except RCLError:                              # SIGINT or SIGTERM shut rclpy down during a wait
+        if rclpy.ok():
+            raise
+        return 0
     finally:
         controller.close()
         if node.executor is not None:             # step-test's and spin_once's executors end before the node
@@ -193,6 +201,9 @@ def _spin_for(node: Node, duration: float | None) -> None:
             rclpy.spin_once(node, timeout_sec=0.05)
     except ExternalShutdownException:
         return
+    except RCLError:                              # the signal came between rclpy.ok() and the wait
+        if rclpy.ok():
+            raise
 
 
 def _run(arguments: argparse.Namespace, controller: Controller) -> int:
