@@ -4,6 +4,7 @@ against a node process."""
 import subprocess
 
 import numpy as np
+import pytest
 from conftest import ROOT
 
 from allocator_pkg.cli.direction_check import MOTIONS, describe, motion
@@ -35,6 +36,7 @@ def test_frd_words_follow_the_axes_and_the_right_hand_rule():
         "surge +40.0 N (move forward), yaw +18.0 N m (turn nose to starboard)"
 
 
+@pytest.mark.slow
 def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node(namespace):
     with child_process(node_command(EXAMPLE, *namespace_arguments(namespace), parameters=["step_test.enabled:=true"])):
         ctl = [str(executable("allocator-ctl")), "--namespace", namespace, "step-test", "--share", "0.1", "--hold",

@@ -33,11 +33,13 @@ def reference(prepared, tmp_path_factory):
     return search_on(prepared, tmp_path_factory.mktemp("one"), workers=1)
 
 
+@pytest.mark.slow
 def test_two_workers_give_the_same_cases_bit_for_bit(prepared, reference, tmp_path):
     assert len(reference) >= 6
     assert search_on(prepared, tmp_path, workers=2) == reference
 
 
+@pytest.mark.slow
 def test_a_dask_cluster_gives_the_same_cases_bit_for_bit(prepared, reference, tmp_path):
     distributed = pytest.importorskip("dask.distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, protocol="tcp://",
