@@ -19,12 +19,15 @@ MSGS_SOURCES := $(wildcard allocator_msgs/CMakeLists.txt allocator_msgs/package.
 
 CONFIG ?= config/default.yaml
 PYTEST_ARGS ?=
+# The suite on every core (pytest-xdist), each test file on one worker (their shared runs are
+# made once); every run of a node is in a namespace of its own, so workers never cross.
+TEST_WORKERS ?= auto
 
 .PHONY: help setup run test lint lock docs capability demo sim bench load soak clean prereqs
 
 help:
 	@echo "make run     set up (first time) and start allocator_node with CONFIG=$(CONFIG)"
-	@echo "make test    set up (first time), lint, and run the whole pytest suite"
+	@echo "make test    set up (first time), lint, and run the whole pytest suite on every core (TEST_WORKERS=$(TEST_WORKERS))"
 	@echo "make demo    closed loop: a DP vessel on station while an azimuth fails, live table, footprint and timeline PNGs"
 	@echo "make sim     every scenario in config/scenarios/ under SIM_METHODS, side by side, into build/sim/ (SIM_ARGS=--in-process: no node)"
 	@echo "make setup   only the set-up: .venv, allocator_msgs, allocator_pkg (idempotent)"
@@ -95,7 +98,7 @@ lint: setup
 	@$(VENV)/bin/ruff check .
 
 test: lint
-	$(PY) -m pytest $(PYTEST_ARGS)
+	$(PY) -m pytest -n $(TEST_WORKERS) --dist loadfile $(PYTEST_ARGS)
 
 docs: setup
 	$(PY) tools/update_docs.py

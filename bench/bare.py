@@ -22,7 +22,9 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 
 
 def main(argv: list[str]) -> int:
-    rclpy.init()
+    """``argv``: ``echo`` or ``timer RATE``, then the ROS arguments (its namespace)."""
+    rclpy.init(args=["bare", *argv])
+    argv = rclpy.utilities.remove_ros_args(["bare", *argv])[1:]
     node = rclpy.create_node("bare_bench_node")
     publisher = node.create_publisher(WrenchStamped, "echo", QoSProfile(depth=10))
     if argv[0] == "echo":

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import os
 
-from allocator_pkg.ros.process import dds_environment
+from allocator_pkg.ros.process import dds_environment, namespace_arguments, run_namespace
 
 os.environ.update(dds_environment())
 
@@ -59,7 +59,7 @@ def sample_times(rate_hz: float, consequence_rate: float, seconds: float) -> tup
     """The wall time [us] of each sample over ``seconds`` (after one second of warm-up), and how
     many analyses were published."""
     context = Context()
-    rclpy.init(context=context)
+    rclpy.init(context=context, args=["--ros-args", *namespace_arguments(run_namespace())])   # a run of its own
     node = AllocatorNode(context=context, cli_args=["--ros-args", "--params-file", str(CONFIG)],
                          parameter_overrides=[Parameter("rate_hz", value=rate_hz),
                                               Parameter("wrench_timeout", value=0.0),

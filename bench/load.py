@@ -12,7 +12,7 @@ vehicle's reach), so that the status of every sample tells how old the wrench it
 
 import os
 
-from allocator_pkg.ros.process import dds_environment
+from allocator_pkg.ros.process import dds_environment, namespace_arguments
 
 os.environ.update(dds_environment())
 
@@ -27,7 +27,7 @@ import numpy as np
 import rclpy
 from figures import memory_mb, percentiles, process_cpu_seconds
 from geometry_msgs.msg import Wrench
-from probe import node_process, ros_context, stamp_seconds
+from probe import RUN, node_process, ros_context, stamp_seconds
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 
@@ -45,9 +45,10 @@ WRAP = 10.0                  # s: force.x carries the send time modulo this
 TRIGGERS = ("timer", "input")
 
 
-def flood(rate_hz: float, seconds: float) -> int:
-    """The flooding process: publish wrenches at ``rate_hz`` for ``seconds``; print how many."""
-    rclpy.init()
+def flood(rate_hz: float, seconds: float, namespace: str) -> int:
+    """The flooding process: publish wrenches at ``rate_hz`` for ``seconds`` in ``namespace`` (the
+    node's); print how many."""
+    rclpy.init(args=["--ros-args", *namespace_arguments(namespace)])
     node = rclpy.create_node("load_flood")
     publisher = node.create_publisher(Wrench, "wrench_command", QoSProfile(depth=1,
                                                                            reliability=ReliabilityPolicy.BEST_EFFORT))
@@ -109,8 +110,8 @@ def case(config: Path, trigger: str, rate_hz: float, seconds: float, log: Path) 
             as process, ros_context() as context:
         listener = Listener(context)
         busy = subprocess.Popen([sys.executable, "-c", "while True: pass"])
-        flooder = subprocess.Popen([sys.executable, __file__, "--flood", str(FLOOD_HZ), "--seconds", str(total + 2.0)],
-                                   stdout=subprocess.PIPE, text=True)
+        flooder = subprocess.Popen([sys.executable, __file__, "--flood", str(FLOOD_HZ), "--seconds", str(total + 2.0),
+                                    "--namespace", RUN], stdout=subprocess.PIPE, text=True)
         try:
             begin = time.monotonic()
             listener.spin_for(WARM_UP)
@@ -162,9 +163,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--triggers", nargs="+", default=list(TRIGGERS), choices=TRIGGERS)
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "results" / "load.json")
     parser.add_argument("--flood", type=float, help=argparse.SUPPRESS)
+    parser.add_argument("--namespace", default=RUN, help=argparse.SUPPRESS)
     arguments = parser.parse_args(argv)
     if arguments.flood:
-        return flood(arguments.flood, arguments.seconds)
+        return flood(arguments.flood, arguments.seconds, arguments.namespace)
     config = arguments.config.resolve()
     rate_hz = load_vehicle(config).rate_hz
     cases = []

@@ -42,12 +42,12 @@ import numpy as np
 import rclpy
 from figures import process_cpu_seconds
 from geometry_msgs.msg import WrenchStamped
-from probe import reported_process, ros_context
+from probe import RUN, reported_process, ros_context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
-from allocator_pkg.ros.process import node_command
+from allocator_pkg.ros.process import namespace_arguments, node_command
 
 ROOT = Path(__file__).resolve().parents[1]
 VEHICLES = {"bluerov2_heavy": ROOT / "config" / "bluerov2_heavy.yaml", "dp_vessel": ROOT / "config" / "dp_vessel.yaml"}
@@ -64,11 +64,13 @@ TARGET = 1.2
 
 
 def allocator_command(config: Path, *parameters: str) -> list[str]:
-    return node_command(config, parameters=("wrench_timeout:=0.0", *parameters))
+    """``allocator_node`` on ``config`` in this benchmark's namespace."""
+    return node_command(config, *namespace_arguments(RUN), parameters=("wrench_timeout:=0.0", *parameters))
 
 
 def bare_command(*arguments: str) -> list[str]:
-    return [sys.executable, str(ROOT / "bench" / "bare.py"), *arguments]
+    """``bench/bare.py`` with ``arguments``, in this benchmark's namespace."""
+    return [sys.executable, str(ROOT / "bench" / "bare.py"), *arguments, "--ros-args", *namespace_arguments(RUN)]
 
 
 TAG = 1e-6

@@ -33,7 +33,12 @@ from rclpy.timer import Timer
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 from allocator_pkg.ros.node import AllocatorNode
-from allocator_pkg.ros.process import ChildProcess, child_process, node_command
+from allocator_pkg.ros.process import ChildProcess, child_process, namespace_arguments, node_command, run_namespace
+
+RUN = run_namespace()
+"""The namespace of this benchmark process's nodes, the probes' and the node processes' (``/clock``
+and ``/diagnostics`` in it too): benchmarks beside each other, or beside any other run, never
+take each other's messages."""
 
 WARM_UP = 1.0                # s after the first wrench, excluded from the window
 DRAIN = 0.2                  # s spun after the window for answers to its last wrenches
@@ -148,9 +153,9 @@ class Probe:
 
 @contextmanager
 def ros_context() -> Iterator[Context]:
-    """A fresh rclpy context, shut down on exit."""
+    """A fresh rclpy context, its nodes in this benchmark's namespace (``RUN``), shut down on exit."""
     context = Context()
-    rclpy.init(context=context)
+    rclpy.init(context=context, args=["--ros-args", *namespace_arguments(RUN)])
     try:
         yield context
     finally:
@@ -208,10 +213,10 @@ def reported_process(command: list[str], output: Path | None = None) -> Iterator
 @contextmanager
 def node_process(config: Path, rate_hz: float, output: Path | None = None,
                  parameters: tuple[str, ...] = ("wrench_timeout:=0.0",)) -> Iterator[ChildProcess]:
-    """``allocator_node`` as a child process (``reported_process``) with ``rate_hz`` and
-    ``parameters`` (``name:=value``)."""
-    with reported_process(node_command(config, parameters=(f"rate_hz:={float(rate_hz)!r}", *parameters)),
-                          output) as process:
+    """``allocator_node`` as a child process (``reported_process``) in this benchmark's namespace
+    (``RUN``) with ``rate_hz`` and ``parameters`` (``name:=value``)."""
+    with reported_process(node_command(config, *namespace_arguments(RUN),
+                                       parameters=(f"rate_hz:={float(rate_hz)!r}", *parameters)), output) as process:
         yield process
 
 

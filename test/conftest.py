@@ -1,10 +1,13 @@
 """Shared fixtures. The node tests run on the package's own pytest plugin
 (:mod:`allocator_pkg.testing.plugin`, installed with the package): its ``allocator_harness``
-keeps DDS on this machine, on loopback and in a domain of its own unless the caller chose them."""
+keeps DDS on this machine, on loopback and in a domain of its own unless the caller chose them.
+Every test that starts a node puts it in a namespace of the test's own (``namespace``, which
+``ros_context`` shares), so that any number of runs of the suite (pytest-xdist's workers, other
+developers' runs) share a machine and a domain."""
 
 import os
 
-from allocator_pkg.ros.process import dds_environment
+from allocator_pkg.ros.process import dds_environment, namespace_arguments, run_namespace
 
 # DDS discovery stays on loopback (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST), in the suite's own
 # domain (ROS_DOMAIN_ID=42), unless the caller set them, as the Makefile does, before anything here
@@ -81,11 +84,20 @@ def eight_thrusters():
 
 
 @pytest.fixture
-def ros_context():
-    """A fresh rclpy context per test, shut down afterwards."""
+def namespace() -> str:
+    """A namespace of this test's own (``/run_<pid>_<hex>``): give it to the nodes the test starts
+    as ``node_command(path, *namespace_arguments(namespace))`` and to allocator-ctl as
+    ``--namespace``."""
+    return run_namespace()
+
+
+@pytest.fixture
+def ros_context(namespace):
+    """A fresh rclpy context per test, its nodes in the test's ``namespace`` (``/clock`` and
+    ``/diagnostics`` too), shut down afterwards."""
     import rclpy
     context = rclpy.Context()
-    rclpy.init(context=context)
+    rclpy.init(context=context, args=["--ros-args", *namespace_arguments(namespace)])
     yield context
     rclpy.try_shutdown(context=context)
 

@@ -11,7 +11,10 @@
     allocator-ctl params set NAME=VALUE [NAME=VALUE ...]      (applied atomically)
 
 ``--node`` names the allocator node (default ``thrust_allocator``) and ``--namespace`` its
-namespace; the same options work with ``ros2 run allocator_pkg allocator-ctl``.
+namespace; the same options work with ``ros2 run allocator_pkg allocator-ctl``. Every command
+says on stderr which node it reached (and when several nodes have that name), or, when none
+answers within ``--timeout``, what to check, and ends with exit code 1. SIGINT and SIGTERM end
+``wrench`` and ``echo`` cleanly (exit code 0).
 """
 
 from __future__ import annotations
@@ -23,6 +26,8 @@ import sys
 import time
 
 import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.impl.implementation_singleton import rclpy_implementation
 from rclpy.node import Node
 
 from allocator_msgs.srv import GetCapability
@@ -30,11 +35,14 @@ from allocator_msgs.srv import GetCapability
 from ..configuration import params_file
 from ..ros.conversions import array_to_wrench, wrench_to_array
 from ..ros.echo import Echo
-from ..ros.node_client import FAULT_MODES, Controller, ServiceTimeout
-from ..ros.process import dds_environment
+from ..ros.node_client import FAULT_MODES, NOT_REACHED, Controller, ServiceTimeout
+from ..ros.process import UNKNOWN_NODE, dds_environment, node_of
 from ..ros.recording import Recording
 from ..ros.step_test_client import DirectionCheck
 from ..vehicle.node_settings import NODE_NAME
+
+RCLError = rclpy_implementation.RCLError
+"""rcl's error, raised by a wait on a context a signal has just shut down."""
 
 
 def unknown_parameters(names: list[str], declared: list[str], node: str) -> list[str]:
@@ -139,27 +147,75 @@ def main(argv: list[str] | None = None) -> int:
     node = rclpy.create_node("allocator_ctl")
     controller = Controller(node, arguments.node, arguments.namespace)
     try:
-        return _run(arguments, controller)
+        code = _run(arguments, controller)
+        if arguments.command not in ("wrench", "echo"):
+            _say_reached(controller)
+        return code
     except ServiceTimeout as error:
         print(f"allocator-ctl: {error}", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ExternalShutdownException):
+        return 0
+    except RCLError:                              # SIGINT or SIGTERM shut rclpy down during a wait
+        if rclpy.ok():
+            raise
         return 0
     finally:
+        controller.close()
+        if node.executor is not None:             # step-test's and spin_once's executors end before the node
+            node.executor.shutdown()
         node.destroy_node()
         rclpy.try_shutdown()
 
 
-def _spin_for(node: Node, duration: float | None) -> None:
-    end = None if duration is None else time.monotonic() + duration
-    while rclpy.ok() and (end is None or time.monotonic() < end):
+def _say_reached(controller: Controller) -> None:
+    """Which node answered, on stderr; a warning when several nodes have its name."""
+    print(f"allocator-ctl: reached {controller.service_prefix}", file=sys.stderr)
+    named = controller.nodes_named()
+    if named > 1:
+        print(f"allocator-ctl: warning: {named} nodes are named {controller.service_prefix} in this domain; any of "
+              "them may have answered (give each run a namespace of its own)", file=sys.stderr)
+
+
+def _nodes(endpoints) -> str:
+    return ", ".join(sorted({node_of(endpoint) for endpoint in endpoints}))
+
+
+def _wait_for(node: Node, found, timeout: float) -> list:
+    """Spin until ``found()`` (a list of endpoints) is not empty and the graph knows each one's
+    node, for at most ``timeout`` s; the last ``found()``."""
+    end = time.monotonic() + timeout
+    while True:
+        endpoints = found()
+        known = all(info.node_name != UNKNOWN_NODE for info in endpoints)
+        if (endpoints and known) or time.monotonic() > end or not rclpy.ok():
+            return endpoints
         rclpy.spin_once(node, timeout_sec=0.05)
+
+
+def _spin_for(node: Node, duration: float | None) -> None:
+    """Spin until ``duration`` s have passed (None: until SIGINT or SIGTERM shuts rclpy down)."""
+    end = None if duration is None else time.monotonic() + duration
+    try:
+        while rclpy.ok() and (end is None or time.monotonic() < end):
+            rclpy.spin_once(node, timeout_sec=0.05)
+    except ExternalShutdownException:
+        return
+    except RCLError:                              # the signal came between rclpy.ok() and the wait
+        if rclpy.ok():
+            raise
 
 
 def _run(arguments: argparse.Namespace, controller: Controller) -> int:
     node = controller.node
     if arguments.command == "wrench":
         message = array_to_wrench([arguments.FX, arguments.FY, arguments.FZ, arguments.MX, arguments.MY, arguments.MZ])
+        topic = controller.wrench.topic_name
+        takers = _wait_for(node, lambda: node.get_subscriptions_info_by_topic(topic), arguments.timeout)
+        if not takers:
+            print(f"allocator-ctl: no node takes {topic} ({NOT_REACHED})", file=sys.stderr)
+            return 1
+        print(f"allocator-ctl: {topic} taken by {_nodes(takers)}", file=sys.stderr)
         node.create_timer(1.0 / arguments.rate, lambda: controller.wrench.publish(message))
         controller.wrench.publish(message)
         _spin_for(node, arguments.duration)
@@ -181,6 +237,12 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
         print(format_capability(direction, response))
         return 0 if response.success else 1
     if arguments.command == "echo":
+        topic = node.resolve_topic_name(controller.topic("allocation_status"))
+        publishers = _wait_for(node, lambda: node.get_publishers_info_by_topic(topic), arguments.timeout)
+        if not publishers:
+            print(f"allocator-ctl: no node publishes {topic} ({NOT_REACHED})", file=sys.stderr)
+            return 1
+        print(f"allocator-ctl: echoing {_nodes(publishers)} ({topic})", file=sys.stderr)
         recording = Recording(arguments.mcap) if arguments.mcap else None
         try:
             echo = Echo(controller, sys.stdout, arguments.csv, arguments.rate, recording)

@@ -2,8 +2,9 @@
 fails and recovers.
 
 Runs a scenario of ``allocator-sim`` (by default ``config/scenarios/dp_azimuth_failure.yaml``):
-the real ``allocator_node`` as its own process on sim time, in lock-step with the simulated
-vessel, its wind, current and waves, and a station-keeping controller. A compact live table
+the real ``allocator_node`` as its own process on sim time, in a namespace of the run's own
+(``make run``'s node or another run in the same domain leave it alone), in lock-step with the
+simulated vessel, its wind, current and waves, and a station-keeping controller. A compact live table
 shows, every few simulated seconds, the position error and every thruster's thrust, command
 and azimuth with the solver's figures; at the end the footprint and timeline PNGs are written
 and their paths printed, with the real-time factor and the wall time the demo took here.

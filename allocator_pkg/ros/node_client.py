@@ -26,17 +26,25 @@ FAULT_MODES = {"nominal": ActuatorFault.NOMINAL, "degraded": ActuatorFault.DEGRA
                "failed": ActuatorFault.FAILED, "stuck": ActuatorFault.STUCK}
 
 
+NOT_REACHED = ("is the node running, with the same ROS_DOMAIN_ID and ROS_AUTOMATIC_DISCOVERY_RANGE, and "
+               "--namespace and --node its namespace and name?")
+"""What to check when no allocator answers."""
+
+
 class ServiceTimeout(RuntimeError):
     pass
 
 
 class Controller:
-    """A client node for one allocator: publishes wrenches, calls its services, listens."""
+    """A client node for one allocator: publishes wrenches, calls its services, listens.
+    :meth:`close` shuts down the executor it made for a node that had none."""
 
     def __init__(self, node: Node, target: str = NODE_NAME, namespace: str = ""):
         self.node = node
+        self._executor: SingleThreadedExecutor | None = None
         self.namespace = f"/{namespace.strip('/')}" if namespace.strip("/") else ""
-        self.service_prefix = f"{self.namespace}/{target}"
+        self.service_prefix = node.resolve_service_name(f"{self.namespace}/{target}" if self.namespace else target)
+        """The node's fully qualified name: ``target`` in ``namespace``, else in the client node's namespace."""
         self.wrench = node.create_publisher(Wrench, self.topic("wrench_command"), 10)
 
     def topic(self, name: str) -> str:
@@ -53,11 +61,10 @@ class Controller:
         client = self.node.create_client(kind, f"{self.service_prefix}/{name}")
         try:
             if not client.wait_for_service(timeout_sec=timeout):
-                raise ServiceTimeout(f"service {self.service_prefix}/{name} not available (is the node running, "
-                                     "with the same ROS_DOMAIN_ID and ROS_AUTOMATIC_DISCOVERY_RANGE?)")
+                raise ServiceTimeout(f"service {self.service_prefix}/{name} not available ({NOT_REACHED})")
             executor = self.node.executor
             if executor is None:
-                executor = SingleThreadedExecutor(context=self.node.context)
+                executor = self._executor = SingleThreadedExecutor(context=self.node.context)
                 executor.add_node(self.node)
             futures = []
             deadline = time.monotonic() + timeout
@@ -72,6 +79,21 @@ class Controller:
             raise ServiceTimeout(f"service {self.service_prefix}/{name} did not answer within {timeout:g} s")
         finally:
             self.node.destroy_client(client)
+
+    def close(self) -> None:
+        """Shut down the executor :meth:`call` made, before the node and its context end (left to
+        the garbage collector, it would outlive them and end with an InvalidHandle error)."""
+        if self._executor is not None:
+            self._executor.shutdown()
+            self._executor = None
+
+    def nodes_named(self) -> int:
+        """How many nodes of the graph have the allocator's fully qualified name (more than one:
+        any of them may answer): by their names, or by the servers of its parameter service,
+        whichever the graph knows more of."""
+        named = sum(f"{namespace.rstrip('/')}/{name}" == self.service_prefix
+                    for name, namespace in self.node.get_node_names_and_namespaces())
+        return max(named, self.node.count_services(f"{self.service_prefix}/get_parameters"))
 
     def set_fault(self, actuator: str, mode: str, value: float = 0.0) -> SetActuatorFault.Response:
         efficiency, angle = fault_request(FaultMode(FAULT_MODES[mode]), value)

@@ -12,6 +12,12 @@ A child process runs in that DDS environment too, whatever its parent's, and wri
 full; it is stopped with SIGINT, as Ctrl-C would, killed if it does not end, and reaped. An
 error raised while it runs carries that output as a note.
 
+A run (``allocator-sim``, the pytest plugin's harness, a test) puts its nodes in a namespace of
+its own (``run_namespace``, given as ``namespace_arguments``), so that any number of runs share
+a machine and a domain, or a vehicle's network: the nodes' topics and services are relative and
+follow the namespace, and the topics every node shares by name (``/clock``, ``/diagnostics``)
+move into it too.
+
 Nothing here imports rclpy: this is process machinery, used before ROS loads.
 """
 
@@ -20,6 +26,7 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import os
+import secrets
 import signal
 import subprocess
 import sys
@@ -33,6 +40,8 @@ DDS_DEFAULTS = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST", "ROS_DOMAIN_ID": "
 NODE = "allocator_node"
 STOP_TIMEOUT = 10.0
 """[s] a child process has to end after SIGINT before it is killed."""
+SHARED_TOPICS = ("/clock", "/diagnostics")
+"""The absolute topics of a node, which a run's namespace would not move without a remapping."""
 PR_SET_PDEATHSIG = 1
 """prctl option: the signal a process gets when its parent ends (linux/prctl.h)."""
 
@@ -41,6 +50,32 @@ def dds_environment(environment: Mapping[str, str] = os.environ) -> dict[str, st
     """The DDS variables a process runs with: each as ``environment`` has it, else its default
     (``DDS_DEFAULTS``)."""
     return {name: environment.get(name, default) for name, default in DDS_DEFAULTS.items()}
+
+
+def run_namespace() -> str:
+    """A namespace of one run's own: ``/run_<process id>_<8 random hex digits>``, unique among the
+    runs of a machine (and, with its randomness, of a network)."""
+    return f"/run_{os.getpid()}_{secrets.token_hex(4)}"
+
+
+def namespace_arguments(namespace: str) -> list[str]:
+    """The ROS arguments (after ``--ros-args``) that put a node in ``namespace`` with its shared
+    topics (``SHARED_TOPICS``: ``/clock`` becomes ``<namespace>/clock``). Given to ``rclpy.init``
+    they apply to every node of that context."""
+    if not namespace.startswith("/") or namespace == "/" or namespace.endswith("/"):
+        raise ValueError(f"a run's namespace is absolute and not the root: '{namespace}'")
+    remaps = [f"__ns:={namespace}", *(f"{topic}:={namespace}{topic}" for topic in SHARED_TOPICS)]
+    return [argument for remap in remaps for argument in ("-r", remap)]
+
+
+UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
+"""The node name the ROS graph gives an endpoint whose node it has not discovered yet."""
+
+
+def node_of(endpoint) -> str:
+    """The fully qualified name of the node of a publisher or subscription (an rclpy
+    ``TopicEndpointInfo``)."""
+    return f"{endpoint.node_namespace.rstrip('/')}/{endpoint.node_name}"
 
 
 def executable(name: str) -> Path:

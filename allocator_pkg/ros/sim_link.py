@@ -7,7 +7,13 @@ The clock advances only when the node has answered the step's wrench: its status
 the step's time and echoing the wrench, and its commands of the same stamp. Before the run,
 ``synchronise`` brings the node onto this clock without a wrench (it allocates nothing) and
 ``first_sample`` has it allocate the first one at a known step, so that the node allocates the
-same requests in every run."""
+same requests in every run.
+
+The run's node and this link share a namespace of the run's own (``/clock`` in it too), so
+that runs beside each other never take each other's messages; the link takes only its node's:
+a publisher on the node's topics or a subscriber of its wrench that is not the node (name and
+namespace), or commands of other actuators than the vehicle's, stop the run with an error
+naming the foreign node."""
 
 from __future__ import annotations
 
@@ -31,10 +37,12 @@ from ..simulation.closed_loop import Answer
 from ..simulation.kinematics import quaternion
 from ..simulation.plant import Pose
 from ..simulation.run_setup import SimulationError
+from ..vehicle.node_settings import NODE_NAME
 from . import qos
 from .conversions import array_to_wrench, wrench_to_array
 from .echo import format_sample
 from .node_client import Controller
+from .process import UNKNOWN_NODE, namespace_arguments, node_of
 from .sim_recording import RunRecording
 
 START_TIMEOUT = 30.0
@@ -55,6 +63,7 @@ TOPICS = {"clock": "/clock", "odometry": "/odometry", "setpoint": "/setpoint", "
           "power": "/power_available",
           "wrench": "/wrench_command", "commands": "/thruster_commands", "status": "/allocation_status"}
 
+
 def _clock(t_ns: int) -> Clock:
     stamp = Clock()
     stamp.clock.sec, stamp.clock.nanosec = divmod(t_ns, 1_000_000_000)
@@ -73,12 +82,15 @@ def _answer(status: AllocationStatus, commands: ThrusterCommands) -> Answer:
 
 
 class NodeLink:
-    """The link to the node of one run, in a rclpy context of its own; ``close`` ends it."""
+    """The link to the node of one run, in a rclpy context of its own in the run's ``namespace``,
+    the node's ``actuators`` named as the vehicle names them; ``close`` ends it."""
 
-    def __init__(self, out: Path, node_log: Path) -> None:
+    def __init__(self, out: Path, node_log: Path, namespace: str, actuators: list[str]) -> None:
         self.node_log = node_log
+        self.actuators = list(actuators)
+        self.expected = f"{namespace}/{NODE_NAME}"
         self.context = rclpy.Context()
-        rclpy.init(context=self.context)
+        rclpy.init(context=self.context, args=["--ros-args", *namespace_arguments(namespace)])
         self.node = rclpy.create_node("allocator_sim", context=self.context)
         self.executor = SingleThreadedExecutor(context=self.context)
         self.executor.add_node(self.node)
@@ -90,16 +102,48 @@ class NodeLink:
         self.reported: dict[str, float] = {}
         self.answers: dict[str, Any] = {}
         self.last: tuple[AllocationStatus, ThrusterCommands] | None = None
-        self.node.create_subscription(AllocationStatus, "allocation_status",
-                                      lambda m: self.answers.__setitem__("status", m), 10)
-        self.node.create_subscription(ThrusterCommands, "thruster_commands",
-                                      lambda m: self.answers.__setitem__("commands", m), 10)
+        self._status = self.node.create_subscription(AllocationStatus, "allocation_status", self._on_status, 10)
+        self._commands = self.node.create_subscription(ThrusterCommands, "thruster_commands", self._on_commands, 10)
         self.recording = RunRecording(out / "run.mcap", self.node)
         own, node_output = [QoSProfile(depth=10)], [qos.output()]
         self.offered = {"clock": own, "battery": own, "power": own, "odometry": own, "setpoint": [], "wrench": own,
                         "commands": node_output, "status": node_output}
         """What each recorded topic's publishers offer: this process's profile, the node's outputs';
         nothing for the set-point, recorded but not published."""
+
+    def _endpoints(self) -> list[tuple[Any, str]]:
+        """The publishers of the node's outputs and the subscribers of its wrench, with the topic."""
+        found = [(info, self._status.topic_name) for info in self.node.get_publishers_info_by_topic(
+            self._status.topic_name)]
+        found += [(info, self._commands.topic_name) for info in self.node.get_publishers_info_by_topic(
+            self._commands.topic_name)]
+        found += [(info, self.services.wrench.topic_name) for info in self.node.get_subscriptions_info_by_topic(
+            self.services.wrench.topic_name)]
+        return found
+
+    def foreign_nodes(self) -> list[str]:
+        """Every node other than the run's that publishes on its ``allocation_status`` or
+        ``thruster_commands`` or takes its ``wrench_command``, with the topic."""
+        return sorted({f"{node_of(info)} on {topic}" for info, topic in self._endpoints()
+                       if node_of(info) != self.expected and info.node_name != UNKNOWN_NODE})
+
+    def _foreign(self, what: str) -> SimulationError:
+        found = self.foreign_nodes()
+        return SimulationError(f"{what}: not from this run's {self.expected}; "
+                               + (f"another node answers: {', '.join(found)}" if found else "no other node seen")
+                               + f" (see {self.node_log})")
+
+    def _on_status(self, message: AllocationStatus) -> None:
+        if len(message.at_thrust_limit) != len(self.actuators):
+            raise self._foreign(f"an allocation status of {len(message.at_thrust_limit)} actuators (the vehicle "
+                                f"has {len(self.actuators)})")
+        self.answers["status"] = message
+
+    def _on_commands(self, message: ThrusterCommands) -> None:
+        if list(message.name) != self.actuators:
+            raise self._foreign(f"thruster commands of {', '.join(message.name)} (the vehicle's actuators: "
+                                f"{', '.join(self.actuators)})")
+        self.answers["commands"] = message
 
     def close(self) -> None:
         self.recording.close()
@@ -111,10 +155,14 @@ class NodeLink:
         """Until the node subscribes to the wrench and the clock; ``running()`` says whether its
         process still runs."""
         started = time.monotonic()
-        while self.services.wrench.get_subscription_count() == 0 or self.clock.get_subscription_count() == 0:
+        while self.services.wrench.get_subscription_count() == 0 or self.clock.get_subscription_count() == 0 \
+                or any(info.node_name == UNKNOWN_NODE for info, _ in self._endpoints()):
             self.executor.spin_once(timeout_sec=0.05)
             if not running() or time.monotonic() - started > START_TIMEOUT:
                 raise SimulationError(f"allocator_node did not start (see {self.node_log})")
+        if found := self.foreign_nodes():
+            raise SimulationError(f"other nodes than this run's {self.expected} on its topics: {', '.join(found)} "
+                                  f"(see {self.node_log})")
 
     def begin(self, t_ns: int, period_ns: int, supply: float | None, wrench: np.ndarray) -> tuple[int, Answer]:
         """:meth:`synchronise` from ``t_ns``, then :meth:`first_sample` of ``wrench``."""

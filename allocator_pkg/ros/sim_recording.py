@@ -88,8 +88,9 @@ def _nanoseconds_of(time: dict[str, int]) -> int:
 
 class RunRecording(Recording):
     """A :class:`~.recording.Recording` of a run, on the run's time (:meth:`start`): writes
-    ``/tf`` after each ``/odometry`` and records the node's thrust markers and diagnostics,
-    which ``node`` subscribes to (the node builds its markers only while someone subscribes)."""
+    ``/tf`` after each ``/odometry`` and records the node's thrust markers and diagnostics, which
+    ``node`` subscribes to (the node builds its markers only while someone subscribes) in its
+    namespace, the run's; they are recorded under the names of ``TOPICS``, the same in every run."""
 
     def __init__(self, path: str | Path, node: Node) -> None:
         super().__init__(path)
@@ -99,7 +100,7 @@ class RunRecording(Recording):
         self.add_topic(TOPICS["markers"], MarkerArray, [qos.output()])
         self.add_topic(TOPICS["diagnostics"], DiagnosticArray, [qos.diagnostics()])
         received = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
-        node.create_subscription(MarkerArray, TOPICS["markers"], self._on_markers, received)
+        node.create_subscription(MarkerArray, TOPICS["markers"].lstrip("/"), self._on_markers, received)
         node.create_subscription(DiagnosticArray, TOPICS["diagnostics"], self._on_diagnostics, received)
 
     def start(self, t_ns: int) -> None:

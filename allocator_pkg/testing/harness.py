@@ -7,6 +7,11 @@ sends wrenches and the available power and calls the node's services the way any
 (``~/set_actuator_fault``, ``~/set_group_fault``, ``~/clear_faults``, ``~/set_parameters``,
 ``~/get_capability``), and keeps every
 ``thruster_commands``, ``allocation_status`` and ``/diagnostics`` message it receives.
+
+The probe takes only its own node's output: commands whose actuator names are not the
+vehicle's, or a publisher on the node's topics that is not the node (name and namespace),
+stop the harness with a ForeignNodeError naming that node. The plugin gives every harness a
+namespace of its own, so that another run's node cannot answer.
 """
 
 from __future__ import annotations
@@ -35,6 +40,7 @@ from ..effectiveness.faults import FaultMode
 from ..ros.conversions import array_to_wrench, wrench_to_array
 from ..ros.lifecycle_node import AllocatorLifecycleNode
 from ..ros.node import AllocatorNode
+from ..ros.process import UNKNOWN_NODE, node_of
 from ..ros.wrench_input import message_type
 from ..vehicle.node_settings import NODE_NAME
 
@@ -44,6 +50,10 @@ NODE_KINDS = {PLAIN: AllocatorNode, LIFECYCLE: AllocatorLifecycleNode}
 
 START_NS = 1_000_000_000
 """The simulated time of the first /clock message [ns]."""
+
+
+class ForeignNodeError(RuntimeError):
+    """Another node than the harness's answers on its topics."""
 
 
 class Harness:
@@ -71,8 +81,8 @@ class Harness:
         self.status: list[AllocationStatus] = []
         self.diagnostics: list[DiagnosticArray] = []
         probe = self.probe
-        probe.create_subscription(ThrusterCommands, "thruster_commands", self.commands.append, 100)
-        probe.create_subscription(AllocationStatus, "allocation_status", self.status.append, 100)
+        self._commands = probe.create_subscription(ThrusterCommands, "thruster_commands", self._on_commands, 100)
+        self._status = probe.create_subscription(AllocationStatus, "allocation_status", self._on_status, 100)
         probe.create_subscription(DiagnosticArray, "/diagnostics", self.diagnostics.append, 100)
         self.clock = probe.create_publisher(Clock, "/clock", 10)
         services = f"{NODE_NAME}/"
@@ -95,6 +105,41 @@ class Harness:
         self.tick(0)
         # The jump from time 0 to the first /clock makes the timer fire once.
         self.spin_until(lambda: self.node.samples >= 1 and len(self.commands) >= 1 and len(self.status) >= 1)
+        if self.foreign_nodes():
+            raise self._foreign("publishers on the node's topics")
+
+    # -- whose output --------------------------------------------------------------------
+
+    def foreign_nodes(self) -> list[str]:
+        """Every node other than the harness's that publishes on its ``thruster_commands`` or
+        ``allocation_status``, with the topic."""
+        own = self.node.get_fully_qualified_name()
+        return [f"{node_of(info)} on {subscription.topic_name}" for subscription in (self._commands, self._status)
+                for info in self.probe.get_publishers_info_by_topic(subscription.topic_name)
+                if node_of(info) != own and info.node_name != UNKNOWN_NODE]
+
+    def _foreign(self, what: str) -> ForeignNodeError:
+        found = self.foreign_nodes()
+        return ForeignNodeError(f"{what}: not from {self.node.get_fully_qualified_name()} of this harness; "
+                                f"{'other nodes publishing: ' + ', '.join(found) if found else 'no other node seen'}")
+
+    @property
+    def actuators(self) -> list[str]:
+        """The actuator names of the node's vehicle, configuration order (none before it is configured)."""
+        runtime = self.node.runtime
+        return [] if runtime is None else [actuator.name for actuator in runtime.allocator.vehicle.actuators]
+
+    def _on_commands(self, message: ThrusterCommands) -> None:
+        if self.actuators and list(message.name) != self.actuators:
+            raise self._foreign(f"thruster commands of actuators {', '.join(message.name)} (this vehicle's: "
+                                f"{', '.join(self.actuators)})")
+        self.commands.append(message)
+
+    def _on_status(self, message: AllocationStatus) -> None:
+        if self.actuators and len(message.at_thrust_limit) != len(self.actuators):
+            raise self._foreign(f"an allocation status of {len(message.at_thrust_limit)} actuators (this vehicle "
+                                f"has {len(self.actuators)})")
+        self.status.append(message)
 
     # -- spinning and time ----------------------------------------------------------------
 

@@ -6,6 +6,10 @@ and a probe in one in-process executor on simulated time; every harness a test m
 executor and its rclpy context are torn down after the test. A relative ``params_file`` is
 looked for next to the calling test file, then in the current directory.
 
+Each harness runs in a namespace of its own (:func:`~allocator_pkg.ros.process.run_namespace`,
+``/clock`` and ``/diagnostics`` inside it), so that any number of test runs (pytest-xdist's
+workers, another developer's suite) share a machine and a domain.
+
 DDS stays on this machine: unless the caller set them, ``ROS_AUTOMATIC_DISCOVERY_RANGE`` is
 ``LOCALHOST`` and ``ROS_DOMAIN_ID`` a domain of this pytest process's own (1 to 100, from its
 process id), set when pytest starts, before any test creates a participant. rclpy is imported
@@ -46,7 +50,7 @@ def params_path(params_file: str | Path, caller: Path) -> Path:
     ``caller`` (a directory), else in the current directory. FileNotFoundError naming every
     place looked at."""
     path = Path(params_file).expanduser()
-    places = [path] if path.is_absolute() else [caller / path, Path.cwd() / path]
+    places = [path] if path.is_absolute() else list(dict.fromkeys([caller / path, Path.cwd() / path]))
     for place in places:
         if place.is_file():
             return place.resolve()
@@ -60,6 +64,7 @@ def allocator_harness(request: pytest.FixtureRequest) -> Iterator[HarnessFactory
     after the test."""
     import rclpy
 
+    from ..ros.process import namespace_arguments, run_namespace
     from .harness import Harness
     made: list[tuple[Harness | None, rclpy.Context]] = []
 
@@ -67,7 +72,7 @@ def allocator_harness(request: pytest.FixtureRequest) -> Iterator[HarnessFactory
              timeout: float = 10.0) -> Harness:
         path = params_path(params_file, request.path.parent)
         context = rclpy.Context()
-        rclpy.init(context=context)
+        rclpy.init(context=context, args=["--ros-args", *namespace_arguments(run_namespace())])
         made.append((None, context))
         harness = Harness(context, path, parameters, node, timeout)
         made[-1] = (harness, context)

@@ -70,6 +70,7 @@ def check(vehicle, alloc, fault_set, previous, result, tau):
         assert np.all(np.abs(result.achieved[rows] - tau[rows]) <= tolerance * (1 + 1e-9))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", list(METHODS))
 @settings(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
                                                 HealthCheck.filter_too_much])

@@ -23,6 +23,7 @@ def swept(request):
                                          MAGNITUDES)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", settling.METHODS)
 def test_held_requests_settle_near_the_optimum_within_every_limit(swept, method):
     vessel, results = swept

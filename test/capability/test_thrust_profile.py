@@ -125,6 +125,7 @@ def _exact(losses):
     return lambda angle: direction_factor(*losses, angle)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", sorted(LOSSES))
 def test_capability_with_profiles_matches_a_search_over_angles(case):
     vehicle = _two_azimuths()

@@ -6,6 +6,9 @@ metrics; the metrics agree with what the MCAP holds; every recorded command is w
 limits in force; the command line prints the verdict and its exit status follows it."""
 
 import math
+import re
+import subprocess
+import time
 from dataclasses import replace
 
 import numpy as np
@@ -17,6 +20,7 @@ from mcap_ros2.decoder import DecoderFactory
 from allocator_msgs.msg import ActuatorFault
 from allocator_pkg.cli.allocator_sim import main, run
 from allocator_pkg.effectiveness.faults import thrust_limits
+from allocator_pkg.ros.process import child_process, executable, node_command
 from allocator_pkg.ros.recording_metrics import metrics_from_recording
 from allocator_pkg.simulation.run_report import read_report, report_checks
 from allocator_pkg.simulation.scenario import Event, load_scenario
@@ -227,3 +231,68 @@ def test_the_command_line_runs_the_allocator_in_process(tmp_path, capsys):
     assert main(["compare", str(bounded_copy(tmp_path, 3.0)), "--methods", "qp", "lp", "--out", str(tmp_path / "cmp"),
                  "--duration-scale", "0.02", "--no-baseline", "--in-process"]) == 0
     assert (tmp_path / "cmp" / "compare.md").exists() and (tmp_path / "cmp" / "lp" / "metrics.json").exists()
+
+
+def test_two_simulations_of_different_vehicles_beside_a_make_run_node_give_the_metrics_of_each_alone(
+        tmp_path_factory, tmp_path):
+    """One domain: the node of `make run` (config/default.yaml, no namespace) and, at the same
+    time, allocator-sim of a DP vessel (four thrusters) and of an ROV (four others), each in a
+    namespace of its own: every metric as the run alone gives it."""
+    names = ("dp_azimuth_failure", "rov_thruster_failure")
+    alone = {name: finished_run(name, tmp_path_factory)[1].metrics for name in names}
+    sim = str(executable("allocator-sim"))
+    with child_process(node_command(ROOT / "config" / "default.yaml")) as make_run:
+        runs = {name: subprocess.Popen([sim, str(ROOT / "config" / "scenarios" / f"{name}.yaml"), "--duration-scale",
+                                        str(SCENARIOS[name]), "--out", str(tmp_path / name), "--no-verdict"],
+                                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                for name in names}
+        outputs = {name: process.communicate(timeout=600)[0] for name, process in runs.items()}
+        assert make_run.poll() is None, make_run.output()
+    for name in names:
+        assert runs[name].returncode == 0, outputs[name]
+        together = read_report(tmp_path / name / "metrics.json")["metrics"]
+        for key, value in alone[name].items():
+            if key in ALARM_METRICS:
+                assert together[key] == pytest.approx(value, abs=ALARM_TOLERANCE), (name, key)
+            elif key != "realtime_factor":
+                assert together[key] == value, (name, key)
+
+
+def test_the_link_stops_at_a_foreign_node_in_its_namespace_and_names_it(tmp_path):
+    """A node of another vehicle (eight thrusters) in the run's namespace: the link names it,
+    when it takes the wrench before the run, and when its commands come."""
+    import rclpy
+    from geometry_msgs.msg import Wrench
+    from rosgraph_msgs.msg import Clock
+
+    from allocator_msgs.msg import ThrusterCommands
+    from allocator_pkg.ros.process import namespace_arguments, run_namespace
+    from allocator_pkg.ros.sim_link import NodeLink
+    from allocator_pkg.simulation.run_setup import SimulationError
+
+    namespace = run_namespace()
+    foreign = rclpy.Context()
+    rclpy.init(context=foreign, args=["--ros-args", *namespace_arguments(namespace)])
+    link = NodeLink(tmp_path, tmp_path / "node.log", namespace, ["azimuth_fwd", "azimuth_aft", "main_port",
+                                                                 "main_stbd"])
+    try:
+        intruder = rclpy.create_node("bluerov2_allocator", context=foreign)
+        intruder.create_subscription(Wrench, "wrench_command", lambda _: None, 10)
+        intruder.create_subscription(Clock, "/clock", lambda _: None, 10)
+        commands = intruder.create_publisher(ThrusterCommands, "thruster_commands", 10)
+        with pytest.raises(SimulationError) as raised:
+            link.wait_for_node(lambda: True)
+        assert f"{namespace}/bluerov2_allocator on {namespace}/wrench_command" in str(raised.value)
+        assert f"other nodes than this run's {namespace}/thrust_allocator on its topics: " in str(raised.value)
+        deadline = time.monotonic() + 10.0
+        while commands.get_subscription_count() == 0 and time.monotonic() < deadline:
+            link.executor.spin_once(timeout_sec=0.05)
+        commands.publish(ThrusterCommands(name=[f"thruster_{i}" for i in range(1, 9)]))
+        with pytest.raises(SimulationError, match=re.escape(
+                "thruster commands of thruster_1, thruster_2, thruster_3, thruster_4, thruster_5, thruster_6, "
+                "thruster_7, thruster_8 (the vehicle's actuators: azimuth_fwd, azimuth_aft, main_port, main_stbd)")):
+            while time.monotonic() < deadline:
+                link.executor.spin_once(timeout_sec=0.05)
+    finally:
+        link.close()
+        rclpy.try_shutdown(context=foreign)

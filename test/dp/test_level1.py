@@ -180,6 +180,7 @@ def test_body_frame_loads_by_hand(dp_level1):
     assert wind == pytest.approx([0.0, -41056.686, -328453.49], rel=1e-6, abs=1e-6)
 
 
+@pytest.mark.slow
 def test_a_failure_never_raises_a_number_here(dp_vessel):
     result = dp_vessel[0]
     for group in ("switchboard_a", "switchboard_b"):

@@ -91,6 +91,7 @@ def test_the_vehicle_files_sectors_lift_with_the_thruster_they_protect():
     assert [z.thruster for z in level2.zones(("azimuth_stbd",))] == []                        # protected one gone
 
 
+@pytest.mark.slow
 def test_cli_writes_the_level_2_report_with_level_1_against_it(tmp_path, capsys):
     assert main(["--dnv-level2", str(DP_VESSEL), str(DP_PARTICULARS), "--out", str(tmp_path),
                  "--heading-step", "45"]) == 0
@@ -135,6 +136,7 @@ def test_a_site_equal_to_table_2_1_changes_nothing_and_says_so():
                for note in same.notes)
 
 
+@pytest.mark.slow
 def test_a_sites_conditions_are_the_numbers():
     """Four site conditions: numbers 0 to 4, the top held at the site's 20 m/s. A stronger current
     at every number holds less somewhere."""
@@ -147,6 +149,7 @@ def test_a_sites_conditions_are_the_numbers():
     assert np.any(strong.wind_limits[WORST] < plain.wind_limits[WORST])
 
 
+@pytest.mark.slow
 def test_cli_takes_a_site_file_over_the_particulars_site(tmp_path, capsys):
     site = tmp_path / "bank.yaml"
     site.write_text("name: bank\ncurrent: 1.0\n")

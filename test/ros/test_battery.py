@@ -50,9 +50,10 @@ def test_a_voltage_before_the_simulated_clock_starts_counts_from_its_start():
     from allocator_pkg import Allocator, load_vehicle
     from allocator_pkg.ros.battery import BatteryInput
     from allocator_pkg.ros.diagnostics import Counters
+    from allocator_pkg.ros.process import namespace_arguments, run_namespace
 
     context = rclpy.Context()
-    rclpy.init(context=context)
+    rclpy.init(context=context, args=["--ros-args", *namespace_arguments(run_namespace())])   # /clock of its own
     try:
         node = rclpy.create_node("battery_probe", context=context,
                                  parameter_overrides=[Parameter("use_sim_time", value=True)])

@@ -2,6 +2,7 @@
 in a file, stopped with SIGINT, killed if it hangs, reaped, its output on an error."""
 
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -10,7 +11,14 @@ import time
 
 import pytest
 
-from allocator_pkg.ros.process import child_process, dds_environment, executable, node_command
+from allocator_pkg.ros.process import (
+    child_process,
+    dds_environment,
+    executable,
+    namespace_arguments,
+    node_command,
+    run_namespace,
+)
 
 WAITS_FOR_SIGINT = """
 import sys, time
@@ -73,6 +81,17 @@ def test_the_node_command_gives_the_params_file_then_parameters_then_ros_argumen
         str(executable("allocator_node")), "--ros-args", "--params-file", "v.yaml", "-p", "rate_hz:=100.0",
         "-p", "trigger:=input", "-r", "__ns:=/rov1"]
     assert node_command("v.yaml", node="allocator_lifecycle_node")[0] == str(executable("allocator_lifecycle_node"))
+
+
+def test_a_run_namespace_is_its_own_and_takes_the_shared_topics_into_it():
+    first, second = run_namespace(), run_namespace()
+    assert re.fullmatch(rf"/run_{os.getpid()}_[0-9a-f]{{8}}", first) and first != second
+    assert namespace_arguments("/run_7_0badcafe") == ["-r", "__ns:=/run_7_0badcafe",
+                                                       "-r", "/clock:=/run_7_0badcafe/clock",
+                                                       "-r", "/diagnostics:=/run_7_0badcafe/diagnostics"]
+    for bad in ("run_7", "/", "/run_7/"):
+        with pytest.raises(ValueError, match=f"a run's namespace is absolute and not the root: '{bad}'"):
+            namespace_arguments(bad)
 
 
 def test_a_child_is_stopped_with_sigint_and_reaped_its_output_in_a_file(tmp_path):

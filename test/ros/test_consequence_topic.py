@@ -50,7 +50,7 @@ def consequence_diagnostics(harness):
 def test_the_alarm_rises_and_clears_on_the_topic_the_status_and_the_diagnostics(harness):
     received = []
     harness.probe.create_subscription(ConsequenceAnalysis, "thrust_allocator/consequence", received.append, 10)
-    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/consequence") > 0)
+    harness.spin_until(lambda: harness.node.count_subscribers("~/consequence") > 0)
     expected = Consequence(vehicle_from(DP_VESSEL))
 
     held = analysis_of(harness, received, HELD)
@@ -83,7 +83,7 @@ def test_a_failed_group_and_the_available_power_in_force_count_in_the_analysis(h
     500 kW, what B's loss leaves shares A's power."""
     received = []
     harness.probe.create_subscription(ConsequenceAnalysis, "thrust_allocator/consequence", received.append, 10)
-    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/consequence") > 0)
+    harness.spin_until(lambda: harness.node.count_subscribers("~/consequence") > 0)
     vehicle = vehicle_from(DP_VESSEL)
     expected = Consequence(vehicle)
     before = analysis_of(harness, received, SWAY)
@@ -113,7 +113,7 @@ def test_the_load_is_the_request_low_pass_filtered_sample_by_sample(harness):
     """From zero, k samples 0.1 s apart leave HELD (1 - exp(-0.1 / 5)^k): k a whole number."""
     received = []
     harness.probe.create_subscription(ConsequenceAnalysis, "thrust_allocator/consequence", received.append, 10)
-    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/consequence") > 0)
+    harness.spin_until(lambda: harness.node.count_subscribers("~/consequence") > 0)
     harness.send_wrench(HELD)
     count = len(received)
     for second in range(1, 4):                  # each analysis published before the next snapshot is due
@@ -130,7 +130,7 @@ def test_the_load_is_the_request_low_pass_filtered_sample_by_sample(harness):
 def test_rate_zero_is_off_and_a_rate_set_turns_it_on(harness):
     received = []
     harness.probe.create_subscription(ConsequenceAnalysis, "thrust_allocator/consequence", received.append, 10)
-    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/consequence") > 0)
+    harness.spin_until(lambda: harness.node.count_subscribers("~/consequence") > 0)
     harness.send_wrench(BEYOND_B)
     harness.step(2.0)
     harness.spin_for(0.2)
@@ -159,7 +159,7 @@ def test_the_managed_node_analyses_while_active_only(allocator_harness):
     harness = allocator_harness(DP_VESSEL, {"wrench_timeout": 0.0, "consequence.filter_time": 0.0}, node="lifecycle")
     received = []
     harness.probe.create_subscription(ConsequenceAnalysis, "thrust_allocator/consequence", received.append, 10)
-    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/consequence") > 0)
+    harness.spin_until(lambda: harness.node.count_subscribers("~/consequence") > 0)
     assert analysis_of(harness, received, BEYOND_B).alarm
     harness.node.trigger_deactivate()
     harness.spin_for(0.3)                      # an analysis published before deactivating may still be on its way

@@ -8,7 +8,7 @@ import time
 import pytest
 from conftest import ROOT
 
-from allocator_pkg.ros.process import child_process, node_command
+from allocator_pkg.ros.process import child_process, namespace_arguments, node_command
 
 EXAMPLE = ROOT / "config" / "example1_rov.yaml"
 
@@ -83,7 +83,7 @@ class Manager:
         raise AssertionError("get_state never answered")
 
 
-def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_context):
+def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_context, namespace):
     from lifecycle_msgs.msg import Transition
     from rcl_interfaces.srv import SetParameters
     from rclpy.parameter import Parameter
@@ -91,8 +91,8 @@ def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_cont
     from allocator_msgs.msg import ActuatorFault
     from allocator_msgs.srv import SetActuatorFault
     from allocator_pkg.ros.conversions import array_to_wrench
-    with start("-r", "__ns:=/managed") as process:
-        manager = Manager(ros_context, "/managed")
+    with start(*namespace_arguments(f"{namespace}/managed")) as process:
+        manager = Manager(ros_context, f"{namespace}/managed")
         assert manager.state() == "unconfigured"
         refused = manager.call(manager.fault, SetActuatorFault.Request(fault=ActuatorFault(actuator="main_port",
                                                                                             mode=2)))
@@ -132,15 +132,15 @@ def test_configure_activate_deactivate_cleanup_and_shutdown_when_active(ros_cont
         manager.spin_until(lambda: len(manager.commands) > count and all(t == 0.0 for t in manager.commands[-1].thrust))
         assert process.wait(timeout=10) == 0
     output = process.output()
-    assert "/managed/thrust_allocator: invalid configuration:\n  method: 'magic' is not one of" in output
+    assert f"{namespace}/managed/thrust_allocator: invalid configuration:\n  method: 'magic' is not one of" in output
     assert "Traceback" not in output
 
 
 @pytest.mark.parametrize("transitions", [[], ["configure"]], ids=["unconfigured", "inactive"])
-def test_shutdown_from_any_state_ends_the_process(ros_context, transitions):
+def test_shutdown_from_any_state_ends_the_process(ros_context, namespace, transitions):
     from lifecycle_msgs.msg import Transition
-    with start("-r", "__ns:=/ending") as process:
-        manager = Manager(ros_context, "/ending")
+    with start(*namespace_arguments(f"{namespace}/ending")) as process:
+        manager = Manager(ros_context, f"{namespace}/ending")
         for _ in transitions:
             assert manager.transition(Transition.TRANSITION_CONFIGURE)
         assert manager.transition(Transition.TRANSITION_INACTIVE_SHUTDOWN if transitions
@@ -149,10 +149,10 @@ def test_shutdown_from_any_state_ends_the_process(ros_context, transitions):
     assert "Traceback" not in process.output() and manager.commands == []
 
 
-def test_sigint_while_active_commands_zero_thrust(ros_context):
+def test_sigint_while_active_commands_zero_thrust(ros_context, namespace):
     from lifecycle_msgs.msg import Transition
-    with start("-r", "__ns:=/signalled") as process:
-        manager = Manager(ros_context, "/signalled")
+    with start(*namespace_arguments(f"{namespace}/signalled")) as process:
+        manager = Manager(ros_context, f"{namespace}/signalled")
         assert manager.transition(Transition.TRANSITION_CONFIGURE)
         assert manager.transition(Transition.TRANSITION_ACTIVATE)
         manager.spin_until(lambda: len(manager.commands) > 3)

@@ -259,7 +259,7 @@ def test_watchdog_logs_once_per_transition(harness):
     harness.send_wrench([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     harness.tick(2)
     harness.spin_for(0.3)
-    texts = [log.msg for log in logs if log.name == "thrust_allocator"]
+    texts = [log.msg for log in logs if log.name == harness.node.get_logger().name]      # this run's node
     assert sum("no valid wrench" in text for text in texts) == 1
     assert sum("wrench input resumed" in text for text in texts) >= 1
 

@@ -37,9 +37,10 @@ def test_status_goes_out_at_most_status_rate_hz_while_commands_go_out_every_samp
 def test_status_is_neither_built_nor_published_while_nobody_subscribes(harness):
     from allocator_msgs.msg import AllocationStatus
     runtime = harness.node.runtime
-    subscription = next(s for s in harness.probe.subscriptions if s.topic_name == "/allocation_status")
+    topic = harness.probe.resolve_topic_name("allocation_status")
+    subscription = next(s for s in harness.probe.subscriptions if s.topic_name == topic)
     harness.probe.destroy_subscription(subscription)
-    harness.spin_until(lambda: harness.node.count_subscribers("/allocation_status") == 0)
+    harness.spin_until(lambda: harness.node.count_subscribers("allocation_status") == 0)
     published, samples = runtime.statuses_published, harness.node.samples
     for _ in range(5):
         before = len(harness.commands)
@@ -47,7 +48,7 @@ def test_status_is_neither_built_nor_published_while_nobody_subscribes(harness):
         harness.spin_until(lambda before=before: len(harness.commands) > before)
     assert harness.node.samples == samples + 5 and runtime.statuses_published == published
     harness.probe.create_subscription(AllocationStatus, "allocation_status", harness.status.append, 100)
-    harness.spin_until(lambda: harness.node.count_subscribers("/allocation_status") == 1)
+    harness.spin_until(lambda: harness.node.count_subscribers("allocation_status") == 1)
     received = len(harness.status)
     harness.tick(3)
     assert runtime.statuses_published == published + 3 and len(harness.status) == received + 3
@@ -70,7 +71,7 @@ def test_thrust_markers_at_most_ten_per_second_along_each_force(harness):
     from visualization_msgs.msg import MarkerArray
     markers = []
     harness.probe.create_subscription(MarkerArray, "thrust_allocator/thrust_markers", markers.append, 100)
-    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/thrust_markers") > 0)
+    harness.spin_until(lambda: harness.node.count_subscribers("~/thrust_markers") > 0)
     harness.send_wrench([150.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     harness.tick(50)                                              # one second at 50 Hz
     harness.spin_for(0.2)
@@ -94,7 +95,7 @@ def test_thrust_markers_off(harness):
     from visualization_msgs.msg import MarkerArray
     markers = []
     harness.probe.create_subscription(MarkerArray, "thrust_allocator/thrust_markers", markers.append, 100)
-    harness.spin_until(lambda: harness.node.count_subscribers("/thrust_allocator/thrust_markers") > 0)
+    harness.spin_until(lambda: harness.node.count_subscribers("~/thrust_markers") > 0)
     harness.tick(20)
     harness.spin_for(0.2)
     assert markers == []

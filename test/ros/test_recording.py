@@ -347,18 +347,21 @@ def test_echo_records_wrench_commands_and_status_that_rosbags_reads_back(harness
     harness.send_wrench([100.0, 20.0, 0.0, 0.0, 0.0, 10.0])
     harness.tick(3)
     sent = len(harness.commands)
-    harness.spin_until(lambda: recording.written.get("/thruster_commands", 0) >= sent - before
-                       and recording.written.get("/allocation_status", 0) >= sent - before)
+    namespace = harness.node.get_namespace()                  # the harness's run: its topics are in it
+    wrench_topic, commands_topic, status_topic = (f"{namespace}/{name}" for name in (
+        "wrench_command", "thruster_commands", "allocation_status"))
+    harness.spin_until(lambda: recording.written.get(commands_topic, 0) >= sent - before
+                       and recording.written.get(status_topic, 0) >= sent - before)
     recording.close()
 
     decoded = rosbags_messages(path)
-    assert set(decoded) == {"/wrench_command", "/thruster_commands", "/allocation_status"}
-    assert decoded["/wrench_command"][-1].__msgtype__ == "geometry_msgs/msg/Wrench"
-    wrench = decoded["/wrench_command"][-1]
+    assert set(decoded) == {wrench_topic, commands_topic, status_topic}
+    assert decoded[wrench_topic][-1].__msgtype__ == "geometry_msgs/msg/Wrench"
+    wrench = decoded[wrench_topic][-1]
     assert (wrench.force.x, wrench.force.y, wrench.torque.z) == (100.0, 20.0, 10.0)
-    commands = decoded["/thruster_commands"]
+    commands = decoded[commands_topic]
     assert len(commands) == sent - before == 3
     assert differences(harness.commands[sent - 1], commands[-1]) == []
-    status = decoded["/allocation_status"]
+    status = decoded[status_topic]
     assert differences(harness.status[sent - 1], status[-1]) == []
     assert status[-1].requested.force.x == 100.0

@@ -102,22 +102,23 @@ def test_an_integer_for_a_float_key_keeps_the_float_type(harness):
     assert rate.type_ == Parameter.Type.DOUBLE and harness.node.period == pytest.approx(1 / 20)
 
 
-def test_a_qos_override_on_one_node_leaves_the_next_one_at_the_default(ros_context):
+def test_a_qos_override_on_one_node_leaves_the_next_one_at_the_default(ros_context, namespace):
     """rclpy writes overrides into the profile it is given: each topic gets a profile of its own."""
     from rclpy.parameter import Parameter
     from rclpy.qos import ReliabilityPolicy
 
     from allocator_pkg.ros.node import AllocatorNode
     arguments = ["--ros-args", "--params-file", str(EXAMPLE)]
-    overridden = AllocatorNode(context=ros_context, cli_args=[*arguments, "-r", "__ns:=/qa"], parameter_overrides=[
-        Parameter("qos_overrides./qa/wrench_command.subscription.reliability", value="reliable")])
-    default = AllocatorNode(context=ros_context, cli_args=[*arguments, "-r", "__ns:=/qb"])
+    overridden = AllocatorNode(context=ros_context, cli_args=[*arguments, "-r", f"__ns:={namespace}/qa"],
+                               parameter_overrides=[Parameter(f"qos_overrides.{namespace}/qa/wrench_command."
+                                                              "subscription.reliability", value="reliable")])
+    default = AllocatorNode(context=ros_context, cli_args=[*arguments, "-r", f"__ns:={namespace}/qb"])
     try:
         def reliability(node, topic):
             return node.get_subscriptions_info_by_topic(topic)[0].qos_profile.reliability
 
-        assert reliability(overridden, "/qa/wrench_command") == ReliabilityPolicy.RELIABLE
-        assert reliability(default, "/qb/wrench_command") == ReliabilityPolicy.BEST_EFFORT
+        assert reliability(overridden, f"{namespace}/qa/wrench_command") == ReliabilityPolicy.RELIABLE
+        assert reliability(default, f"{namespace}/qb/wrench_command") == ReliabilityPolicy.BEST_EFFORT
     finally:
         for node in (overridden, default):
             node.release()

@@ -7,6 +7,7 @@ on the run's time (0 s at its first step, as its events).
 the same recordings)."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -109,7 +110,8 @@ def test_a_run_records_tf_for_every_odometry_and_the_nodes_markers_and_diagnosti
         assert len(message.markers) == 2 * len(vehicle.actuators)
     diagnostics = messages[TOPICS["diagnostics"]]
     assert len(diagnostics) >= int(case.duration) - 1                 # one a second of sim time
-    assert diagnostics[-1].status[0].name == "/thrust_allocator: thrust allocation"
+    assert re.fullmatch(r"/run_\d+_[0-9a-f]{8}/thrust_allocator: thrust allocation",   # the run's namespace
+                        diagnostics[-1].status[0].name)
     with open(out / "run.mcap", "rb") as stream:
         summary = make_reader(stream).get_summary()
     hashes = {c.topic: c.metadata["topic_type_hash"] for c in summary.channels.values()}

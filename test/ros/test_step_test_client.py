@@ -4,9 +4,10 @@ against a node process."""
 import subprocess
 
 import numpy as np
+import pytest
 from conftest import ROOT
 
-from allocator_pkg.ros.process import child_process, executable, node_command
+from allocator_pkg.ros.process import child_process, executable, namespace_arguments, node_command
 from allocator_pkg.ros.step_test_client import MOTIONS, describe, motion
 from allocator_pkg.vehicle.config import DOF_NAMES
 from allocator_pkg.vehicle.frames import wrench_between
@@ -35,12 +36,15 @@ def test_frd_words_follow_the_axes_and_the_right_hand_rule():
         "surge +40.0 N (move forward), yaw +18.0 N m (turn nose to starboard)"
 
 
-def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node():
+@pytest.mark.slow
+def test_the_tool_steps_each_dof_and_holds_each_actuator_of_a_running_node(namespace):
     """The actuators first, on a node that has had no wrench yet (its input stale): the first
     actuator is held for the whole step too, not released by the watchdog at the next sample.
     At 500 Hz that sample comes 2 ms after the hold starts, sooner than a client's first wrench."""
-    with child_process(node_command(EXAMPLE, parameters=["step_test.enabled:=true", "rate_hz:=500.0"])):
-        ctl = [str(executable("allocator-ctl")), "step-test", "--share", "0.1", "--hold", "0.6", "--rest", "0.2"]
+    with child_process(node_command(EXAMPLE, *namespace_arguments(namespace),
+                                    parameters=["step_test.enabled:=true", "rate_hz:=500.0"])):
+        ctl = [str(executable("allocator-ctl")), "--namespace", namespace, "step-test", "--share", "0.1", "--hold",
+               "0.6", "--rest", "0.2"]
         held = subprocess.run([*ctl, "--actuators"], capture_output=True, text=True, timeout=60)
         steps = subprocess.run(ctl, capture_output=True, text=True, timeout=60)
     assert steps.returncode == 0, steps.stderr

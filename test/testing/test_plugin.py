@@ -155,3 +155,50 @@ def test_the_readme_example_runs_from_another_directory_with_its_vehicle_beside_
                             cwd="/", env=env, capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stdout + result.stderr
     assert "1 passed" in result.stdout
+
+
+def test_a_params_file_not_found_names_each_place_it_looked_at_once(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(FileNotFoundError) as raised:
+        plugin.params_path("none.yaml", tmp_path)
+    assert str(raised.value) == f"no such params file: none.yaml (looked for {tmp_path}/none.yaml)"
+
+
+def test_two_harnesses_of_different_vehicles_run_side_by_side_each_in_a_namespace_of_its_own(allocator_harness):
+    """Same domain, same node name: each harness's probe takes only its own node's commands and
+    status, and each node only its own clock."""
+    rov = allocator_harness(EXAMPLE)
+    bench = allocator_harness(DATA / "eight_thrusters.yaml")
+    assert rov.node.get_namespace().startswith("/run_") and bench.node.get_namespace().startswith("/run_")
+    assert rov.node.get_namespace() != bench.node.get_namespace()
+    rov.step(0.2)
+    bench.step(0.5)
+    assert rov.actuators == ["azimuth_fwd", "azimuth_aft", "main_port", "main_stbd"]
+    assert bench.actuators == [f"t{i}" for i in range(1, 9)]
+    assert {tuple(message.name) for message in rov.commands} == {tuple(rov.actuators)}
+    assert {tuple(message.name) for message in bench.commands} == {tuple(bench.actuators)}
+    assert len(rov.commands) == rov.node.samples and len(bench.commands) == bench.node.samples
+    assert rov.node.get_clock().now().nanoseconds == rov.time_ns
+
+
+def test_the_harness_stops_at_a_foreign_node_in_its_namespace_and_names_it(allocator_harness):
+    import rclpy
+
+    from allocator_msgs.msg import ThrusterCommands
+    from allocator_pkg.testing.harness import ForeignNodeError
+    rov = allocator_harness(EXAMPLE)
+    namespace = rov.node.get_namespace()
+    intruder = rclpy.create_node("bluerov2_allocator", namespace=namespace, context=rov.node.context)
+    try:
+        commands = intruder.create_publisher(ThrusterCommands, "thruster_commands", 10)
+        rov.spin_until(lambda: commands.get_subscription_count() > 0)
+        commands.publish(ThrusterCommands(name=[f"thruster_{i}" for i in range(1, 9)]))
+        with pytest.raises(ForeignNodeError) as raised:
+            rov.spin_for(2.0)
+        assert str(raised.value) == (
+            "thruster commands of actuators thruster_1, thruster_2, thruster_3, thruster_4, thruster_5, thruster_6, "
+            "thruster_7, thruster_8 (this vehicle's: azimuth_fwd, azimuth_aft, main_port, main_stbd): not from "
+            f"{namespace}/thrust_allocator of this harness; other nodes publishing: {namespace}/bluerov2_allocator "
+            f"on {namespace}/thruster_commands")
+    finally:
+        intruder.destroy_node()

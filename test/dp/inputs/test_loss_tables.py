@@ -146,6 +146,7 @@ def test_bad_tables_are_refused_naming_the_key(row, message):
         with_tables({"t": row})
 
 
+@pytest.mark.slow
 def test_the_dp_vessel_without_tables_is_unchanged():
     particulars = load_particulars(DP_PARTICULARS)
     assert particulars.thrust_loss == {}

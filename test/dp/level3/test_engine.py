@@ -46,6 +46,7 @@ def reference(prepared, reference_folder):
     return search_on(prepared, reference_folder, workers=1)
 
 
+@pytest.mark.slow
 def test_two_workers_give_the_same_cases_and_journal_bit_for_bit(prepared, reference, reference_folder, tmp_path):
     assert len(reference) >= 6
     assert search_on(prepared, tmp_path, workers=2) == reference
@@ -53,6 +54,7 @@ def test_two_workers_give_the_same_cases_and_journal_bit_for_bit(prepared, refer
     assert journal == (reference_folder / "cases.jsonl").read_bytes()
 
 
+@pytest.mark.slow
 def test_a_dask_cluster_gives_the_same_cases_and_journal_bit_for_bit(prepared, reference, reference_folder,
                                                                      tmp_path):
     distributed = pytest.importorskip("dask.distributed")

@@ -32,6 +32,7 @@ def uninterrupted(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow
 def test_the_report(uninterrupted, capsys):
     names = {path.name for path in uninterrupted.iterdir()}
     for suffix in ("_number.png", "_wind.png", "_groups_number.png", "_vs_l1_l2_number.png", "_vs_l1_l2_wind.png",
@@ -88,6 +89,7 @@ def test_bad_inputs_are_refused_before_the_first_case(bad, message, tmp_path, ca
     assert not (tmp_path / JOURNAL).exists()
 
 
+@pytest.mark.slow
 def test_a_killed_run_resumes_to_the_same_result(uninterrupted, tmp_path):
     environment = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
                    "ROS_DOMAIN_ID": os.environ.get("ROS_DOMAIN_ID", "42"), "PYTHONPATH": str(ROOT)}

@@ -33,6 +33,7 @@ def lossy():
     return analysis, result, result.allocations
 
 
+@pytest.mark.slow
 def test_the_skegs_give_loss_sectors_in_every_case(lossy):
     analysis, _, _ = lossy
     rows = [dict(zip(LOSS_COLUMNS, row)) for row in loss_sector_table(analysis)]

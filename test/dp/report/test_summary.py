@@ -48,6 +48,7 @@ def read(path):
         return comments, list(csv.reader(handle))
 
 
+@pytest.mark.slow
 def test_table_a1_is_the_result_per_heading(report):
     _, result, out, _ = report
     comments, rows = read(out / "dp_vessel_dp_l1_table_a1.csv")

@@ -206,6 +206,7 @@ def reference_with_loss(direction: np.ndarray, capacity_a: float) -> float:
     return best
 
 
+@pytest.mark.slow
 @settings(max_examples=12, deadline=None)
 @given(angle=st.floats(-0.6, 0.6), yaw=st.floats(-0.3, 0.3), capacity_a=st.floats(300.0, 1000.0))
 def test_the_fraction_of_a_thruster_with_a_loss_is_of_what_it_gives_that_way(angle, yaw, capacity_a):
