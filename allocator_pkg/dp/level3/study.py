@@ -162,6 +162,8 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
              "Environment: Table 2-1 (no site environment given).",
              "Limiting wind speed: the wind of the number's condition (no bisection between conditions in the time "
              "domain)."]
+    if inputs.heading_step > MAX_STEP_DEG:
+        lines.append(f"Headings every {inputs.heading_step:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
     static = []
     for chain in search.chains():
         outcome = search.outcome(chain, finished)
