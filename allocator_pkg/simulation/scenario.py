@@ -26,6 +26,7 @@ from ..hull.hull_file import read_hull
 from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
 from .environment import EnvironmentSpec
+from .method_bounds import MethodBounds, method_bounds
 from .scenario_check import (
     check_depth,
     check_environment,
@@ -37,7 +38,7 @@ from .scenario_check import (
     check_voltage,
     unknown_keys,
 )
-from .scenario_keys import EVENT_KEYS, FAULT_MODES, METHOD_KEYS, MODELS, scenario_default
+from .scenario_keys import EVENT_KEYS, FAULT_MODES, MODELS, scenario_default
 from .scenario_values import (
     ScenarioError,
     environment,
@@ -72,18 +73,6 @@ class Event:
     value: Any = 0.0
     duration: float = 0.0
     name: str = ""
-
-
-@dataclass(frozen=True)
-class MethodBounds:
-    """What a scenario expects of one method other than of the rest (its ``methods.<name>``):
-    bounds over the run and over named windows, each in place of the scenario's own bound of
-    that metric, and why."""
-
-    bounds: dict[str, float] = field(default_factory=dict)
-    windows: dict[str, dict[str, float]] = field(default_factory=dict)
-    """Window name: its bounds for this method."""
-    note: str = ""
 
 
 @dataclass(frozen=True)
@@ -217,40 +206,6 @@ def _event(data: Any, index: int) -> Event:
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
-
-
-def _method_bounds(data: Any, windows: list[Window], vehicle: Vehicle) -> dict[str, MethodBounds]:
-    """The ``methods`` section: per method (one that can serve the vehicle), its own ``bounds``
-    over the run, ``windows`` (a named window's name: its bounds) and a ``note``."""
-    if not isinstance(data, dict):
-        raise ScenarioError(f"methods: a mapping of method names to what the scenario expects of each, not {data!r}")
-    found = {}
-    names = [w.name for w in windows]
-    for method, body in data.items():
-        where = f"methods.{method}"
-        try:
-            check_method_serves(str(method), vehicle)
-        except ValueError as error:
-            raise ScenarioError(f"{where}: {error}") from error
-        if not isinstance(body, dict) or not body:
-            raise ScenarioError(f"{where}: a mapping of bounds, windows and a note, not {body!r}")
-        unknown = unknown_keys(body, METHOD_KEYS, where)
-        if unknown:
-            raise ScenarioError("; ".join(unknown))
-        own_windows = body.get("windows", {}) or {}
-        if not isinstance(own_windows, dict):
-            raise ScenarioError(f"{where}.windows: a mapping of window names to bounds, not {own_windows!r}")
-        for name in own_windows:
-            if name not in names:
-                raise ScenarioError(f"{where}.windows.{name}: not a window of the file ("
-                                    + (", ".join(names) if names else "it has none") + ")")
-        if "note" in body and not isinstance(body["note"], str):
-            raise ScenarioError(f"{where}.note: a text, not {body['note']!r}")
-        found[str(method)] = MethodBounds(
-            bounds=read_bounds(body.get("bounds", {}) or {}, f"{where}.bounds"),
-            windows={name: read_bounds(limits, f"{where}.windows.{name}") for name, limits in own_windows.items()},
-            note=body.get("note", ""))
-    return found
 
 
 def _stuck_angle(body: dict, where: str) -> float | None:
@@ -406,5 +361,5 @@ def load_scenario(path: str | Path) -> Scenario:
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
         description=str(data.get("description", "")),
         position_limit=number(data, "position_limit", ""),
-        method_bounds=_method_bounds(data.get("methods", {}) or {}, named, config))
+        method_bounds=method_bounds(data.get("methods", {}) or {}, named, config))
 
