@@ -21,28 +21,14 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 
 from allocator_msgs.msg import AllocationStatus, ThrusterCommands
 
+from ..simulation.live_text import wrapped
 from .conversions import OUTCOME_NAMES, wrench_to_array
 from .node_client import Controller
 from .recording import Recording
 
-WIDTH = 120
-"""[characters] The live table's lines are at most this wide (unless one part alone is wider)."""
-
-
-def wrapped(parts: list[str], first: str = "") -> list[str]:
-    """``parts`` joined by ' | ' into lines of at most :data:`WIDTH` characters, the first
-    starting with ``first``, each later one with '  | '."""
-    lines = [first + parts[0]]
-    for part in parts[1:]:
-        if len(lines[-1]) + 3 + len(part) <= WIDTH:
-            lines[-1] += " | " + part
-        else:
-            lines.append("  | " + part)
-    return lines
-
 
 def format_sample(commands: ThrusterCommands, status: AllocationStatus | None) -> str:
-    """A few lines of at most :data:`WIDTH` characters: every actuator's thrust [N], command
+    """A few lines of at most :data:`~..simulation.live_text.WIDTH` characters: every actuator's thrust [N], command
     (set-point) and azimuth [deg] if it has one; then the solver figures; when saturated the
     unallocated wrench, the actuators at a thrust (!) or rate (~) limit, and the supply voltage in
     use; with power sources, the power each gives of what it has [kW], LIMITED when the power

@@ -55,6 +55,7 @@ from ..vehicle.frames import wrench_between
 from ..vehicle.node_settings import INPUT, NODE_NAME
 from .closed_loop import Answer
 from .consequence_watch import ConsequenceWatch
+from .live_text import wrapped
 from .plant import Pose
 from .run_setup import SimulationError
 from .scenario import Scenario
@@ -148,14 +149,15 @@ class InProcessLink:
                       consequence_alarm=self.watch is not None and self.watch.alarm)
 
     def live_line(self) -> str:
-        """Every actuator's thrust [N] and angle [deg], then the solver's figures."""
+        """Every actuator's thrust [N] and angle [deg], then the solver's figures, in lines of at
+        most :data:`~.live_text.WIDTH` characters."""
         result = self._last
         if result is None:
             return ""
         parts = [f"{name} {thrust:9.1f} N" + (f" @{math.degrees(angle):6.1f}" if angle != 0.0 else "")
                  for name, thrust, angle in zip(self.allocator.names, result.thrust, result.azimuth)]
-        return (" | ".join(parts) + f" || sat {'YES' if result.saturated else 'no '} "
-                f"{result.iterations:5d} it {result.status}")
+        figures = [f"sat {'YES' if result.saturated else 'no '} {result.iterations:5d} it {result.status}"]
+        return "\n".join(wrapped(parts) + wrapped(figures, "|| "))
 
     # -- faults and parameters ------------------------------------------------------------
 

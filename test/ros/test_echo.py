@@ -92,7 +92,7 @@ def test_a_sample_without_a_status_of_its_own_has_empty_status_columns(harness):
 def test_the_live_table_of_a_dp_vessel_keeps_within_its_width():
     """Four actuators with long names at kN thrusts, saturated, every one at a limit, two sources:
     each line at most WIDTH characters, every figure still there."""
-    from allocator_pkg.ros.echo import WIDTH
+    from allocator_pkg.simulation.live_text import WIDTH
     names = ["azimuth_stbd", "azimuth_port", "tunnel_fwd", "tunnel_aft"]
     commands = ThrusterCommands(name=names, thrust=[419999.9, 655000.0, -300000.0, 299999.5],
                                 command=[147.43, 160.0, -155.5, 155.5],

@@ -150,3 +150,17 @@ def test_a_parameter_the_node_refuses_is_refused_and_changes_nothing(name, value
     with pytest.raises(SimulationError, match=reason):
         link.set_parameter(name, value)
     assert link.allocator.vehicle is vehicle and link.parameters == parameters
+
+
+@pytest.mark.parametrize("name", ["dp_station_keeping", "rov_thruster_failure"])
+def test_the_live_line_keeps_within_the_tables_width_with_every_actuator(name):
+    from allocator_pkg.simulation.live_text import WIDTH
+
+    case = scenario(name)
+    link = InProcessLink(case)
+    link.begin(0, 100_000_000, None, np.zeros(6))
+    link.step(0, at_rest(), None, np.array([5.0e6, -3.0e6, 0.0, 0.0, 0.0, 4.0e7]), np.zeros(3), 0.0)
+    lines = link.live_line().splitlines()
+    assert max(len(line) for line in lines) <= WIDTH
+    text = "\n".join(lines)
+    assert all(f"{actuator} " in text for actuator in link.allocator.names) and "sat YES" in text
