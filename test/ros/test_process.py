@@ -341,7 +341,7 @@ def test_a_one_shot_command_ends_its_executor_before_its_node_and_says_which_nod
     import sys
     script = ("import gc, sys\n"
               "from rclpy.executors import Executor\n"
-              "from allocator_pkg.cli import ctl\n"
+              "from allocator_pkg.cli import allocator_ctl as ctl\n"
               "code = ctl.main(sys.argv[1:])\n"
               "left = [o for o in gc.get_objects() if isinstance(o, Executor) and o._sigint_gc is not None]\n"
               "print(f'executors left: {len(left)}')\n"
