@@ -1,5 +1,6 @@
 """One case of the DNV-ST-0111 Level 3 (time-domain) capability analysis: a seeded in-process
-closed-loop run (:class:`~.closed_loop.ClosedLoop` over :class:`~.in_process.InProcessLink`) of
+closed-loop run (:class:`~...simulation.closed_loop.ClosedLoop` over
+:class:`~...simulation.in_process.InProcessLink`) of
 the DP vessel on station, with wind, current and waves of one capability number's condition all
 coming from one heading, intact or with a redundancy group failed once the vessel has settled
 on station, so that the failure's transient counts.
