@@ -20,7 +20,6 @@ runs on a process pool or a Dask cluster).
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from pathlib import Path
 
@@ -139,11 +138,8 @@ def level3_command(arguments: argparse.Namespace) -> int:
         prepared, result, finished = study(inputs, out, arguments.workers, arguments.scheduler, arguments.resume,
                                            not arguments.no_progress)
     except Interrupted as interrupted:
-        print(f"allocator-capability: {interrupted}", file=sys.stderr, flush=True)
-        sys.stdout.flush()
-        # The journal holds every finished case (fsynced); end here, so that the process pool's
-        # exit handlers, joining a pool whose workers were just killed, add nothing to that line.
-        os._exit(INTERRUPTED)
+        print(f"allocator-capability: {interrupted}", file=sys.stderr)
+        return INTERRUPTED
     except (ValueError, OSError) as error:             # a ConfigError, a ScenarioError too
         print(f"allocator-capability: {error}", file=sys.stderr)
         return 2

@@ -103,8 +103,10 @@ class _Engine(abc.ABC):
 
 class PoolEngine(_Engine):
     """A local process pool of ``workers``; a broken pool is replaced and its cases run again.
-    Its workers are forked (where the platform can) from the process that makes the pool and end
-    with it (:func:`_follow_parent`)."""
+    Its workers are spawned, fresh interpreters that share nothing with the process that makes
+    the pool (a forked one inherits its heap and its threads' state, ROS and DDS objects among
+    them, which the child's garbage collector may then destroy without the threads behind them),
+    and end with it (:func:`_follow_parent`)."""
 
     def __init__(self, workers: int) -> None:
         if workers < 1:
@@ -126,8 +128,7 @@ class PoolEngine(_Engine):
         self.pool = self._new_pool()
 
     def _new_pool(self) -> concurrent.futures.ProcessPoolExecutor:
-        method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
-        return concurrent.futures.ProcessPoolExecutor(self.workers, multiprocessing.get_context(method),
+        return concurrent.futures.ProcessPoolExecutor(self.workers, multiprocessing.get_context("spawn"),
                                                       initializer=_follow_parent, initargs=(os.getpid(),))
 
     def submit(self, case: Case) -> None:

@@ -89,12 +89,15 @@ def sleeper(case, setup):
     time.sleep(600)
 
 
-with PoolEngine(2) as engine:
-    engine.start(sleeper, None)
-    engine.submit(Case(0.0, 1, "intact", 0))
-    engine.submit(Case(0.0, 1, "intact", 1))
-    engine.wait()
+if __name__ == "__main__":
+    with PoolEngine(2) as engine:
+        engine.start(sleeper, None)
+        engine.submit(Case(0.0, 1, "intact", 0))
+        engine.submit(Case(0.0, 1, "intact", 1))
+        engine.wait()
 """
+"""A parent that runs a pool of two workers sleeping in their cases (a file, as spawned workers
+import their parent's main module to find ``sleeper``)."""
 
 
 def alive(pid: int) -> bool:
@@ -107,13 +110,16 @@ def alive(pid: int) -> bool:
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
 def test_pool_workers_end_when_their_parent_is_killed(tmp_path):
-    parent = subprocess.Popen([sys.executable, "-c", SLEEPER, str(tmp_path)], start_new_session=True,
+    script, markers = tmp_path / "parent.py", tmp_path / "workers"
+    script.write_text(SLEEPER)
+    markers.mkdir()
+    parent = subprocess.Popen([sys.executable, str(script), str(markers)], start_new_session=True,
                               env={**os.environ, "PYTHONPATH": str(ROOT)})
     workers: list[int] = []
     try:
         deadline = time.monotonic() + 60.0
         while len(workers) < 2 and time.monotonic() < deadline and parent.poll() is None:
-            workers = [int(path.name) for path in tmp_path.iterdir()]
+            workers = [int(path.name) for path in markers.iterdir()]
             time.sleep(0.05)
         assert len(workers) == 2 and all(map(alive, workers))
         parent.kill()                                  # SIGKILL, the parent only

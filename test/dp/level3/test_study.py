@@ -114,9 +114,17 @@ def test_a_killed_run_resumes_to_the_same_result(uninterrupted, tmp_path):
 
 
 def children(pid: int) -> set[int]:
-    """The processes ``pid`` started (Linux /proc)."""
-    return {int(child) for task in Path(f"/proc/{pid}/task").iterdir()
-            for child in (task / "children").read_text().split()}
+    """The pool workers ``pid`` started (Linux /proc), not multiprocessing's resource tracker."""
+    found = {int(child) for task in Path(f"/proc/{pid}/task").iterdir()
+             for child in (task / "children").read_text().split()}
+    return {child for child in found if b"resource_tracker" not in _command_line(child)}
+
+
+def _command_line(pid: int) -> bytes:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes()
+    except (FileNotFoundError, ProcessLookupError):
+        return b""
 
 
 def alive(pid: int) -> bool:
