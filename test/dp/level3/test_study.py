@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 from conftest import DATA, ROOT
+from test_engine import alive
 
 from allocator_pkg.cli.allocator_capability import main
 from allocator_pkg.dp.capability_result import SCOPE_L3
@@ -125,14 +126,6 @@ def _command_line(pid: int) -> bytes:
         return Path(f"/proc/{pid}/cmdline").read_bytes()
     except (FileNotFoundError, ProcessLookupError):
         return b""
-
-
-def alive(pid: int) -> bool:
-    """Whether process ``pid`` runs (a zombie, ended but not yet reaped, does not)."""
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
-    except (FileNotFoundError, ProcessLookupError):
-        return False
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
