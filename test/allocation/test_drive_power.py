@@ -42,6 +42,7 @@ def test_a_degraded_thruster_draws_the_power_of_its_set_point():
     by_delivered = (P_AZIMUTH * abs(result.thrust[1]) ** 1.5 + tunnel) / 1e3
     reading = allocator.power.reading(result.thrust, allocator.power_limit)
     assert reading.power[1] == pytest.approx(by_set_point, rel=1e-9)
+    assert result.power / 1e3 == pytest.approx(reading.power.sum(), rel=1e-9)          # the status's estimate too
     assert by_set_point == pytest.approx(5774.0, abs=1.0) and by_delivered == pytest.approx(3238.0, abs=1.0)
     azimuth = P_AZIMUTH * set_point_force ** 1.5 / 1e3
     assert azimuth == pytest.approx(3922.8, abs=0.05)
