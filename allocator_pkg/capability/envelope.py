@@ -40,6 +40,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..allocation.conditions import Conditions
+from ..allocation.drive_power import DrivePower, within_drive_limits
 from ..allocation.power_budget import PowerBudget, PowerLimit
 from ..allocation.solve import check_method
 from ..effectiveness.faults import Fault, FaultMode, FaultSet
@@ -166,9 +167,10 @@ class Capability:
         """What ``faults`` put in force at a surge speed and supply voltage (None: the analysis'
         speed, the nominal voltage), by the allocator's rule: the static force ranges, the sides
         of fixed thrusters a zone closes, the rotations with the flushing zones that follow the
-        working thrusters and the [3.11.4] losses."""
+        working thrusters and the [3.11.4] losses, inside the drive limits."""
         faults = faults if isinstance(faults, FaultSet) else FaultSet.of(self.vehicle, faults)
-        return Conditions.of(self.vehicle, faults, self.speed if speed is None else speed, voltage)
+        conditions = Conditions.of(self.vehicle, faults, self.speed if speed is None else speed, voltage)
+        return within_drive_limits(conditions, DrivePower.of(self.vehicle).degraded(faults.command_efficiency))
 
     def attains(self, tau, multiple: float, first: int = 0) -> tuple[bool, int]:
         """Whether ``multiple`` (> 0) times tau is attainable, as ``reach(tau)[0] >= multiple``,

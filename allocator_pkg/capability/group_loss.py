@@ -8,8 +8,10 @@ of what is in force now.
   follow the working thrusters (:func:`~allocator_pkg.effectiveness.zones.zones_in_force`): the
   zones protecting the group's thrusters lift, the sides of fixed thrusters a zone closes stay
   closed, and the DNV-ST-0111 [3.11.4] losses of the thrusters pushing onto the dead ones apply;
-- the group's sources at 0 kW and every other source at its available power in force (0 for a
-  source already lost: a failed group's, or one reported at 0 kW), and the power rule's bounds
+  every range inside its drive limit (:mod:`~allocator_pkg.allocation.drive_power`);
+- the bus ties in the state in force (:mod:`~allocator_pkg.allocation.bus_ties`), the group's
+  sources at 0 kW and every other source at its available power in force (0 for a source
+  already lost: a failed group's, or one reported at 0 kW), and the power rule's bounds
   (:meth:`~allocator_pkg.allocation.power_budget.PowerBudget.limit`: a split-fed thruster
   derated to its live share of its rated power to the 2/3, (1.44), and a source its consumers
   could overdraw shared among them) narrow those ranges.
@@ -18,12 +20,13 @@ of what is in force now.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..allocation.allocator import Allocator
 from ..allocation.conditions import Conditions
+from ..allocation.drive_power import within_drive_limits
 from ..allocation.power_budget import PowerBudget, narrowed
 from ..effectiveness.faults import FaultMode, FaultSet
 from ..effectiveness.flushing import DeadFlushing
@@ -34,18 +37,21 @@ from ..vehicle.config import RedundancyGroup, RotationConfig, Vehicle
 class InForce:
     """What the allocator has in force, that a group's loss comes on top of: the ``faults``, the
     surge ``speed`` [m/s], the supply ``voltage`` [V] (None: the configuration has no
-    nominal_voltage) and the ``available`` power [kW] of every source, ``power.sources`` order
-    (0 for a lost one)."""
+    nominal_voltage), the ``available`` power [kW] of every source, ``power.sources`` order
+    (0 for a lost one), and the state of every bus tie by name (``ties``: True closed; a tie not
+    named keeps the configured state)."""
 
     faults: FaultSet
     speed: float
     voltage: float | None
     available: np.ndarray
+    ties: Mapping[str, bool] = field(default_factory=dict)
 
     @classmethod
     def of(cls, allocator: Allocator) -> InForce:
         """A copy of what ``allocator`` has in force (its faults are never changed in place)."""
-        return cls(allocator.fault_set, allocator.speed, allocator.voltage, allocator.power.available.copy())
+        return cls(allocator.fault_set, allocator.speed, allocator.voltage, allocator.power.available.copy(),
+                   dict(allocator.power.ties.closed))
 
     @classmethod
     def intact(cls, vehicle: Vehicle) -> InForce:
@@ -78,9 +84,11 @@ def remaining(vehicle: Vehicle, in_force: InForce, group: RedundancyGroup) -> Re
     faults = in_force.faults
     for name in group.actuators:
         faults = faults.with_fault(name, FaultMode.FAILED)
-    conditions = Conditions.of(vehicle, faults, in_force.speed, in_force.voltage)
-    low, high = conditions.low, conditions.high
     budget = PowerBudget(vehicle)
+    budget.ties.closed.update({name: closed for name, closed in in_force.ties.items() if name in budget.ties.closed})
+    budget.efficiency = faults.command_efficiency
+    conditions = within_drive_limits(Conditions.of(vehicle, faults, in_force.speed, in_force.voltage), budget.in_force)
+    low, high = conditions.low, conditions.high
     if budget.active:
         budget.reported = np.asarray(in_force.available, dtype=float).copy()
         budget.lost = frozenset(group.sources)

@@ -69,12 +69,13 @@ def powered_vessels(draw):
     return loaded(parameters), parameters
 
 
-def power_ranges(parameters, group, low, high, available):
+def power_ranges(parameters, group, low, high, available, efficiency):
     """Every actuator's force range after ``group``'s loss: its own thrusters at 0, then the power
     rule of docs/power.md with the group's sources at 0 kW and the others at ``available`` [kW]:
     live feeds those with power; S the live share; m = min(static, S^(2/3) rating); each source's
     consumers could draw D = sum w P m^1.5 (w = share / S) and share rho = min(1, A / D); the
-    bound min(S^(2/3) rating, m rho^(2/3)), rho the least of the live feeds'."""
+    bound min(S^(2/3) rating, m rho^(2/3)), rho the least of the live feeds'. A DEGRADED thruster
+    (``efficiency`` e < 1) draws the power of its set-point: P / e^(3/2) on its delivered force."""
     names, sources = parameters["actuators.names"], parameters["power.sources"]
     members = parameters[f"redundancy_groups.{group}.actuators"]
     kilowatts = {s: 0.0 if s in parameters[f"redundancy_groups.{group}.sources"] else available[s] for s in sources}
@@ -88,19 +89,20 @@ def power_ranges(parameters, group, low, high, available):
         derated[name] = total ** (2 / 3) * parameters[f"actuators.{name}.thrust_max"]
         largest[name] = min(max(abs(low[i]), abs(high[i])), derated[name])
         weights[name] = {f: s / total for f, s in live.items()}
-    demand = {s: sum(parameters[f"actuators.{n}.power_coefficient"] * largest[n] ** 1.5 * weights[n].get(s, 0.0)
-                     for n in names) / 1000.0 for s in sources}
+    drawn = {n: parameters[f"actuators.{n}.power_coefficient"] / (e if e > 0.0 else 1.0) ** 1.5
+             for n, e in zip(names, efficiency)}
+    demand = {s: sum(drawn[n] * largest[n] ** 1.5 * weights[n].get(s, 0.0) for n in names) / 1000.0 for s in sources}
     rho = {s: min(1.0, kilowatts[s] / demand[s]) if demand[s] > 0.0 else 1.0 for s in sources}
     bound = np.array([min(derated[n], largest[n] * min([rho[f] for f in weights[n]], default=1.0) ** (2 / 3))
                       for n in names])
     return np.clip(low, -bound, bound), np.clip(high, -bound, bound)
 
 
-def reference_utilisation(vehicle, parameters, group, low, high, stuck, load, available):
+def reference_utilisation(vehicle, parameters, group, low, high, stuck, load, available, efficiency):
     """min u with T f = load, |f_i| <= u R_i in the 256-gon and a piece of its allowed arc (or
     their reverse, with the reverse radius), for the actuators the group leaves within the power
     rule's ranges (:func:`power_ranges`), by scipy's linprog."""
-    low, high = power_ranges(parameters, group, low, high, available)
+    low, high = power_ranges(parameters, group, low, high, available, efficiency)
     names = list(vehicle.names)
     columns, unit_choices, scale = [], [], []
     for i, name in enumerate(names):
@@ -222,7 +224,8 @@ def test_each_group_utilisation_is_the_linear_programme_of_what_its_loss_leaves(
     answers = Consequence(vehicle).utilisation(load, in_force)
     assert [a.group for a in answers] == parameters["redundancy_groups.names"]
     for answer in answers:
-        expected = reference_utilisation(vehicle, parameters, answer.group, low, high, stuck, load, available)
+        expected = reference_utilisation(vehicle, parameters, answer.group, low, high, stuck, load, available,
+                                         efficiency)
         if math.isinf(expected):
             assert math.isinf(answer.utilisation), (answer, expected)
         else:
@@ -339,7 +342,8 @@ def test_dp_vessel_each_azimuth_sector_lifts_with_the_unit_it_protects():
         load = [300e3 * math.cos(angle), 300e3 * math.sin(angle), 0.0, 0.0, 0.0, 2e6 * math.sin(3 * angle)]
         for answer in analysis.utilisation(load):
             reference = {key: value for key, value in parameters.items() if key != lifted[answer.group]}
-            expected = reference_utilisation(vehicle, reference, answer.group, low, high, {}, load, available)
+            expected = reference_utilisation(vehicle, reference, answer.group, low, high, {}, load, available,
+                                             np.ones(4))
             assert math.isfinite(expected) and answer.utilisation == pytest.approx(expected, rel=1e-6), (k, answer)
     sway = [0.0, 300e3, 0.0, 0.0, 0.0, 0.0]            # tunnel_fwd 300 kN x 41.5 / 78.5 against the yaw
     assert analysis.utilisation(sway)[1].utilisation == pytest.approx(41.5 / 78.5, rel=1e-9)
