@@ -167,3 +167,28 @@ def test_rows_and_pattern_for_the_optimisation():
     np.testing.assert_array_equal(weights, [[1, 1, 1, 1], [0, 0, 0, 0]])
     np.testing.assert_array_equal(available, [13400.0, np.inf])
     assert allocator.power.pattern.tolist() == [[True] * 4, [False, True, False, True]]
+
+
+@settings(deadline=None, max_examples=25)        # 30 allocations per example: no timing asserted
+@given(direction=st.tuples(*[st.floats(-1.0, 1.0)] * 3).filter(lambda d: max(map(abs, d)) > 0.05),
+       magnitude=st.sampled_from([0.5, 1.5]), swbd_a=st.sampled_from([0.0, 200.0, 1000.0]),
+       swbd_b=st.sampled_from([0.0, 300.0, 7800.0]), closed=st.booleans(), method=st.sampled_from(["qp", "lp"]))
+def test_no_bus_and_no_source_over_its_power_whatever_the_tie(direction, magnitude, swbd_a, swbd_b, closed, method):
+    """Requests of every direction and size, either tie state: the thrusters of a bus draw at most
+    its sources' power together (counted from the thrust, (1.44)), each source reports at most its
+    own."""
+    vehicle = vehicle_from(DP_VESSEL, **TIED, method=method)
+    allocator = Allocator(vehicle)
+    allocator.set_available_power({"swbd_a": swbd_a, "swbd_b": swbd_b})
+    allocator.set_bus_tie("bt_ab", closed)
+    tau = magnitude * np.array([600e3 * direction[0], 400e3 * direction[1], 0, 0, 0, 20e6 * direction[2]])
+    for _ in range(30):
+        thrust = allocator.allocate(tau).thrust
+        power = drawn(vehicle, thrust)
+        reading = allocator.power.reading(thrust, allocator.power_limit)
+        assert np.all(reading.power <= np.array([swbd_a, swbd_b]) * (1.0 + OVER) + 1e-9)
+        if closed:
+            assert power.sum() <= (swbd_a + swbd_b) * (1.0 + OVER) + 1e-9
+        else:
+            assert power[ON_A].sum() <= swbd_a * (1.0 + OVER) + 1e-9
+            assert power[~ON_A].sum() <= swbd_b * (1.0 + OVER) + 1e-9
