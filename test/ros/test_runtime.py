@@ -150,3 +150,19 @@ def test_a_bus_tie_from_the_service_feeds_the_other_bus_from_the_next_sample(har
     status = harness.status[-1]
     assert status.source_power[1] == 0.0 and status.source_power[0] > 0.0
     assert harness.diagnostics_after_a_second()["bus ties"] == "bt_ab closed (swbd_a + swbd_b)"
+
+
+@pytest.mark.params(DP_VESSEL, wrench_timeout=0.0, power__bus_ties=["bt_ab"],
+                    power__bus_tie__bt_ab__sources=["swbd_a", "swbd_b"])
+def test_tie_and_ramp_parameters_that_do_not_fit_are_refused_and_change_nothing(harness):
+    """The tie's state is the service's at runtime (its key read-only); a negative restore ramp is
+    refused naming the key; a valid ramp keeps the tie state the service set."""
+    assert harness.set_bus_tie("bt_ab", False)[0]
+    success, message = harness.set_parameters({"power.bus_tie.bt_ab.closed": True})
+    assert not success and "power.bus_tie.bt_ab.closed" in message and "read-only" in message
+    success, message = harness.set_parameters({"power.restore_ramp": -1.0})
+    assert not success and "power.restore_ramp" in message
+    assert harness.node.allocator.vehicle.power_restore_ramp == 0.0
+    assert harness.set_parameters({"power.restore_ramp": 30.0}) == (True, "")
+    assert harness.node.allocator.vehicle.power_restore_ramp == 30.0
+    assert harness.node.allocator.power.ties.closed == {"bt_ab": False}
