@@ -342,8 +342,7 @@ def test_dp_vessel_each_azimuth_sector_lifts_with_the_unit_it_protects():
         load = [300e3 * math.cos(angle), 300e3 * math.sin(angle), 0.0, 0.0, 0.0, 2e6 * math.sin(3 * angle)]
         for answer in analysis.utilisation(load):
             reference = {key: value for key, value in parameters.items() if key != lifted[answer.group]}
-            expected = reference_utilisation(vehicle, reference, answer.group, low, high, {}, load, available,
-                                             np.ones(4))
+            expected = reference_utilisation(vehicle, reference, answer.group, low, high, {}, load, available, [1] * 4)
             assert math.isfinite(expected) and answer.utilisation == pytest.approx(expected, rel=1e-6), (k, answer)
     sway = [0.0, 300e3, 0.0, 0.0, 0.0, 0.0]            # tunnel_fwd 300 kN x 41.5 / 78.5 against the yaw
     assert analysis.utilisation(sway)[1].utilisation == pytest.approx(41.5 / 78.5, rel=1e-9)
