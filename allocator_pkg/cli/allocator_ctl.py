@@ -3,6 +3,7 @@
     allocator-ctl wrench 100 0 0 0 0 20 --rate 20 --duration 5
     allocator-ctl fault main_port failed | degraded 0.5 | stuck 0.3 | nominal
     allocator-ctl group switchboard_a                         (~/set_group_fault: a redundancy group fails)
+    allocator-ctl tie bt_ab open | closed                     (~/set_bus_tie: a bus-tie breaker)
     allocator-ctl clear
     allocator-ctl echo [--csv FILE] [--mcap PATH]             (--mcap: wrench, commands, status as ros2 bag records)
     allocator-ctl capability 1 0 0 0 0 0                      (~/get_capability along a wrench)
@@ -107,6 +108,9 @@ def _parser() -> argparse.ArgumentParser:
                        help="efficiency in (0, 1] for degraded, angle [rad] for stuck")
     group = commands.add_parser("group", help="fail a redundancy group (its actuators and power sources)")
     group.add_argument("group")
+    tie = commands.add_parser("tie", help="open or close a bus-tie breaker (power.bus_ties)")
+    tie.add_argument("tie")
+    tie.add_argument("state", choices=("open", "closed"))
     commands.add_parser("clear", help="all actuators back to NOMINAL, every power source back")
     capability = commands.add_parser("capability", help="largest scale along a wrench the actuators can give now")
     for name in ("FX", "FY", "FZ", "MX", "MY", "MZ"):
@@ -226,6 +230,10 @@ def _run(arguments: argparse.Namespace, controller: Controller) -> int:
         return 0 if response.success else 1
     if arguments.command == "group":
         response = controller.set_group_fault(arguments.group)
+        print(response.message)
+        return 0 if response.success else 1
+    if arguments.command == "tie":
+        response = controller.set_bus_tie(arguments.tie, arguments.state == "closed")
         print(response.message)
         return 0 if response.success else 1
     if arguments.command == "clear":

@@ -257,6 +257,8 @@ def test_allocator_ctl_commands(node_process, tmp_path, namespace):
     assert "cleared faults of main_port" in ctl(namespace, "clear").stdout
     result = ctl(namespace, "group", "bus")
     assert result.returncode == 1 and result.stdout.strip() == "unknown redundancy group 'bus'; groups: none"
+    result = ctl(namespace, "tie", "bt_ab", "open")
+    assert result.returncode == 1 and result.stdout.strip() == "unknown bus tie 'bt_ab'; bus ties: none"
     assert ctl(namespace, "params", "set", "rate_hz=20", "weights.minimax=0.5").stdout.strip() == "applied"
     rejected = ctl(namespace, "params", "set", "rate_hz=-1")
     assert rejected.returncode == 1 and "rate_hz" in rejected.stdout
