@@ -156,11 +156,16 @@ class PowerBudget:
         """The restore ramp ``seconds`` on; whether the available power in force changed."""
         return self.ramp.advance(self.target, seconds)
 
-    def rows(self) -> tuple[np.ndarray, np.ndarray]:
-        """The power rows of the ties in force: (weights (m x r), the share of thruster i's power
-        on row j by its feeds' shares; available power of every row [kW], inf on a row a bus
-        pools into another)."""
-        return self.ties.pool_shares(self.shares).T, self.ties.pool_available(self.available)
+    def rows(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The power rows of the ties in force: (weights w (m x r), the share of thruster i's
+        power on row j, s_ij / S_i over its live rows and 0 on a dead one; available power A of
+        every row [kW], a bus's sum on its first source and inf on its others; S, every
+        thruster's live share, whose feed limit is p_i <= S_i R_i)."""
+        rows = self.ties.pool_available(self.available)
+        live = self.ties.pool_shares(self.shares) * (rows > 0.0)
+        live_share = live.sum(axis=1)
+        weights = np.divide(live, live_share[:, None], out=np.zeros_like(live), where=live_share[:, None] > 0.0)
+        return weights.T, rows, live_share
 
     @property
     def pattern(self) -> np.ndarray:
@@ -209,11 +214,8 @@ class PowerBudget:
         """The power rule's bounds given the static force ranges ``low``/``high`` that faults,
         speed and voltage leave (module docstring)."""
         kilowatts = self.available
-        rows = self.ties.pool_available(kilowatts)
-        available = rows * KW
-        live = self.ties.pool_shares(self.shares) * (available > 0.0)
-        live_share = live.sum(axis=1)
-        weights = np.divide(live, live_share[:, None], out=np.zeros_like(live), where=live_share[:, None] > 0.0)
+        row_weights, rows, live_share = self.rows()
+        weights, available = row_weights.T, rows * KW
         derated = np.where(self.fed, live_share ** (2.0 / 3.0) * self.rated_thrust, np.inf)
         largest = np.minimum(np.maximum(np.abs(low), np.abs(high)), derated)
         coefficient = self.in_force.bound_coefficient(low, high)

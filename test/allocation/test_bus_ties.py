@@ -159,14 +159,30 @@ def test_rows_and_pattern_for_the_optimisation():
     """Closed: swbd_a's row carries all four thrusters and 5600 + 7800 kW, swbd_b's is empty and
     unbounded; the pattern (every state) has both rows' own thrusters and row a all four."""
     allocator = Allocator(vehicle_from(DP_VESSEL, **TIED))
-    weights, available = allocator.power.rows()
+    weights, available, live = allocator.power.rows()
     np.testing.assert_array_equal(weights, [[1, 0, 1, 0], [0, 1, 0, 1]])
     np.testing.assert_array_equal(available, [5600.0, 7800.0])
     allocator.set_bus_tie("bt_ab", True)
-    weights, available = allocator.power.rows()
+    weights, available, live = allocator.power.rows()
     np.testing.assert_array_equal(weights, [[1, 1, 1, 1], [0, 0, 0, 0]])
     np.testing.assert_array_equal(available, [13400.0, np.inf])
+    np.testing.assert_array_equal(live, [1, 1, 1, 1])
     assert allocator.power.pattern.tolist() == [[True] * 4, [False, True, False, True]]
+
+
+def test_a_split_fed_thruster_that_loses_a_feed_draws_on_its_live_rows():
+    """azimuth_stbd fed 70/30 from swbd_a and swbd_b, swbd_b at 0 kW: open, all of its power on
+    swbd_a's row with a live share of 0.7 (its feed limit); closed, both feeds are one bus and live."""
+    allocator = Allocator(vehicle_from(DP_VESSEL, **TIED, actuators__azimuth_stbd__feeds=["swbd_a", "swbd_b"],
+                                       actuators__azimuth_stbd__feed_shares=[0.7, 0.3]))
+    allocator.set_available_power({"swbd_b": 0.0})
+    weights, available, live = allocator.power.rows()
+    np.testing.assert_allclose(weights[:, 0], [1.0, 0.0])
+    assert live[0] == pytest.approx(0.7) and available.tolist() == [5600.0, 0.0]
+    allocator.set_bus_tie("bt_ab", True)
+    weights, available, live = allocator.power.rows()
+    np.testing.assert_allclose(weights[:, 0], [1.0, 0.0])
+    assert live[0] == pytest.approx(1.0) and available.tolist() == [5600.0, np.inf]
 
 
 @settings(deadline=None, max_examples=25)        # 30 allocations per example: no timing asserted
