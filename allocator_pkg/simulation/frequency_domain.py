@@ -72,7 +72,7 @@ def linear_damping(vessel: Vessel, current: np.ndarray, heading: float = 0.0) ->
     """D = -M d(nu')/d(nu) at rest in the ``current`` [north, east] by central differences."""
     eta = np.array([0.0, 0.0, heading])
     columns = []
-    for k, scale in enumerate((0.01, 0.01, 0.001)):
+    for k, scale in enumerate((1e-5, 1e-5, 1e-7)):
         step = np.zeros(3)
         step[k] = scale
         plus = vessel.derivative(eta, step, np.zeros(3), np.asarray(current))[1]
