@@ -61,3 +61,8 @@ def screening_rows(setup: CaseSetup, finished: dict[tuple, CaseResult]) -> list[
         measured = track_std(results, setup.criteria.settle)
         rows.append((heading, number, len(results), float(north), float(east), math.degrees(yaw), *measured))
     return rows
+
+
+def screening_table(setup: CaseSetup, finished: dict[tuple, CaseResult]) -> tuple[str, tuple[str, ...], list[tuple]]:
+    """(title, columns, rows) of the screening table for the Level 3 report."""
+    return SCREENING_TABLE, SCREENING_COLUMNS, screening_rows(setup, finished)

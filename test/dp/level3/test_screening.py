@@ -10,7 +10,7 @@ from conftest import ROOT
 
 from allocator_pkg.dp.inputs.particulars import load_particulars
 from allocator_pkg.dp.level3.case import INTACT, Case, CaseSetup, Criteria, run_case
-from allocator_pkg.dp.level3.screening import SCREENING_COLUMNS, screening_rows
+from allocator_pkg.dp.level3.screening import SCREENING_TABLE, screening_table
 from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 from allocator_pkg.simulation.scenario import load_scenario
 
@@ -32,7 +32,9 @@ def test_the_screening_estimate_agrees_with_the_monte_carlo_within_20_percent():
             for seed in range(SEEDS):
                 result = run_case(Case(heading, number, INTACT, seed), setup)
                 finished[result.case.key] = result
-    rows = [dict(zip(SCREENING_COLUMNS, row, strict=True)) for row in screening_rows(setup, finished)]
+    title, columns, table = screening_table(setup, finished)
+    assert title == SCREENING_TABLE
+    rows = [dict(zip(columns, row, strict=True)) for row in table]
     assert [(r["heading_deg"], r["capability_number"], r["seeds"]) for r in rows] == [
         (h, n, SEEDS) for h in HEADINGS for n in NUMBERS]
     for row in rows:
