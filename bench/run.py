@@ -78,6 +78,8 @@ def main(argv: list[str] | None = None) -> int:
                                                   + (["--repeats", "1"] if arguments.quick else [])))
     result["dp_level3"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_level3.py")]
                                               + (["--settle", "10", "--duration", "30"] if arguments.quick else [])))
+    result["environment_cost"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "environment_cost.py")]
+                                                     + (["--duration", "30"] if arguments.quick else [])))
     load_out = RESULTS / "load.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "load.py"), "--out", str(load_out)]
                    + (["--seconds", "10"] if arguments.quick else []), check=False)

@@ -59,3 +59,56 @@ def test_bad_variations_are_refused():
         SlowVariation(sigma=-1.0)
     with pytest.raises(ValueError, match="time_constant"):
         SlowVariation(sigma=1.0, time_constant=0.0)
+
+
+@pytest.mark.parametrize("heading", np.radians([0.0, 60.0, 135.0, 270.0]))
+@pytest.mark.parametrize("name", ["npd", "api", "harris"])
+def test_the_wind_feedforward_is_the_load_of_the_wind_measured_now(heading, name):
+    spec = EnvironmentSpec(wind_speed=14.0, wind_direction=40.0, wind_spectrum=name,
+                           wind_direction_variation=SlowVariation(6.0, 40.0))
+    environment = Environment(spec, seed=5, particulars=HULL)
+    for _ in range(37):
+        environment.step(0.25)
+    speed, direction = environment.wind_speed(), environment.wind_direction()
+    assert speed != 14.0 and direction != 40.0
+    expected = wind_load(HULL, speed, math.radians(direction) - heading)
+    assert environment.wind_feedforward(heading) == pytest.approx(expected)
+    assert environment.wind_load(heading) == pytest.approx(expected)
+
+
+@pytest.mark.parametrize("scale", [0.5, 1.0, 1.5])
+def test_given_mean_loads_scale_with_the_gust_and_the_drift_factor(scale):
+    wind, drift = (1e4, -2e4, 3e5), (-5e3, 4e4, -6e5)
+    spec = EnvironmentSpec(wind_speed=12.0, wind_spectrum="npd", wave_height=3.0, wave_period=9.0,
+                           wave_spectrum="jonswap", mean_wind_load=wind, mean_drift_load=drift)
+    environment = Environment(spec, seed=2, particulars=HULL)
+    environment.scale = scale
+    environment.step(3.0)
+    ratio = (environment.wind_speed() / (12.0 * scale)) ** 2
+    assert environment.wind_load(1.0) == pytest.approx(np.array(wind) * ratio * scale ** 2)
+    assert environment.drift_load(1.0) == pytest.approx(np.array(drift) * environment.drift_factor() * scale ** 2)
+    assert environment.hull_load(1.0, mean=True) == pytest.approx((np.array(wind) + drift) * scale ** 2)
+
+
+def test_without_spectra_the_environment_draws_as_the_first_order_processes_do():
+    """The current's, the gust's and the drift's processes from one generator in that order."""
+    spec = EnvironmentSpec(current_speed=0.5, current_speed_variation=SlowVariation(0.1, 30.0), wind_speed=10.0,
+                           gusts=SlowVariation(2.0, 5.0), wave_height=2.0, drift_variation=SlowVariation(0.3, 60.0))
+    environment = Environment(spec, seed=11, particulars=HULL)
+    generator = np.random.default_rng(11)
+    processes = [GaussMarkov(v, generator) for v in (spec.current_speed_variation, spec.current_direction_variation,
+                                                     spec.gusts, spec.drift_variation)]
+    for _ in range(20):
+        environment.step(0.5)
+        values = [p.step(0.5) for p in processes]
+    assert environment.record is None and not np.any(environment.wave_motion())
+    assert environment.wind_speed() == pytest.approx(10.0 + values[2])
+    assert environment.drift_factor() == pytest.approx(1.0 + values[3])
+
+
+@pytest.mark.parametrize(("field", "value", "key"), [("wind_spectrum", "kaimal", "wind.spectrum"),
+                                                      ("wave_spectrum", "pm", "waves.spectrum"),
+                                                      ("peak_factor", 0.5, "waves.peak_factor")])
+def test_a_spectrum_the_environment_does_not_know_is_refused_with_its_key(field, value, key):
+    with pytest.raises(ValueError, match=f"environment.{key}"):
+        EnvironmentSpec(**{field: value})
