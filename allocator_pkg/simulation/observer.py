@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..vehicle.angles import wrap
+from .scenario_keys import scenario_default
 
 GRAVITY = 9.81
 """[m/s^2] of the bis system."""
@@ -54,22 +55,22 @@ class ObserverTuning:
     omega_c / omega_o, the bias time constant T [s], K4 in the bis system per DOF and K3 / K4 [1/s]."""
 
     wave_period: float
-    wave_damping: float = 0.1
-    notch_damping: float = 1.0
-    cutoff_ratio: float = 1.5
-    bias_time_constant: float = 1000.0
-    k4_bis: tuple[float, float, float] = (0.1, 0.1, 0.01)
-    k3_ratio: float = 0.02
+    wave_damping: float = scenario_default("observer.wave_damping")
+    notch_damping: float = scenario_default("observer.notch_damping")
+    cutoff_ratio: float = scenario_default("observer.cutoff_ratio")
+    bias_time_constant: float = scenario_default("observer.bias_time_constant")
+    k4_bis: tuple[float, float, float] = scenario_default("observer.k4_bis")
+    k3_ratio: float = scenario_default("observer.k3_ratio")
 
     def __post_init__(self) -> None:
+        if len(self.k4_bis) != 3:
+            raise ValueError("observer.k4_bis: 3 values (surge, sway, yaw)")
         for name in ("wave_period", "wave_damping", "notch_damping", "cutoff_ratio", "bias_time_constant",
                      "k3_ratio", *(f"k4_bis[{i}]" for i in range(3))):
             value = self.k4_bis[int(name[-2])] if name.startswith("k4_bis") else getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
                     math.isfinite(value) and value > 0.0):
                 raise ValueError(f"observer.{name}: a finite number > 0, not {value!r}")
-        if len(self.k4_bis) != 3:
-            raise ValueError("observer.k4_bis: 3 values (surge, sway, yaw)")
         if not self.wave_damping < self.notch_damping:
             raise ValueError(f"observer.wave_damping: below notch_damping (lambda < zeta_n), not "
                              f"{self.wave_damping:g} >= {self.notch_damping:g}")

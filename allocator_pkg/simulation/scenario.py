@@ -24,6 +24,8 @@ from ..effectiveness.faults import FaultMode, FaultSet
 from ..hull.environment_loads import VesselParticulars
 from ..hull.hull_file import read_hull
 from ..vehicle.config import ConfigError, Vehicle
+from .control_system import ControlSystem
+from .control_values import control_system
 from .controller import Gains
 from .environment import EnvironmentSpec
 from .method_bounds import MethodBounds, method_bounds
@@ -42,6 +44,7 @@ from .scenario_keys import EVENT_KEYS, FAULT_MODES, MODELS, scenario_default
 from .scenario_values import (
     ScenarioError,
     environment,
+    flag,
     number,
     read_bounds,
     read_windows,
@@ -50,6 +53,7 @@ from .scenario_values import (
     vector,
 )
 from .setpoint import SetpointSchedule
+from .thrust_losses import ThrustLosses
 from .windows import Window, fault_windows
 
 EVENT_KINDS = tuple(key.name for key in EVENT_KEYS[1:])
@@ -106,6 +110,12 @@ class Scenario:
     """[m] The vessel has lost its position once its position error exceeds this."""
     method_bounds: dict[str, MethodBounds] = field(default_factory=dict)
     """Per method, what the scenario expects of it in place of ``bounds`` (``methods`` of the file)."""
+    control: ControlSystem = field(default_factory=ControlSystem)
+    """What the controller acts on: the true state, or an observer's estimate from measurements."""
+    fault_trip: bool = False
+    """A failed actuator's thrust drops to zero at once, not at its rate limit."""
+    thrust_losses: ThrustLosses | None = None
+    """The thrust losses the simulated thrusters suffer (a Level 3 case's; none from a file)."""
 
     @property
     def horizontal(self) -> bool:
@@ -361,5 +371,6 @@ def load_scenario(path: str | Path) -> Scenario:
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
         description=str(data.get("description", "")),
         position_limit=number(data, "position_limit", ""),
-        method_bounds=method_bounds(data.get("methods", {}) or {}, named, config))
+        method_bounds=method_bounds(data.get("methods", {}) or {}, named, config),
+        control=control_system(data, model, spec), fault_trip=flag(data, "fault_trip", ""))
 
