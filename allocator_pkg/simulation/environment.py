@@ -1,41 +1,33 @@
 """A seeded environment: a current with a slowly varying speed and direction, wind with gusts
-and slowly varying wave drift for the vessel; a current for the ROV.
+and slowly varying wave drift for the vessel, and with a wave spectrum the first-order wave motion
+the position measurement sees; a current for the ROV.
 
 Every slow variation is a first-order Gauss-Markov process x' = -x / T + w (the form Fossen
 2021 gives the slowly varying current speed), discretised exactly: x_k+1 = a x_k + sqrt(1 - a^2) sigma e_k,
 a = exp(-dt / T), e_k standard normal from one ``numpy`` generator seeded by the scenario, so
 its stationary standard deviation is sigma and its correlation time T. The gusts are such a
-process for the wind speed (turbulence intensity sigma / mean), not a Harris or NORSOK
-spectrum; the slowly varying wave drift is the mean drift of
-``analysis.environment_loads.wave_drift_load`` times (1 + such a process), not a Newman
-approximation from a wave spectrum. Directions are where the environment comes from, in
-degrees clockwise from north. ``scale`` (1 unless a scenario's weather ramp changes it) multiplies
-the current's speed, the wind's speed and the significant wave height, variations included.
+process for the wind speed (turbulence intensity sigma / mean) unless the scenario names a gust
+spectrum (``environment.wind.spectrum``: NPD, API or Harris); the slowly varying wave drift is
+the mean drift of ``hull.environment_loads.wave_drift_load`` times (1 + such a process) unless the
+scenario names a wave spectrum (``environment.waves.spectrum: jonswap``: Newman's drift and the
+wave motion). A spectrum's series are generated once per run (:mod:`.environment_record`) and
+looked up per step. The mean wind load and the mean drift may come from the caller
+(``mean_wind_load``, ``mean_drift_load``: the Level 3 case passes the standard's), the gusts then
+scaling the mean wind load by (U / U_mean)^2 and the drift factor the mean drift. Directions are
+where the environment comes from, in degrees clockwise from north. ``scale`` (1 unless a
+scenario's weather ramp changes it) multiplies the current's speed, the wind's speed and the
+significant wave height, variations included.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..hull.environment_loads import VesselParticulars, wave_drift_load, wind_load
-from .scenario_keys import scenario_default
-
-
-@dataclass(frozen=True)
-class SlowVariation:
-    """sigma (stationary standard deviation) and T [s] (correlation time) of a Gauss-Markov process."""
-
-    sigma: float = scenario_default("environment.current.speed_sigma")
-    time_constant: float = scenario_default("environment.current.time_constant")
-
-    def __post_init__(self) -> None:
-        if not (math.isfinite(self.sigma) and self.sigma >= 0.0):
-            raise ValueError(f"variation sigma: a finite number >= 0, not {self.sigma!r}")
-        if not (math.isfinite(self.time_constant) and self.time_constant > 0.0):
-            raise ValueError(f"variation time_constant: a finite number > 0, not {self.time_constant!r}")
+from .environment_record import build_record
+from .environment_spec import EnvironmentSpec, SlowVariation
 
 
 class GaussMarkov:
@@ -52,31 +44,14 @@ class GaussMarkov:
         return self.value
 
 
-@dataclass(frozen=True)
-class EnvironmentSpec:
-    """Mean values and variations of a scenario's environment (speeds [m/s], directions [deg]);
-    the defaults of a scenario file's ``environment`` keys."""
-
-    current_speed: float = scenario_default("environment.current.speed")
-    current_direction: float = scenario_default("environment.current.direction")
-    current_speed_variation: SlowVariation = SlowVariation()
-    current_direction_variation: SlowVariation = SlowVariation()
-    current_down: float = scenario_default("environment.current.down")
-    """Vertical current [m/s] (ROV)."""
-    wind_speed: float = scenario_default("environment.wind.speed")
-    wind_direction: float = scenario_default("environment.wind.direction")
-    gusts: SlowVariation = SlowVariation()
-    wave_height: float = scenario_default("environment.waves.hs")
-    wave_period: float = scenario_default("environment.waves.peak_period")
-    wave_direction: float = scenario_default("environment.waves.direction")
-    drift_variation: SlowVariation = SlowVariation()
-
-
 class Environment:
     """Current [north, east, down] and, for a hull with particulars, the wind and wave-drift
-    load [X, Y, N] in the body frame; one :meth:`step` per simulation step."""
+    load [X, Y, N] in the body frame and the wave motion; one :meth:`step` per simulation step.
+    ``duration`` [s]: how long the spectra's series run before they repeat; ``heading`` [rad]:
+    the set-point heading the wave motion's response is taken at."""
 
-    def __init__(self, spec: EnvironmentSpec, seed: int, particulars: VesselParticulars | None = None):
+    def __init__(self, spec: EnvironmentSpec, seed: int, particulars: VesselParticulars | None = None,
+                 duration: float = 3600.0, heading: float = 0.0):
         self.spec = spec
         self.particulars = particulars
         generator = np.random.default_rng(seed)
@@ -84,11 +59,23 @@ class Environment:
         self._direction = GaussMarkov(spec.current_direction_variation, generator)
         self._gust = GaussMarkov(spec.gusts, generator)
         self._drift = GaussMarkov(spec.drift_variation, generator)
+        self._processes = [self._speed, self._direction]
+        self._processes += [self._gust] if spec.wind_spectrum == "first_order" else []
+        self._processes += [self._drift] if spec.wave_spectrum == "none" else []
+        self.record = build_record(spec, seed, particulars, duration, heading)
+        self._row = self.record.at(0.0) if self.record is not None else None
+        self.time = 0.0
         self.scale = 1.0
 
     def step(self, dt: float) -> None:
-        for process in (self._speed, self._direction, self._gust, self._drift):
+        for process in self._processes:
             process.step(dt)
+        self.time += dt
+        if self.record is not None:
+            self._row = self.record.at(self.time)
+
+    def _series(self, name: str) -> float:
+        return float(self._row[self.record.index[name]])
 
     def current(self, mean: bool = False) -> np.ndarray:
         """[north, east, down] [m/s] of the water (``mean``: without its slow variation), flowing
@@ -102,15 +89,66 @@ class Environment:
         return self.current(mean=True)
 
     def wind_speed(self, mean: bool = False) -> float:
-        return max(0.0, self.spec.wind_speed + (0.0 if mean else self._gust.value)) * self.scale
+        """[m/s] now (``mean``: without the gust), scaled."""
+        if mean:
+            return self.spec.wind_speed * self.scale
+        gust = self._gust.value if self.spec.wind_spectrum == "first_order" else self._series("gust")
+        return max(0.0, self.spec.wind_speed + gust) * self.scale
+
+    def wind_direction(self, mean: bool = False) -> float:
+        """[deg] where the wind comes from now (``mean``: without its fluctuation)."""
+        if mean or self.spec.wind_spectrum == "first_order":
+            return self.spec.wind_direction
+        return self.spec.wind_direction + self._series("wind_direction")
+
+    def wind_load(self, heading: float, mean: bool = False) -> np.ndarray:
+        """[X, Y, N] of the wind at ``heading`` [rad] (``mean``: of the mean wind); the caller's mean
+        load times (U / U_mean)^2 when it gave one, else the hull's (zeros without particulars)."""
+        given = self.spec.mean_wind_load
+        if given is not None:
+            ratio = self.scale ** 2 if mean or self.spec.wind_speed == 0.0 else \
+                (self.wind_speed() / self.spec.wind_speed) ** 2
+            return np.array(given) * ratio
+        if self.particulars is None:
+            return np.zeros(3)
+        relative = math.radians(self.wind_direction(mean)) - heading
+        return wind_load(self.particulars, self.wind_speed(mean), relative)
+
+    def wind_feedforward(self, heading: float) -> np.ndarray:
+        """[X, Y, N] of the wind an anemometer measures now (speed with its gust, direction with
+        its fluctuation) on the hull at the measured ``heading`` [rad], by the plant's own wind
+        model: what a controller's wind feed-forward computes (it would filter it itself)."""
+        return self.wind_load(heading)
+
+    def drift_factor(self) -> float:
+        """The slowly varying factor on the mean wave drift now (mean 1)."""
+        if self.spec.wave_spectrum == "none":
+            return max(0.0, 1.0 + self._drift.value)
+        return self._series("drift")
+
+    def drift_load(self, heading: float, mean: bool = False) -> np.ndarray:
+        """[X, Y, N] of the wave drift at ``heading`` [rad] (``mean``: its mean), the caller's mean
+        drift when it gave one, else the hull's (zeros without particulars)."""
+        spec = self.spec
+        if spec.mean_drift_load is not None:
+            load = np.array(spec.mean_drift_load) * self.scale ** 2
+        elif self.particulars is None:
+            return np.zeros(3)
+        else:
+            load = wave_drift_load(self.particulars, spec.wave_height * self.scale, spec.wave_period,
+                                   math.radians(spec.wave_direction) - heading)
+        return load if mean else load * self.drift_factor()
 
     def hull_load(self, heading: float, mean: bool = False) -> np.ndarray:
         """[X, Y, N] of wind and wave drift on the hull at ``heading`` [rad] (``mean``: without
-        gusts and drift variation; none without particulars)."""
-        if self.particulars is None:
+        gusts and drift variation)."""
+        return self.wind_load(heading, mean) + self.drift_load(heading, mean)
+
+    def wave_motion(self) -> np.ndarray:
+        """[north [m], east [m], yaw [rad]] of the first-order wave-frequency motion now, which the
+        position measurement adds to the vessel's slow motion (zeros without a wave spectrum)."""
+        if self.spec.wave_spectrum == "none":
             return np.zeros(3)
-        spec = self.spec
-        wind = wind_load(self.particulars, self.wind_speed(mean), math.radians(spec.wind_direction) - heading)
-        drift = wave_drift_load(self.particulars, spec.wave_height * self.scale, spec.wave_period,
-                                math.radians(spec.wave_direction) - heading)
-        return wind + drift * (1.0 if mean else max(0.0, 1.0 + self._drift.value))
+        row = self._row
+        index = self.record.index
+        return np.array([row[index["north"]], row[index["east"]], row[index["yaw"]]]) * self.scale

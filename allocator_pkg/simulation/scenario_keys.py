@@ -19,6 +19,7 @@ from ..configuration.file_keys import (
     FileKey,
 )
 from .metrics import BOUNDED_METRICS, METRIC_UNITS
+from .spectra import WAVE_SPECTRA, WIND_SPECTRA
 
 MODELS = ("dp_vessel", "bluerov2_heavy")
 FAULT_MODES = ("failed", "stuck", "degraded")
@@ -63,13 +64,23 @@ ENVIRONMENT_KEYS = (
     FileKey("wind", MAPPING, "the wind on the vessel (its load by `wind_load` of environment_loads.py)", keys=(
         FileKey("speed", NUMBER, "mean speed", default=0.0, unit="m/s", minimum=0.0),
         FileKey("direction", NUMBER, "where it comes from", default=0.0, unit="deg"),
-        *_variation("gust_sigma", "gust_time_constant", "share of the mean",
-                    "of the gust (turbulence intensity)"))),
-    FileKey("waves", MAPPING, "the waves' mean drift on the vessel times 1 + a Gauss-Markov process", keys=(
+        *_variation("gust_sigma", "gust_time_constant", "m/s", "of the gust (first_order)"),
+        FileKey("spectrum", TEXT, "the gust: a first-order Gauss-Markov process (gust_sigma, gust_time_constant) "
+                "or a series from the NPD (ISO 19901-1), API RP 2A or Harris spectrum for the mean speed",
+                default="first_order", choices=WIND_SPECTRA),
+        *_variation("direction_sigma", "direction_time_constant", "deg",
+                    "of the direction, with a gust spectrum"))),
+    FileKey("waves", MAPPING, "the waves' mean drift on the vessel times 1 + a Gauss-Markov process, or from a "
+            "JONSWAP spectrum the slowly varying drift (Newman) and the wave motion", keys=(
         FileKey("hs", NUMBER, "significant wave height", default=0.0, unit="m", minimum=0.0),
         FileKey("peak_period", NUMBER, "peak period", default=8.0, unit="s", minimum=0.0),
         FileKey("direction", NUMBER, "where they come from", default=0.0, unit="deg"),
-        *_variation("drift_sigma", "drift_time_constant", "share of the mean", "of the drift"))),
+        *_variation("drift_sigma", "drift_time_constant", "share of the mean", "of the drift (spectrum none)"),
+        FileKey("spectrum", TEXT, "none: the mean drift times 1 + the drift process; jonswap: a JONSWAP sea's "
+                "slowly varying drift by Newman's approximation and its first-order motion in the position "
+                "measurement", default="none", choices=WAVE_SPECTRA),
+        FileKey("peak_factor", NUMBER, "JONSWAP's gamma; 0: DNV-RP-C205's from Hs and Tp", default=0.0,
+                minimum=0.0))),
 )
 OBSERVER_KEYS = (
     FileKey("enabled", BOOLEAN, "the controller acts on the observer's estimate, not on the true state",

@@ -79,7 +79,20 @@ def environment(data: dict) -> EnvironmentSpec:
         wave_height=number(waves, "hs", "environment.waves."),
         wave_period=number(waves, "peak_period", "environment.waves."),
         wave_direction=number(waves, "direction", "environment.waves."),
-        drift_variation=_variation(waves, "drift_sigma", "drift_time_constant", "environment.waves."))
+        drift_variation=_variation(waves, "drift_sigma", "drift_time_constant", "environment.waves."),
+        wind_spectrum=choice(wind, "spectrum", "environment.wind."),
+        wind_direction_variation=_variation(wind, "direction_sigma", "direction_time_constant", "environment.wind."),
+        wave_spectrum=choice(waves, "spectrum", "environment.waves."),
+        peak_factor=number(waves, "peak_factor", "environment.waves."))
+
+
+def choice(data: dict, key: str, where: str) -> str:
+    """``data[key]`` (or its default), one of the key's choices in :data:`SCENARIO_KEYS`."""
+    declared = scenario_key(where + key)
+    value = data.get(key, declared.default)
+    if value not in declared.choices:
+        raise ScenarioError(f"{where}{key}: one of {', '.join(declared.choices)}, not {value!r}")
+    return value
 
 
 

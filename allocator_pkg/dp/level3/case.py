@@ -27,10 +27,12 @@ import numpy as np
 
 from ...configuration.file_keys import NUMBER, FileKey, key_named
 from ...simulation.closed_loop import ClosedLoop
+from ...simulation.environment import EnvironmentSpec
 from ...simulation.in_process import InProcessLink
 from ...simulation.metrics import heading_errors
 from ...simulation.scenario import Event, Scenario
 from ..capability_result import INTACT
+from ..standard.loads import BodyFrame, DnvHull, wave_drift_load, wind_load
 from ..standard.weather import WeatherCondition
 
 TRACK_PERIOD = 1.0
@@ -107,6 +109,13 @@ class CaseSetup:
     groups: dict[str, tuple[str, ...]]
     named_groups: frozenset[str]
     criteria: Criteria
+    hull: DnvHull | None = None
+    """The standard's hull and the body frame of the mean wind load and wave drift [3.5], [3.7]
+    (None: those of the simulation's load model)."""
+    frame: BodyFrame | None = None
+    spectra: bool = True
+    """The gusts and the sea from spectra (False: the base scenario's first-order gust at its
+    turbulence intensity and its drift factor, the hull's mean loads)."""
 
 
 @dataclass(frozen=True)
@@ -134,21 +143,35 @@ class CaseResult:
                                                                              for n, e in data["track"]))
 
 
+def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
+    """The environment of one case: the condition's wind, current and waves, all from
+    ``case.heading_deg`` relative to the bow (the set-point heading 0 deg, north); the gusts from
+    the base scenario's gust spectrum (NPD unless it names another), a JONSWAP sea (Newman's slowly
+    varying drift, the first-order wave motion), the mean wind load and the mean wave drift those of
+    [3.5] and [3.7] at the condition when the set-up has the standard's hull, the base scenario's
+    slow variations of the current."""
+    spec, condition = setup.scenario.environment, setup.conditions[case.number]
+    heading = case.heading_deg
+    period = condition.tp if condition.tp > 0.0 else spec.wave_period
+    common = dict(current_speed=condition.current, current_direction=heading, wind_speed=condition.wind,
+                  wind_direction=heading, wave_height=condition.hs, wave_direction=heading, wave_period=period)
+    if not setup.spectra:
+        intensity = spec.gusts.sigma / spec.wind_speed if spec.wind_speed > 0.0 else 0.0
+        return replace(spec, gusts=replace(spec.gusts, sigma=intensity * condition.wind), **common)
+    mean_wind = mean_drift = None
+    if setup.hull is not None and setup.frame is not None:
+        direction = math.radians(heading)
+        mean_wind = tuple(setup.frame.load(wind_load(setup.hull, condition.wind, direction)))
+        mean_drift = tuple(setup.frame.load(wave_drift_load(setup.hull, condition.hs, period, direction)))
+    return replace(spec, wind_spectrum=spec.wind_spectrum if spec.wind_spectrum != "first_order" else "npd",
+                   wave_spectrum="jonswap", mean_wind_load=mean_wind, mean_drift_load=mean_drift, **common)
+
+
 def case_scenario(setup: CaseSetup, case: Case) -> Scenario:
-    """The scenario of one case: the condition's wind (gusts at the base scenario's turbulence
-    intensity), current and waves, all from ``case.heading_deg`` relative to the bow (the
-    set-point heading 0 deg, north), the base scenario's slow variations, the seed (the base
+    """The scenario of one case: its environment (:func:`case_environment`), the seed (the base
     scenario's plus the case's index), and a failure of every actuator of the group at ``settle``."""
     base, criteria = setup.scenario, setup.criteria
-    condition = setup.conditions[case.number]
-    spec = base.environment
-    intensity = spec.gusts.sigma / spec.wind_speed if spec.wind_speed > 0.0 else 0.0
-    heading = case.heading_deg
-    environment = replace(spec, current_speed=condition.current, current_direction=heading,
-                          wind_speed=condition.wind, wind_direction=heading,
-                          gusts=replace(spec.gusts, sigma=intensity * condition.wind),
-                          wave_height=condition.hs, wave_direction=heading,
-                          wave_period=condition.tp if condition.tp > 0.0 else spec.wave_period)
+    environment = case_environment(setup, case)
     failed = () if case.group == INTACT else setup.groups[case.group]
     events = tuple(Event(criteria.settle, "fault", actuator=name, mode="failed", value=0.0) for name in failed)
     return replace(base, name=f"{base.name}_l3", duration=criteria.settle + criteria.duration,

@@ -97,7 +97,8 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     groups = {name: tuple(member for member in members if member in vehicle.names)
               for name, members in analysis.groups.items()}
     setup = CaseSetup(base, tuple(analysis.conditions), groups,
-                      frozenset(group.name for group in vehicle.redundancy_groups), inputs.criteria)
+                      frozenset(group.name for group in vehicle.redundancy_groups), inputs.criteria,
+                      particulars.hull, particulars.frame)
     headings = tuple(float(h) for h in level2.headings_deg)
     ceilings = {(heading, case): int(level2.numbers[case][k]) for case in (INTACT, *groups)
                 for k, heading in enumerate(headings)}

@@ -38,8 +38,11 @@ def test_environment_comes_from_the_heading(setup):
     spec = scenario.environment
     assert (spec.wind_direction, spec.current_direction, spec.wave_direction) == (90.0, 90.0, 90.0)
     assert (spec.wind_speed, spec.wave_height, spec.wave_period, spec.current_speed) == (13.8, 3.1, 8.5, 0.75)
-    base = setup.scenario.environment                         # the base's turbulence intensity
-    assert spec.gusts.sigma == pytest.approx(13.8 * base.gusts.sigma / base.wind_speed)
+    assert (spec.wind_spectrum, spec.wave_spectrum) == ("npd", "jonswap")
+    base = case_scenario(replace(setup, spectra=False), Case(90.0, 6, INTACT, 2)).environment
+    first_order = setup.scenario.environment                  # the base's turbulence intensity
+    assert base.gusts.sigma == pytest.approx(13.8 * first_order.gusts.sigma / first_order.wind_speed)
+    assert (base.wind_spectrum, base.wave_spectrum) == ("first_order", "none")
     assert scenario.seed == setup.scenario.seed + 2 and scenario.duration == 20.0 and not scenario.events
 
 
@@ -108,11 +111,11 @@ def test_in_steady_weather_a_held_case_settles_on_its_set_point(setup, group):
     environment = replace(setup.scenario.environment, current_speed_variation=none,
                           current_direction_variation=none, gusts=none, drift_variation=none)
     steady = replace(setup, scenario=replace(setup.scenario, environment=environment),
-                     criteria=Criteria(0.1, 0.5, settle=5.0, duration=175.0))
+                     criteria=Criteria(0.1, 0.5, settle=5.0, duration=175.0), spectra=False)
     result = run_case(Case(90.0, 6, group, 0), steady)
     north, east = result.track[-1]
     assert result.held and np.hypot(north, east) < 0.01
     if group == INTACT:
         assert result.max_position < 1e-4
-    varied = run_case(Case(90.0, 6, group, 0), replace(setup, criteria=steady.criteria))
+    varied = run_case(Case(90.0, 6, group, 0), replace(setup, criteria=steady.criteria, spectra=False))
     assert varied.max_position > 0.2
