@@ -32,6 +32,8 @@ from .windows import fault_intervals
 
 START_NS = 100_000_000_000
 """Sim time [ns] before the first warm-up step; the run starts after the warm-up."""
+BALANCE_ROUNDS = 3
+"""Warm-up holds after the first that take up the thrust losses (:meth:`ClosedLoop._warm_up`)."""
 
 
 @dataclass
@@ -123,18 +125,26 @@ class ClosedLoop:
         """Before t = 0: bring the allocator into step with the clock (no allocation), then hold
         the controller's first request, the equilibrium wrench (its integral holds the mean
         load), for the vehicle's fixed number of warm-up steps (``warm_up_steps``), so that the
-        allocator settles there; the simulated thrusters start at its last commands. The
-        allocator allocates the same requests in every run. The sim time [ns] of t = 0."""
+        allocator settles there; the simulated thrusters start at its last commands. With thrust
+        losses, :data:`BALANCE_ROUNDS` more such holds, each after the integral has taken up what
+        the thrusters fall short of the equilibrium (the vessel starts on station in balance).
+        The allocator allocates the same requests in every run. The sim time [ns] of t = 0."""
         supply = self.voltage.at(0.0)
         position, heading = self.schedule.at(0.0)
-        wrench = self.control.wrench(setpoint_vector(position, heading, self.plant.planar))
+        setpoint = setpoint_vector(position, heading, self.plant.planar)
+        wrench = self.control.wrench(setpoint)
         t_ns, answer = link.begin(START_NS, self.period_ns, supply, wrench)
         pose = self.plant.pose()
         steps = warm_up_steps(self.vehicle, self.period)
-        for _ in range(steps - 1):
-            t_ns += self.period_ns
-            answer = link.step(t_ns, pose, supply, wrench, position, heading, record=False)
-        self.plant.thrusters.start_at(answer.thrust.copy(), answer.azimuth.copy())
+        thrusters = self.plant.thrusters
+        for balance in range(1 + (BALANCE_ROUNDS if thrusters.losses is not None else 0)):
+            if balance:
+                self.control.balance(thrusters.wrench()[self.dofs])
+                wrench = self.control.wrench(setpoint)
+            for _ in range(steps - 1 if balance == 0 else steps):
+                t_ns += self.period_ns
+                answer = link.step(t_ns, pose, supply, wrench, position, heading, record=False)
+            thrusters.start_at(answer.thrust.copy(), answer.azimuth.copy())
         self.log(f"sim: warm-up: {steps} steps of the equilibrium request; thrusters start at "
                  + ", ".join(f"{name} {f:.4g} N" for name, f in zip(self.vehicle.names, answer.thrust)))
         return t_ns + self.period_ns

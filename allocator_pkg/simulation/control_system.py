@@ -68,6 +68,8 @@ class DpControl:
         self.measurement = Measurement(system.noise, seed)
         self.measured = plant.eta.copy()
         self.feedforward = np.zeros(len(self.dofs))
+        self.settled = np.zeros(len(self.dofs))
+        """The force the integral answers (its term alone gives minus it)."""
         self.request = np.zeros(6)
 
     @property
@@ -88,15 +90,23 @@ class DpControl:
     def settle(self) -> None:
         """Start on station in equilibrium: the feed-forward at the wind now, the integral holding
         the rest of the mean environment's force, the observer on the first measurement with the
-        bias at that force (NED)."""
+        bias at that rest (NED; the measured wind is an input of its model)."""
         force = self.plant.environment_force()
         self.measure()
         if self.system.wind_feedforward:
             self.feedforward = -self.plant.environment.wind_feedforward(self.measured[2])
-        self.controller.settle(self.plant.eta, force + self.feedforward)
+        self.settled = force + self.feedforward
+        self.controller.settle(self.plant.eta, self.settled)
         if self.observer is not None:
             c, s = math.cos(self.plant.eta[2]), math.sin(self.plant.eta[2])
-            self.observer.start(self.measured, np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ force)
+            self.observer.start(self.measured, np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+                                @ (force + self.feedforward))
+
+    def balance(self, delivered: np.ndarray) -> None:
+        """Take up in the integral what the thrusters' wrench ``delivered`` (in the controller's
+        DOFs) falls short of the equilibrium, minus the mean environment's force."""
+        self.settled = self.settled - (-self.plant.environment_force() - delivered)
+        self.controller.settle(self.plant.eta, self.settled)
 
     def wrench(self, setpoint: np.ndarray) -> np.ndarray:
         """The request [X, Y, Z, K, M, N] for this step (kept for the observer)."""
@@ -106,12 +116,15 @@ class DpControl:
 
     def advance(self, setpoint: np.ndarray, dt: float, unallocated: np.ndarray) -> None:
         """After the allocator's answer: the integral (held where the allocator is short), the
-        observer one step on with what was allocated (the request less ``unallocated``, in the
-        controller's DOFs), the feed-forward's filter."""
+        feed-forward's filter, and the observer one step on with the known forces: what was
+        allocated (the request less ``unallocated``, in the controller's DOFs) and, with wind
+        feed-forward, the measured wind's load (Fossen 2021, ch. 13: the wind force an input
+        of the observer's model)."""
         self.controller.integrate(self.eta, setpoint, dt, unallocated)
-        if self.observer is not None:
-            self.observer.step(self.measured, self.request[self.dofs] - unallocated, dt)
+        wind = np.zeros(len(self.dofs))
         if self.system.wind_feedforward:
-            share = 1.0 - math.exp(-dt / self.system.wind_filter)
             heading = self.measured[2] if self.observer is not None else self.plant.eta[2]
-            self.feedforward += share * (-self.plant.environment.wind_feedforward(heading) - self.feedforward)
+            wind = self.plant.environment.wind_feedforward(heading)
+            self.feedforward += (1.0 - math.exp(-dt / self.system.wind_filter)) * (-wind - self.feedforward)
+        if self.observer is not None:
+            self.observer.step(self.measured, self.request[self.dofs] - unallocated + wind, dt)

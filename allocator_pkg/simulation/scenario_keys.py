@@ -94,7 +94,7 @@ OBSERVER_KEYS = (
     FileKey("cutoff_ratio", NUMBER, "omega_c / omega_o", default=1.5, minimum=1.0, exclusive_minimum=True),
     FileKey("bias_time_constant", NUMBER, "T of the bias model", default=1000.0, unit="s", minimum=0.0,
             exclusive_minimum=True, range_doc=">= 10 / k3_ratio"),
-    FileKey("k4_bis", NUMBERS, "K4 in the bis system (surge, sway, yaw)", default=(2.0, 2.0, 0.15),
+    FileKey("k4_bis", NUMBERS, "K4 in the bis system (surge, sway, yaw)", default=(5.0, 5.0, 0.4),
             range_doc="3 values > 0"),
     FileKey("k3_ratio", NUMBER, "K3 / K4", default=0.02, unit="1/s", minimum=0.0, exclusive_minimum=True,
             range_doc="> 0, < omega_o"),

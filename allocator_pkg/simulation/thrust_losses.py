@@ -39,12 +39,14 @@ class ThrustLosses:
     description: str = ""
 
     def case(self, dead: frozenset[str]) -> LossCase:
-        """The case of the dead actuators ``dead``; ValueError when the losses have none."""
-        for found in self.cases:
-            if found.dead == dead:
-                return found
-        raise ValueError(f"thrust_losses: no loss case with {', '.join(sorted(dead)) or 'no actuator'} dead "
-                         f"(cases: {'; '.join(', '.join(sorted(c.dead)) or 'intact' for c in self.cases)})")
+        """The case of the dead actuators ``dead``, else the case of most dead actuators among
+        those whose dead are all dead now (the intact case at least; the actuators of a group
+        fail one after the other within one step); ValueError when there is none."""
+        within = [found for found in self.cases if found.dead <= dead]
+        if not within:
+            raise ValueError(f"thrust_losses: no loss case within {', '.join(sorted(dead)) or 'no actuator'} dead "
+                             f"(cases: {'; '.join(', '.join(sorted(c.dead)) or 'intact' for c in self.cases)})")
+        return max(within, key=lambda found: len(found.dead))
 
     def names(self) -> set[str]:
         """Every actuator the cases name."""

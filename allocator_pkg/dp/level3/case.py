@@ -32,8 +32,10 @@ from ...simulation.in_process import InProcessLink
 from ...simulation.metrics import heading_errors
 from ...simulation.scenario import Event, Scenario
 from ..capability_result import INTACT
+from ..inputs.particulars import Particulars
 from ..standard.loads import BodyFrame, DnvHull, wave_drift_load, wind_load
 from ..standard.weather import WeatherCondition
+from .dp_system import with_dp_system
 
 TRACK_PERIOD = 1.0
 """[s] between the samples of a case's x-y track kept for the footprint plots."""
@@ -116,12 +118,19 @@ class CaseSetup:
     spectra: bool = True
     """The gusts and the sea from spectra (False: the base scenario's first-order gust at its
     turbulence intensity and its drift factor, the hull's mean loads)."""
+    particulars: Particulars | None = None
+    """The particulars of the static analysis, for the thrust losses (None: no loss)."""
+    dp_system: bool = True
+    """The vessel's DP system, a failure a trip, the thrusters' losses (:mod:`.dp_system`; False:
+    the controller on the true state, a failure at the rate limit, no loss)."""
 
 
 @dataclass(frozen=True)
 class CaseResult:
     """Position excursion [m] (max, mean), heading deviation [deg] (max), whether the case held,
-    and the x-y track (north, east [m]) every :data:`TRACK_PERIOD`."""
+    and the x-y track (north, east [m]) every :data:`TRACK_PERIOD`; with a group failed, the
+    time of the failure [s from the start] and the largest position excursion [m] before it and
+    after it and heading deviation [deg] after it (the transient and what follows it)."""
 
     case: Case
     max_position: float
@@ -129,18 +138,31 @@ class CaseResult:
     max_heading_deg: float
     held: bool
     track: tuple[tuple[float, float], ...]
+    failure_time: float | None = None
+    max_position_before: float | None = None
+    max_position_after: float | None = None
+    max_heading_after_deg: float | None = None
 
     def to_json(self) -> dict[str, Any]:
         return {"heading_deg": self.case.heading_deg, "number": self.case.number, "group": self.case.group,
                 "seed": self.case.seed, "max_position_m": self.max_position, "mean_position_m": self.mean_position,
-                "max_heading_deg": self.max_heading_deg, "held": self.held, "track": [list(p) for p in self.track]}
+                "max_heading_deg": self.max_heading_deg, "held": self.held, "track": [list(p) for p in self.track],
+                "failure_time_s": self.failure_time, "max_position_before_m": self.max_position_before,
+                "max_position_after_m": self.max_position_after,
+                "max_heading_after_deg": self.max_heading_after_deg}
 
     @classmethod
     def from_json(cls, data: dict[str, Any]) -> CaseResult:
         case = Case(float(data["heading_deg"]), int(data["number"]), str(data["group"]), int(data["seed"]))
+
+        def optional(key: str) -> float | None:
+            return None if data.get(key) is None else float(data[key])
+
         return cls(case, float(data["max_position_m"]), float(data["mean_position_m"]),
-                   float(data["max_heading_deg"]), bool(data["held"]), tuple((float(n), float(e))
-                                                                             for n, e in data["track"]))
+                   float(data["max_heading_deg"]), bool(data["held"]),
+                   tuple((float(n), float(e)) for n, e in data["track"]), optional("failure_time_s"),
+                   optional("max_position_before_m"), optional("max_position_after_m"),
+                   optional("max_heading_after_deg"))
 
 
 def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
@@ -169,15 +191,20 @@ def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
 
 def case_scenario(setup: CaseSetup, case: Case) -> Scenario:
     """The scenario of one case: its environment (:func:`case_environment`), the seed (the base
-    scenario's plus the case's index), and a failure of every actuator of the group at ``settle``."""
+    scenario's plus the case's index), a failure of every actuator of the group at ``settle``, and
+    the DP system, trip and losses of :mod:`.dp_system` (unless ``setup.dp_system`` is False)."""
     base, criteria = setup.scenario, setup.criteria
     environment = case_environment(setup, case)
     failed = () if case.group == INTACT else setup.groups[case.group]
     events = tuple(Event(criteria.settle, "fault", actuator=name, mode="failed", value=0.0) for name in failed)
-    return replace(base, name=f"{base.name}_l3", duration=criteria.settle + criteria.duration,
-                   seed=base.seed + case.seed, setpoint_position=(0.0, 0.0, 0.0), setpoint_heading=0.0,
-                   initial_position=(0.0, 0.0, 0.0), initial_heading=0.0, environment=environment, events=events,
-                   bounds={}, windows=())
+    scenario = replace(base, name=f"{base.name}_l3", duration=criteria.settle + criteria.duration,
+                       seed=base.seed + case.seed, setpoint_position=(0.0, 0.0, 0.0), setpoint_heading=0.0,
+                       initial_position=(0.0, 0.0, 0.0), initial_heading=0.0, environment=environment, events=events,
+                       bounds={}, windows=())
+    if not setup.dp_system:
+        return scenario
+    return with_dp_system(scenario, setup.particulars, setup.conditions[case.number], case.heading_deg, case.group,
+                          failed)
 
 
 class GroupFaultLink(InProcessLink):
@@ -211,5 +238,12 @@ def run_case(case: Case, setup: CaseSetup) -> CaseResult:
     max_position, max_heading = float(np.max(position)), float(np.max(heading))
     every = max(1, round(TRACK_PERIOD / trace.period))
     track = tuple((float(p[0]), float(p[1])) for p in trace.position[::every])
+    failure = {}
+    if case.group != INTACT:
+        after = np.asarray(trace.time) >= criteria.settle - 1e-9
+        failure = {"failure_time": criteria.settle, "max_position_before": float(np.max(position[~after])),
+                   "max_position_after": float(np.max(position[after])),
+                   "max_heading_after_deg": float(np.max(heading[after]))}
     return CaseResult(case, max_position, float(np.mean(position)), max_heading,
-                      max_position <= criteria.position_limit and max_heading <= criteria.heading_limit_deg, track)
+                      max_position <= criteria.position_limit and max_heading <= criteria.heading_limit_deg, track,
+                      **failure)
