@@ -88,7 +88,7 @@ OBSERVER_KEYS = (
     FileKey("wave_period", NUMBER, "the wave model's period, 2 pi / omega_o", unit="s", minimum=0.0,
             exclusive_minimum=True, default_doc="environment.waves.peak_period"),
     FileKey("wave_damping", NUMBER, "lambda, the wave model's relative damping", default=0.1, minimum=0.0,
-            exclusive_minimum=True, range_doc="> 0, < notch_damping"),
+            exclusive_minimum=True, range_doc="< notch_damping"),
     FileKey("notch_damping", NUMBER, "zeta_n, the notch's relative damping", default=1.0, minimum=0.0,
             exclusive_minimum=True),
     FileKey("cutoff_ratio", NUMBER, "omega_c / omega_o", default=1.5, minimum=1.0, exclusive_minimum=True),
@@ -97,7 +97,7 @@ OBSERVER_KEYS = (
     FileKey("k4_bis", NUMBERS, "K4 in the bis system (surge, sway, yaw)", default=(5.0, 5.0, 0.4),
             range_doc="3 values > 0"),
     FileKey("k3_ratio", NUMBER, "K3 / K4", default=0.02, unit="1/s", minimum=0.0, exclusive_minimum=True,
-            range_doc="> 0, < omega_o"),
+            range_doc="< omega_o"),
 )
 """The passive observer's tuning (``observer``): Fossen's relations 1/T << K3/K4 < omega_o < omega_c."""
 RAMP_KEYS = (

@@ -1,5 +1,5 @@
 """Thrust losses of the simulated thrusters, as plain data a caller computes (the DNV-ST-0111
-Level 3 case computes them with the capability analysis' clauses, :mod:`allocator_pkg.dp.level3.losses`):
+Level 3 case computes them with the capability analysis' clauses, :mod:`allocator_pkg.dp.level3.case_losses`):
 per set of dead actuators, each working actuator's factor on its positive and on its negative
 thrust (misc. losses, ventilation, the power its remaining feeds give) and its factor by thrust
 direction (flushing a dead thruster or a skeg), a

@@ -6,7 +6,7 @@ analysis models them:
   position and heading measured with the sea's first-order wave motion and white noise
   (:data:`NOISE`, unless the base scenario gives its own), with wind feed-forward;
 - a failed group trips: its thrusters' thrust drops to zero at once (``fault_trip``);
-- the thrusters suffer the static analysis' losses (:mod:`.losses`), and the allocator keeps the
+- the thrusters suffer the static analysis' losses (:mod:`.case_losses`), and the allocator keeps the
   [3.11.3] zones and its own [3.11.4] loss onto a dead thruster (``flushing_zones: dnv``) when
   every azimuth thruster of the vehicle file has a diameter.
 
@@ -26,7 +26,7 @@ from ...simulation.scenario import Scenario, vehicle_config
 from ...vehicle.config import AZIMUTH, Vehicle
 from ..inputs.particulars import Particulars
 from ..standard.weather import WeatherCondition
-from .losses import case_losses
+from .case_losses import case_losses
 
 NOISE = MeasurementNoise(position_sigma=0.1, heading_sigma=math.radians(0.05))
 """White measurement noise of a case when the base scenario gives none: 0.1 m north and east

@@ -1,4 +1,4 @@
-"""allocator_pkg.dp.level3.losses: a Level 3 case's thrust losses are the static analysis'
+"""allocator_pkg.dp.level3.case_losses: a Level 3 case's thrust losses are the static analysis'
 clauses, recomputed here from the clauses' formulas ([3.9.3] beta_misc, [3.9.4] beta_vent,
 [3.11.4] beta at the centre of the dead sector), and a simulated thruster pushing onto a dead
 one delivers its command times them."""
@@ -12,7 +12,7 @@ from conftest import ROOT
 
 from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.dp.inputs.particulars import load_particulars
-from allocator_pkg.dp.level3.losses import case_losses
+from allocator_pkg.dp.level3.case_losses import case_losses
 from allocator_pkg.dp.standard.thrust import BETA_MISC, ventilation_factor
 from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 from allocator_pkg.simulation.thrusters import Thrusters
