@@ -282,6 +282,22 @@ def _check_run(model: str, vehicle: Vehicle, duration: float, voltage: float | N
         check_depth(model, position, where)
 
 
+def _particulars(data: dict, path: Path, config: Vehicle) -> VesselParticulars:
+    """The dp_vessel's particulars file (``particulars``, relative to the scenario), checked
+    against the vehicle."""
+    if not isinstance(data.get("particulars"), str):
+        raise ScenarioError("particulars: required for dp_vessel, a particulars file")
+    try:
+        read = read_hull(path.parent / data["particulars"])
+    except ValueError as error:
+        raise ScenarioError(f"particulars: {error}") from error
+    try:
+        check_particulars("dp_vessel", config, read, data["particulars"])
+    except ValueError as error:
+        raise ScenarioError(str(error)) from error
+    return read.vessel
+
+
 def load_scenario(path: str | Path) -> Scenario:
     """Read and check a scenario file."""
     path = Path(path)
@@ -310,19 +326,7 @@ def load_scenario(path: str | Path) -> Scenario:
         check_method_serves(data["method"], config)
     except ValueError as error:
         raise ScenarioError(str(error)) from error
-    particulars = None
-    if model == "dp_vessel":
-        if not isinstance(data.get("particulars"), str):
-            raise ScenarioError("particulars: required for dp_vessel, a particulars file")
-        try:
-            read = read_hull(path.parent / data["particulars"])
-        except ValueError as error:
-            raise ScenarioError(f"particulars: {error}") from error
-        try:
-            check_particulars(model, config, read, data["particulars"])
-        except ValueError as error:
-            raise ScenarioError(str(error)) from error
-        particulars = read.vessel
+    particulars = _particulars(data, path, config) if model == "dp_vessel" else None
     setpoint, initial = section(data, "setpoint"), section(data, "initial")
     position = vector(setpoint, "position", "setpoint.", 3)
     heading = number(setpoint, "heading", "setpoint.")
