@@ -128,9 +128,7 @@ class CaseSetup:
 @dataclass(frozen=True)
 class CaseResult:
     """Position excursion [m] (max, mean), heading deviation [deg] (max), whether the case held,
-    and the x-y track (north, east [m]) every :data:`TRACK_PERIOD`; with a group failed, the
-    time of the failure [s from the start] and the largest position excursion [m] before it and
-    after it and heading deviation [deg] after it (the transient and what follows it)."""
+    and the x-y track (north, east [m]) every :data:`TRACK_PERIOD`."""
 
     case: Case
     max_position: float
@@ -138,31 +136,18 @@ class CaseResult:
     max_heading_deg: float
     held: bool
     track: tuple[tuple[float, float], ...]
-    failure_time: float | None = None
-    max_position_before: float | None = None
-    max_position_after: float | None = None
-    max_heading_after_deg: float | None = None
 
     def to_json(self) -> dict[str, Any]:
         return {"heading_deg": self.case.heading_deg, "number": self.case.number, "group": self.case.group,
                 "seed": self.case.seed, "max_position_m": self.max_position, "mean_position_m": self.mean_position,
-                "max_heading_deg": self.max_heading_deg, "held": self.held, "track": [list(p) for p in self.track],
-                "failure_time_s": self.failure_time, "max_position_before_m": self.max_position_before,
-                "max_position_after_m": self.max_position_after,
-                "max_heading_after_deg": self.max_heading_after_deg}
+                "max_heading_deg": self.max_heading_deg, "held": self.held, "track": [list(p) for p in self.track]}
 
     @classmethod
     def from_json(cls, data: dict[str, Any]) -> CaseResult:
         case = Case(float(data["heading_deg"]), int(data["number"]), str(data["group"]), int(data["seed"]))
-
-        def optional(key: str) -> float | None:
-            return None if data.get(key) is None else float(data[key])
-
         return cls(case, float(data["max_position_m"]), float(data["mean_position_m"]),
-                   float(data["max_heading_deg"]), bool(data["held"]),
-                   tuple((float(n), float(e)) for n, e in data["track"]), optional("failure_time_s"),
-                   optional("max_position_before_m"), optional("max_position_after_m"),
-                   optional("max_heading_after_deg"))
+                   float(data["max_heading_deg"]), bool(data["held"]), tuple((float(n), float(e))
+                                                                             for n, e in data["track"]))
 
 
 def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
@@ -238,12 +223,5 @@ def run_case(case: Case, setup: CaseSetup) -> CaseResult:
     max_position, max_heading = float(np.max(position)), float(np.max(heading))
     every = max(1, round(TRACK_PERIOD / trace.period))
     track = tuple((float(p[0]), float(p[1])) for p in trace.position[::every])
-    failure = {}
-    if case.group != INTACT:
-        after = np.asarray(trace.time) >= criteria.settle - 1e-9
-        failure = {"failure_time": criteria.settle, "max_position_before": float(np.max(position[~after])),
-                   "max_position_after": float(np.max(position[after])),
-                   "max_heading_after_deg": float(np.max(heading[after]))}
     return CaseResult(case, max_position, float(np.mean(position)), max_heading,
-                      max_position <= criteria.position_limit and max_heading <= criteria.heading_limit_deg, track,
-                      **failure)
+                      max_position <= criteria.position_limit and max_heading <= criteria.heading_limit_deg, track)

@@ -1,7 +1,6 @@
 """allocator_pkg.dp.level3.dp_system: every Level 3 case runs the vessel's DP system (the
 observer tuned to the condition's peak period, noise, wind feed-forward), a failure is a trip,
-the thrusters carry the static analysis' losses; the report's text states the tuning; a group
-case gives the failure's time and the excursions before and after it."""
+the thrusters carry the static analysis' losses; the report's text states the tuning."""
 
 import math
 from dataclasses import replace
@@ -10,7 +9,7 @@ import pytest
 from conftest import ROOT
 
 from allocator_pkg.dp.inputs.particulars import load_particulars
-from allocator_pkg.dp.level3.case import INTACT, Case, CaseResult, CaseSetup, Criteria, case_scenario, run_case
+from allocator_pkg.dp.level3.case import INTACT, Case, CaseSetup, Criteria, case_scenario
 from allocator_pkg.dp.level3.dp_system import NOISE, describe_dp_system
 from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 from allocator_pkg.simulation.measurement import MeasurementNoise
@@ -51,15 +50,3 @@ def test_the_report_text_states_the_tuning(setup):
                  "bias time constant 1000 s", "K4 = diag(5, 5, 0.4)", "K3 = 0.02 K4", "sigma 0.1 m, 0.05 deg",
                  "wind feed-forward through a 10 s low-pass filter", "trip", "[3.9.4]", "[3.11.4]", "[3.11.3]"):
         assert part in text, part
-
-
-@pytest.mark.slow
-def test_a_group_case_gives_the_failure_and_the_excursions_around_it(setup):
-    result = run_case(Case(90.0, 4, "switchboard_b", 0), setup)
-    assert result.failure_time == 20.0
-    assert max(result.max_position_before, result.max_position_after) == result.max_position
-    assert result.max_heading_after_deg <= result.max_heading_deg
-    assert CaseResult.from_json(result.to_json()) == result
-    intact = run_case(Case(90.0, 4, INTACT, 0), setup)
-    assert intact.failure_time is None and intact.max_position_after is None
-    assert CaseResult.from_json(intact.to_json()) == intact
