@@ -21,7 +21,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from ..configuration.parameters import load_vehicle
-from .controller import StationKeeping
+from .control_system import DpControl
 from .plant import PLANAR, Pose
 from .power_plant import PowerPlant
 from .run_report import report_json, run_report
@@ -32,6 +32,8 @@ from .windows import fault_intervals
 
 START_NS = 100_000_000_000
 """Sim time [ns] before the first warm-up step; the run starts after the warm-up."""
+BALANCE_ROUNDS = 3
+"""Warm-up holds after the first that take up the thrust losses (:meth:`ClosedLoop._warm_up`)."""
 
 
 @dataclass
@@ -97,8 +99,8 @@ class ClosedLoop:
         self.period = self.period_ns * 1e-9
         self.plant = build_plant(scenario, self.vehicle)
         self.dofs = PLANAR if self.plant.planar else list(range(6))
-        self.controller = StationKeeping(scenario.gains)
-        self.controller.settle(self.plant.eta, self.plant.environment_force())
+        self.control = DpControl(scenario.control, scenario.gains, self.plant, scenario.seed)
+        self.control.settle()
         self.schedule = scenario.schedule()
         self.voltage = Voltage(scenario)
         self.weather = WeatherScale(scenario)
@@ -121,28 +123,30 @@ class ClosedLoop:
         (self.out / "metrics.json").write_text(report_json(report))
         return RunResult(report["metrics"], self.trace, self.vehicle, self.faults, report)
 
-    def _wrench(self, setpoint: np.ndarray) -> np.ndarray:
-        """The controller's request for this step, in the six DOFs."""
-        wrench = np.zeros(6)
-        wrench[self.dofs] = self.controller.wrench(self.plant.eta, self.plant.nu, setpoint)
-        return wrench
-
     def _warm_up(self, link: Link) -> int:
         """Before t = 0: bring the allocator into step with the clock (no allocation), then hold
         the controller's first request, the equilibrium wrench (its integral holds the mean
         load), for the vehicle's fixed number of warm-up steps (``warm_up_steps``), so that the
-        allocator settles there; the simulated thrusters start at its last commands. The
-        allocator allocates the same requests in every run. The sim time [ns] of t = 0."""
+        allocator settles there; the simulated thrusters start at its last commands. With thrust
+        losses, :data:`BALANCE_ROUNDS` more such holds, each after the integral has taken up what
+        the thrusters fall short of the equilibrium (the vessel starts on station in balance).
+        The allocator allocates the same requests in every run. The sim time [ns] of t = 0."""
         supply = self.voltage.at(0.0)
         position, heading = self.schedule.at(0.0)
-        wrench = self._wrench(setpoint_vector(position, heading, self.plant.planar))
+        setpoint = setpoint_vector(position, heading, self.plant.planar)
+        wrench = self.control.wrench(setpoint)
         t_ns, answer = link.begin(START_NS, self.period_ns, supply, wrench)
         pose = self.plant.pose()
         steps = warm_up_steps(self.vehicle, self.period)
-        for _ in range(steps - 1):
-            t_ns += self.period_ns
-            answer = link.step(t_ns, pose, supply, wrench, position, heading, record=False)
-        self.plant.thrusters.start_at(answer.thrust.copy(), answer.azimuth.copy())
+        thrusters = self.plant.thrusters
+        for balance in range(1 + (BALANCE_ROUNDS if thrusters.losses is not None else 0)):
+            if balance:
+                self.control.balance(thrusters.wrench()[self.dofs])
+                wrench = self.control.wrench(setpoint)
+            for _ in range(steps - 1 if balance == 0 else steps):
+                t_ns += self.period_ns
+                answer = link.step(t_ns, pose, supply, wrench, position, heading, record=False)
+            thrusters.start_at(answer.thrust.copy(), answer.azimuth.copy())
         self.log(f"sim: warm-up: {steps} steps of the equilibrium request; thrusters start at "
                  + ", ".join(f"{name} {f:.4g} N" for name, f in zip(self.vehicle.names, answer.thrust)))
         return t_ns + self.period_ns
@@ -165,7 +169,8 @@ class ClosedLoop:
             pose = plant.pose()
             position, heading = self.schedule.at(t)
             setpoint = setpoint_vector(position, heading, plant.planar)
-            wrench = self._wrench(setpoint)
+            self.control.measure()
+            wrench = self.control.wrench(setpoint)
             answer = link.step(start_ns + k * self.period_ns, pose, supply, wrench, position, heading,
                                power=dict(self.power_plant.reported))
             faulted = any(start <= t + 1e-9 < end for start, end in self.faults)
@@ -176,7 +181,7 @@ class ClosedLoop:
                 printed = t
                 error = trace.position_errors()[-1]
                 self.log(f"{t:6.1f} s  err {error:6.2f} m  " + link.live_line())
-            self.controller.integrate(plant.eta, setpoint, self.period, answer.unallocated[dofs])
+            self.control.advance(setpoint, self.period, answer.unallocated[dofs])
             plant.step(answer.thrust, answer.azimuth, self.period)
 
     def _apply(self, link: Link, event: Event) -> None:

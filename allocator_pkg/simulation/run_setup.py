@@ -41,7 +41,8 @@ def build_plant(scenario: Scenario, vehicle: Vehicle) -> Plant:
         hull = Vessel(VesselParameters(coefficients=scenario.particulars.coefficients))
     else:
         hull = Rov()
-    thrusters = Thrusters(vehicle, scenario.thruster_time_constant, scenario.voltage)
+    thrusters = Thrusters(vehicle, scenario.thruster_time_constant, scenario.voltage, trip=scenario.fault_trip,
+                          losses=scenario.thrust_losses)
     environment = Environment(scenario.environment, scenario.seed, scenario.particulars, scenario.duration,
                               scenario.setpoint_heading)
     return Plant(hull, thrusters, environment, np.array(scenario.initial_position),

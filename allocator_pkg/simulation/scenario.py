@@ -24,6 +24,8 @@ from ..effectiveness.faults import FaultMode, FaultSet
 from ..hull.environment_loads import VesselParticulars
 from ..hull.hull_file import read_hull
 from ..vehicle.config import ConfigError, Vehicle
+from .control_system import ControlSystem
+from .control_values import control_system
 from .controller import Gains
 from .environment import EnvironmentSpec
 from .method_bounds import MethodBounds, method_bounds
@@ -42,6 +44,7 @@ from .scenario_keys import EVENT_KEYS, FAULT_MODES, MODELS, scenario_default
 from .scenario_values import (
     ScenarioError,
     environment,
+    flag,
     number,
     read_bounds,
     read_windows,
@@ -50,6 +53,7 @@ from .scenario_values import (
     vector,
 )
 from .setpoint import SetpointSchedule
+from .thrust_losses import ThrustLosses
 from .windows import Window, fault_windows
 
 EVENT_KINDS = tuple(key.name for key in EVENT_KEYS[1:])
@@ -107,6 +111,12 @@ class Scenario:
     """[m] The vessel has lost its position once its position error exceeds this."""
     method_bounds: dict[str, MethodBounds] = field(default_factory=dict)
     """Per method, what the scenario expects of it in place of ``bounds`` (``methods`` of the file)."""
+    control: ControlSystem = field(default_factory=ControlSystem)
+    """What the controller acts on: the true state, or an observer's estimate from measurements."""
+    fault_trip: bool = False
+    """A failed actuator's thrust drops to zero at once, not at its rate limit."""
+    thrust_losses: ThrustLosses | None = None
+    """The thrust losses the simulated thrusters suffer (a Level 3 case's; none from a file)."""
 
     @property
     def horizontal(self) -> bool:
@@ -279,6 +289,22 @@ def _check_run(model: str, vehicle: Vehicle, duration: float, voltage: float | N
         check_depth(model, position, where)
 
 
+def _particulars(data: dict, path: Path, config: Vehicle) -> VesselParticulars:
+    """The dp_vessel's particulars file (``particulars``, relative to the scenario), checked
+    against the vehicle."""
+    if not isinstance(data.get("particulars"), str):
+        raise ScenarioError("particulars: required for dp_vessel, a particulars file")
+    try:
+        read = read_hull(path.parent / data["particulars"])
+    except ValueError as error:
+        raise ScenarioError(f"particulars: {error}") from error
+    try:
+        check_particulars("dp_vessel", config, read, data["particulars"])
+    except ValueError as error:
+        raise ScenarioError(str(error)) from error
+    return read.vessel
+
+
 def load_scenario(path: str | Path) -> Scenario:
     """Read and check a scenario file."""
     path = Path(path)
@@ -307,19 +333,7 @@ def load_scenario(path: str | Path) -> Scenario:
         check_method_serves(data["method"], config)
     except ValueError as error:
         raise ScenarioError(str(error)) from error
-    particulars = None
-    if model == "dp_vessel":
-        if not isinstance(data.get("particulars"), str):
-            raise ScenarioError("particulars: required for dp_vessel, a particulars file")
-        try:
-            read = read_hull(path.parent / data["particulars"])
-        except ValueError as error:
-            raise ScenarioError(f"particulars: {error}") from error
-        try:
-            check_particulars(model, config, read, data["particulars"])
-        except ValueError as error:
-            raise ScenarioError(str(error)) from error
-        particulars = read.vessel
+    particulars = _particulars(data, path, config) if model == "dp_vessel" else None
     setpoint, initial = section(data, "setpoint"), section(data, "initial")
     position = vector(setpoint, "position", "setpoint.", 3)
     heading = number(setpoint, "heading", "setpoint.")
@@ -368,5 +382,6 @@ def load_scenario(path: str | Path) -> Scenario:
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
         description=str(data.get("description", "")),
         position_limit=number(data, "position_limit", ""),
-        method_bounds=method_bounds(data.get("methods", {}) or {}, named, config))
+        method_bounds=method_bounds(data.get("methods", {}) or {}, named, config),
+        control=control_system(data, model, spec), fault_trip=flag(data, "fault_trip", ""))
 

@@ -82,6 +82,24 @@ ENVIRONMENT_KEYS = (
         FileKey("peak_factor", NUMBER, "JONSWAP's gamma; 0: DNV-RP-C205's from Hs and Tp", default=0.0,
                 minimum=0.0))),
 )
+OBSERVER_KEYS = (
+    FileKey("enabled", BOOLEAN, "the controller acts on the observer's estimate, not on the true state",
+            default=False),
+    FileKey("wave_period", NUMBER, "the wave model's period, 2 pi / omega_o", unit="s", minimum=0.0,
+            exclusive_minimum=True, default_doc="environment.waves.peak_period"),
+    FileKey("wave_damping", NUMBER, "lambda, the wave model's relative damping", default=0.1, minimum=0.0,
+            exclusive_minimum=True, range_doc="< notch_damping"),
+    FileKey("notch_damping", NUMBER, "zeta_n, the notch's relative damping", default=1.0, minimum=0.0,
+            exclusive_minimum=True),
+    FileKey("cutoff_ratio", NUMBER, "omega_c / omega_o", default=1.5, minimum=1.0, exclusive_minimum=True),
+    FileKey("bias_time_constant", NUMBER, "T of the bias model", default=1000.0, unit="s", minimum=0.0,
+            exclusive_minimum=True, range_doc=">= 10 / k3_ratio"),
+    FileKey("k4_bis", NUMBERS, "K4 in the bis system (surge, sway, yaw)", default=(5.0, 5.0, 0.4),
+            range_doc="3 values > 0"),
+    FileKey("k3_ratio", NUMBER, "K3 / K4", default=0.02, unit="1/s", minimum=0.0, exclusive_minimum=True,
+            range_doc="< omega_o"),
+)
+"""The passive observer's tuning (``observer``): Fossen's relations 1/T << K3/K4 < omega_o < omega_c."""
 RAMP_KEYS = (
     FileKey("to", NUMBER, "the value reached", required=True, minimum=0.0),
     FileKey("duration", NUMBER, "over this time", default=0.0, unit="s", minimum=0.0),
@@ -144,7 +162,20 @@ SCENARIO_KEYS = (
         FileKey("kd", NUMBERS, "derivative gains", required=True, unit="N s/m, N m s/rad", minimum=0.0),
         FileKey("ki", NUMBERS, "integral gains", required=True, unit="N/(m s), N m/(rad s)", minimum=0.0),
         FileKey("unallocated_threshold", NUMBERS, "the unallocated force or moment above which a DOF counts as "
-                "short", default_doc="any nonzero amount", unit="N, N m", minimum=0.0))),
+                "short", default_doc="any nonzero amount", unit="N, N m", minimum=0.0),
+        FileKey("wind_feedforward", BOOLEAN, "minus the wind load of the anemometer's wind on the hull added to the "
+                "request, low-pass filtered (dp_vessel)", default=False),
+        FileKey("wind_filter", NUMBER, "the wind feed-forward's first-order filter", default=10.0, unit="s",
+                minimum=0.0, exclusive_minimum=True))),
+    FileKey("observer", MAPPING, "the nonlinear passive observer (Fossen and Strand) the controller acts on, from "
+            "the measured position and heading (dp_vessel; docs/closed_loop.md)", keys=OBSERVER_KEYS),
+    FileKey("measurement", MAPPING, "white noise on the measured position and heading (with the observer)", keys=(
+        FileKey("position_sigma", NUMBER, "standard deviation of north and east each", default=0.0, unit="m",
+                minimum=0.0),
+        FileKey("heading_sigma", NUMBER, "standard deviation of the heading", default=0.0, unit="deg",
+                minimum=0.0))),
+    FileKey("fault_trip", BOOLEAN, "a failed actuator's thrust drops to zero at once (a trip), not at its rate "
+            "limit", default=False),
     FileKey("environment", MAPPING, "current, wind and waves, seeded", keys=ENVIRONMENT_KEYS),
     FileKey("parameters", MAPPING, "node parameters over the vehicle file's (docs/configuration.md)",
             default_doc="none"),

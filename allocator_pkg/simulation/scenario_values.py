@@ -146,3 +146,11 @@ def read_windows(data: Any, duration: float) -> list[Window]:
             raise ScenarioError(f"{where}.name: '{item['name']}' names another window too")
         found.append(Window(item["name"], start, end, read_bounds(item.get("bounds", {}), where + ".bounds")))
     return found
+
+
+def flag(data: dict, key: str, where: str) -> bool:
+    """``data[key]`` (or :data:`SCENARIO_KEYS`' default) as true or false."""
+    value = data.get(key, scenario_key(where + key).default)
+    if not isinstance(value, bool):
+        raise ScenarioError(f"{where}{key}: true or false, not {value!r}")
+    return value

@@ -1,15 +1,20 @@
 """allocator_pkg.simulation.thrusters: the first-order lag, the rate limits, azimuths turning
-at their rate, faults and the wrench T(alpha) f, against hand calculations."""
+at their rate, faults, a trip, the loss factors of the dead set's case and the wrench
+T(alpha) f, against hand calculations."""
 
 import math
 
 import numpy as np
 import pytest
 from conftest import ROOT
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from allocator_pkg.capability.thrust_profile import ThrustProfile
 from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.effectiveness.configuration_matrix import configuration_matrix
 from allocator_pkg.effectiveness.faults import thrust_limits
+from allocator_pkg.simulation.thrust_losses import LossCase, ThrustLosses
 from allocator_pkg.simulation.thrusters import Thrusters
 
 VESSEL = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
@@ -116,3 +121,62 @@ def test_the_wrench_follows_every_change_of_angle_and_the_ranges_every_change_of
         rov.set_voltage(voltage)
         low, high = thrust_limits(ROV, voltage)
         assert np.array_equal(rov.low, low) and np.array_equal(rov.high, high), voltage
+
+
+@pytest.mark.parametrize("name", VESSEL.names)
+@pytest.mark.parametrize("held", [40e3, 150e3, 290e3])
+def test_a_trip_takes_the_thrust_to_zero_in_one_step_and_a_failure_without_it_at_the_rate_limit(name, held):
+    index = VESSEL.names.index(name)
+    command = np.full(4, held)
+    tripped, ramped = Thrusters(VESSEL, time_constant=1.0, trip=True), Thrusters(VESSEL, time_constant=1.0)
+    for thrusters in (tripped, ramped):
+        thrusters.start_at(command, np.zeros(4))
+        thrusters.set_fault(name, "failed")
+        thrusters.step(command, np.zeros(4), 0.1)
+    assert tripped.thrust[index] == 0.0
+    assert ramped.thrust[index] == pytest.approx(held - min(held * (1 - math.exp(-0.1)), 100e3 * 0.1))
+    others = [i for i in range(4) if i != index]
+    assert tripped.thrust[others] == pytest.approx(held) and ramped.thrust[others] == pytest.approx(held)
+
+
+def loss_cases(factor: float) -> ThrustLosses:
+    """Intact: azimuth_port 0.9 forward; tunnels 0.8 forward, 0.7 reversed. With azimuth_stbd
+    dead: azimuth_port's profile a notch down to ``factor`` at 90 deg (toward starboard)."""
+    notch = ThrustProfile(((math.radians(60.0), 1.0), (math.radians(90.0), factor), (math.radians(120.0), 1.0)))
+    tunnels = {"tunnel_fwd": 0.8, "tunnel_aft": 0.8}
+    return ThrustLosses((LossCase(frozenset(), {"azimuth_port": 0.9, **tunnels}, {"tunnel_fwd": 0.7,
+                                                                                    "tunnel_aft": 0.7}),
+                         LossCase(frozenset({"azimuth_stbd"}), {"azimuth_port": 0.9, **tunnels},
+                                  {"tunnel_fwd": 0.7, "tunnel_aft": 0.7}, {"azimuth_port": notch})))
+
+
+@given(st.floats(0.0, 1.0), st.floats(-180.0, 180.0), st.floats(1e3, 300e3), st.sampled_from([1.0, -1.0]))
+@settings(max_examples=60, deadline=None)
+def test_a_thruster_delivers_its_command_times_the_loss_factors_of_the_case(factor, degrees, command, sign):
+    losses = loss_cases(factor)
+    thrusters = Thrusters(VESSEL, time_constant=0.5, losses=losses)
+    angle = math.radians(degrees)
+    commands = np.array([command, command, sign * command, sign * command])
+    thrusters.start_at(commands, np.array([0.0, angle, 0.0, 0.0]))
+    tunnel = 0.8 if sign > 0 else 0.7
+    assert thrusters.thrust == pytest.approx([command, 0.9 * command, tunnel * sign * command,
+                                              tunnel * sign * command], rel=1e-12)
+    thrusters.set_fault("azimuth_stbd", "failed")
+    run(thrusters, commands, np.array([0.0, angle, 0.0, 0.0]), 40.0, dt=0.1)
+    onto_dead = losses.cases[1].profiles["azimuth_port"].factor(angle)
+    assert thrusters.thrust[1] == pytest.approx(0.9 * onto_dead * command, rel=1e-9)
+    assert thrusters.thrust[2:] == pytest.approx(tunnel * sign * command, rel=1e-9)
+    if abs(degrees - 90.0) < 30.0:
+        assert onto_dead < 1.0 or factor == 1.0
+
+
+def test_a_dead_set_without_a_case_of_its_own_takes_the_largest_within_it_and_bad_losses_are_refused():
+    losses = loss_cases(0.5)
+    assert losses.case(frozenset({"azimuth_stbd", "tunnel_fwd"})).dead == {"azimuth_stbd"}
+    assert losses.case(frozenset({"tunnel_fwd"})).dead == frozenset()
+    with pytest.raises(ValueError, match="thrust_losses: no loss case"):
+        ThrustLosses((losses.cases[1],)).case(frozenset())
+    with pytest.raises(ValueError, match="thrust_losses: nope not actuators"):
+        Thrusters(VESSEL, 1.0, losses=ThrustLosses((LossCase(frozenset(), {"nope": 0.5}),)))
+    with pytest.raises(ValueError, match=r"thrust_losses\.forward\.tunnel_fwd"):
+        LossCase(frozenset(), {"tunnel_fwd": 1.5})

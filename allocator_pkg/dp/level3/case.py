@@ -32,8 +32,10 @@ from ...simulation.in_process import InProcessLink
 from ...simulation.metrics import heading_errors
 from ...simulation.scenario import Event, Scenario
 from ..capability_result import INTACT
+from ..inputs.particulars import Particulars
 from ..standard.loads import BodyFrame, DnvHull, wave_drift_load, wind_load
 from ..standard.weather import WeatherCondition
+from .dp_system import with_dp_system
 
 TRACK_PERIOD = 1.0
 """[s] between the samples of a case's x-y track kept for the footprint plots."""
@@ -116,6 +118,11 @@ class CaseSetup:
     spectra: bool = True
     """The gusts and the sea from spectra (False: the base scenario's first-order gust at its
     turbulence intensity and its drift factor, the hull's mean loads)."""
+    particulars: Particulars | None = None
+    """The particulars of the static analysis, for the thrust losses (None: no loss)."""
+    dp_system: bool = True
+    """The vessel's DP system, a failure a trip, the thrusters' losses (:mod:`.dp_system`; False:
+    the controller on the true state, a failure at the rate limit, no loss)."""
 
 
 @dataclass(frozen=True)
@@ -169,15 +176,20 @@ def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
 
 def case_scenario(setup: CaseSetup, case: Case) -> Scenario:
     """The scenario of one case: its environment (:func:`case_environment`), the seed (the base
-    scenario's plus the case's index), and a failure of every actuator of the group at ``settle``."""
+    scenario's plus the case's index), a failure of every actuator of the group at ``settle``, and
+    the DP system, trip and losses of :mod:`.dp_system` (unless ``setup.dp_system`` is False)."""
     base, criteria = setup.scenario, setup.criteria
     environment = case_environment(setup, case)
     failed = () if case.group == INTACT else setup.groups[case.group]
     events = tuple(Event(criteria.settle, "fault", actuator=name, mode="failed", value=0.0) for name in failed)
-    return replace(base, name=f"{base.name}_l3", duration=criteria.settle + criteria.duration,
-                   seed=base.seed + case.seed, setpoint_position=(0.0, 0.0, 0.0), setpoint_heading=0.0,
-                   initial_position=(0.0, 0.0, 0.0), initial_heading=0.0, environment=environment, events=events,
-                   bounds={}, windows=())
+    scenario = replace(base, name=f"{base.name}_l3", duration=criteria.settle + criteria.duration,
+                       seed=base.seed + case.seed, setpoint_position=(0.0, 0.0, 0.0), setpoint_heading=0.0,
+                       initial_position=(0.0, 0.0, 0.0), initial_heading=0.0, environment=environment, events=events,
+                       bounds={}, windows=())
+    if not setup.dp_system:
+        return scenario
+    return with_dp_system(scenario, setup.particulars, setup.conditions[case.number], case.heading_deg, case.group,
+                          failed)
 
 
 class GroupFaultLink(InProcessLink):

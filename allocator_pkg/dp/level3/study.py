@@ -98,7 +98,7 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
               for name, members in analysis.groups.items()}
     setup = CaseSetup(base, tuple(analysis.conditions), groups,
                       frozenset(group.name for group in vehicle.redundancy_groups), inputs.criteria,
-                      particulars.hull, particulars.frame)
+                      particulars.hull, particulars.frame, particulars=particulars)
     headings = tuple(float(h) for h in level2.headings_deg)
     ceilings = {(heading, case): int(level2.numbers[case][k]) for case in (INTACT, *groups)
                 for k, heading in enumerate(headings)}
