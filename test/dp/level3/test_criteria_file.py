@@ -74,9 +74,9 @@ def test_an_unknown_key_or_a_file_that_is_not_a_mapping_is_refused(tmp_path):
     path.write_text("- 5\n")
     with pytest.raises(ValueError, match=rf"^{path}: a Level 3 criteria file is a mapping"):
         read_criteria(path)
-    with pytest.raises(ValueError, match="missing.yaml"):
+    with pytest.raises(ValueError, match=r"missing\.yaml"):
         read_criteria(tmp_path / "missing.yaml")
-    with pytest.raises(ValueError, match="^criteria: seeds: an integer >= 1, not 0"):
+    with pytest.raises(ValueError, match=r"^criteria: seeds: an integer >= 1, not 0$"):
         criteria_from_mapping({"seeds": 0})
 
 

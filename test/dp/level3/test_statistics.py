@@ -43,7 +43,8 @@ def test_the_quantile_is_hyndman_and_fans(values, q, method):
         written_out(values, q, method), rel=1e-9, abs=1e-9)
 
 
-@pytest.mark.parametrize("n, q, confidence", [(10, 0.9, 0.8), (12, 0.75, 0.9), (20, 0.9, 0.9), (5, 0.8, 0.9), (9, 0.5, 0.8), (11, 0.8, 0.8)])
+@pytest.mark.parametrize("n, q, confidence", [(10, 0.9, 0.8), (12, 0.75, 0.9), (20, 0.9, 0.9), (5, 0.8, 0.9),
+                                              (9, 0.5, 0.8), (11, 0.8, 0.8)])
 def test_the_bootstrap_interval_is_the_exact_bootstrap_distributions(n, q, confidence):
     """Distinct values x_(1) < ... < x_(n) and the type-1 quantile: a resample's quantile is its
     k-th order statistic, k = ceil(n q), so P(T* <= x_(j)) = P(Binomial(n, j / n) >= k) exactly;
