@@ -35,8 +35,9 @@ FOOTPRINT_VIEW = 3.0
 scale in each, so that the limit's circle reads alike."""
 TRANSIENT_VIEW = 2.0
 """The transients plot shows excursions up to this many times the larger of the two position limits."""
-QUANTILE_VIEW = 1.3
-"""A quantiles panel shows up to this many times the larger of its limit and its highest interval."""
+QUANTILE_VIEW = 2.0
+"""A quantiles panel shows up to this many times its limit (a group's: the larger of its limit and
+its post-failure limit); a quantile above it is drawn on the edge with its value."""
 CASE_COLOURS = ("tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
                 "tab:cyan")
 
@@ -86,7 +87,7 @@ def footprints_figure(prepared: Level3Study, result: CapabilityResult, finished:
     columns = min(6, len(search.headings))
     rows = math.ceil(len(search.headings) / columns)
     width = max(2.6 * columns, 8.0)
-    figure, grid = plt.subplots(rows, columns, figsize=(width, 2.8 * rows + 2.4), squeeze=False, sharex=True,
+    figure, grid = plt.subplots(rows, columns, figsize=(width, 2.6 * rows + 2.0), squeeze=False, sharex=True,
                                 sharey=True, layout="constrained")
     colours = dict(zip(search.cases, CASE_COLOURS))
     circle = np.linspace(0.0, 2.0 * math.pi, 73)
@@ -169,18 +170,16 @@ def quantiles_figure(prepared: Level3Study, result: CapabilityResult, finished: 
         for row, (metric, label, limit) in enumerate(QUANTITIES):
             axes = grid[row, column]
             transient = metric.replace("steady", "transient")
+            post = getattr(criteria, f"post_failure_{limit}")
+            top = QUANTILE_VIEW * max(getattr(criteria, limit), post if case != INTACT else 0.0)
             for series, marker, fill in ((0, "o", None), (1, "s", "none")):
-                draw_quantiles(axes, prepared, finished, case, series, metric, marker, fill, "tab:blue")
+                draw_quantiles(axes, prepared, finished, (case, series, metric), (marker, fill, "tab:blue"), top)
                 if case != INTACT and series == 0:
-                    draw_quantiles(axes, prepared, finished, case, series, transient, "^", None, "tab:purple")
+                    draw_quantiles(axes, prepared, finished, (case, series, transient), ("^", None, "tab:purple"),
+                                   top)
             axes.axhline(getattr(criteria, limit), color="tab:red", linewidth=0.9)
-            top = QUANTILE_VIEW * max(getattr(criteria, limit), axes.dataLim.y1 if axes.has_data() else 0.0)
             if case != INTACT:
-                post = getattr(criteria, f"post_failure_{limit}")
                 axes.axhline(post, color="tab:purple", linewidth=0.9, linestyle="--")
-                if post > top:
-                    axes.text(0.98, 0.97, f"post-failure limit {post:g} above", transform=axes.transAxes,
-                              fontsize=6.5, color="tab:purple", ha="right", va="top")
             axes.set_ylim(0.0, top)
             axes.set_ylabel(label, fontsize=8)
             axes.tick_params(labelsize=7)
@@ -203,9 +202,13 @@ def quantiles_figure(prepared: Level3Study, result: CapabilityResult, finished: 
     return figure
 
 
-def draw_quantiles(axes, prepared: Level3Study, finished: Mapping[tuple, CaseResult], case: str, above: int,
-                   metric: str, marker: str, fill: str | None, colour: str) -> None:
-    """The quantile and interval of ``metric`` per heading at the case's number (+ ``above``)."""
+def draw_quantiles(axes, prepared: Level3Study, finished: Mapping[tuple, CaseResult], what: tuple[str, int, str],
+                   style: tuple[str, str | None, str], top: float) -> None:
+    """The quantile and interval of a metric per heading, ``what`` = (case, 0 at the case's number
+    or 1 the condition above it, metric), ``style`` = (marker, face colour, colour); a quantile
+    above ``top`` drawn on it with its value."""
+    case, above, metric = what
+    marker, fill, colour = style
     search = prepared.search
     headings, values, low, high = [], [], [], []
     for heading in search.headings:
@@ -217,9 +220,17 @@ def draw_quantiles(axes, prepared: Level3Study, finished: Mapping[tuple, CaseRes
             values.append(spread.quantile)
             low.append(spread.quantile - spread.low)
             high.append(spread.high - spread.quantile)
-    if headings:
-        axes.errorbar(headings, values, yerr=[low, high], marker=marker, markerfacecolor=fill, color=colour,
-                      linestyle="none", markersize=4, elinewidth=0.8, capsize=2)
+    if not headings:
+        return
+    shown = np.minimum(values, top)
+    clipped = np.array(values) > top
+    low, high = np.where(clipped, 0.0, low), np.where(clipped, 0.0, np.minimum(high, top - shown))
+    axes.errorbar(headings, shown, yerr=[low, high], marker=marker, markerfacecolor=fill,
+                  color=colour, linestyle="none", markersize=4, elinewidth=0.8, capsize=2, clip_on=False)
+    for heading, value in zip(headings, values):
+        if value > top:
+            axes.annotate(f"{value:.3g}", (heading, top), xytext=(3, -9), textcoords="offset points", fontsize=6.5,
+                          color=colour, annotation_clip=False)
 
 
 def transients_figure(prepared: Level3Study, result: CapabilityResult, finished: Mapping[tuple, CaseResult],
