@@ -111,7 +111,7 @@ def add_level3_arguments(parser: argparse.ArgumentParser) -> None:
                         help="DNV-ST-0111 Level 3 as read here: seeded closed-loop time-domain runs per heading, "
                              "condition and redundancy group (<vehicle>_dp_l3..., cases.jsonl)")
     parser.add_argument("--level3-criteria", metavar="FILE", type=Path,
-                        help="--dnv-level3: the criteria file (config/level3_criteria.yaml: limits, durations, "
+                        help="--dnv-level3: the criteria file (config/level3/criteria.yaml: limits, durations, "
                              "seeds, quantile, bootstrap, post-failure limits); absent keys at their defaults")
     engine = parser.add_mutually_exclusive_group()
     engine.add_argument("--workers", type=int, help="--dnv-level3: local worker processes (default: the CPU count)")

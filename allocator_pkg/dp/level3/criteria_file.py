@@ -1,4 +1,4 @@
-"""The Level 3 criteria file (``--level3-criteria FILE``, ``config/level3_criteria.yaml``): a
+"""The Level 3 criteria file (``--level3-criteria FILE``, ``config/level3/criteria.yaml``): a
 YAML mapping of the keys of :data:`~.case.CRITERIA_KEYS`, each optional (its default then); an
 unknown key, a value of the wrong kind or out of its range is refused naming the file and the key."""
 

@@ -9,7 +9,7 @@ from allocator_pkg.configuration.file_keys import INTEGER, NUMBER, TEXT, default
 from allocator_pkg.dp.level3.case import CRITERIA_KEYS, Criteria
 from allocator_pkg.dp.level3.criteria_file import criteria_from_mapping, read_criteria
 
-SHIPPED = ROOT / "config" / "level3_criteria.yaml"
+SHIPPED = ROOT / "config" / "level3" / "criteria.yaml"
 
 
 def test_the_shipped_file_holds_every_key_at_its_default():
