@@ -15,7 +15,7 @@ next condition of a chain only when every seed of the one before has finished, s
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from .case import Case, CaseResult, Criteria
 from .statistics import condition_holds
@@ -47,6 +47,10 @@ class Level3Search:
     criteria: Criteria
     ceilings: Mapping[tuple[float, str], int]
     top: int
+    verdicts: dict[tuple[float, str, int], tuple[list[CaseResult], bool]] = field(
+        default_factory=dict, init=False, repr=False, compare=False)
+    """Each decided condition's runs and verdict, reused while the same runs are asked about
+    (the search asks about every chain each time a run finishes)."""
 
     @property
     def seeds(self) -> int:
@@ -70,10 +74,18 @@ class Level3Search:
             results = self.seed_results(chain, number + 1, finished)
             if results is None:
                 return ChainOutcome(number, "", False)
-            if not condition_holds(results, self.criteria):
+            if not self.holds(chain, number + 1, results):
                 return ChainOutcome(number, FAILED, True)
             number += 1
         return ChainOutcome(number, TOP if number == self.top else STATIC, True)
+
+    def holds(self, chain: tuple[float, str], number: int, results: list[CaseResult]) -> bool:
+        """:func:`~.statistics.condition_holds` of ``results``, computed once for the same runs."""
+        key = (*chain, number)
+        known = self.verdicts.get(key)
+        if known is None or len(known[0]) != len(results) or any(a is not b for a, b in zip(known[0], results)):
+            known = self.verdicts[key] = (results, condition_holds(results, self.criteria))
+        return known[1]
 
     def pending(self, finished: Mapping[tuple, CaseResult]) -> list[Case]:
         """The cases to run next: every unfinished seed of each undecided chain's next condition."""

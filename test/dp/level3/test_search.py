@@ -5,7 +5,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from allocator_pkg.dp.level3.case import Case, CaseResult, Criteria
-from allocator_pkg.dp.level3.search import FAILED, STATIC, TOP, Level3Search
+from allocator_pkg.dp.level3.search import FAILED, STATIC, TOP, ChainOutcome, Level3Search
 
 ONE = Criteria(1.0, seeds=1)
 ALL = Criteria(1.0, seeds=3, quantile=1.0)
@@ -98,3 +98,12 @@ def test_more_seeds_run_only_the_seeds_not_yet_run():
         asked += [c.key for c in batch]
         finished.update((c.key, excursion_run(c.key, table)) for c in batch)
     assert sorted(asked) == [(0.0, n, "intact", s) for n in (1, 2) for s in (3, 4)]
+
+
+def test_a_verdict_is_kept_for_the_same_runs_and_taken_again_for_others():
+    search = Level3Search((0.0,), ("intact",), Criteria(1.0, seeds=2, quantile=1.0), {(0.0, "intact"): 1}, 11)
+    good = {(0.0, 1, "intact", s): result(0.0, 1, "intact", s, True) for s in range(2)}
+    bad = {**good, (0.0, 1, "intact", 1): result(0.0, 1, "intact", 1, False)}
+    assert search.outcome((0.0, "intact"), good) == ChainOutcome(1, STATIC, True)
+    assert search.outcome((0.0, "intact"), bad) == ChainOutcome(0, FAILED, True)
+    assert search.outcome((0.0, "intact"), good) == ChainOutcome(1, STATIC, True)
