@@ -14,7 +14,9 @@ then the report of :mod:`~allocator_pkg.dp.report.files`; ``--dnv-level2`` the s
 (:mod:`~allocator_pkg.dp.level2`) with a plot of Level 1 against it; ``--site SITE.yaml`` gives
 Level 2 a site environment in place of Table 2-1 (:mod:`~allocator_pkg.dp.inputs.site`);
 ``--dnv-level3`` the time-domain Level 3 of :mod:`~allocator_pkg.dp.level3.study` (closed-loop
-runs on a process pool or a Dask cluster).
+runs on a process pool or a Dask cluster), its criteria from ``--level3-criteria FILE``
+(:mod:`~allocator_pkg.dp.level3.criteria_file`) with ``--seeds``, ``--position-limit``,
+``--heading-limit``, ``--settle`` and ``--duration`` in place of the file's keys.
 """
 
 from __future__ import annotations
