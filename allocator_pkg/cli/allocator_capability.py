@@ -14,7 +14,9 @@ then the report of :mod:`~allocator_pkg.dp.report.files`; ``--dnv-level2`` the s
 (:mod:`~allocator_pkg.dp.level2`) with a plot of Level 1 against it; ``--site SITE.yaml`` gives
 Level 2 a site environment in place of Table 2-1 (:mod:`~allocator_pkg.dp.inputs.site`);
 ``--dnv-level3`` the time-domain Level 3 of :mod:`~allocator_pkg.dp.level3.study` (closed-loop
-runs on a process pool or a Dask cluster).
+runs on a process pool or a Dask cluster), its criteria from ``--level3-criteria FILE``
+(:mod:`~allocator_pkg.dp.level3.criteria_file`) with ``--seeds``, ``--position-limit``,
+``--heading-limit``, ``--settle`` and ``--duration`` in place of the file's keys.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ from ..dp.capability_result import CapabilityResult
 from ..dp.level1 import Level1
 from ..dp.level2 import Level2
 from ..dp.level3.case import CRITERIA_KEYS, Criteria
+from ..dp.level3.criteria_file import read_criteria
 from ..dp.level3.engine import CaseLost, Interrupted
 from ..dp.level3.study import BASE_SCENARIO, JOURNAL, Level3Inputs, study
 from ..dp.report.files import write_report
@@ -42,9 +45,11 @@ from ..vehicle.config import DOF_NAMES
 
 INTERRUPTED = 130
 """The exit status of a run stopped by SIGINT (128 + the signal's number, as a shell gives)."""
-CRITERIA_OPTIONS = (("--position-limit", "position_limit"), ("--heading-limit", "heading_limit_deg"),
-                    ("--settle", "settle"), ("--duration", "duration"))
-"""The options of the Level 3 criteria, each a key of :data:`CRITERIA_KEYS` (its default, unit and text)."""
+CRITERIA_OPTIONS = (("--seeds", "seeds", int), ("--position-limit", "position_limit", float),
+                    ("--heading-limit", "heading_limit_deg", float), ("--settle", "settle", float),
+                    ("--duration", "duration", float))
+"""The options that override a key of the Level 3 criteria file (:data:`CRITERIA_KEYS`: its default,
+unit and text), each the value of its key when given."""
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -107,17 +112,21 @@ def add_level3_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--dnv-level3", nargs=2, metavar=("VESSEL", "PARTICULARS"),
                         help="DNV-ST-0111 Level 3 as read here: seeded closed-loop time-domain runs per heading, "
                              "condition and redundancy group (<vehicle>_dp_l3..., cases.jsonl)")
-    parser.add_argument("--seeds", type=int, default=1, help="--dnv-level3: seeds per condition (default 1)")
+    parser.add_argument("--level3-criteria", metavar="FILE", type=Path,
+                        help="--dnv-level3: the criteria file (config/level3/criteria.yaml: limits, durations, "
+                             "seeds, quantile, bootstrap, post-failure limits); absent keys at their defaults")
     engine = parser.add_mutually_exclusive_group()
     engine.add_argument("--workers", type=int, help="--dnv-level3: local worker processes (default: the CPU count)")
     engine.add_argument("--scheduler", metavar="ADDRESS",
                         help="--dnv-level3: run the cases on the Dask distributed scheduler at ADDRESS")
     parser.add_argument("--resume", action="store_true",
                         help="--dnv-level3: keep the finished cases of DIR/cases.jsonl and run only the rest")
-    for option, name in CRITERIA_OPTIONS:
+    for option, name, kind in CRITERIA_OPTIONS:
         key = key_named(CRITERIA_KEYS, name)
-        parser.add_argument(option, type=float, default=key.default,
-                            help=f"--dnv-level3: {key.text} [{key.unit}] (default %(default)s)")
+        unit = f" [{key.unit}]" if key.unit else ""
+        parser.add_argument(option, type=kind, dest=name,
+                            help=f"--dnv-level3: {key.text}{unit}, in place of the criteria file's {name} "
+                                 f"(default: the file's, else {key.documented_default()})")
     parser.add_argument("--scenario", type=Path, default=BASE_SCENARIO,
                         help="--dnv-level3: the dp_vessel scenario giving controller gains, thruster time constant "
                              "and the environment's variations (default config/scenarios/dp_station_keeping.yaml)")
@@ -132,9 +141,7 @@ def level3_command(arguments: argparse.Namespace) -> int:
     try:
         inputs = Level3Inputs(Path(vessel), Path(particulars), arguments.scenario,
                               Path(arguments.site) if arguments.site else None, arguments.method,
-                              arguments.heading_step, arguments.seeds,
-                              Criteria(arguments.position_limit, arguments.heading_limit, arguments.settle,
-                                       arguments.duration))
+                              arguments.heading_step, level3_criteria(arguments))
         prepared, result, finished = study(inputs, out, arguments.workers, arguments.scheduler, arguments.resume,
                                            not arguments.no_progress)
     except Interrupted as interrupted:
@@ -153,6 +160,14 @@ def level3_command(arguments: argparse.Namespace) -> int:
     for path in [out / JOURNAL, *paths]:
         print(path)
     return 0
+
+
+def level3_criteria(arguments: argparse.Namespace) -> Criteria:
+    """The criteria of ``--level3-criteria`` (or the defaults) with the options given in place of
+    their keys."""
+    overrides = {name: getattr(arguments, name) for _, name, _ in CRITERIA_OPTIONS
+                 if getattr(arguments, name) is not None}
+    return read_criteria(arguments.level3_criteria, overrides)
 
 
 def _print(paths: list[Path]) -> None:

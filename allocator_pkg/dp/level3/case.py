@@ -5,11 +5,13 @@ the DP vessel on station, with wind, current and waves of one capability number'
 coming from one heading, intact or with a redundancy group failed once the vessel has settled
 on station, so that the failure's transient counts.
 
-A case holds when the horizontal position excursion from the set-point stays within
-``position_limit`` [m] and the heading deviation within ``heading_limit_deg`` over the whole run
-(settling and after). The public transcription of the standard used here
-(WilliamBoland1/Prosjektoppgave_Collab) has no Level 3 text: the criteria, the settling time, the
-duration and the environment's variations are this package's defaults (:data:`CRITERIA_NOTE`),
+A run holds alone when its horizontal position excursion from the set-point stays within
+``position_limit`` [m] and its heading deviation within ``heading_limit_deg``, within
+``post_failure_window`` after a group's failure the post-failure limits instead; a condition
+holds on the quantile of these over its seeds (:mod:`.statistics`). The public transcription of the
+standard used here (WilliamBoland1/Prosjektoppgave_Collab) has no Level 3 text: the criteria, the
+settling time, the duration, the seeds, the quantile and the environment's variations are this
+package's defaults (:data:`CRITERIA_NOTE`, :data:`CRITERIA_KEYS`, a criteria file),
 stated in every output. Each case is a pure function of its inputs, the seed among them.
 """
 
@@ -25,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ...configuration.file_keys import NUMBER, FileKey, key_named
+from ...configuration.file_keys import INTEGER, NUMBER, TEXT, FileKey, key_named
 from ...simulation.closed_loop import ClosedLoop
 from ...simulation.environment import EnvironmentSpec
 from ...simulation.in_process import InProcessLink
@@ -39,49 +41,114 @@ from .dp_system import with_dp_system
 
 TRACK_PERIOD = 1.0
 """[s] between the samples of a case's x-y track kept for the footprint plots."""
-CRITERIA_NOTE = ("Level 3 criteria: the transcription used has no Level 3 text; a case holds when the horizontal "
-                 "position excursion from the set-point stays within the position limit and the heading deviation "
-                 "within the heading limit over the whole run (this package's defaults, not the standard's)")
+CRITERIA_NOTE = ("Level 3 criteria: the transcription used has no Level 3 text; a condition holds when, over its "
+                 "seeds, the stated quantile of the largest horizontal position excursion from the set-point is "
+                 "within the position limit and that of the largest heading deviation within the heading limit "
+                 "(after a group's failure, within the post-failure window, the post-failure limits instead) "
+                 "(this package's defaults, not the standard's)")
+QUANTILE_METHODS = ("linear", "inverted_cdf", "higher", "median_unbiased", "normal_unbiased", "hazen", "weibull")
+"""The methods of ``numpy.quantile`` (Hyndman and Fan 1996) a criteria file may name."""
 
 
 CRITERIA_KEYS = (
-    FileKey("position_limit", NUMBER, "largest horizontal excursion from the set-point", default=5.0, unit="m",
-            minimum=0.0, exclusive_minimum=True),
-    FileKey("heading_limit_deg", NUMBER, "largest heading deviation", default=3.0, unit="deg", minimum=0.0,
-            exclusive_minimum=True),
+    FileKey("position_limit", NUMBER, "largest horizontal excursion from the set-point (outside the post-failure "
+            "window)", default=5.0, unit="m", minimum=0.0, exclusive_minimum=True),
+    FileKey("heading_limit_deg", NUMBER, "largest heading deviation (outside the post-failure window)", default=3.0,
+            unit="deg", minimum=0.0, exclusive_minimum=True),
     FileKey("settle", NUMBER, "on station before a group fails", default=60.0, unit="s", minimum=0.0,
             exclusive_minimum=True),
     FileKey("duration", NUMBER, "simulated after settling", default=600.0, unit="s", minimum=0.0,
             exclusive_minimum=True),
+    FileKey("seeds", INTEGER, "seeds per condition (seed indices 0 ... seeds - 1)", default=10, minimum=1),
+    FileKey("quantile", NUMBER, "the quantile over the seeds of each case's largest excursion that decides the "
+            "condition (0.9: P90; 1: every seed must hold)", default=0.9, minimum=0.0, maximum=1.0,
+            exclusive_minimum=True),
+    FileKey("quantile_method", TEXT, "numpy.quantile's method for that quantile (Hyndman and Fan)",
+            default="linear", choices=QUANTILE_METHODS),
+    FileKey("confidence", NUMBER, "level of the percentile-bootstrap confidence interval of the quantile",
+            default=0.9, minimum=0.0, maximum=1.0, exclusive_minimum=True, exclusive_maximum=True),
+    FileKey("resamples", INTEGER, "bootstrap resamples", default=2000, minimum=100),
+    FileKey("bootstrap_seed", INTEGER, "seed of the bootstrap's random numbers (the intervals reproducible)",
+            default=0, minimum=0),
+    FileKey("post_failure_position_limit", NUMBER, "largest horizontal excursion within the post-failure window",
+            default=5.0, unit="m", minimum=0.0, exclusive_minimum=True),
+    FileKey("post_failure_heading_limit_deg", NUMBER, "largest heading deviation within the post-failure window",
+            default=3.0, unit="deg", minimum=0.0, exclusive_minimum=True),
+    FileKey("post_failure_window", NUMBER, "from a group's failure, the time the post-failure limits apply",
+            default=60.0, unit="s", minimum=0.0),
 )
-"""The Level 3 criteria (``--position-limit``, ``--heading-limit``, ``--settle``, ``--duration``
-of allocator-capability): this package's defaults, the transcription having no Level 3 text."""
+"""The Level 3 criteria (the criteria file, ``--level3-criteria``; ``--position-limit``,
+``--heading-limit``, ``--settle``, ``--duration`` and ``--seeds`` of allocator-capability
+override it): this package's defaults, the transcription having no Level 3 text."""
+JUDGEMENT_KEYS = ("seeds", "quantile", "quantile_method", "confidence", "resamples", "bootstrap_seed")
+"""The criteria that decide a condition from its seeds' runs but change no run: a journal written
+with other values of these is resumed (its runs kept)."""
 
 
 @dataclass(frozen=True)
 class Criteria:
-    """What a case must hold [m, deg] and how long it runs [s]: ``settle`` on station, then
-    ``duration`` (a group fails at the end of ``settle``); the defaults of :data:`CRITERIA_KEYS`."""
+    """What a condition must hold [m, deg], how long a case runs [s] (``settle`` on station, then
+    ``duration``; a group fails at the end of ``settle``), and how its seeds decide it: the
+    ``quantile`` (by ``quantile_method``) over ``seeds`` runs of each run's largest excursion,
+    with a percentile-bootstrap interval at ``confidence`` (``resamples`` draws, ``bootstrap_seed``);
+    within ``post_failure_window`` after a group's failure the post-failure limits stand in for
+    the others. The defaults of :data:`CRITERIA_KEYS`."""
 
     position_limit: float = key_named(CRITERIA_KEYS, "position_limit").default
     heading_limit_deg: float = key_named(CRITERIA_KEYS, "heading_limit_deg").default
     settle: float = key_named(CRITERIA_KEYS, "settle").default
     duration: float = key_named(CRITERIA_KEYS, "duration").default
+    seeds: int = key_named(CRITERIA_KEYS, "seeds").default
+    quantile: float = key_named(CRITERIA_KEYS, "quantile").default
+    quantile_method: str = key_named(CRITERIA_KEYS, "quantile_method").default
+    confidence: float = key_named(CRITERIA_KEYS, "confidence").default
+    resamples: int = key_named(CRITERIA_KEYS, "resamples").default
+    bootstrap_seed: int = key_named(CRITERIA_KEYS, "bootstrap_seed").default
+    post_failure_position_limit: float = key_named(CRITERIA_KEYS, "post_failure_position_limit").default
+    post_failure_heading_limit_deg: float = key_named(CRITERIA_KEYS, "post_failure_heading_limit_deg").default
+    post_failure_window: float = key_named(CRITERIA_KEYS, "post_failure_window").default
 
     def __post_init__(self) -> None:
         for name, value in asdict(self).items():
-            key = key_named(CRITERIA_KEYS, name)
-            if not (math.isfinite(value) and key.holds(value)):
-                raise ValueError(f"{name}: a finite number > {key.minimum:g}, not {value!r}")
+            check_criterion(key_named(CRITERIA_KEYS, name), value)
+
+    def values(self) -> list[tuple[str, str]]:
+        """(key, value with its unit) of every criterion, in the key table's order."""
+        rows = []
+        for key in CRITERIA_KEYS:
+            value = getattr(self, key.name)
+            text = f"{value:g}" if isinstance(value, float) else str(value)
+            rows.append((key.name, f"{text} {key.unit}".strip()))
+        return rows
 
     def describe(self) -> str:
-        return (f"position limit {self.position_limit:g} m, heading limit {self.heading_limit_deg:g} deg, "
-                f"{self.settle:g} s on station (a group fails then) + {self.duration:g} s simulated per case")
+        """Every criterion by its key, for the text outputs and the CSV header lines."""
+        return "; ".join(f"{name} {value}" for name, value in self.values())
 
     def short(self) -> str:
         """The criteria in a few words, for a plot's caption."""
-        return (f"limits {self.position_limit:g} m, {self.heading_limit_deg:g} deg; {self.settle:g} + "
-                f"{self.duration:g} s per case")
+        return (f"P{100 * self.quantile:g} ({self.quantile_method}) of {self.seeds} seeds within "
+                f"{self.position_limit:g} m, {self.heading_limit_deg:g} deg ({self.post_failure_position_limit:g} m, "
+                f"{self.post_failure_heading_limit_deg:g} deg for {self.post_failure_window:g} s after a failure); "
+                f"{self.settle:g} + {self.duration:g} s per case; {100 * self.confidence:g} % bootstrap CI "
+                f"({self.resamples} resamples, seed {self.bootstrap_seed})")
+
+    def run_fingerprint(self) -> str:
+        """The criteria that change a case's run or its own verdict (not :data:`JUDGEMENT_KEYS`)."""
+        return "; ".join(f"{name} {value}" for name, value in self.values() if name not in JUDGEMENT_KEYS)
+
+
+def check_criterion(key: FileKey, value: Any) -> None:
+    """A ValueError naming ``key`` when ``value`` is not of its kind or outside its range."""
+    if key.kind == TEXT:
+        if value not in key.choices:
+            raise ValueError(f"{key.name}: one of {', '.join(key.choices)}, not {value!r}")
+        return
+    integer = key.kind == INTEGER
+    kind_ok = (isinstance(value, int) if integer else isinstance(value, (int, float))) and not isinstance(value, bool)
+    if not (kind_ok and math.isfinite(value) and key.holds(value)):
+        what = "an integer" if integer else "a finite number"
+        raise ValueError(f"{key.name}: {what} {key.documented_range()}, not {value!r}")
 
 
 @dataclass(frozen=True)
@@ -127,8 +194,12 @@ class CaseSetup:
 
 @dataclass(frozen=True)
 class CaseResult:
-    """Position excursion [m] (max, mean), heading deviation [deg] (max), whether the case held,
-    and the x-y track (north, east [m]) every :data:`TRACK_PERIOD`."""
+    """Position excursion [m] (max, mean), heading deviation [deg] (max), whether the run alone
+    kept within the criteria's limits, the x-y track (north, east [m]) every
+    :data:`TRACK_PERIOD`, and the largest position excursion [m] and heading deviation [deg]
+    outside (``steady_``) and within (``transient_``; None for an intact case or an empty window)
+    the post-failure window; the quantiles over the seeds decide a condition
+    (:mod:`.statistics`)."""
 
     case: Case
     max_position: float
@@ -136,18 +207,27 @@ class CaseResult:
     max_heading_deg: float
     held: bool
     track: tuple[tuple[float, float], ...]
+    steady_position: float
+    steady_heading_deg: float
+    transient_position: float | None
+    transient_heading_deg: float | None
 
     def to_json(self) -> dict[str, Any]:
         return {"heading_deg": self.case.heading_deg, "number": self.case.number, "group": self.case.group,
                 "seed": self.case.seed, "max_position_m": self.max_position, "mean_position_m": self.mean_position,
-                "max_heading_deg": self.max_heading_deg, "held": self.held, "track": [list(p) for p in self.track]}
+                "max_heading_deg": self.max_heading_deg, "held": self.held, "track": [list(p) for p in self.track],
+                "steady_position_m": self.steady_position, "steady_heading_deg": self.steady_heading_deg,
+                "transient_position_m": self.transient_position, "transient_heading_deg": self.transient_heading_deg}
 
     @classmethod
     def from_json(cls, data: dict[str, Any]) -> CaseResult:
         case = Case(float(data["heading_deg"]), int(data["number"]), str(data["group"]), int(data["seed"]))
+        transient = [None if data[k] is None else float(data[k]) for k in ("transient_position_m",
+                                                                            "transient_heading_deg")]
         return cls(case, float(data["max_position_m"]), float(data["mean_position_m"]),
-                   float(data["max_heading_deg"]), bool(data["held"]), tuple((float(n), float(e))
-                                                                             for n, e in data["track"]))
+                   float(data["max_heading_deg"]), bool(data["held"]),
+                   tuple((float(n), float(e)) for n, e in data["track"]), float(data["steady_position_m"]),
+                   float(data["steady_heading_deg"]), *transient)
 
 
 def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
@@ -219,9 +299,25 @@ def run_case(case: Case, setup: CaseSetup) -> CaseResult:
         trace = ClosedLoop(scenario, Path(folder), connect, log=lambda _: None).run().trace
     position = trace.position_errors()
     heading = np.degrees(np.abs(heading_errors(np.array(trace.attitude)[:, 2], np.array(trace.setpoint_heading))))
-    criteria = setup.criteria
-    max_position, max_heading = float(np.max(position)), float(np.max(heading))
     every = max(1, round(TRACK_PERIOD / trace.period))
     track = tuple((float(p[0]), float(p[1])) for p in trace.position[::every])
-    return CaseResult(case, max_position, float(np.mean(position)), max_heading,
-                      max_position <= criteria.position_limit and max_heading <= criteria.heading_limit_deg, track)
+    return excursions(case, setup.criteria, np.array(trace.time), position, heading, track)
+
+
+def excursions(case: Case, criteria: Criteria, time: np.ndarray, position: np.ndarray, heading: np.ndarray,
+               track: tuple[tuple[float, float], ...]) -> CaseResult:
+    """A run's result from its samples: time [s], position excursion [m] and heading deviation
+    [deg]; the post-failure window is [``settle``, ``settle + post_failure_window``) after a
+    group's failure (an intact case has none), and the run alone holds when its excursions keep
+    within the limits that apply where they are."""
+    window = np.zeros(time.shape, dtype=bool)
+    if case.group != INTACT:
+        window = (time >= criteria.settle) & (time < criteria.settle + criteria.post_failure_window)
+    steady_position = float(np.max(position[~window], initial=0.0))
+    steady_heading = float(np.max(heading[~window], initial=0.0))
+    transient = (float(np.max(position[window])), float(np.max(heading[window]))) if np.any(window) else (None, None)
+    held = (steady_position <= criteria.position_limit and steady_heading <= criteria.heading_limit_deg
+            and (transient[0] is None or (transient[0] <= criteria.post_failure_position_limit
+                                          and transient[1] <= criteria.post_failure_heading_limit_deg)))
+    return CaseResult(case, float(np.max(position)), float(np.mean(position)), float(np.max(heading)), held, track,
+                      steady_position, steady_heading, *transient)

@@ -1,6 +1,6 @@
 """DNV-ST-0111 Level 3 (time-domain) DP capability as this package reads it:
-``allocator-capability --dnv-level3 VESSEL PARTICULARS --out DIR [--headings STEP] [--seeds N]
-[--workers N | --scheduler ADDRESS] [--resume]``.
+``allocator-capability --dnv-level3 VESSEL PARTICULARS --out DIR [--headings STEP]
+[--level3-criteria FILE] [--workers N | --scheduler ADDRESS] [--resume]``.
 
 Per heading and case (intact, each redundancy group) the conditions rise per [2.4.4] (Table 2-1,
 or the Level 2 site's) until the first that fails in seeded in-process closed-loop runs
@@ -43,7 +43,7 @@ JOURNAL = "cases.jsonl"
 @dataclass(frozen=True)
 class Level3Inputs:
     """What a study runs on: the two files, the base scenario, an optional site, the method,
-    the heading step [deg], seeds per condition and the criteria."""
+    the heading step [deg] and the criteria (the seeds per condition among them)."""
 
     vessel: Path
     particulars: Path
@@ -51,17 +51,17 @@ class Level3Inputs:
     site: Path | None = None
     method: str | None = None
     heading_step: float = 10.0
-    seeds: int = 1
     criteria: Criteria = field(default_factory=Criteria)
 
     def fingerprint(self) -> dict[str, str]:
-        """The journal's header: every input, the files by their content."""
+        """The journal's header: every input that changes a run, the files by their content (not
+        the seeds or how they decide a condition, :data:`~.case.JUDGEMENT_KEYS`: a journal of
+        fewer seeds or another quantile is resumed, its runs kept)."""
         def digest(path: Path | None) -> str:
             return hashlib.sha256(path.read_bytes()).hexdigest() if path else ""
-        return {"level3": "1", "vessel": digest(self.vessel), "particulars": digest(self.particulars),
+        return {"level3": "2", "vessel": digest(self.vessel), "particulars": digest(self.particulars),
                 "scenario": digest(self.scenario), "site": digest(self.site), "method": str(self.method),
-                "heading_step": repr(self.heading_step), "seeds": str(self.seeds),
-                "criteria": self.criteria.describe()}
+                "heading_step": repr(self.heading_step), "criteria": self.criteria.run_fingerprint()}
 
 
 @dataclass(frozen=True)
@@ -78,8 +78,6 @@ class Level3Study:
 
 def prepare(inputs: Level3Inputs) -> Level3Study:
     """Check every input and run the static balances; ValueError naming what is wrong."""
-    if not (isinstance(inputs.seeds, int) and inputs.seeds >= 1):
-        raise ValueError(f"--seeds: an integer >= 1, not {inputs.seeds!r}")
     step = inputs.heading_step
     if not 0.0 < step <= 90.0 or not math.isclose(360.0 / step, round(360.0 / step)):
         raise ValueError(f"--headings: a step that divides 360 deg and is at most 90 deg, not {step}")
@@ -102,7 +100,7 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     headings = tuple(float(h) for h in level2.headings_deg)
     ceilings = {(heading, case): int(level2.numbers[case][k]) for case in (INTACT, *groups)
                 for k, heading in enumerate(headings)}
-    search = Level3Search(headings, (INTACT, *groups), inputs.seeds, ceilings, len(analysis.conditions) - 1)
+    search = Level3Search(headings, (INTACT, *groups), inputs.criteria, ceilings, len(analysis.conditions) - 1)
     return Level3Study(inputs, level2, analysis, setup, search)
 
 
@@ -155,8 +153,11 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
     """What the numbers rest on: criteria, durations, seeds, environment, and per heading and
     case why the number stops where it does."""
     inputs, search = prepared.inputs, prepared.search
-    lines = [f"{CRITERIA_NOTE}: {inputs.criteria.describe()}.",
-             f"Seeds per condition: {inputs.seeds} (a condition holds when every seed holds); base scenario "
+    criteria = inputs.criteria
+    lines = [f"{CRITERIA_NOTE}: {criteria.describe()}.",
+             f"Seeds per condition: {criteria.seeds} (indices 0 ... {criteria.seeds - 1}, the same for every "
+             f"condition); a condition holds when the {criteria.quantile:g} quantile ({criteria.quantile_method}) "
+             "over its seeds of each run's largest excursion is within its limit; base scenario "
              f"{inputs.scenario.name} (controller gains, thruster time constant, the environment's slow variations; "
              f"gusts at its turbulence intensity); method {prepared.setup.scenario.method}.",
              prepared.analysis.site.describe() if prepared.analysis.site else

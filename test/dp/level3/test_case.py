@@ -16,6 +16,7 @@ from allocator_pkg.dp.level3.case import (
     Criteria,
     GroupFaultLink,
     case_scenario,
+    excursions,
     run_case,
 )
 from allocator_pkg.dp.standard import loads as standard_loads
@@ -74,11 +75,40 @@ def test_a_case_is_a_pure_function_of_its_inputs(setup):
 
 
 def test_criteria_decide_held(setup):
-    result = run_case(Case(90.0, 7, "switchboard_a", 0), setup)
-    assert result.held == (result.max_position <= 1.0 and result.max_heading_deg <= 3.0)
-    loose = replace(setup, criteria=Criteria(result.max_position + 0.01, result.max_heading_deg + 0.01, 5.0, 15.0))
-    tight = replace(setup, criteria=Criteria(0.5 * result.max_position, 90.0, 5.0, 15.0))
+    result = run_case(Case(90.0, 7, "switchboard_a", 0), setup)     # a 60 s window: all after the failure
+    assert result.transient_position == pytest.approx(max(p for p in positions(result)[5:]), abs=0.05)
+    assert result.held == (result.steady_position <= 1.0 and result.steady_heading_deg <= 3.0
+                           and result.transient_position <= 5.0 and result.transient_heading_deg <= 3.0)
+    loose = replace(setup, criteria=Criteria(result.steady_position + 0.01, result.steady_heading_deg + 0.01, 5.0,
+                                             15.0, post_failure_position_limit=result.transient_position + 0.01,
+                                             post_failure_heading_limit_deg=result.transient_heading_deg + 0.01))
+    tight = replace(setup, criteria=Criteria(90.0, 90.0, 5.0, 15.0,
+                                             post_failure_position_limit=0.5 * result.transient_position))
     assert run_case(result.case, loose).held and not run_case(result.case, tight).held
+
+
+def positions(result):
+    return [float(np.hypot(*point)) for point in result.track]
+
+
+WINDOWS = [(INTACT, 4.0, 10.0, 20.0, None), ("g", 4.0, 10.0, 8.0, 20.0), ("g", 4.0, 3.0, 20.0, 8.0),
+           ("g", 0.0, 10.0, 20.0, None), ("g", 30.0, 10.0, 8.0, 20.0), ("g", 4.0, 20.0, 20.0, 1.0)]
+
+
+@pytest.mark.parametrize("group, window, settle, steady, transient", WINDOWS)
+def test_the_post_failure_window_splits_a_run_by_the_time_of_the_failure(group, window, settle, steady, transient):
+    """A run 8 m off at 4 s to 6 s and 20 m off at 10 s to 12 s, 1 m elsewhere, 30 s long: with a
+    group failing at ``settle`` the window [settle, settle + window) takes what falls in it."""
+    time = np.arange(0.0, 30.0, 0.5)
+    position = np.where((time >= 4.0) & (time < 6.0), 8.0, np.where((time >= 10.0) & (time < 12.0), 20.0, 1.0))
+    heading = 0.1 * position
+    criteria = Criteria(9.0, 1.0, settle=settle, duration=30.0 - settle, post_failure_window=window,
+                        post_failure_position_limit=21.0, post_failure_heading_limit_deg=2.5)
+    result = excursions(Case(0.0, 1, group, 0), criteria, time, position, heading, ())
+    assert (result.steady_position, result.transient_position) == (steady, transient)
+    assert result.max_position == 20.0 and result.mean_position == pytest.approx(np.mean(position))
+    assert result.steady_heading_deg == pytest.approx(0.1 * steady)
+    assert result.held == (steady <= 9.0 and 0.1 * steady <= 1.0 and (transient is None or transient <= 21.0))
 
 
 def test_the_group_link_fails_the_group_and_the_simulated_thrusters(setup, tmp_path):

@@ -1,5 +1,5 @@
 """The Level 3 engines: the same results and journal on 1 and 2 pool workers and on a Dask
-cluster, a worker that dies mid-case, pool workers that end with their parent, a scheduler that
+cluster (two seeds a condition), a worker that dies mid-case, pool workers that end with their parent, a scheduler that
 does not answer, and the journal a stopped run resumes from."""
 
 import json
@@ -21,7 +21,7 @@ from allocator_pkg.dp.level3.study import Level3Inputs, prepare
 
 INPUTS = Level3Inputs(ROOT / "config/dp_vessel.yaml", ROOT / "config/particulars/dp_vessel.yaml",
                       site=DATA / "sites" / "level3_site.yaml", heading_step=90.0,
-                      criteria=Criteria(0.05, 3.0, settle=2.0, duration=3.0))
+                      criteria=Criteria(0.05, 3.0, settle=2.0, duration=3.0, seeds=2, quantile=0.5))
 HEADER = {"test": "1"}
 
 
@@ -224,3 +224,27 @@ def test_resume_refuses_a_journal_of_other_inputs(tmp_path):
 def test_a_result_survives_its_line(reference):
     for result in reference.values():
         assert CaseResult.from_json(json.loads(json.dumps(result.to_json()))) == result
+
+
+def test_a_journal_of_fewer_seeds_resumes_running_only_the_seeds_it_lacks(prepared, reference, tmp_path, monkeypatch):
+    """The journal's header leaves out the seeds and the quantile: a journal of the one-seed search
+    resumes under two seeds, its runs kept, and the second seed's runs are the only ones run."""
+    from dataclasses import replace
+
+    one_seed = replace(INPUTS, criteria=replace(INPUTS.criteria, seeds=1, quantile=0.9))
+    assert one_seed.fingerprint() == INPUTS.fingerprint()
+    assert replace(INPUTS, criteria=replace(INPUTS.criteria, settle=3.0)).fingerprint() != INPUTS.fingerprint()
+    first = prepare(one_seed)
+    path = tmp_path / "journal" / "cases.jsonl"
+    with open_engine(workers=1) as engine:
+        single = run_search(first.search, first.setup, Journal(path, INPUTS.fingerprint(), False), engine,
+                            progress=False)
+    assert {key[3] for key in single} == {0}
+    monkeypatch.setenv("L3_RAN", str(tmp_path))
+    with open_engine(workers=1) as engine:
+        finished = run_search(prepared.search, prepared.setup, Journal(path, INPUTS.fingerprint(), True), engine,
+                              counting, progress=False)
+    ran = {path.name for path in tmp_path.iterdir()} - {"journal"}
+    assert {key: finished[key] for key in reference} == reference
+    assert ran == {"_".join(map(str, key)) for key in set(reference) - set(single)}
+    assert ran and ran.isdisjoint("_".join(map(str, key)) for key in single)

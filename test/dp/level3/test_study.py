@@ -21,9 +21,10 @@ from allocator_pkg.dp.level3.study import JOURNAL
 
 FILES = [str(ROOT / "config/dp_vessel.yaml"), str(ROOT / "config/particulars/dp_vessel.yaml")]
 SMALL = ["--site", str(DATA / "sites" / "level3_site.yaml"), "--headings", "90", "--position-limit", "0.05",
-         "--settle", "2", "--duration", "6", "--no-progress"]
+         "--settle", "2", "--duration", "6", "--seeds", "2", "--no-progress"]
 TEXT_OUTPUTS = ("dp_vessel_dp_l3.csv", "dp_vessel_dp_l3_table_a1.csv", "dp_vessel_dp_l3_limits.csv",
-                "dp_vessel_dp_l3_cases.csv", "dp_vessel_dp_l3.txt")
+                "dp_vessel_dp_l3_cases.csv", "dp_vessel_dp_l3_quantiles.csv", "dp_vessel_dp_l3.txt",
+                "dp_vessel_dp_l3_report.md")
 
 
 @pytest.fixture(scope="module")
@@ -37,12 +38,20 @@ def uninterrupted(tmp_path_factory):
 def test_the_report(uninterrupted, capsys):
     names = {path.name for path in uninterrupted.iterdir()}
     for suffix in ("_number.png", "_wind.png", "_groups_number.png", "_vs_l1_l2_number.png", "_vs_l1_l2_wind.png",
-                   "_footprints.png", "_table_a2.csv", "_table_a3.csv", "_table_a5.csv"):
+                   "_footprints.png", "_quantiles.png", "_transients.png", "_table_a2.csv", "_table_a3.csv",
+                   "_table_a5.csv"):
         assert f"dp_vessel_dp_l3{suffix}" in names
     assert set(TEXT_OUTPUTS) <= names and JOURNAL in names
     text = (uninterrupted / "dp_vessel_dp_l3.txt").read_text()
     assert text.startswith("dp_vessel (MSS osv hull, some inputs estimated): DP capability-L3(")
-    assert "position limit 0.05 m, heading limit 3 deg, 2 s on station (a group fails then) + 6 s" in text
+    assert "position_limit 0.05 m; heading_limit_deg 3 deg; settle 2 s; duration 6 s; seeds 2; quantile 0.9;" in text
+    assert "Criteria (criteria file keys):\n  position_limit: 0.05 m\n  heading_limit_deg: 3 deg\n" in text
+    assert "Assumed where the standard's Level 3 text was not available:" in text
+    assert "Seeds per condition: 2 (indices 0 ... 1, the same for every condition)" in text
+    for name in TEXT_OUTPUTS:
+        lines = (uninterrupted / name).read_text().splitlines()
+        stated = "\n".join(lines[:2]) if name.endswith(".csv") else "\n".join(lines)
+        assert "Not verified by DNV" in stated and "post_failure_window 60 s" in stated.replace(": ", " "), name
     assert SCOPE_L3 in text and "Not simulated, the static Level 2 balance already fails them" in text
     assert "gusts at its turbulence intensity); method qp." in text
     assert "Headings every 90 deg: coarser than the standard's 10 deg." in text
@@ -55,14 +64,25 @@ def test_the_comparison_shows_level_1_as_published_whatever_the_heading_step(uni
     text = (uninterrupted / "dp_vessel_dp_l3.txt").read_text()
     assert f"at the standard's 10 deg headings: {published}, DP capability-L2(" in text
     cases = (uninterrupted / "dp_vessel_dp_l3_cases.csv").read_text().splitlines()
-    assert cases[1].startswith("# ") and "position limit 0.05 m" in cases[1]
+    assert cases[1].startswith("# ") and "position_limit 0.05 m" in cases[1]
     assert cases[2] == ("case,heading_deg,capability_number,seed,wind_speed,hs,tp,current,max_position_m,"
-                        "mean_position_m,max_heading_deg,held")
+                        "mean_position_m,max_heading_deg,steady_position_m,steady_heading_deg,transient_position_m,"
+                        "transient_heading_deg,held")
 
 
-def test_numbers_follow_the_cases_and_the_static_ceiling(uninterrupted):
-    rows = [line.split(",") for line in (uninterrupted / "dp_vessel_dp_l3_cases.csv").read_text().splitlines()[3:]]
+def test_numbers_follow_the_conditions_and_the_static_ceiling(uninterrupted):
+    """The numbers against the conditions' verdicts in _quantiles.csv, which follow from its
+    quantiles and the limits; every condition has both seeds in _cases.csv."""
+    rows = [line.split(",") for line in (uninterrupted / "dp_vessel_dp_l3_quantiles.csv").read_text().splitlines()[3:]]
     held = {(r[0], float(r[1]), int(r[2])): r[-1] == "True" for r in rows}
+    for row in rows:
+        quantiles = [float(row[k]) for k in (4, 10, 16, 22) if row[k]]
+        assert row[3] == "2"
+        assert held[(row[0], float(row[1]), int(row[2]))] == (quantiles[0] <= 0.05 and quantiles[1] <= 3.0 and
+                                                             all(q <= lim for q, lim in zip(quantiles[2:], (5.0, 3.0))))
+    runs = [line.split(",") for line in (uninterrupted / "dp_vessel_dp_l3_cases.csv").read_text().splitlines()[3:]]
+    assert sorted((r[0], float(r[1]), int(r[2]), int(r[3])) for r in runs) == sorted(
+        (c, h, n, s) for c, h, n in held for s in (0, 1))
     limits = [line.split(",") for line in (uninterrupted / "dp_vessel_dp_l3_limits.csv").read_text().splitlines()[3:]]
     assert len(limits) == 12                                   # 4 headings, intact and two groups
     for case, heading, number, reason in limits:
@@ -72,7 +92,7 @@ def test_numbers_follow_the_cases_and_the_static_ceiling(uninterrupted):
             assert not held[(case, heading, number + 1)]
         else:
             assert (case, heading, number + 1) not in held     # not simulated: static Level 2 or the top
-    table = [line.split(",") for line in (uninterrupted / "dp_vessel_dp_l3.csv").read_text().splitlines()[2:]]
+    table = [line.split(",") for line in (uninterrupted / "dp_vessel_dp_l3.csv").read_text().splitlines()[3:]]
     numbers = {(c, float(h)): int(n) for c, h, n, _ in table}
     for case, heading, number, _ in limits:
         assert numbers[(case, float(heading))] == int(number)
@@ -82,8 +102,10 @@ def test_numbers_follow_the_cases_and_the_static_ceiling(uninterrupted):
 
 
 @pytest.mark.parametrize("bad, message", [
-    (["--seeds", "0"], "--seeds"), (["--headings", "7"], "--headings"), (["--position-limit", "-1"], "position_limit"),
-    (["--workers", "0"], "--workers"), (["--duration", "nan"], "duration")])
+    (["--seeds", "0"], "seeds: an integer >= 1"), (["--headings", "7"], "--headings"),
+    (["--position-limit", "-1"], "position_limit"), (["--workers", "0"], "--workers"),
+    (["--duration", "nan"], "duration"), (["--level3-criteria", str(DATA / "missing.yaml")], "missing.yaml"),
+    (["--level3-criteria", str(ROOT / "config/dp_vessel.yaml")], "unknown key(s)")])
 def test_bad_inputs_are_refused_before_the_first_case(bad, message, tmp_path, capsys):
     assert main(["--dnv-level3", *FILES, "--out", str(tmp_path), *SMALL, *bad]) == 2
     assert message in capsys.readouterr().err
@@ -174,47 +196,19 @@ def test_an_unreachable_scheduler_is_refused_before_the_analysis_and_the_journal
     assert (tmp_path / JOURNAL).read_text() == earlier
 
 
-def test_the_footprints_share_one_scale_about_the_limit_with_labelled_axes_and_no_legend_over_a_track(
-        uninterrupted, tmp_path):
-    """The study again from its journal (nothing runs): every panel 3 times the 0.05 m limit about
-    the set-point, metres on the outer axes, the numbers in the titles, one legend under the
-    panels, titles inside the figure, and how far a track that leaves the view went."""
-    import shutil
+def test_the_criteria_file_gives_the_criteria_and_an_option_overrides_its_key(tmp_path):
+    import argparse
 
-    import numpy as np
-
-    from allocator_pkg.capability.report.plotting import pyplot
+    from allocator_pkg.cli.allocator_capability import add_level3_arguments, level3_criteria
     from allocator_pkg.dp.level3.case import Criteria
-    from allocator_pkg.dp.level3.study import Level3Inputs, study
-    from allocator_pkg.dp.report.level3_report import footprints_figure
 
-    shutil.copy(uninterrupted / JOURNAL, tmp_path / JOURNAL)
-    inputs = Level3Inputs(*map(ROOT.joinpath, ("config/dp_vessel.yaml", "config/particulars/dp_vessel.yaml")),
-                          site=DATA / "sites" / "level3_site.yaml", heading_step=90.0,
-                          criteria=Criteria(position_limit=0.05, settle=2.0, duration=6.0))
-    prepared, result, finished = study(inputs, tmp_path, workers=1, resume=True, progress=False)
-    figure = footprints_figure(prepared, result, finished, "dp_vessel")
-    panels = [axes for axes in figure.axes if axes.get_title()]
-    assert [axes.get_title().split("\n")[0] for axes in panels] == ["0 deg", "90 deg", "180 deg", "270 deg"]
-    for axes, heading in zip(panels, (0.0, 90.0, 180.0, 270.0)):
-        assert axes.get_xlim() == pytest.approx((-0.15, 0.15)) and axes.get_ylim() == pytest.approx((-0.15, 0.15))
-        assert axes.get_legend() is None
-        numbers = {case: prepared.search.outcome((heading, case), finished).number for case in prepared.search.cases}
-        assert axes.get_title().replace("\n", " ").endswith(", ".join(f"{c} {n}" for c, n in numbers.items()))
-        shown = [finished[key].track for case, n in numbers.items() for key in ((heading, n, case, 0),
-                                                                                 (heading, n + 1, case, 0))
-                 if key in finished]
-        farthest = max(float(np.max(np.abs(np.array(track)))) for track in shown)
-        off = [text.get_text() for text in axes.texts]
-        assert off == ([f"off view: to {farthest:.0f} m"] if farthest > 0.15 else [])
-    assert {axes.get_xlabel() for axes in panels} == {"east [m]"} and {a.get_ylabel() for a in panels[:1]} == \
-        {"north [m]"}
-    legend = [text.get_text() for text in figure.legends[0].get_texts()]
-    assert legend[:len(prepared.search.cases)] == list(prepared.search.cases) and "position limit 0.05 m" in legend
-    figure.draw_without_rendering()
-    renderer = figure.canvas.get_renderer()
-    frame = figure.bbox
-    for text in [figure._suptitle, *(axes.title for axes in panels)]:
-        box = text.get_window_extent(renderer)
-        assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and box.y1 <= frame.y1
-    pyplot().close(figure)
+    parser = argparse.ArgumentParser()
+    add_level3_arguments(parser)
+    path = tmp_path / "criteria.yaml"
+    path.write_text("seeds: 4\nquantile: 0.8\nposition_limit: 2\n")
+    assert level3_criteria(parser.parse_args([])) == Criteria()
+    assert level3_criteria(parser.parse_args(["--level3-criteria", str(path)])) == Criteria(2.0, seeds=4,
+                                                                                           quantile=0.8)
+    overridden = parser.parse_args(["--level3-criteria", str(path), "--seeds", "6", "--position-limit", "3",
+                                    "--heading-limit", "4", "--settle", "5", "--duration", "7"])
+    assert level3_criteria(overridden) == Criteria(3.0, 4.0, 5.0, 7.0, seeds=6, quantile=0.8)
