@@ -36,9 +36,10 @@ from ..dp.level2 import Level2
 from ..dp.level3.case import CRITERIA_KEYS, Criteria
 from ..dp.level3.criteria_file import read_criteria
 from ..dp.level3.engine import CaseLost, Interrupted
+from ..dp.level3.screening import screening_table
 from ..dp.level3.study import BASE_SCENARIO, JOURNAL, Level3Inputs, study
 from ..dp.report.files import write_report
-from ..dp.report.level3_report import write_level3
+from ..dp.report.level3_report import Screening, write_level3
 from ..dp.vessel_files import read_vessel_files
 from ..methods import METHODS
 from ..vehicle.config import DOF_NAMES
@@ -153,7 +154,7 @@ def level3_command(arguments: argparse.Namespace) -> int:
     except CaseLost as error:
         print(f"allocator-capability: {error}; rerun with --resume", file=sys.stderr)
         return 1
-    paths = write_level3(prepared, result, finished, out)
+    paths = write_level3(prepared, result, finished, out, Screening(*screening_table(prepared.setup, finished)))
     print(result.summary_line())
     print(result.scope)
     print(result.notes[0])

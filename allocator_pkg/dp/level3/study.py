@@ -30,6 +30,7 @@ from ..inputs.site import load_site
 from ..level1 import MAX_STEP_DEG, Level1
 from ..level2 import Level2
 from .case import CRITERIA_NOTE, CaseResult, CaseSetup, Criteria
+from .dp_system import describe_dp_system
 from .engine import Interrupted, open_engine, run_search
 from .journal import Journal
 from .search import STATIC, Level3Search
@@ -158,12 +159,16 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
              f"Seeds per condition: {criteria.seeds} (indices 0 ... {criteria.seeds - 1}, the same for every "
              f"condition); a condition holds when the {criteria.quantile:g} quantile ({criteria.quantile_method}) "
              "over its seeds of each run's largest excursion is within its limit; base scenario "
-             f"{inputs.scenario.name} (controller gains, thruster time constant, the environment's slow variations; "
-             f"gusts at its turbulence intensity); method {prepared.setup.scenario.method}.",
+             f"{inputs.scenario.name} (controller gains, thruster time constant, the current's slow variation); "
+             f"method {prepared.setup.scenario.method}.",
+             environment_note(prepared.setup),
              prepared.analysis.site.describe() if prepared.analysis.site else
              "Environment: Table 2-1 (no site environment given).",
              "Limiting wind speed: the wind of the number's condition (no bisection between conditions in the time "
              "domain)."]
+    if prepared.setup.dp_system:
+        middle = prepared.setup.conditions[len(prepared.setup.conditions) // 2]
+        lines.append(describe_dp_system(prepared.setup.scenario, middle.tp))
     if inputs.heading_step > MAX_STEP_DEG:
         lines.append(f"Headings every {inputs.heading_step:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
     static = []
@@ -174,3 +179,15 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
     lines.append("Not simulated, the static Level 2 balance already fails them (case heading: condition): "
                  + ("; ".join(static) if static else "none") + ".")
     return lines
+
+
+def environment_note(setup: CaseSetup) -> str:
+    """Where a case's wind, waves and current come from, as :func:`.case.case_environment` builds them."""
+    if not setup.spectra:
+        return ("Environment: the base scenario's first-order gust at its turbulence intensity and the mean wave drift "
+                "times a first-order factor; wind, waves and current from one heading.")
+    gusts = {"api": "API", "harris": "Harris"}.get(setup.scenario.environment.wind_spectrum, "NPD")
+    return (f"Environment: {gusts} gusts on the mean wind, a long-crested JONSWAP sea of the condition's Hs and Tp "
+            "(DNV-RP-C205's peak factor) with Newman's slowly varying drift and the first-order wave motion in the "
+            "position measurement, the mean wind load [3.5] and mean wave drift [3.7] of the standard, the current "
+            "with its slow variation; wind, waves and current from one heading (Level 1's collinear environment).")
