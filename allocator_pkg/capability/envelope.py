@@ -243,6 +243,18 @@ class Capability:
     def _solve(self, unit, fixed, low, high, pieces, sides) -> tuple[float, np.ndarray]:
         """max F s.t. T_e f = F unit + fixed, boxes, and each rotatable force in its piece."""
         model = self.model
+        cost, a_ub, b_ub, a_eq, bounds = self._constraints(unit, low, high, pieces, sides)
+        result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
+        if not result.usable:
+            return 0.0, np.zeros(model.m)
+        return float(result.x[-1]), result.x[:model.m]
+
+    def _constraints(self, unit, low, high, pieces, sides) -> tuple:
+        """(cost, inequality rows, their bounds, equality rows, column bounds) of :meth:`_solve`'s
+        programme; the equality rows' right-hand side is the fixed part of the request. Each
+        inequality row belongs to one rotatable thruster (its columns only) and its bound is the
+        piece's radius times a number of the piece's shape, or 0."""
+        model = self.model
         columns = model.m + 1
         bounds = [(None, None)] * model.m + [(0.0, None)]
         for i, column in zip(model.scalar, model.scalar_columns):
@@ -286,10 +298,7 @@ class Capability:
         a_eq = np.hstack([model.t_ec, -unit.reshape(-1, 1)])
         cost = np.zeros(columns)
         cost[-1] = -1.0
-        result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
-        if not result.usable:
-            return 0.0, np.zeros(model.m)
-        return float(result.x[-1]), result.x[:model.m]
+        return cost, a_ub, b_ub, a_eq, bounds
 
     def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces) -> Solution:
         """:meth:`_solve`'s programme on HiGHS (a subclass may add rows, and columns after its own)."""

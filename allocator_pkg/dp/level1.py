@@ -38,6 +38,7 @@ from ..capability.envelope import Capability
 from ..capability.thrust_profile import ThrustProfile
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability_result import INTACT, SCOPE_L1, WORST, Allocation, CapabilityResult, ThrusterUse
+from .case_balance import MARGIN, CaseBalance
 from .inputs.particulars import Particulars, with_vehicle_geometry
 from .notes import hull_note, source_note, thruster_note
 from .standard.interaction_zones import Unit, Zone, flushing_zones
@@ -102,6 +103,7 @@ class Level1:
         self._capabilities: dict[tuple, Capability] = {}
         self._winners: dict[tuple[str, ...], int] = {}
         self._power: dict[tuple[str, ...], PowerLimits | None] = {}
+        self._balances: dict[tuple, CaseBalance | None] = {}
         self.capability(vehicle)                               # the method can serve the vehicle
 
     def loads(self, condition: WeatherCondition, direction: float) -> LoadComponents:
@@ -221,6 +223,16 @@ class Level1:
                                        else PoweredCapability(variant, self.method, limits, profiles))
         return self._capabilities[key]
 
+    def case_balance(self, variant: Vehicle, failed: tuple[str, ...]) -> CaseBalance | None:
+        """The kept programmes of the case that loses ``failed`` (:class:`.case_balance.CaseBalance`),
+        set up at its first variant; None for a method that cannot redistribute force."""
+        key = (failed, tuple(a.name for a in variant.actuators))
+        if key not in self._balances:
+            capability = self.capability(variant, failed)
+            self._balances[key] = (None if capability.sides is None
+                                   else CaseBalance(capability, self.power_limits(failed)))
+        return self._balances[key]
+
     def required(self, condition: WeatherCondition, direction: float) -> np.ndarray:
         """The wrench [X, Y, Z, K, M, N] (body frame) the thrusters must give: -1.25 times the loads."""
         tau = np.zeros(6)
@@ -238,9 +250,16 @@ class Level1:
         variant = self.variant(condition, direction, failed)
         if not variant.actuators:
             return False
-        capability = self.capability(variant, failed)
-        scale = float(np.max(np.abs(tau[capability.model.dof_index]) / np.maximum(capability.model.authority, 1e-12)))
-        held, winner = capability.attains(tau / scale, scale * (1.0 - 1e-9), self._winners.get(failed, 0))
+        balance = self.case_balance(variant, failed)
+        if balance is None:
+            capability = self.capability(variant, failed)
+            scale = float(np.max(np.abs(tau[capability.model.dof_index]) / np.maximum(capability.model.authority,
+                                                                                      1e-12)))
+            held, winner = capability.attains(tau / scale, scale * (1.0 - MARGIN), self._winners.get(failed, 0))
+        else:
+            dead = tuple(sorted(set(self.actuators) - {a.name for a in variant.actuators}))
+            held, winner = balance.attains(variant, force_profiles(variant, self.thrust_profiles(dead), self.rudders),
+                                           tau, self._winners.get(failed, 0))
         if held:                                # in units of authority; the pieces that held first next time
             self._winners[failed] = winner
         return held
