@@ -188,6 +188,18 @@ class Capability:
                 return True, k
         return False, -1
 
+    def combination_forces(self, tau, index: int) -> tuple[float, np.ndarray]:
+        """(lambda, f) as :meth:`reach_forces` gives them (no power rule) where the ``index``-th
+        combination of convex pieces (in :meth:`attains`' order) is the first that reaches
+        furthest: its programme alone solved."""
+        request = np.asarray(tau, dtype=float)[self.model.dof_index]
+        conditions = self.in_force()
+        low, high = conditions.low, conditions.high
+        combinations = itertools.product(*(self._pieces(i, conditions, low[i], high[i]) for i in self.model.rot))
+        pieces = next(itertools.islice(combinations, index, None))
+        magnitude, force = self._solve(request, np.zeros(self.model.n), low, high, pieces, self.sides)
+        return (magnitude, force) if magnitude > 0.0 else (0.0, np.zeros(self.model.m))
+
     def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
                  faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:
         directions = np.radians(np.arange(0.0, 360.0, step_deg))

@@ -33,13 +33,26 @@ from ..capability.thrust_profile import ForceProfile
 from ..capability.thruster_pieces import thruster_pieces
 from ..effectiveness.faults import FaultSet
 from ..solvers.linear_program import LinearProgram
+from ..solvers.outcome import Solution
 from ..vehicle.config import Vehicle
 from .standard.power_balance import CHORDS, PowerLimits, fraction_entries, power_rows, within
 
 DUAL_TOLERANCE = 1e-10
-"""HiGHS's dual feasibility tolerance of the kept programmes."""
+"""HiGHS's dual feasibility tolerance of the kept programmes (its least): a warm start from the
+basis of a neighbouring balance stops where no reduced cost is beyond it, and its default
+(1e-7) can leave a multiple 1e-4 short of the optimum with the forces in newtons."""
+COLD_BAND = 1e-6
+"""A warm answer within this share of the multiple asked is solved again from no basis."""
+TIE = 1e-6
+"""Two combinations whose largest multiples are this close (relative) are not told apart."""
 MARGIN = 1e-9
 """A balance holds when the largest multiple of the load is at least 1 - MARGIN."""
+
+
+def authority_scale(tau: np.ndarray, dof_index: np.ndarray, authority: np.ndarray) -> float:
+    """The largest ratio of ``tau`` [X, Y, Z, K, M, N] to the authority in a controlled DOF: a
+    balance asks for ``tau`` over it, so that its multiple is in units of authority."""
+    return float(np.max(np.abs(tau[dof_index]) / np.maximum(authority, 1e-12)))
 
 
 @dataclass
@@ -77,26 +90,46 @@ class CaseBalance:
         controlled DOF), and the index of the combination of pieces that does (-1: none), trying
         ``first`` first: :meth:`Capability.attains` of ``tau`` over its largest ratio to the
         variant's authority, ``multiple`` that ratio times 1 - MARGIN."""
+        low, high, request, scale, combinations = self._prepare(variant, profiles, tau)
+        multiple = scale * (1.0 - MARGIN)
+        for k in sorted(range(len(combinations)), key=lambda k: k != first):
+            if self._reach(variant, request, low, high, combinations[k], multiple) >= multiple:
+                return True, k
+        return False, -1
+
+    def largest(self, variant: Vehicle, profiles: Mapping[str, ForceProfile], tau: np.ndarray) -> int | None:
+        """The index of the combination of pieces (in :meth:`attains`' order) whose programme, the
+        power rows in force, gives the largest multiple of ``tau``; None where none gives any or
+        another comes within TIE of it."""
+        low, high, request, _, combinations = self._prepare(variant, profiles, tau)
+        multiples = []
+        for pieces in combinations:
+            solution = self._solve(variant, request, low, high, pieces, self.limits is not None, None)
+            multiples.append(float(solution.x[self.capability.model.m]) if solution.usable else 0.0)
+        best = int(np.argmax(multiples))
+        if multiples[best] <= 0.0 or any(multiple >= (1.0 - TIE) * multiples[best]
+                                         for k, multiple in enumerate(multiples) if k != best):
+            return None
+        return best
+
+    def _prepare(self, variant: Vehicle, profiles: Mapping[str, ForceProfile], tau: np.ndarray) -> tuple:
+        """(low, high, request, scale, combinations): the variant's force ranges with the zones in
+        force, ``tau`` over its largest ratio to the variant's authority (``scale``) in the
+        controlled DOFs, and every combination of its rotatable thrusters' convex pieces."""
         model = self.capability.model
         if any(a.is_surface for a in variant.actuators):
             raise ValueError("a Level 1 variant has no control surfaces: a rudder is its propeller's profile")
         conditions = Conditions.of(variant, FaultSet.of(variant, None), 0.0, None)
         low, high = conditions.low, conditions.high
         force_scale = np.array([max(a.thrust_max, -a.thrust_min) for a in variant.actuators])
-        authority = np.abs(model.t_ec) @ force_scale[model.extended_owner]
-        scale = float(np.max(np.abs(tau[model.dof_index]) / np.maximum(authority, 1e-12)))
-        request = np.asarray(tau / scale, dtype=float)[model.dof_index]
-        multiple = scale * (1.0 - MARGIN)
+        scale = authority_scale(tau, model.dof_index, np.abs(model.t_ec) @ force_scale[model.extended_owner])
         choices = []
         for i in model.rot:
             name = variant.actuators[i].name
             choices.append(thruster_pieces(conditions.rotations[i], conditions.faults.faults.get(name), low[i],
                                            high[i], profiles.get(name), conditions.losses.get(int(i), ())))
-        combinations = list(itertools.product(*choices))
-        for k in sorted(range(len(combinations)), key=lambda k: k != first):
-            if self._reach(variant, request, low, high, combinations[k], multiple) >= multiple:
-                return True, k
-        return False, -1
+        return low, high, np.asarray(tau / scale, dtype=float)[model.dof_index], scale, list(
+            itertools.product(*choices))
 
     def _reach(self, variant: Vehicle, request: np.ndarray, low: np.ndarray, high: np.ndarray, pieces,
                multiple: float) -> float:
@@ -104,18 +137,19 @@ class CaseBalance:
         power rows, and with them where the forces of that answer scaled to ``multiple`` would
         take a source beyond its power."""
         model = self.capability.model
-        plain = self._solve(variant, request, low, high, pieces, powered=False)
+        plain = self._solve(variant, request, low, high, pieces, False, multiple)
         if not plain.usable:
             return 0.0
         if self.limits is None or plain.x[-1] < multiple or within(
                 self.limits, model, variant.actuators, plain.x[:-1] * (multiple / plain.x[-1]), pieces):
             return float(plain.x[-1])
-        powered = self._solve(variant, request, low, high, pieces, powered=True)
+        powered = self._solve(variant, request, low, high, pieces, True, multiple)
         return float(powered.x[model.m]) if powered.usable else 0.0
 
     def _solve(self, variant: Vehicle, request: np.ndarray, low: np.ndarray, high: np.ndarray, pieces,
-               powered: bool):
-        """One kept programme with this balance's values, solved."""
+               powered: bool, multiple: float | None) -> Solution:
+        """One kept programme with this balance's values, solved from the last basis, and again
+        from none where the answer is within COLD_BAND of ``multiple`` (None: not again)."""
         model = self.capability.model
         key = (powered, tuple((start, end, line, chords, radius > 0.0) for start, end, radius, line, chords in pieces),
                self._directions(variant) if powered else ())
@@ -136,7 +170,10 @@ class CaseBalance:
                         lp.coefficient(row, int(column), coefficient)
                     row += 1
                 row += len(CHORDS)
-        return lp.solve()
+        solution = lp.solve()
+        if multiple is not None and solution.usable and abs(solution.x[model.m] - multiple) <= COLD_BAND * multiple:
+            solution = lp.solve(cold=True)
+        return solution
 
     def _directions(self, variant: Vehicle) -> tuple:
         """Which ways each fixed thruster of the power rows pushes (its rows)."""
