@@ -164,7 +164,7 @@ class CaseBalance:
             lp.coefficient(int(row), programme.column, -float(value))
         if programme.first_power_row is not None:
             row = programme.first_power_row
-            for fractions in (fraction_entries(self.limits, model, variant.actuators, pieces)):
+            for fractions in fraction_entries(self.limits, model, variant.actuators, pieces):
                 for entries in fractions:
                     for column, coefficient in entries:
                         lp.coefficient(row, int(column), coefficient)
@@ -177,9 +177,9 @@ class CaseBalance:
 
     def _directions(self, variant: Vehicle) -> tuple:
         """Which ways each fixed thruster of the power rows pushes (its rows)."""
-        names = [a.name for a in variant.actuators]
-        return tuple((variant.actuators[names.index(n)].thrust_max > 0.0, variant.actuators[names.index(n)].thrust_min
-                      < 0.0) for n in self.limits.thrusters if not variant.actuators[names.index(n)].rotatable)
+        actuators = {a.name: a for a in variant.actuators}
+        return tuple((actuators[name].thrust_max > 0.0, actuators[name].thrust_min < 0.0)
+                     for name in self.limits.thrusters if not actuators[name].rotatable)
 
     def _setup(self, variant: Vehicle, request: np.ndarray, low: np.ndarray, high: np.ndarray, pieces,
                powered: bool) -> _Programme:

@@ -1,10 +1,12 @@
 """The kept programmes of a Level 1 case: each balance answers as an independent solver of the
 same programme (scipy's interior point method, from nothing), through every case, heading and
 condition of dp_vessel and otter_usv in any order; a full heading search gives the numbers and
-limiting wind speeds of the same search on that solver; the programmes are set up once per shape."""
+limiting wind speeds of the same search on that solver; the programmes are set up once per shape;
+the tables' forces are those of every combination solved afresh; the search's balances."""
 
 import itertools
 import math
+from collections import Counter
 
 import numpy as np
 import pytest
@@ -18,7 +20,7 @@ from allocator_pkg.dp.case_balance import MARGIN
 from allocator_pkg.dp.inputs.particulars import load_particulars
 from allocator_pkg.dp.level1 import Level1
 from allocator_pkg.dp.standard.power_balance import power_rows
-from allocator_pkg.dp.standard.weather import condition_at
+from allocator_pkg.dp.standard.weather import BISECTION_STEPS, TOP, condition_at
 
 VESSELS = ("dp_vessel", "otter_usv")
 AMBIGUOUS = 1e-7
@@ -163,3 +165,28 @@ def test_the_furthest_combination_is_the_independent_solvers():
 
 
 UNKEPT = level1("dp_vessel", UnkeptLevel1)
+
+
+class CountingLevel1(Level1):
+    """Level 1 that counts its balances per heading and case."""
+
+    def __init__(self, *args):
+        self.counts: Counter = Counter()
+        super().__init__(*args)
+
+    def balanced(self, level: float, direction: float, failed: tuple[str, ...] = ()) -> bool:
+        self.counts[(direction, failed)] += 1
+        return super().balanced(level, direction, failed)
+
+
+def test_a_heading_costs_the_rising_search_and_its_halvings():
+    """The search stays exact ([2.2.2]: every lower number held; the balance need not be monotone
+    in the number): per heading and case the numbers 1 ... n + 1 (11 at most), then
+    BISECTION_STEPS halvings unless n is 11."""
+    analysis = level1("dp_vessel", CountingLevel1)
+    for failed in analysis.cases().values():
+        for heading in (0.0, 90.0, 200.0, 330.0):
+            direction = math.radians(heading)
+            number, _ = analysis.heading(direction, failed)
+            expected = min(number + 1, TOP) + (BISECTION_STEPS if number < TOP else 0)
+            assert analysis.counts[(direction, failed)] == expected, (failed, heading, number)
