@@ -173,6 +173,8 @@ def test_the_dp_capability_bench_times_every_run_and_counts_its_balances():
     result = dp_capability.measure(repeats=2, step_deg=90.0)
     assert (result["headings"], result["cases"], result["repeats"]) == (4, 3, 2) and len(result["wall_s"]) == 2
     assert result["wall_s_median"] == pytest.approx(sum(result["wall_s"]) / 2)
+    assert result["user_cpu_s_median"] > 0.0 and result["ms_per_balance"] == pytest.approx(
+        1e3 * result["wall_s_median"] / result["balances"])
     assert result["summary"].startswith("DP capability-L1(")
     # every heading and case balances its number's conditions and then halves 14 times at least
     assert result["balances"] >= 4 * 3 * 14
@@ -180,11 +182,11 @@ def test_the_dp_capability_bench_times_every_run_and_counts_its_balances():
 
 def test_the_report_gives_the_dp_capability_run_against_its_target():
     run = {"vessel": "dp_vessel", "heading_step_deg": 10.0, "headings": 36, "cases": 3, "repeats": 3,
-           "wall_s": [7.0, 8.0, 7.5], "wall_s_median": 7.5, "balances": 2500,
-           "summary": "DP capability-L1(10, 8, 8, 6)", "target_s": 10.0}
+           "wall_s": [4.0, 5.5, 4.5], "wall_s_median": 4.5, "user_cpu_s_median": 4.25, "balances": 2500,
+           "summary": "DP capability-L1(10, 8, 8, 6)", "target_s": 5.0}
     lines = report._dp_capability_section(run)
     assert lines[0] == "## DP capability Level 1"
-    assert "| dp_vessel | DP capability-L1(10, 8, 8, 6) | 2500 | 7.50 | 3.00 | < 10 | yes |" in lines
+    assert "| dp_vessel | DP capability-L1(10, 8, 8, 6) | 2500 | 4.50 | 4.25 | 1.80 | < 5 | yes |" in lines
     assert report._dp_capability_section({**run, "wall_s_median": 12.0})[-1].endswith("| no |")
 
 

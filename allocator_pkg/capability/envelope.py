@@ -190,6 +190,18 @@ class Capability:
                 return True, k
         return False, -1
 
+    def combination_forces(self, tau, index: int) -> tuple[float, np.ndarray]:
+        """(lambda, f) as :meth:`reach_forces` gives them (no power rule) where the ``index``-th
+        combination of convex pieces (in :meth:`attains`' order) is the first that reaches
+        furthest: its programme alone solved."""
+        request = np.asarray(tau, dtype=float)[self.model.dof_index]
+        conditions = self.in_force()
+        low, high = conditions.low, conditions.high
+        combinations = itertools.product(*(self._pieces(i, conditions, low[i], high[i]) for i in self.model.rot))
+        pieces = next(itertools.islice(combinations, index, None))
+        magnitude, force = self._solve(request, np.zeros(self.model.n), low, high, pieces, self.sides)
+        return (magnitude, force) if magnitude > 0.0 else (0.0, np.zeros(self.model.m))
+
     def envelope(self, step_deg: float = 5.0, yaw_moment: float = 0.0,
                  faults: Mapping[str, Fault | FaultMode] | None = None) -> Envelope:
         directions = np.radians(np.arange(0.0, 360.0, step_deg))
@@ -245,6 +257,18 @@ class Capability:
     def _solve(self, unit, fixed, low, high, pieces, sides) -> tuple[float, np.ndarray]:
         """max F s.t. T_e f = F unit + fixed, boxes, and each rotatable force in its piece."""
         model = self.model
+        cost, a_ub, b_ub, a_eq, bounds = self._constraints(unit, low, high, pieces, sides)
+        result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
+        if not result.usable:
+            return 0.0, np.zeros(model.m)
+        return float(result.x[-1]), result.x[:model.m]
+
+    def _constraints(self, unit, low, high, pieces, sides) -> tuple:
+        """(cost, inequality rows, their bounds, equality rows, column bounds) of :meth:`_solve`'s
+        programme; the equality rows' right-hand side is the fixed part of the request. Each
+        inequality row belongs to one rotatable thruster (its columns only) and its bound is the
+        piece's radius times a number of the piece's shape, or 0."""
+        model = self.model
         columns = model.m + 1
         bounds = [(None, None)] * model.m + [(0.0, None)]
         for i, column in zip(model.scalar, model.scalar_columns):
@@ -288,10 +312,7 @@ class Capability:
         a_eq = np.hstack([model.t_ec, -unit.reshape(-1, 1)])
         cost = np.zeros(columns)
         cost[-1] = -1.0
-        result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
-        if not result.usable:
-            return 0.0, np.zeros(model.m)
-        return float(result.x[-1]), result.x[:model.m]
+        return cost, a_ub, b_ub, a_eq, bounds
 
     def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces) -> Solution:
         """:meth:`_solve`'s programme on HiGHS (a subclass may add rows, and columns after its own)."""

@@ -21,10 +21,11 @@ beta_vent [3.9.4] of the condition and heading (:mod:`.standard.thrust`); the fo
 file's forbidden sectors; the losses flushing the case's dead thrusters [3.11.4] and skegs
 [3.11.5] by thrust direction (:mod:`.standard.losses`); a shaft line's rudder [3.10] (:mod:`.standard.rudders`).
 Per (condition, heading, case) a variant of the vehicle, its working thrusters with those thrust
-ranges, zones and losses, is balanced by :meth:`~..capability.envelope.Capability.reach` (a linear
-programme with the configured method's constraints), jointly with the power of each source that
-could be short ([3.12.3]-[3.12.5], :mod:`.standard.power_balance`). Not yet: :data:`~.capability_result.NOT_YET`.
-Not verified by DNV.
+ranges, zones and losses, is balanced as :meth:`~..capability.envelope.Capability.attains` would (a
+linear programme with the configured method's constraints), jointly with the power of each source
+that could be short ([3.12.3]-[3.12.5], :mod:`.standard.power_balance`), on the case's programmes
+kept from one balance to the next (:mod:`.case_balance`). The search per heading stays the rising
+one of :func:`.standard.weather.limit`. Not yet: :data:`~.capability_result.NOT_YET`. Not verified by DNV.
 """
 
 from __future__ import annotations
@@ -35,9 +36,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..capability.envelope import Capability
-from ..capability.thrust_profile import ThrustProfile
+from ..capability.thrust_profile import ForceProfile, ThrustProfile
 from ..vehicle.config import DOF_NAMES, ActuatorConfig, Vehicle
 from .capability_result import INTACT, SCOPE_L1, WORST, Allocation, CapabilityResult, ThrusterUse
+from .case_balance import MARGIN, CaseBalance, authority_scale
 from .inputs.particulars import Particulars, with_vehicle_geometry
 from .notes import hull_note, source_note, thruster_note
 from .standard.interaction_zones import Unit, Zone, flushing_zones
@@ -102,6 +104,7 @@ class Level1:
         self._capabilities: dict[tuple, Capability] = {}
         self._winners: dict[tuple[str, ...], int] = {}
         self._power: dict[tuple[str, ...], PowerLimits | None] = {}
+        self._balances: dict[tuple, CaseBalance | None] = {}
         self.capability(vehicle)                               # the method can serve the vehicle
 
     def loads(self, condition: WeatherCondition, direction: float) -> LoadComponents:
@@ -207,12 +210,17 @@ class Level1:
             actuators.append(pair.turned(fixed) if pair and pair.rudder not in failed else fixed)
         return replace(self.vehicle, actuators=tuple(actuators), flushing_zones="none")
 
+    def variant_profiles(self, variant: Vehicle) -> dict[str, ForceProfile]:
+        """What the capability analysis takes for a variant's rotatable thrusters: the
+        :meth:`thrust_profiles` of its case (the thrusters it leaves out), a turned shaft line's rudder fan."""
+        dead = tuple(sorted(set(self.actuators) - {a.name for a in variant.actuators}))
+        return force_profiles(variant, self.thrust_profiles(dead), self.rudders)
+
     def capability(self, variant: Vehicle, failed: tuple[str, ...] | None = None) -> Capability:
         """The capability analysis of a variant with its case's :meth:`thrust_profiles` (the case:
         the thrusters it leaves out), kept by its ranges, zones and profiles; with the power rows of
         the case that loses ``failed`` (None: without power rows)."""
-        dead = tuple(sorted(set(self.actuators) - {a.name for a in variant.actuators}))
-        profiles = force_profiles(variant, self.thrust_profiles(dead), self.rudders)
+        profiles = self.variant_profiles(variant)
         limits = None if failed is None else self.power_limits(failed)
         key = (tuple((a.name, a.thrust_min, a.thrust_max, a.rotation.forbidden_sectors if a.rotation else (),
                       profiles.get(a.name)) for a in variant.actuators), limits.key() if limits else None)
@@ -220,6 +228,15 @@ class Level1:
             self._capabilities[key] = (Capability(variant, self.method, speed=0.0, profiles=profiles) if limits is None
                                        else PoweredCapability(variant, self.method, limits, profiles))
         return self._capabilities[key]
+
+    def case_balance(self, variant: Vehicle, failed: tuple[str, ...]) -> CaseBalance | None:
+        """The kept programmes of the case that loses ``failed`` (:class:`.case_balance.CaseBalance`),
+        set up at its first variant; None for a method that cannot redistribute force."""
+        key = (failed, tuple(a.name for a in variant.actuators))
+        if key not in self._balances:
+            kept = self.capability(variant, failed)
+            self._balances[key] = None if kept.sides is None else CaseBalance(kept, self.power_limits(failed))
+        return self._balances[key]
 
     def required(self, condition: WeatherCondition, direction: float) -> np.ndarray:
         """The wrench [X, Y, Z, K, M, N] (body frame) the thrusters must give: -1.25 times the loads."""
@@ -238,9 +255,13 @@ class Level1:
         variant = self.variant(condition, direction, failed)
         if not variant.actuators:
             return False
-        capability = self.capability(variant, failed)
-        scale = float(np.max(np.abs(tau[capability.model.dof_index]) / np.maximum(capability.model.authority, 1e-12)))
-        held, winner = capability.attains(tau / scale, scale * (1.0 - 1e-9), self._winners.get(failed, 0))
+        balance = self.case_balance(variant, failed)
+        if balance is None:
+            capability = self.capability(variant, failed)
+            scale = authority_scale(tau, capability.model.dof_index, capability.model.authority)
+            held, winner = capability.attains(tau / scale, scale * (1.0 - MARGIN), self._winners.get(failed, 0))
+        else:
+            held, winner = balance.attains(variant, self.variant_profiles(variant), tau, self._winners.get(failed, 0))
         if held:                                # in units of authority; the pieces that held first next time
             self._winners[failed] = winner
         return held
@@ -288,13 +309,14 @@ class Level1:
         variant = self.variant(condition, direction, failed)
         if not variant.actuators:
             return ()
-        capability = self.capability(variant, failed)
-        model = capability.model
-        tau = self.required(condition, direction)
+        capability, balance = self.capability(variant, failed), self.case_balance(variant, tuple(failed))
+        model, tau = capability.model, self.required(condition, direction)
         force = np.zeros(model.m)
-        if np.any(tau):
-            scale = float(np.max(np.abs(tau[model.dof_index]) / np.maximum(model.authority, 1e-12)))
-            multiple, force = capability.reach_forces(tau / scale)
+        if np.any(tau):                         # the furthest combination alone where the kept programmes tell it
+            scale = authority_scale(tau, model.dof_index, model.authority)
+            best = None if balance is None else balance.largest(variant, self.variant_profiles(variant), tau)
+            multiple, force = (capability.reach_forces(tau / scale) if best is None
+                               else capability.combination_forces(tau / scale, best))
             force = force * (scale / multiple) if multiple > 0.0 else np.zeros(model.m)
         uses = []
         for index, actuator in enumerate(variant.actuators):

@@ -69,10 +69,12 @@ class LinearProgram:
             self._coefficients[key] = value
             self._highs.changeCoeff(row, column, value)
 
-    def solve(self) -> Solution:
+    def solve(self, cold: bool = False) -> Solution:
         """Solve with the row bounds in ``low`` and ``up``; ``x`` holds every column (zeros when
-        no optimum was found)."""
+        no optimum was found). ``cold``: from no basis (not the last solve's)."""
         highs = self._highs
+        if cold:
+            highs.clearSolver()
         highs.changeRowsBounds(self._rows.size, self._rows, self.low, self.up)
         highs.run()
         status = highs.getModelStatus()

@@ -29,14 +29,15 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ...capability.envelope import Capability
 from ...capability.thrust_profile import ForceProfile
-from ...vehicle.config import Vehicle
+from ...effectiveness.model import Model
+from ...vehicle.config import ActuatorConfig, Vehicle
 
 POWER_RESERVE = 0.10
 """[3.12.3]-[3.12.4]: the share of a source's power kept for hotel and non-thruster consumers."""
@@ -167,61 +168,82 @@ class PoweredCapability(Capability):
         return result
 
     def _within(self, force: np.ndarray, pieces) -> bool:
-        """Whether the extended forces keep every source within its usable power, with r and q
-        as the rows bound them."""
-        model, vehicle = self.model, self.vehicle
-        names = [a.name for a in vehicle.actuators]
-        rot, scalar = list(model.rot), list(model.scalar)
-        fractions = []
-        for name in self.limits.thrusters:
-            index = names.index(name)
-            if index in rot:
-                c1, c2 = model.rot_columns[rot.index(index)]
-                fraction = max((a1 * force[c1] + a2 * force[c2] for a1, a2 in _fraction_rows(pieces[rot.index(index)])),
-                               default=0.0)
-            else:
-                value, actuator = force[model.scalar_columns[scalar.index(index)]], vehicle.actuators[index]
-                fraction = max(value / actuator.thrust_max if actuator.thrust_max > 0.0 else 0.0,
-                               value / actuator.thrust_min if actuator.thrust_min < 0.0 else 0.0)
-            fractions.append(max(0.0, *(slope * fraction + intercept for slope, intercept in CHORDS)))
-        return bool(np.all(self.limits.load @ np.array(fractions) <= 1.0))
+        """Whether the extended forces keep every source within its usable power (:func:`within`)."""
+        return within(self.limits, self.model, self.vehicle.actuators, force, pieces)
 
     def _power_rows(self, base: int, pieces) -> tuple[np.ndarray, np.ndarray]:
-        """(rows, right-hand sides) of the power: r_i above each force over its range (a
-        rotatable thruster's over the 72-gon's faces next to its piece's cone, the only ones its
-        force can reach), q_i above the chords, and the sources."""
-        model, limits = self.model, self.limits
-        count = len(limits.thrusters)
-        rows, right = [], []
+        """(rows, right-hand sides) of the power (:func:`power_rows`)."""
+        return power_rows(self.limits, self.model, self.vehicle.actuators, base, pieces)
 
-        def row(entries: dict[int, float], value: float) -> None:
-            line = np.zeros(base + 2 * count)
-            for column, coefficient in entries.items():
-                line[column] += coefficient
-            rows.append(line)
-            right.append(value)
 
-        names = [a.name for a in self.vehicle.actuators]
-        rot, scalar = list(model.rot), list(model.scalar)
-        for k, name in enumerate(limits.thrusters):
-            index = names.index(name)
-            r, q = base + k, base + count + k
-            if index in rot:
-                c1, c2 = model.rot_columns[rot.index(index)]
-                for a1, a2 in _fraction_rows(pieces[rot.index(index)]):
-                    row({c1: a1, c2: a2, r: -1.0}, 0.0)
-            else:
-                column = model.scalar_columns[scalar.index(index)]
-                actuator = self.vehicle.actuators[index]
-                if actuator.thrust_max > 0.0:
-                    row({column: 1.0 / actuator.thrust_max, r: -1.0}, 0.0)
-                if actuator.thrust_min < 0.0:
-                    row({column: 1.0 / actuator.thrust_min, r: -1.0}, 0.0)
-            for slope, intercept in CHORDS:
-                row({r: slope, q: -1.0}, -intercept)
-        for j in range(len(limits.sources)):
-            row({base + count + i: limits.load[j, i] for i in range(count)}, 1.0)
-        return np.array(rows), np.array(right)
+def within(limits: PowerLimits, model: Model, actuators: Sequence[ActuatorConfig], force: np.ndarray,
+           pieces) -> bool:
+    """Whether the extended forces keep every source within its usable power, with r and q as
+    the rows bound them (``actuators``: the variant's, with its thrust ranges)."""
+    names = [a.name for a in actuators]
+    rot, scalar = list(model.rot), list(model.scalar)
+    fractions = []
+    for name in limits.thrusters:
+        index = names.index(name)
+        if index in rot:
+            c1, c2 = model.rot_columns[rot.index(index)]
+            fraction = max((a1 * force[c1] + a2 * force[c2] for a1, a2 in _fraction_rows(pieces[rot.index(index)])),
+                           default=0.0)
+        else:
+            value, actuator = force[model.scalar_columns[scalar.index(index)]], actuators[index]
+            fraction = max(value / actuator.thrust_max if actuator.thrust_max > 0.0 else 0.0,
+                           value / actuator.thrust_min if actuator.thrust_min < 0.0 else 0.0)
+        fractions.append(max(0.0, *(slope * fraction + intercept for slope, intercept in CHORDS)))
+    return bool(np.all(limits.load @ np.array(fractions) <= 1.0))
+
+
+def fraction_entries(limits: PowerLimits, model: Model, actuators: Sequence[ActuatorConfig],
+                     pieces) -> list[list[tuple[int, float]]]:
+    """Per thruster of ``limits``, its rows r_i >= its force over its range: each row's
+    (force column, coefficient) pairs (a rotatable thruster's over the 72-gon's faces next to its
+    piece's cone, the only ones its force can reach, and its piece's half-planes; a fixed one's
+    over thrust_max and over thrust_min, where it pushes that way)."""
+    names = [a.name for a in actuators]
+    rot, scalar = list(model.rot), list(model.scalar)
+    entries = []
+    for name in limits.thrusters:
+        index = names.index(name)
+        if index in rot:
+            c1, c2 = model.rot_columns[rot.index(index)]
+            entries.append([[(c1, a1), (c2, a2)] for a1, a2 in _fraction_rows(pieces[rot.index(index)])])
+            continue
+        column, actuator = model.scalar_columns[scalar.index(index)], actuators[index]
+        rows = [[(column, 1.0 / actuator.thrust_max)]] if actuator.thrust_max > 0.0 else []
+        if actuator.thrust_min < 0.0:
+            rows.append([(column, 1.0 / actuator.thrust_min)])
+        entries.append(rows)
+    return entries
+
+
+def power_rows(limits: PowerLimits, model: Model, actuators: Sequence[ActuatorConfig], base: int,
+               pieces) -> tuple[np.ndarray, np.ndarray]:
+    """(rows, right-hand sides) of the power over the programme's ``base`` columns and the
+    columns r_i, q_i after them: per thruster its :func:`fraction_entries` rows, q_i above the
+    chords; then one row per source."""
+    count = len(limits.thrusters)
+    rows, right = [], []
+
+    def row(entries: dict[int, float], value: float) -> None:
+        line = np.zeros(base + 2 * count)
+        for column, coefficient in entries.items():
+            line[column] += coefficient
+        rows.append(line)
+        right.append(value)
+
+    for k, fractions in enumerate(fraction_entries(limits, model, actuators, pieces)):
+        r, q = base + k, base + count + k
+        for entries in fractions:
+            row({**dict(entries), r: -1.0}, 0.0)
+        for slope, intercept in CHORDS:
+            row({r: slope, q: -1.0}, -intercept)
+    for j in range(len(limits.sources)):
+        row({base + count + i: limits.load[j, i] for i in range(count)}, 1.0)
+    return np.array(rows), np.array(right)
 
 
 def _fraction_rows(piece) -> list[tuple[float, float]]:
