@@ -22,7 +22,9 @@ import numpy as np
 
 from ..configuration.parameters import load_vehicle
 from .controller import StationKeeping
+from .electric_plant import ElectricPlant
 from .plant import PLANAR, Pose
+from .plant_metrics import plant_report
 from .power_plant import PowerPlant
 from .run_report import report_json, run_report
 from .run_setup import RunResult, Voltage, WeatherScale, build_plant, setpoint_vector, warm_up_steps
@@ -100,7 +102,8 @@ class ClosedLoop:
         self.schedule = scenario.schedule()
         self.voltage = Voltage(scenario)
         self.weather = WeatherScale(scenario)
-        self.power_plant = PowerPlant(self.vehicle)
+        self.electric = None if scenario.power_plant is None else ElectricPlant(scenario.power_plant, self.vehicle)
+        self.power_plant = self.electric or PowerPlant(self.vehicle)
         self.trace = Trace(names=list(self.vehicle.names), period=self.period, horizontal=scenario.horizontal,
                            sources=list(self.power_plant.sources), position_limit=scenario.position_limit)
         self.faults = fault_intervals(scenario.events, scenario.duration)
@@ -116,6 +119,9 @@ class ClosedLoop:
             wall = time.monotonic() - wall_start
         report = run_report(self.scenario, self.trace, self.vehicle,
                             self.scenario.duration / wall if wall > 0 else math.inf)
+        if self.electric is not None:
+            report["power_plant"] = plant_report(self.electric.record, self.electric.sources, self.period)
+            report["metrics"] |= report["power_plant"]["metrics"]
         (self.out / "metrics.json").write_text(report_json(report))
         return RunResult(report["metrics"], self.trace, self.vehicle, self.faults, report)
 
@@ -141,6 +147,8 @@ class ClosedLoop:
             t_ns += self.period_ns
             answer = link.step(t_ns, pose, supply, wrench, position, heading, record=False)
         self.plant.thrusters.start_at(answer.thrust.copy(), answer.azimuth.copy())
+        if self.electric is not None:
+            self.electric.start(self.plant.thrusters.thrust)
         self.log(f"sim: warm-up: {steps} steps of the equilibrium request; thrusters start at "
                  + ", ".join(f"{name} {f:.4g} N" for name, f in zip(self.vehicle.names, answer.thrust)))
         return t_ns + self.period_ns
@@ -175,7 +183,16 @@ class ClosedLoop:
                 error = trace.position_errors()[-1]
                 self.log(f"{t:6.1f} s  err {error:6.2f} m  " + link.live_line())
             self.controller.integrate(plant.eta, setpoint, self.period, answer.unallocated[dofs])
+            if self.electric is not None:
+                plant.thrusters.cap = self.electric.thrust_caps()
             plant.step(answer.thrust, answer.azimuth, self.period)
+            if self.electric is not None:
+                self._switchboards_lost(self.electric.advance(plant.thrusters.thrust, self.period))
+
+    def _switchboards_lost(self, names: list[str]) -> None:
+        """Log each switchboard whose bus went dead (its thrusters' drives stop with it)."""
+        for name in names:
+            self.log(f"sim: {self.electric.time:7.1f} s  power plant: switchboard {name} dead (blackout)")
 
     def _apply(self, link: Link, event: Event) -> None:
         """A timed event: a fault (on the allocator and on the simulated thruster), a redundancy
@@ -203,6 +220,10 @@ class ClosedLoop:
             self.power_plant.restore()
         elif event.kind == "parameter":
             message = link.set_parameter(event.name, event.value)
+        elif event.kind == "generator_trip":
+            message = self.electric.lose_set(event.name)
+        elif event.kind == "bus_tie":
+            message = self.electric.set_bus_tie(event.name, bool(event.value))
         else:
             return
         self.log(f"sim: {event.time:7.1f} s  {message}")

@@ -25,8 +25,10 @@ from ..hull.environment_loads import VesselParticulars
 from ..hull.hull_file import read_hull
 from ..vehicle.config import ConfigError, Vehicle
 from .controller import Gains
+from .electric_plant import PlantSpec
 from .environment import EnvironmentSpec
 from .method_bounds import MethodBounds, method_bounds
+from .power_plant_file import check_plant_bounds, check_plant_events, read_power_plant
 from .scenario_check import (
     check_depth,
     check_environment,
@@ -106,6 +108,8 @@ class Scenario:
     """[m] The vessel has lost its position once its position error exceeds this."""
     method_bounds: dict[str, MethodBounds] = field(default_factory=dict)
     """Per method, what the scenario expects of it in place of ``bounds`` (``methods`` of the file)."""
+    power_plant: PlantSpec | None = None
+    """The simulated electric power plant (``power_plant`` of the file), or None."""
 
     @property
     def horizontal(self) -> bool:
@@ -199,6 +203,15 @@ def _event(data: Any, index: int) -> Event:
         if not isinstance(body.get("group"), str):
             raise ScenarioError(f"{where}group_fault.group: a redundancy group's name, not {body.get('group')!r}")
         return Event(time, kind, name=body["group"])
+    if kind == "generator_trip":
+        if not isinstance(body.get("generator_set"), str):
+            raise ScenarioError(f"{where}generator_trip.generator_set: a generator set's name, not "
+                                f"{body.get('generator_set')!r}")
+        return Event(time, kind, name=body["generator_set"])
+    if kind == "bus_tie":
+        if not isinstance(body.get("tie"), str) or not isinstance(body.get("closed"), bool):
+            raise ScenarioError(f"{where}bus_tie: a tie's name (tie) and closed: true or false, not {body!r}")
+        return Event(time, kind, name=body["tie"], value=body["closed"])
     if kind == "power":
         if not isinstance(body.get("source"), str):
             raise ScenarioError(f"{where}power.source: a power source's name, not {body.get('source')!r}")
@@ -339,6 +352,9 @@ def load_scenario(path: str | Path) -> Scenario:
                    {"setpoint.position": position, "initial.position": initial_position})
     except ValueError as error:
         raise ScenarioError(str(error)) from error
+    plant = read_power_plant(data["power_plant"], config) if "power_plant" in data else None
+    check_plant_events(checked, plant)
+    check_plant_bounds(data.get("bounds", {}) or {}, plant)
     changed = dict(parameters)
     for index, event in sorted(enumerate(checked), key=lambda item: item[1].time):
         _check_event(event, index, config)
@@ -361,5 +377,5 @@ def load_scenario(path: str | Path) -> Scenario:
         bounds=read_bounds(data.get("bounds", {}) or {}, "bounds"), windows=tuple(named),
         description=str(data.get("description", "")),
         position_limit=number(data, "position_limit", ""),
-        method_bounds=method_bounds(data.get("methods", {}) or {}, named, config))
+        method_bounds=method_bounds(data.get("methods", {}) or {}, named, config), power_plant=plant)
 

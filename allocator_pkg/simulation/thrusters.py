@@ -2,7 +2,9 @@
 with the configured rate limit, inside the force range the supply voltage gives; each azimuth
 turns toward its commanded angle at the configured turning rate, the short way round. A
 FAILED actuator gives no force, a STUCK one keeps its angle, a DEGRADED one a share of its
-force. Their wrench is T(alpha) f (survey (1.9)) at the angles reached."""
+force. A drive's power limit (``cap``, the thrust it leaves [N]; the simulated power plant's load
+reduction) holds the thrust under it at once. Their wrench is T(alpha) f (survey (1.9)) at the
+angles reached."""
 
 from __future__ import annotations
 
@@ -33,6 +35,7 @@ class Thrusters:
         self.turn_rate = np.array([a.rotation.rate_max if a.rotatable else 0.0 for a in actuators])
         self.efficiency = np.ones(len(actuators))
         self.stuck = np.zeros(len(actuators), dtype=bool)
+        self.cap = np.full(len(actuators), np.inf)
         self._rotatable = [i for i, a in enumerate(actuators) if a.rotatable]
         self._matrix = configuration_matrix(actuators, self.angle)
         self._matrix_angles = self.angle.tolist()
@@ -75,7 +78,7 @@ class Thrusters:
         """Move ``dt`` [s] toward the commanded thrust and angles."""
         target = _clip(thrust, self.low, self.high) * self.efficiency
         change = (target - self.thrust) * (1.0 - math.exp(-dt / self.time_constant))
-        self.thrust += _clip(change, -self.rate * dt, self.rate * dt)
+        self.thrust = _clip(self.thrust + _clip(change, -self.rate * dt, self.rate * dt), -self.cap, self.cap)
         turn = np.array([wrap(a - b) for a, b in zip(np.asarray(angle, dtype=float).tolist(), self.angle.tolist())])
         turn = _clip(turn, -self.turn_rate * dt, self.turn_rate * dt)
         self.angle = np.where(self.stuck, self.angle, self.angle + turn)
