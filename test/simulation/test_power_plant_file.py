@@ -66,7 +66,8 @@ def test_the_benchmark_reads_marpowsims_plant():
      r"events\[0\]\.bus_tie\.tie: 'tie_13' is not one of tie_12, tie_23"),
     ("bus_tie: {tie: tie_12, closed: false}", "bus_tie: {tie: tie_12, closed: maybe}",
      r"events\[0\]\.bus_tie: a tie's name \(tie\) and closed: true or false"),
-    ("{time: 252.0, fault: {actuator: thruster_6, mode: failed}}", "{time: 252.0, power: {source: swbd_1, available: 1}}",
+    ("{time: 252.0, fault: {actuator: thruster_6, mode: failed}}",
+     "{time: 252.0, power: {source: swbd_1, available: 1}}",
      r"events\[3\]\.power: the power_plant gives each source's power"),
 ])
 def test_a_bad_plant_is_refused_naming_its_key(tmp_path, old, new, message):
