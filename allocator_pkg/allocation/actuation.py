@@ -6,7 +6,8 @@ Thrust and angle of every actuator inside every limit whatever the solver return
 snapped to zero or the band's edge; command maps to set-points (a reversed thruster's
 mirrored); the achieved wrench from T_e of what is commanded, less the surge drag of the
 control surfaces the method stage fed forward (1.56)-(1.58); the unallocated rest, the DOFs
-short, the limit flags and the power estimate (1.44). A thruster pushing onto a dead one is
+short, the limit flags and the power estimate (1.44; each drive's forward or reverse coefficient,
+a DEGRADED one's power on its set-point: :mod:`.drive_power`). A thruster pushing onto a dead one is
 commanded the thrust that gives its force after the [3.11.4] loss."""
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from ..solvers.outcome import Outcome
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import DOF_NAMES
 from .conditions import Conditions
+from .drive_power import DrivePower
 from .result import AllocationResult
 from .state import ActuatorState
 
@@ -62,7 +64,9 @@ class ActuationStage:
         self._all_dofs = model.n == len(DOF_NAMES)
         self._dofs = vehicle.dofs
         self._t_e = model.t_e
-        self._power = model.power.tolist()
+        self._drive = DrivePower.of(vehicle)
+        self._power = self._drive.forward.tolist()
+        self._power_reverse = self._drive.reverse.tolist()
         self._tolerance = model.dof_tolerance.tolist()
         self._rot_pairs = [(int(i), (int(c1), int(c2))) for i, (c1, c2) in zip(model.rot, model.rot_columns)]
         self._continuous = [vehicle.actuators[i].rotation.continuous for i in model.rot]
@@ -96,6 +100,8 @@ class ActuationStage:
         self.modes = fault_set.modes
         efficiency = fault_set.command_efficiency
         self._command_efficiency = None if np.all(efficiency == 1.0) else efficiency
+        drive = self._drive.degraded(efficiency)                # a DEGRADED drive draws its set-point's power
+        self._power, self._power_reverse = drive.forward.tolist(), drive.reverse.tolist()
         self._losses = list(conditions.losses.items())
 
     def actuate(self, requested: np.ndarray, tau: np.ndarray, limits: SampleLimits, output: MethodOutput,
@@ -122,7 +128,8 @@ class ActuationStage:
         efficiency = self._command_efficiency if not self._losses else self._flushing_efficiency(thrust, angle)
         command = self.maps.commands(thrust, efficiency, self._lift)
         at_thrust, at_rate = self._limit_flags(thrust, angle, state)
-        power = sum(p * abs(t) ** 1.5 for p, t in zip(self._power, thrust.tolist()))
+        power = sum((p if t >= 0.0 else q) * abs(t) ** 1.5
+                    for p, q, t in zip(self._power, self._power_reverse, thrust.tolist()))
         return AllocationResult(thrust=thrust, azimuth=angle, command=command, achieved=achieved, requested=requested,
                                 saturated=bool(short), status=output.status, iterations=output.iterations,
                                 solve_time=time.perf_counter() - start, power=power, method=method, mode=self.modes,

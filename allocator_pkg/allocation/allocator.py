@@ -10,15 +10,13 @@ Each sample :meth:`Allocator.allocate` runs the pipeline
    (a key of ``METHODS``), or from the pseudo-inverse if the method fails, with the drag of
    the control surfaces fed forward (1.56)-(1.58);
 4. actuation (:class:`~.actuation.ActuationStage`): thrust, angle and command of every
-   actuator inside every limit, dead bands, the achieved wrench, the unallocated rest, the
-   limit flags and the power estimate;
+   actuator inside every limit, dead bands, the achieved wrench, the rest, flags and power;
 5. commit: the thrust and angles become the state the next sample starts from.
 
-Each stage is given what it needs once per configuration (the
-:class:`~allocator_pkg.effectiveness.weighted_inverse.PseudoInverseGains` that the fallback and
-the azimuth planning share) and once per change of speed, voltage or faults (the
-:class:`~.conditions.Conditions`: static ranges, lift and drag gains), never per sample. Those
-changes are values only: new bounds for the running solver.
+Each stage is given what it needs once per configuration (the ``PseudoInverseGains`` that the
+fallback and the azimuth planning share) and once per change of speed, voltage, faults, power or
+bus ties (the :class:`~.conditions.Conditions`: static ranges inside the drive limits, lift and
+drag gains), never per sample: values only, new bounds for the running solver.
 """
 
 from __future__ import annotations
@@ -41,9 +39,11 @@ from ..solvers import BACKENDS, DEFAULT_BACKEND, BackendFactory
 from ..vehicle.config import DOF_NAMES, Vehicle
 from .actuation import ActuationStage
 from .conditions import Conditions
+from .drive_power import within_drive_limits
 from .limits import LimitsStage
 from .power_budget import PowerBudget, PowerLimit
 from .power_stage import SHARE_PASSES, PowerStage
+from .request import checked_request
 from .result import AllocationResult, AllocatorStats
 from .solve import MethodStage, check_method
 from .state import ActuatorState
@@ -302,6 +302,13 @@ class Allocator:
         self._power.reported = self._power.capacity.copy()
         self._refresh()
 
+    def set_bus_tie(self, name: str, closed: bool) -> str:
+        """Open or close the bus tie ``name`` from the next sample (allocation/bus_ties.py): the reply;
+        ValueError naming the ties for an unknown one, nothing changed."""
+        if self._power.ties.set(name, closed):
+            self._refresh()
+        return self._power.ties.reply(name)
+
     @property
     def group_faults(self) -> tuple[str, ...]:
         """The redundancy groups failed, in the order they failed."""
@@ -328,6 +335,8 @@ class Allocator:
         """What faults, speed, voltage and available power decide, computed once and given to
         every stage."""
         conditions = Conditions.of(self._model.vehicle, self._fault_set, self._speed, self._voltage)
+        self._power.settle(self._fault_set.command_efficiency)
+        conditions = within_drive_limits(conditions, self._power.in_force)
         state = getattr(self, "_state", None)
         conditions = self._share.refresh(self._power, conditions, None if state is None else state.thrust,
                                          self._model.vehicle.power_phase_back)
@@ -357,6 +366,8 @@ class Allocator:
         start = time.perf_counter()
         model, state, share = self._model, self._state, self._share
         controlled = requested if model.n == len(DOF_NAMES) else requested[model.dof_index]
+        if self._power.advance(model.dt):       # power.restore_ramp: the power in use rises a sample's worth
+            self._refresh()
         ramping = share.ramping is not None
         if ramping:                                     # power.phase_back false: down at the rate limit
             conditions = share.ramp(state.thrust)
@@ -387,14 +398,3 @@ class Allocator:
         self._state.commit(self._model, result.thrust, result.azimuth, self._conditions.lift)
         return result
 
-
-def checked_request(tau: Sequence[float]) -> np.ndarray:
-    """The request as a new array of six finite components; ValueError otherwise."""
-    requested = np.array(tau, dtype=float)
-    if requested.shape != (6,):
-        requested = requested.reshape(-1)
-        if requested.shape != (6,):
-            raise ValueError(f"tau needs 6 components [X, Y, Z, K, M, N], got {requested.size}")
-    if not all(map(math.isfinite, requested.tolist())):
-        raise ValueError(f"tau must be finite, got {requested.tolist()}")
-    return requested

@@ -20,6 +20,12 @@ A sample that leaves a short source's power unused while some of its consumers s
 bound shares it again (:meth:`PowerBudget.shared`): every consumer of the source may grow by
 the factor that scales the sample's own draw on it up to A_j, and the sample is solved again
 inside those bounds; the draw on the source is again at most A_j.
+
+The sources are taken by row: a closed bus tie pools the sources of a bus into its first
+source's row (:mod:`.bus_ties`), and each drive's power has its forward and reverse
+coefficients, a DEGRADED thruster's counted on its set-point (:mod:`.drive_power`); the bound's
+coefficient is the larger of the two its range allows. The available power in use follows the
+restore ramp (:mod:`.restore_ramp`).
 """
 
 from __future__ import annotations
@@ -31,6 +37,9 @@ import numpy as np
 
 from ..effectiveness.model import AT_LIMIT
 from ..vehicle.config import RedundancyGroup, Vehicle
+from .bus_ties import BusTies
+from .drive_power import DrivePower
+from .restore_ramp import RestoreRamp
 
 KW = 1000.0
 """Watts in a kilowatt: the configuration and the topic speak kW, the model W (1.44)."""
@@ -48,11 +57,12 @@ up: its consumers keep their bounds."""
 class PowerLimit:
     """The power rule at one set of available powers: ``bound`` [N], the largest thrust
     magnitude of every actuator (inf: the power sets none); ``weights`` (r x m), the share of
-    actuator i's power drawn from source j (0 from a lost feed); ``limited``, the actuators
+    actuator i's power drawn from row j (0 from a lost feed); ``limited``, the actuators
     whose range the bound narrows; ``available``, the available power [kW] of every source
     the rule took; ``largest`` [N], the largest thrust magnitude faults, speed, voltage and the
-    feed limit leave every actuator (m_i; inf for one without feeds); ``rho``, every source's
-    share of its consumers' largest draws (1: it limits nothing)."""
+    feed limit leave every actuator (m_i; inf for one without feeds); ``rho``, every row's
+    share of its consumers' largest draws (1: it limits nothing); ``rows``, every row's
+    available power [kW] (a bus's sum on its first source, inf on its others)."""
 
     bound: np.ndarray
     weights: np.ndarray
@@ -60,6 +70,7 @@ class PowerLimit:
     available: np.ndarray
     largest: np.ndarray
     rho: np.ndarray
+    rows: np.ndarray
 
     def holds(self, thrust: np.ndarray) -> bool:
         """Whether the power holds some actuator back at ``thrust``: one whose range a bound
@@ -91,7 +102,10 @@ class PowerBudget:
         for i, actuator in enumerate(actuators):
             for feed, share in zip(actuator.feeds, actuator.feed_shares or (1.0,) * len(actuator.feeds)):
                 self.shares[i, index[feed]] = share
-        self.coefficient = np.array([a.power_coefficient for a in actuators], dtype=float)
+        self.drive = DrivePower.of(vehicle)
+        self.efficiency = np.ones(len(actuators))
+        self.ties = BusTies.of(self.sources, vehicle.bus_ties)
+        self.ramp = RestoreRamp(self.capacity, vehicle.power_restore_ramp)
         self.rated_thrust = np.array([max(abs(a.thrust_min), abs(a.thrust_max)) for a in actuators], dtype=float)
         self.fed = self.shares.any(axis=1)
         self.reported = self.capacity.copy()
@@ -106,7 +120,52 @@ class PowerBudget:
             if source in self.sources:
                 budget.reported[j] = self.reported[self.sources.index(source)]
         budget.lost = self.lost & set(budget.sources)
+        budget.ties = budget.ties.carried(self.ties)
+        budget.ramp.carried(budget.sources, self.ramp, self.sources)
+        budget.efficiency = self.efficiency
         return budget
+
+    @property
+    def in_force(self) -> DrivePower:
+        """The drives' coefficients on the delivered force at the faults in force."""
+        return self.drive.degraded(self.efficiency)
+
+    @property
+    def coefficient(self) -> np.ndarray:
+        """P_i of every actuator's forward thrust on its delivered force (a DEGRADED one's
+        P_i / eta^(3/2)) [W/N^1.5]."""
+        return self.in_force.forward
+
+    @property
+    def reverse_coefficient(self) -> np.ndarray:
+        """P_i of every actuator's negative thrust on its delivered force [W/N^1.5]."""
+        return self.in_force.reverse
+
+    @property
+    def target(self) -> np.ndarray:
+        """Available power [kW] reported (or the capacity) of every source, 0 for a lost one."""
+        return np.array([0.0 if s in self.lost else a for s, a in zip(self.sources, self.reported)])
+
+    def settle(self, efficiency: np.ndarray) -> None:
+        """Take the faults' command ``efficiency`` (the drives' coefficients follow it) and the
+        available power in force (a drop holds at once on the restore ramp)."""
+        self.efficiency = np.asarray(efficiency, dtype=float).copy()
+        self.ramp.follow(self.target)
+
+    def advance(self, seconds: float) -> bool:
+        """The restore ramp ``seconds`` on; whether the available power in force changed."""
+        return self.ramp.advance(self.target, seconds)
+
+    def rows(self) -> tuple[np.ndarray, np.ndarray]:
+        """The power rows of the ties in force: (weights (m x r), the share of thruster i's power
+        on row j by its feeds' shares; available power of every row [kW], inf on a row a bus
+        pools into another)."""
+        return self.ties.pool_shares(self.shares).T, self.ties.pool_available(self.available)
+
+    @property
+    def pattern(self) -> np.ndarray:
+        """(m x r) every (row, thruster) that some state of the ties makes non-zero."""
+        return self.ties.pattern(self.shares)
 
     @property
     def active(self) -> bool:
@@ -115,8 +174,9 @@ class PowerBudget:
 
     @property
     def available(self) -> np.ndarray:
-        """Available power [kW] of every source in force (a lost source's is 0)."""
-        return np.array([0.0 if s in self.lost else a for s, a in zip(self.sources, self.reported)])
+        """Available power [kW] of every source in force (a lost source's is 0; on the restore
+        ramp, at most its power in use)."""
+        return self.ramp.in_use(self.target)
 
     def checked(self, available: Mapping[str, float]) -> dict[str, float]:
         """``available`` [kW] by source as floats; ValueError naming the source for an unknown
@@ -149,20 +209,22 @@ class PowerBudget:
         """The power rule's bounds given the static force ranges ``low``/``high`` that faults,
         speed and voltage leave (module docstring)."""
         kilowatts = self.available
-        available = kilowatts * KW
-        live = self.shares * (available > 0.0)
+        rows = self.ties.pool_available(kilowatts)
+        available = rows * KW
+        live = self.ties.pool_shares(self.shares) * (available > 0.0)
         live_share = live.sum(axis=1)
         weights = np.divide(live, live_share[:, None], out=np.zeros_like(live), where=live_share[:, None] > 0.0)
         derated = np.where(self.fed, live_share ** (2.0 / 3.0) * self.rated_thrust, np.inf)
         largest = np.minimum(np.maximum(np.abs(low), np.abs(high)), derated)
-        drawing = self.fed & (self.coefficient > 0.0)
-        demand = (self.coefficient * np.where(drawing, largest, 0.0) ** 1.5) @ weights
+        coefficient = self.in_force.bound_coefficient(low, high)
+        drawing = self.fed & (coefficient > 0.0)
+        demand = (coefficient * np.where(drawing, largest, 0.0) ** 1.5) @ weights
         rho = np.minimum(1.0, np.divide(available, demand, out=np.ones_like(demand), where=demand > 0.0))
         scale = np.where((weights > 0.0) & drawing[:, None], rho, 1.0).min(axis=1, initial=1.0)
         bound = np.where(self.fed, np.minimum(derated, largest * scale ** (2.0 / 3.0)), np.inf)
         limited = bound < np.maximum(np.abs(low), np.abs(high))
         return PowerLimit(bound=bound, weights=weights, limited=limited, available=kilowatts,
-                          largest=np.where(self.fed, largest, np.inf), rho=rho)
+                          largest=np.where(self.fed, largest, np.inf), rho=rho, rows=rows)
 
     def shared(self, limit: PowerLimit, bound: np.ndarray, thrust: np.ndarray,
                movable: np.ndarray) -> np.ndarray | None:
@@ -176,11 +238,12 @@ class PowerBudget:
         that the draw on j is at most g_j^(3/2) W_j = A_j, the sample's own thrust pattern
         scaled up until the source is full. An actuator fed by several sources takes the
         smallest g of those sharing and keeps its bound if another of its sources is short."""
-        available = limit.available * KW
-        drawing = self.fed & (self.coefficient > 0.0)
+        available = limit.rows * KW
+        drive = self.in_force
+        drawing = self.fed & ((drive.forward > 0.0) | (drive.reverse > 0.0))
         consumers = (limit.weights > 0.0) & drawing[:, None]
         magnitude = np.abs(thrust)
-        draw = (self.coefficient * np.where(drawing, magnitude, 0.0) ** 1.5) @ limit.weights
+        draw = np.where(drawing, drive.power(thrust), 0.0) @ limit.weights
         at_bound = limit.limited & movable & (magnitude >= bound * (1.0 - AT_LIMIT))
         short = limit.rho < 1.0
         sharing = (short & (draw < available * (1.0 - SPARE)) & (draw > available * PATTERN)
@@ -194,9 +257,11 @@ class PowerBudget:
         return np.where(consumers[:, sharing].any(axis=1), new, bound)
 
     def draw(self, thrust: np.ndarray, limit: PowerLimit) -> np.ndarray:
-        """Power [kW] each source gives at ``thrust``: p_i = P_i |f_i|^(3/2) (1.44) split over
-        the live feeds."""
-        return (self.coefficient * np.abs(thrust) ** 1.5) @ limit.weights / KW
+        """Power [kW] each source gives at ``thrust``: p_i = P_i |f_i|^(3/2) (1.44), P_i the
+        forward or reverse coefficient (:mod:`.drive_power`), split over the live feeds' rows, a
+        bus's draw over its sources by their available power (:meth:`.BusTies.split`)."""
+        rows = self.in_force.power(thrust) @ limit.weights / KW
+        return self.ties.split(rows, limit.available)
 
     def reading(self, thrust: np.ndarray, limit: PowerLimit) -> SourcePower:
         """The :class:`SourcePower` of a sample's ``thrust`` under ``limit``."""

@@ -46,6 +46,13 @@ ACTUATOR_KEYS: tuple[Key, ...] = (
     Key("power_coefficient", FLOAT, "P_i in the power estimate sum P_i |f_i|^(3/2) (1.44).",
         minimum=0.0, applies_to=_ALL, default_doc="1.0 thrusters, 0.0 control surfaces",
         type_defaults={**dict.fromkeys(_THR, 1.0), **dict.fromkeys(_SURF, 0.0)}),
+    Key("reverse_power_coefficient", FLOAT, "P_i for negative thrust (a propeller backing draws another power "
+        "than ahead): the drive draws P_rev |f_i|^(3/2) while f_i < 0 (docs/power.md).", minimum=0.0,
+        applies_to=_THR, default_doc="power_coefficient", unit="W/N^1.5"),
+    Key("drive_limit", FLOAT, "Largest power the thruster's drive may draw (its motor or frequency converter "
+        "rating): its thrust is kept within (drive_limit / P)^(2/3), forward with power_coefficient and reverse "
+        "with reverse_power_coefficient, a DEGRADED thruster's P counted on its set-point (docs/power.md).",
+        minimum=0.0, exclusive_minimum=True, applies_to=_THR, default_doc="none", unit="kW"),
     Key("thrust_max", FLOAT, "Largest force along the actuator axis.", required=True, minimum=0.0,
         exclusive_minimum=True, applies_to=_THR, unit="N"),
     Key("thrust_min", FLOAT, "Most negative force along the axis (<= 0).", maximum=0.0, applies_to=_THR,

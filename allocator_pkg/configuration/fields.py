@@ -8,7 +8,8 @@ A vehicle-wide or node key fills the field named as the key with '.' read as '_'
 :data:`ACTUATOR_STRUCTS` has one, or the field :data:`RENAMED` gives it (``azimuth_rate_max``:
 ``RotationConfig.rate_max``). A power source's key (``power.<source>.<key>``) fills the field of
 its name in :class:`~allocator_pkg.vehicle.config.PowerSource`, a redundancy group's
-(``redundancy_groups.<group>.<key>``) in :class:`~allocator_pkg.vehicle.config.RedundancyGroup`.
+(``redundancy_groups.<group>.<key>``) in :class:`~allocator_pkg.vehicle.config.RedundancyGroup`,
+a bus tie's (``power.bus_tie.<tie>.<key>``) in :class:`~allocator_pkg.vehicle.config.BusTie`.
 A key whose name fills no field (``actuators.names``, ``redundancy_groups.names``, ``link``) is
 read by hand.
 
@@ -25,6 +26,7 @@ from typing import Any, TypeVar
 from ..vehicle.config import (
     ActuatorConfig,
     BiasSettings,
+    BusTie,
     CommandMapConfig,
     PowerSource,
     RedundancyGroup,
@@ -48,7 +50,7 @@ RENAMED = {"command_map": "kind", "command_deadband": "deadband", "azimuth_rate_
 lives in the struct of that (``CommandMapConfig.kind``, ``RotationConfig.initial``)."""
 
 _FIELD_NAMES = {struct: {field.name for field in fields(struct)}
-                for struct in (Vehicle, NodeSettings, PowerSource, RedundancyGroup, *NESTED.values(),
+                for struct in (Vehicle, NodeSettings, PowerSource, RedundancyGroup, BusTie, *NESTED.values(),
                                  *ACTUATOR_STRUCTS)}
 
 Struct = TypeVar("Struct")
@@ -93,6 +95,11 @@ def source_field(key: str) -> Field | None:
 def group_field(key: str) -> Field | None:
     """The field of RedundancyGroup a group's key (under ``redundancy_groups.<group>.``) fills."""
     return _field(RedundancyGroup, key)
+
+
+def tie_field(key: str) -> Field | None:
+    """The field of BusTie a bus tie's key (under ``power.bus_tie.<tie>.``) fills."""
+    return _field(BusTie, key)
 
 
 def filled(struct: type[Struct], values: Mapping[str, Any], field_of: Callable[[str], Field | None],

@@ -29,6 +29,7 @@ from ..vehicle.node_settings import NodeSettings
 from . import schema
 from .actuator_parsers import parse_actuator
 from .bias_pairs import parse_bias_pairs
+from .bus_tie_keys import TIES_KEY, parse_bus_ties
 from .fields import filled, node_field, vehicle_field
 from .flushing_keys import check_flushing
 from .params_file import read_parameters
@@ -36,7 +37,7 @@ from .power import parse_power
 from .schema import ACTUATOR_KEY_BY_NAME, ACTUATOR_PREFIX, NODE_KEY_BY_NAME, VEHICLE_KEY_BY_NAME
 from .values import MISSING, Reader
 
-BY_HAND = ("actuators.names", "power.sources", "redundancy_groups.names")
+BY_HAND = ("actuators.names", "power.sources", "redundancy_groups.names", TIES_KEY)
 """Vehicle-wide keys read by their own parsers."""
 
 
@@ -78,6 +79,8 @@ class _Parser(Reader):
                 known.update(schema.actuator_parameter(name, key) for key in ACTUATOR_KEY_BY_NAME)
         sources, groups, power_keys = parse_power(self, names if names is not MISSING else [], actuators)
         known.update(power_keys)
+        ties, tie_keys = parse_bus_ties(self, [source.name for source in sources])
+        known.update(tie_keys)
         for name in self.parameters:
             if name not in known:
                 self._unknown(name, names if names is not MISSING else [])
@@ -107,7 +110,7 @@ class _Parser(Reader):
                          solver=filled(SolverSettings, values, vehicle_field),
                          priorities=priorities, nominal_voltage=nominal_voltage,
                          bias=filled(BiasSettings, values, vehicle_field, pairs=bias_pairs), power_sources=sources,
-                         redundancy_groups=groups)
+                         redundancy_groups=groups, bus_ties=ties)
         ros2_control_actuators = self._ros2_control(node, vehicle)
         if self.problems:
             raise ConfigError(self.problems)
@@ -155,7 +158,7 @@ class _Parser(Reader):
             actuator_type = self.parameters.get(schema.actuator_parameter(actuator, "type"))
             self.fail(name, f"unknown key '{key}' for a {actuator_type} actuator")
             return
-        for prefix, listing in ((schema.SOURCE_PREFIX, "power.sources"),
+        for prefix, listing in ((schema.TIE_PREFIX, TIES_KEY), (schema.SOURCE_PREFIX, "power.sources"),
                                 (schema.GROUP_PREFIX, "redundancy_groups.names")):
             if name.startswith(prefix):
                 instance = name[len(prefix):].partition(".")[0]

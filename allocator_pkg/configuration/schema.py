@@ -119,6 +119,16 @@ VEHICLE_KEYS: tuple[Key, ...] = (
         "new bounds from the next sample, faster than thrust_rate_max allows (no source over its available power "
         "by more than rounding); false brings the thrust down at its rate limit, the source over meanwhile and "
         "allocation_status's power_limited set (docs/power.md).", default=True),
+    Key("power.restore_ramp", FLOAT, "With power.sources: time in which a source's available power in use may "
+        "rise from zero to its capacity. A drop holds at once (power.phase_back); when the power comes back (a "
+        "higher power_available, a group fault cleared) the power the allocation uses, and with it the thrust "
+        "limits, rises at most at capacity / restore_ramp per second (docs/power.md). 0: at once.", default=0.0,
+        minimum=0.0, maximum=600.0, unit="s"),
+    Key("power.bus_ties", STR_LIST, "Bus-tie breakers between two power.sources, each with "
+        "power.bus_tie.<tie>.sources and power.bus_tie.<tie>.closed: the sources joined by closed ties are one "
+        "bus, whose thrusters draw on the power of all of them; ~/set_bus_tie opens or closes one at runtime "
+        "(docs/power.md).", default_doc="none", read_only=True,
+        constraint="unique; letters, digits and '_', starting with a letter; only with power.sources"),
     Key("redundancy_groups.names", STR_LIST, "Redundancy groups: what one single failure takes away together "
         "(DNV-ST-0111 [2.4.8]; the DP FMEA's redundancy concept), each with redundancy_groups.<group>.sources and "
         "redundancy_groups.<group>.actuators. The node's ~/set_group_fault fails one at runtime and its consequence "
@@ -142,6 +152,14 @@ GROUP_KEYS: tuple[Key, ...] = (
                    "thruster fed only by the group's sources"),
 )
 """Keys of each redundancy group, ``redundancy_groups.<group>.<key>``."""
+
+TIE_KEYS: tuple[Key, ...] = (
+    Key("sources", STR_LIST, "The two power sources the breaker joins.", required=True, length=2, read_only=True,
+        constraint="two different names from power.sources"),
+    Key("closed", BOOL, "The breaker's state at start (and after a new configuration of it): closed joins the "
+        "two sources into one bus. ~/set_bus_tie changes it at runtime.", default=True, read_only=True),
+)
+"""Keys of each bus-tie breaker, ``power.bus_tie.<tie>.<key>``."""
 
 NODE_KEYS: tuple[Key, ...] = (
     Key("wrench_timeout", FLOAT, "Watchdog: with no valid wrench for this long, command zero thrust (0 disables).",
@@ -227,13 +245,15 @@ NODE_KEY_BY_NAME = {key.name: key for key in NODE_KEYS}
 ACTUATOR_KEY_BY_NAME = {key.name: key for key in ACTUATOR_KEYS}
 SOURCE_KEY_BY_NAME = {key.name: key for key in SOURCE_KEYS}
 GROUP_KEY_BY_NAME = {key.name: key for key in GROUP_KEYS}
+TIE_KEY_BY_NAME = {key.name: key for key in TIE_KEYS}
 ACTUATOR_PREFIX = "actuators."
 SOURCE_PREFIX = "power."
 GROUP_PREFIX = "redundancy_groups."
-INSTANCE_KEYS = ((ACTUATOR_PREFIX, ACTUATOR_KEY_BY_NAME), (SOURCE_PREFIX, SOURCE_KEY_BY_NAME),
-                 (GROUP_PREFIX, GROUP_KEY_BY_NAME))
-"""The keys given per named instance, ``<prefix><instance>.<key>``: actuators, power sources and
-redundancy groups."""
+TIE_PREFIX = "power.bus_tie."
+INSTANCE_KEYS = ((ACTUATOR_PREFIX, ACTUATOR_KEY_BY_NAME), (TIE_PREFIX, TIE_KEY_BY_NAME),
+                 (SOURCE_PREFIX, SOURCE_KEY_BY_NAME), (GROUP_PREFIX, GROUP_KEY_BY_NAME))
+"""The keys given per named instance, ``<prefix><instance>.<key>``: actuators, bus ties, power
+sources and redundancy groups (a bus tie's prefix first: it lies inside the sources')."""
 
 
 def actuator_parameter(actuator: str, key: str) -> str:
@@ -251,14 +271,20 @@ def group_parameter(group: str, key: str) -> str:
     return f"{GROUP_PREFIX}{group}.{key}"
 
 
+def tie_parameter(tie: str, key: str) -> str:
+    """Full parameter name of a bus tie's key."""
+    return f"{TIE_PREFIX}{tie}.{key}"
+
+
 def key_for(name: str) -> Key | None:
     """The key of a parameter name (``actuators.<name>.<key>``, ``power.<source>.<key>`` and
-    ``redundancy_groups.<group>.<key>`` included), or None."""
+    ``redundancy_groups.<group>.<key>``, ``power.bus_tie.<tie>.<key>`` included), or None."""
     if name in VEHICLE_KEY_BY_NAME or name in NODE_KEY_BY_NAME:
         return VEHICLE_KEY_BY_NAME.get(name) or NODE_KEY_BY_NAME.get(name)
     for prefix, keys in INSTANCE_KEYS:
-        if name.startswith(prefix):
-            return keys.get(name[len(prefix):].partition(".")[2])
+        key = keys.get(name[len(prefix):].partition(".")[2]) if name.startswith(prefix) else None
+        if key is not None:
+            return key
     return None
 
 
@@ -267,6 +293,7 @@ def instance_keys(vehicle: Vehicle) -> list[tuple[str, Key]]:
     keys = [(actuator_parameter(a.name, key.name), key) for a in vehicle.actuators for key in keys_for_type(a.type)]
     keys += [(source_parameter(s.name, key.name), key) for s in vehicle.power_sources for key in SOURCE_KEYS]
     keys += [(group_parameter(g.name, key.name), key) for g in vehicle.redundancy_groups for key in GROUP_KEYS]
+    keys += [(tie_parameter(t.name, key.name), key) for t in vehicle.bus_ties for key in TIE_KEYS]
     return keys
 
 
@@ -304,4 +331,6 @@ def markdown_reference() -> str:
     lines += table(SOURCE_KEYS, show_types=False)
     lines += ["", "### Redundancy groups (`redundancy_groups.<group>.<key>`)", ""]
     lines += table(GROUP_KEYS, show_types=False)
+    lines += ["", "### Bus ties (`power.bus_tie.<tie>.<key>`)", ""]
+    lines += table(TIE_KEYS, show_types=False)
     return "\n".join(lines) + "\n"

@@ -22,7 +22,7 @@ from rclpy.parameter import Parameter
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
-from allocator_msgs.srv import GetCapability, HoldActuator, SetActuatorFault, SetGroupFault
+from allocator_msgs.srv import GetCapability, HoldActuator, SetActuatorFault, SetBusTie, SetGroupFault
 
 from ..allocation.allocator import Allocator
 from ..configuration import urdf
@@ -101,6 +101,7 @@ class AllocatorBase(WholeSetParameters):
         self.create_service(SetActuatorFault, "~/set_actuator_fault", self._on_set_fault)
         self.create_service(Trigger, "~/clear_faults", self._on_clear_faults)
         self.create_service(SetGroupFault, "~/set_group_fault", self._on_set_group_fault)
+        self.create_service(SetBusTie, "~/set_bus_tie", self._on_set_bus_tie)
         self.create_service(GetCapability, "~/get_capability", self._on_get_capability)
         self.create_service(HoldActuator, "~/hold_actuator", self._on_hold_actuator)
         self.add_pre_set_parameters_callback(ros_parameters.typed)
@@ -211,6 +212,13 @@ class AllocatorBase(WholeSetParameters):
     def _on_set_group_fault(self, runtime: AllocationRuntime, request: SetGroupFault.Request,
                             response: SetGroupFault.Response):
         response.success, response.message = runtime.set_group_fault(request.group)
+        if response.success:
+            self.get_logger().warn(response.message)
+        return response
+
+    @when_configured
+    def _on_set_bus_tie(self, runtime: AllocationRuntime, request: SetBusTie.Request, response: SetBusTie.Response):
+        response.success, response.message = runtime.set_bus_tie(request.name, request.closed)
         if response.success:
             self.get_logger().warn(response.message)
         return response

@@ -13,7 +13,7 @@ from rclpy.parameter import Parameter, parameter_value_to_python
 from std_srvs.srv import Trigger
 
 from allocator_msgs.msg import ActuatorFault
-from allocator_msgs.srv import GetCapability, SetActuatorFault, SetGroupFault
+from allocator_msgs.srv import GetCapability, SetActuatorFault, SetBusTie, SetGroupFault
 
 from ..allocation.sample_rules import fault_request
 from ..effectiveness.faults import FaultMode
@@ -102,6 +102,9 @@ class Controller:
 
     def set_group_fault(self, group: str) -> SetGroupFault.Response:
         return self.call(SetGroupFault, "set_group_fault", SetGroupFault.Request(group=group))
+
+    def set_bus_tie(self, name: str, closed: bool) -> SetBusTie.Response:
+        return self.call(SetBusTie, "set_bus_tie", SetBusTie.Request(name=name, closed=closed))
 
     def clear_faults(self) -> Trigger.Response:
         return self.call(Trigger, "clear_faults", Trigger.Request())

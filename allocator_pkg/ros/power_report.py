@@ -1,6 +1,7 @@
 """What the diagnostics say about power per source (docs/power.md): the draw of the last sample
 and the available power of every source, where the available power comes from, the actuators
-the power holds back, the redundancy groups failed. Pure functions, as in
+the power holds back, the state of the bus ties, a restore ramp under way, the redundancy groups
+failed. Pure functions, as in
 :mod:`~allocator_pkg.ros.diagnostics`."""
 
 from __future__ import annotations
@@ -42,6 +43,11 @@ def power_diagnostics(allocator: Allocator, last: AllocationResult | None, suppl
     values["thrust limited by power"] = ", ".join(held) or "none"
     if last is not None and limit.holds(last.thrust):
         warnings.append("power-limited: thrust held back by the available power")
+    if budget.ties.ties:
+        values["bus ties"] = budget.ties.text()
+    if budget.ramp.rising(budget.target):
+        values["restoring available power"] = (f"{available_text(budget)} in use, rising at capacity / "
+                                               f"{budget.ramp.seconds:g} s")
     values["failed redundancy groups"] = ", ".join(allocator.group_faults) or "none"
     if allocator.group_faults:
         warnings.append(f"redundancy group failed: {', '.join(allocator.group_faults)}")

@@ -20,10 +20,11 @@ With thrust tables measured at several supply voltages, the runtime follows the 
 ``battery_state`` (:mod:`~allocator_pkg.ros.battery`; its timeout checked with the diagnostics,
 once a second), and with power sources the available power of ``power_available``
 (:mod:`~allocator_pkg.ros.power_input`, the same way); ``~/set_group_fault`` fails a redundancy
-group (:meth:`~AllocationRuntime.set_group_fault`). On the bench, ``~/hold_actuator`` holds one
-actuator (:meth:`~AllocationRuntime.hold`, :mod:`~allocator_pkg.ros.hold`); a stale input still
-stops it. With redundancy groups, each sample feeds the consequence analysis' load filter; the
-analysis runs on a thread of its own (:mod:`~allocator_pkg.ros.consequence_topic`).
+group (:meth:`~AllocationRuntime.set_group_fault`), ``~/set_bus_tie`` opens or closes a bus tie.
+On the bench, ``~/hold_actuator`` holds one actuator (:meth:`~AllocationRuntime.hold`,
+:mod:`~allocator_pkg.ros.hold`); a stale input still stops it. With redundancy groups, each
+sample feeds the consequence analysis' load filter; the analysis runs on a thread of its own
+(:mod:`~allocator_pkg.ros.consequence_topic`).
 """
 
 from __future__ import annotations
@@ -306,6 +307,14 @@ class AllocationRuntime:
             members = self.allocator.power.group(group)
         return True, (f"{group}: {', '.join(members.actuators) or 'no actuators'} FAILED and "
                       f"{', '.join(members.sources) or 'no sources'} at 0 kW from the next sample")
+
+    def set_bus_tie(self, name: str, closed: bool) -> tuple[bool, str]:
+        """Open or close a bus tie from the next sample; (success, message naming the ties)."""
+        with self._lock:
+            try:
+                return True, self.allocator.set_bus_tie(name, closed)
+            except ValueError as error:
+                return False, str(error)
 
     def clear_faults(self) -> str:
         """Every actuator back to NOMINAL, every source back to its available power; what was

@@ -305,6 +305,13 @@ class NodeLink:
             raise SimulationError(f"set_group_fault refused: {response.message}")
         return response.message
 
+    def set_bus_tie(self, name: str, closed: bool) -> str:
+        """``~/set_bus_tie``; its message, or SimulationError when the node refuses it."""
+        response = self.services.set_bus_tie(name, closed)
+        if not response.success:
+            raise SimulationError(f"set_bus_tie refused: {response.message}")
+        return response.message
+
     def clear_faults(self) -> str:
         return self.services.clear_faults().message
 

@@ -61,7 +61,7 @@ class Link(Protocol):
     its answer). ``step`` is one sample at ``t_ns``: the supply voltage, the available power
     the power plant reports (``power``, kW by source) and the vehicle's ``pose`` first, then
     the controller's ``wrench`` (with ``record``, a link that records writes the step with the
-    set-point in force). Faults, a redundancy group's loss and parameters apply from the next
+    set-point in force). Faults, a redundancy group's loss, a bus tie and parameters apply from the next
     sample; a refused one raises ``SimulationError``. ``live_line`` is the latest sample in one
     line of text."""
 
@@ -73,6 +73,8 @@ class Link(Protocol):
     def set_fault(self, actuator: str, mode: str, value: float) -> str: ...
 
     def set_group_fault(self, group: str) -> str: ...
+
+    def set_bus_tie(self, name: str, closed: bool) -> str: ...
 
     def clear_faults(self) -> str: ...
 
@@ -197,14 +199,17 @@ class ClosedLoop:
     def _apply(self, link: Link, event: Event) -> None:
         """A timed event: a fault (on the allocator and on the simulated thruster), a redundancy
         group's loss (on the allocator, the simulated thrusters of the group and the power
-        plant's sources), clearing the faults, the available power of a source (the power plant
-        reports it from this step) or an allocator parameter (the set-point's events are in the
-        schedule, the battery ramps in the voltage, the weather ramps in the weather scale)."""
+        plant's sources), a bus tie opening or closing, clearing the faults, the available power
+        of a source (the power plant reports it from this step) or an allocator parameter (the
+        set-point's events are in the schedule, the battery ramps in the voltage, the weather
+        ramps in the weather scale)."""
         thrusters = self.plant.thrusters
         if event.kind == "group_fault":
             message = link.set_group_fault(event.name)
             for actuator in self.power_plant.trip_group(event.name):
                 thrusters.set_fault(actuator, "failed", 0.0)
+        elif event.kind == "bus_tie":
+            message = link.set_bus_tie(event.name, bool(event.value))
         elif event.kind == "power":
             self.power_plant.set_available(event.name, float(event.value))
             message = f"power plant: {event.name} gives {float(event.value):g} kW"

@@ -175,6 +175,12 @@ class InProcessLink:
             raise SimulationError(f"set_group_fault refused: {error}") from error
         return f"redundancy group {group} failed from the next sample"
 
+    def set_bus_tie(self, name: str, closed: bool) -> str:
+        try:
+            return self.allocator.set_bus_tie(name, closed)
+        except ValueError as error:
+            raise SimulationError(f"set_bus_tie refused: {error}") from error
+
     def clear_faults(self) -> str:
         had = sorted(self.allocator.faults)
         self.allocator.clear_faults()

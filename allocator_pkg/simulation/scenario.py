@@ -65,7 +65,8 @@ class Event:
     clearing every fault, a battery voltage ramp (``ramp``: to [V], duration [s]), a node
     parameter, a new set-point (``setpoint``: value a SetpointTarget), a redundancy group's
     loss (``group_fault``: name the group), the available power of a source changing
-    (``power``: name the source, value [kW]) or the weather growing (``weather_ramp``: value
+    (``power``: name the source, value [kW]), a bus tie opening or closing (``bus_tie``: name
+    the tie, value True for closed) or the weather growing (``weather_ramp``: value
     the scale of the environment's speeds and wave height it reaches, duration [s])."""
 
     time: float
@@ -216,6 +217,10 @@ def _event(data: Any, index: int) -> Event:
         if not isinstance(body.get("source"), str):
             raise ScenarioError(f"{where}power.source: a power source's name, not {body.get('source')!r}")
         return Event(time, kind, name=body["source"], value=number(body, "available", where + "power."))
+    if kind == "bus_tie":
+        if not isinstance(body.get("name"), str) or not isinstance(body.get("closed"), bool):
+            raise ScenarioError(f"{where}bus_tie: name (a bus tie's) and closed (true or false), not {body!r}")
+        return Event(time, kind, name=body["name"], value=body["closed"])
     if not isinstance(body.get("name"), str) or "value" not in body:
         raise ScenarioError(f"{where}parameter: name and value")
     return Event(time, kind, name=body["name"], value=body["value"])
@@ -257,6 +262,8 @@ def _check_event(event: Event, index: int, vehicle: Vehicle) -> None:
                          "redundancy group")
         elif event.kind == "power":
             check_member(event.name, [s.name for s in vehicle.power_sources], f"{where}.power.source", "power source")
+        elif event.kind == "bus_tie":
+            check_member(event.name, [t.name for t in vehicle.bus_ties], f"{where}.bus_tie.name", "bus tie")
     except ValueError as error:
         raise ScenarioError(str(error)) from error
 

@@ -101,6 +101,9 @@ EVENT_KEYS = (
     FileKey("power", MAPPING, "the available power of a source of the simulated power plant changes", keys=(
         FileKey("source", TEXT, "a power source of the vehicle", required=True),
         FileKey("available", NUMBER, "its available power", required=True, unit="kW", minimum=0.0))),
+    FileKey("bus_tie", MAPPING, "a bus-tie breaker of the vehicle (power.bus_ties) opens or closes", keys=(
+        FileKey("name", TEXT, "a bus tie of the vehicle", required=True),
+        FileKey("closed", BOOLEAN, "true: closed (its sources one bus), false: open", required=True))),
     FileKey("weather_ramp", MAPPING, "the weather grows (or calms) linearly to `to` times the scenario's current "
             "speed, wind speed and significant wave height", keys=RAMP_KEYS),
     FileKey("bus_tie", MAPPING, "a bus tie breaker opens or closes (the allocator's and the power plant's)", keys=(

@@ -4,7 +4,7 @@ test of a vehicle's configuration needs before its first assertion.
 The probe publishes ``/clock``, so the node's timers fire only when the test steps the clock
 (:meth:`Harness.step`, :meth:`Harness.tick`) and every timing is deterministic. The probe
 sends wrenches and the available power and calls the node's services the way any client does
-(``~/set_actuator_fault``, ``~/set_group_fault``, ``~/clear_faults``, ``~/set_parameters``,
+(``~/set_actuator_fault``, ``~/set_group_fault``, ``~/set_bus_tie``, ``~/clear_faults``, ``~/set_parameters``,
 ``~/get_capability``), and keeps every
 ``thruster_commands``, ``allocation_status`` and ``/diagnostics`` message it receives.
 
@@ -34,7 +34,7 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 
 from allocator_msgs.msg import ActuatorFault, AllocationStatus, PowerAvailable, ThrusterCommands
-from allocator_msgs.srv import GetCapability, SetActuatorFault, SetGroupFault
+from allocator_msgs.srv import GetCapability, SetActuatorFault, SetBusTie, SetGroupFault
 
 from ..effectiveness.faults import FaultMode
 from ..ros.conversions import array_to_wrench, wrench_to_array
@@ -89,6 +89,7 @@ class Harness:
         self.fault_client = probe.create_client(SetActuatorFault, services + "set_actuator_fault")
         self.clear_client = probe.create_client(Trigger, services + "clear_faults")
         self.group_client = probe.create_client(SetGroupFault, services + "set_group_fault")
+        self.tie_client = probe.create_client(SetBusTie, services + "set_bus_tie")
         self.power = probe.create_publisher(PowerAvailable, "power_available", 10)
         self.parameters_client = probe.create_client(SetParameters, services + "set_parameters")
         self.atomic_parameters_client = probe.create_client(SetParametersAtomically,
@@ -284,6 +285,11 @@ class Harness:
         """Fail a redundancy group through ``~/set_group_fault``: (success, the node's message);
         its actuators FAILED and its sources at 0 kW from the next sample."""
         response = self.call(self.group_client, SetGroupFault.Request(group=group))
+        return response.success, response.message
+
+    def set_bus_tie(self, name: str, closed: bool) -> tuple[bool, str]:
+        """Open or close a bus tie through ``~/set_bus_tie``: (success, the node's message)."""
+        response = self.call(self.tie_client, SetBusTie.Request(name=name, closed=closed))
         return response.success, response.message
 
     def clear_faults(self) -> str:

@@ -112,8 +112,11 @@ class ActuatorConfig:
     range and ``command`` are a thruster's (a control surface has none: zero), ``rotation`` a
     rotatable thruster's and ``surface`` a control surface's. ``feeds`` are the power sources a
     thruster draws from and ``feed_shares`` the share of its power from each (Table A-5 of
-    DNV-ST-0111), read by the allocation's power budget and the DP capability analysis. ``diameter``,
-    ``ducted`` and ``tunnel`` place it among the flushing zones (DNV-ST-0111 [3.11.3], [3.11.4])."""
+    DNV-ST-0111), read by the allocation's power budget and the DP capability analysis.
+    ``power_coefficient`` P_i prices its forward thrust (1.44), ``reverse_power_coefficient`` its
+    negative thrust (None: P_i), and ``drive_limit`` [kW] caps what its drive draws (None: no
+    cap). ``diameter``, ``ducted`` and ``tunnel`` place it among the flushing zones
+    (DNV-ST-0111 [3.11.3], [3.11.4])."""
 
     name: str
     type: str
@@ -132,6 +135,8 @@ class ActuatorConfig:
     diameter: float = 0.0
     ducted: bool = False
     tunnel: bool = False
+    reverse_power_coefficient: float | None = None
+    drive_limit: float | None = None
 
     @property
     def rotatable(self) -> bool:
@@ -197,6 +202,16 @@ class RedundancyGroup:
 
 
 @dataclass(frozen=True)
+class BusTie:
+    """A bus-tie breaker between two power sources (switchboards): while ``closed`` the two
+    are one bus, whose thrusters draw on the power of both; open, each feeds its own."""
+
+    name: str
+    sources: tuple[str, str]
+    closed: bool
+
+
+@dataclass(frozen=True)
 class Vehicle:
     """A validated vehicle configuration: the actuators and how to allocate over them."""
 
@@ -221,8 +236,10 @@ class Vehicle:
     bias: BiasSettings
     flushing_zones: str
     power_phase_back: bool
+    power_restore_ramp: float = 0.0
     power_sources: tuple[PowerSource, ...] = ()
     redundancy_groups: tuple[RedundancyGroup, ...] = ()
+    bus_ties: tuple[BusTie, ...] = ()
 
     @property
     def priority_levels(self) -> tuple[tuple[int, ...], ...]:

@@ -14,11 +14,13 @@ from allocator_pkg.configuration.fields import (
     group_field,
     node_field,
     source_field,
+    tie_field,
     vehicle_field,
 )
 from allocator_pkg.vehicle.config import (
     ActuatorConfig,
     BiasSettings,
+    BusTie,
     CommandMapConfig,
     PowerSource,
     RedundancyGroup,
@@ -31,17 +33,17 @@ from allocator_pkg.vehicle.config import (
 from allocator_pkg.vehicle.node_settings import NodeSettings
 
 TABLES = ((schema.VEHICLE_KEYS, vehicle_field), (schema.NODE_KEYS, node_field), (schema.ACTUATOR_KEYS, actuator_field),
-          (schema.SOURCE_KEYS, source_field), (schema.GROUP_KEYS, group_field))
+          (schema.SOURCE_KEYS, source_field), (schema.GROUP_KEYS, group_field), (schema.TIE_KEYS, tie_field))
 STRUCTS = (Vehicle, Weights, SolverSettings, BiasSettings, NodeSettings, ActuatorConfig, CommandMapConfig,
-           RotationConfig, SurfaceConfig, PowerSource, RedundancyGroup)
+           RotationConfig, SurfaceConfig, PowerSource, RedundancyGroup, BusTie)
 
-NO_FIELD = {"actuators.names", "redundancy_groups.names", "link"}
-"""Keys read by hand: the names make Vehicle.actuators and Vehicle.redundancy_groups, a link is
-configuration.urdf's."""
+NO_FIELD = {"actuators.names", "redundancy_groups.names", "power.bus_ties", "link"}
+"""Keys read by hand: the names make Vehicle.actuators, Vehicle.redundancy_groups and
+Vehicle.bus_ties, a link is configuration.urdf's."""
 
-NO_KEY = {Vehicle: {"actuators", "weights", "solver", "bias", "redundancy_groups"},
+NO_KEY = {Vehicle: {"actuators", "weights", "solver", "bias", "redundancy_groups", "bus_ties"},
           ActuatorConfig: {"name", "command", "rotation", "surface"}, PowerSource: {"name"},
-          RedundancyGroup: {"name"}}
+          RedundancyGroup: {"name"}, BusTie: {"name"}}
 """Fields of no key: built from other keys (a source's or group's name is its place in the list)."""
 
 DERIVED = {"dofs", "weights.slack", "priorities", "nominal_voltage", "ros2_control.actuators", "position", "direction",
@@ -74,7 +76,7 @@ VEHICLE_VALUES = {
     "nonlinear.max_iterations": 3, "dynamic.gain": 0.25, "svd_filter.time_constant": 0.7,
     "svd_filter.damping_threshold": 0.1, "explicit.regions": "regions.npz", "solver.eps_abs": 1e-4,
     "solver.eps_rel": 2e-4, "solver.max_iter": 500, "solver.time_limit": 0.01, "water_density": 1000.0,
-    "flushing_zones": "dnv", "power.phase_back": False,
+    "flushing_zones": "dnv", "power.phase_back": False, "power.restore_ramp": 20.0,
     "bias.enabled": True, "bias.thrust": 5.0, "bias.fade_start": 0.3, "bias.fade_end": 0.6,
     "bias.fade_time_constant": 10.0,
 }
@@ -91,10 +93,11 @@ THRUSTER_VALUES = {
     "type": "azimuth", "weight": 2.0, "power_coefficient": 0.5, "thrust_max": 20.0, "thrust_rate_max": 5.0,
     "command_map": "quadratic", "gain": 2.0, "command_deadband": 0.1, "reversed": True, "azimuth_min": -1.0,
     "azimuth_max": 2.0, "azimuth_rate_max": 0.5, "reversible": True, "azimuth_initial": 0.3, "diameter": 0.4,
-    "ducted": True,
+    "ducted": True, "reverse_power_coefficient": 0.7, "drive_limit": 12.0,
 }
 TUNNEL_VALUES = {"type": "fixed", "direction": [0.0, 1.0, 0.0], "thrust_max": 10.0, "tunnel": True}
 SOURCE_VALUES = {"capacity": 1500.0}
+TIE_VALUES = {"closed": False}
 SURFACE_VALUES = {
     "type": "fin", "weight": 0.3, "power_coefficient": 0.2, "area": 0.2, "lift_coefficient": 2.5,
     "drag_coefficient": 0.3, "deflection_max": 0.6, "deflection_rate_max": 0.4, "flow": "propeller_wake",
@@ -111,8 +114,10 @@ def test_every_other_key_is_the_value_of_its_field():
     parameters.update({f"actuators.azi.{key}": value for key, value in THRUSTER_VALUES.items()})
     parameters.update({f"actuators.fin.{key}": value for key, value in SURFACE_VALUES.items()})
     parameters.update({f"actuators.tun.{key}": value for key, value in TUNNEL_VALUES.items()})
-    parameters.update({"power.sources": ["bus"], "actuators.azi.feeds": ["bus"],
-                       **{f"power.bus.{key}": value for key, value in SOURCE_VALUES.items()}})
+    parameters.update({"power.sources": ["bus", "aux"], "actuators.azi.feeds": ["bus"], "power.aux.capacity": 1.0,
+                       **{f"power.bus.{key}": value for key, value in SOURCE_VALUES.items()},
+                       "power.bus_ties": ["tie"], "power.bus_tie.tie.sources": ["bus", "aux"],
+                       **{f"power.bus_tie.tie.{key}": value for key, value in TIE_VALUES.items()}})
     parameters.update({"actuators.names": ["azi", "fin", "tun", "partner"], "actuators.partner.type": "azimuth",
                        "actuators.partner.position": [-1.0, 2.0, 0.0], "actuators.partner.thrust_max": 20.0,
                        "actuators.partner.diameter": 0.5,
@@ -127,7 +132,8 @@ def test_every_other_key_is_the_value_of_its_field():
                                                               RotationConfig: azi.rotation}),
              (SURFACE_VALUES, actuator_field, per_actuator, {ActuatorConfig: fin, SurfaceConfig: fin.surface}),
              ({"tunnel": True}, actuator_field, per_actuator, {ActuatorConfig: tun}),
-             (SOURCE_VALUES, source_field, schema.SOURCE_KEY_BY_NAME.get, {PowerSource: vehicle.power_sources[0]})]
+             (SOURCE_VALUES, source_field, schema.SOURCE_KEY_BY_NAME.get, {PowerSource: vehicle.power_sources[0]}),
+             (TIE_VALUES, tie_field, schema.TIE_KEY_BY_NAME.get, {BusTie: vehicle.bus_ties[0]})]
     checked = set()
     for values, field_of, key_of, objects in given:
         for name, value in values.items():

@@ -24,9 +24,9 @@ def test_every_actuator_type_has_its_keys():
 def test_read_only_keys():
     read_only = {key.name for key in schema.VEHICLE_KEYS + schema.NODE_KEYS + schema.ACTUATOR_KEYS if key.read_only}
     assert read_only == {"actuators.names", "type", "link", "frame", "base_frame", "wrench_type", "geometry_source",
-                         "robot_description_file", "executor", "power.sources", "redundancy_groups.names", "feeds",
-                         "feed_shares"}
-    assert all(key.read_only for key in schema.SOURCE_KEYS + schema.GROUP_KEYS)
+                         "robot_description_file", "executor", "power.sources", "power.bus_ties",
+                         "redundancy_groups.names", "feeds", "feed_shares"}
+    assert all(key.read_only for key in schema.SOURCE_KEYS + schema.GROUP_KEYS + schema.TIE_KEYS)
 
 
 def test_every_key_says_what_it_accepts():

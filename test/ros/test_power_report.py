@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from conftest import ROOT
 
-from allocator_pkg import Allocator, load_vehicle
+from allocator_pkg import Allocator, load_vehicle, read_parameters, vehicle_from_parameters
 from allocator_pkg.ros.power_report import power_diagnostics
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
@@ -41,3 +41,19 @@ def test_the_power_per_source_the_bounds_and_a_failed_group():
     assert bound[0] > 1.4 * 170360.0
     assert allocator.power.draw(bound * [1, 0, 1, 0], allocator.power_limit)[0] == pytest.approx(1000.0)
     assert values["failed redundancy groups"] == "switchboard_b" and values["rejected power messages"] == "2"
+
+
+def test_the_bus_ties_and_a_restore_ramp_under_way_are_named():
+    parameters = read_parameters(DP_VESSEL)
+    parameters.update({"power.bus_ties": ["bt_ab"], "power.bus_tie.bt_ab.sources": ["swbd_a", "swbd_b"],
+                       "power.restore_ramp": 10.0})
+    allocator = Allocator(vehicle_from_parameters(parameters))
+    _, _, values = power_diagnostics(allocator, None, None, 0)
+    assert values["bus ties"] == "bt_ab closed (swbd_a + swbd_b)" and "restoring available power" not in values
+    allocator.set_bus_tie("bt_ab", False)
+    allocator.set_available_power({"swbd_a": 0.0})
+    allocator.set_available_power({"swbd_a": 5600.0})
+    allocator.allocate(np.zeros(6))
+    _, _, values = power_diagnostics(allocator, None, None, 0)
+    assert values["bus ties"] == "bt_ab open (swbd_a + swbd_b)"
+    assert values["restoring available power"] == "swbd_a 56 kW, swbd_b 7800 kW in use, rising at capacity / 10 s"

@@ -123,3 +123,30 @@ def test_a_qos_override_on_one_node_leaves_the_next_one_at_the_default(ros_conte
         for node in (overridden, default):
             node.release()
             node.destroy_node()
+
+
+DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
+
+
+@pytest.mark.params(DP_VESSEL, wrench_timeout=0.0, power__bus_ties=["bt_ab"],
+                    power__bus_tie__bt_ab__sources=["swbd_a", "swbd_b"], power__bus_tie__bt_ab__closed=False)
+def test_a_bus_tie_from_the_service_feeds_the_other_bus_from_the_next_sample(harness):
+    """swbd_b at 0 kW with the tie open: its thrusters have no power. ~/set_bus_tie closes it:
+    from the next sample they run on swbd_a's power, which allocation_status reports drawn from
+    swbd_a; an unknown tie is refused and changes nothing."""
+    harness.send_power({"swbd_b": 0.0})
+    harness.send_wrench([0.0, 3e5, 0.0, 0.0, 0.0, 0.0])
+    harness.tick(30)
+    assert harness.commands[-1].thrust[1] == 0.0 and harness.commands[-1].thrust[3] == 0.0
+    assert harness.set_bus_tie("bt_xy", True) == (False, "unknown bus tie 'bt_xy'; bus ties: bt_ab")
+    assert harness.diagnostics_after_a_second()["bus ties"] == "bt_ab open (swbd_a + swbd_b)"
+    assert harness.set_bus_tie("bt_ab", True) == (
+        True, "bus tie bt_ab closed from the next sample; buses: swbd_a + swbd_b")
+    count = len(harness.commands)
+    harness.tick(1)
+    harness.spin_until(lambda: len(harness.commands) > count)
+    assert harness.commands[count].thrust[3] != 0.0
+    harness.tick(2)
+    status = harness.status[-1]
+    assert status.source_power[1] == 0.0 and status.source_power[0] > 0.0
+    assert harness.diagnostics_after_a_second()["bus ties"] == "bt_ab closed (swbd_a + swbd_b)"

@@ -13,7 +13,7 @@ from conftest import ROOT
 from allocator_pkg.simulation.closed_loop import ClosedLoop
 from allocator_pkg.simulation.in_process import in_process_link
 from allocator_pkg.simulation.report.figures import nominal
-from allocator_pkg.simulation.scenario import load_scenario
+from allocator_pkg.simulation.scenario import Event, load_scenario
 
 SCALE = 0.5
 
@@ -78,3 +78,26 @@ def test_the_consequence_alarm_comes_before_the_failure_and_the_loss_of_position
     assert metrics["alarm_lead_time"] > 10.0 and metrics["alarm_after_position_loss"] == 0.0
     assert result.report["windows"]["before_fault"]["metrics"]["position_error_max"] <= case.position_limit
     assert calm.metrics["consequence_alarm_time"] == np.inf                      # the weather raised it
+
+
+TIE = {"power.bus_ties": ["bt_ab"], "power.bus_tie.bt_ab.sources": ["swbd_a", "swbd_b"],
+       "power.bus_tie.bt_ab.closed": False}
+
+
+def test_a_bus_tie_event_closes_the_tie_and_feeds_the_lost_boards_thrusters(tmp_path):
+    """dp_switchboard_trip's vessel with a bus tie, open, for 30 s: at 5 s swbd_b's generators
+    trip (0 kW) and its thrusters give nothing; at 15 s the scenario's bus_tie event closes the tie
+    and from the next sample they run on swbd_a's power, drawn from swbd_a, within its power."""
+    case = replace(load_scenario(ROOT / "config" / "scenarios" / "dp_switchboard_trip.yaml").scaled(0.1),
+                   parameters=TIE, events=(Event(5.0, "power", name="swbd_b", value=0.0),
+                                           Event(15.0, "bus_tie", name="bt_ab", value=True)))
+    messages: list[str] = []
+    result = ClosedLoop(case, tmp_path / "run", in_process_link, log=messages.append).run()
+    assert_never_over(result)
+    assert any("bus tie bt_ab closed from the next sample; buses: swbd_a + swbd_b" in m for m in messages)
+    t = np.array(result.trace.time)
+    a = result.trace.power_arrays() | result.trace.arrays()
+    port = list(result.vehicle.names).index("azimuth_port")
+    assert np.all(a["thrust"][(t > 5.2) & (t < 14.9), port] == 0.0)
+    assert np.any(a["thrust"][t > 15.2, port] != 0.0)
+    assert np.all(a["source_power"][t > 5.2, 1] == 0.0) and np.any(a["source_power"][t > 15.2, 0] > 0.0)

@@ -310,3 +310,32 @@ def test_what_a_scenario_expects_of_a_method_is_checked_at_load(tmp_path, method
     path.write_text(text[:start] + "methods:\n" + methods + "\n")
     with pytest.raises(ScenarioError, match=message):
         load_scenario(path)
+
+
+TIE_PARAMETERS = ("seed: 3", "seed: 3\nparameters: {power.bus_ties: [bt_ab], power.bus_tie.bt_ab.sources: "
+                  "[swbd_a, swbd_b], power.bus_tie.bt_ab.closed: false}")
+
+
+def tie_scenario(tmp_path, event: str):
+    """dp_switchboard_trip with a bus tie between its switchboards and ``event`` for its group fault."""
+    path = _bad(tmp_path, *TIE_PARAMETERS, base="dp_switchboard_trip.yaml")
+    path.write_text(path.read_text().replace("{time: 100.0, group_fault: {group: switchboard_b}}", event))
+    return path
+
+
+def test_a_bus_tie_event_loads_with_its_state(tmp_path):
+    case = load_scenario(tie_scenario(tmp_path, "{time: 50.0, bus_tie: {name: bt_ab, closed: true}}"))
+    event = case.events[0]
+    assert (event.time, event.kind, event.name, event.value) == (50.0, "bus_tie", "bt_ab", True)
+
+
+@pytest.mark.parametrize("event, message", [
+    ("{time: 50.0, bus_tie: {name: bt_xy, closed: true}}",
+     r"events\[0\]\.bus_tie\.name: 'bt_xy' is not a bus tie of the vehicle \(bt_ab\)"),
+    ("{time: 50.0, bus_tie: {name: bt_ab, closed: 1}}", r"events\[0\]\.bus_tie: name .* and closed \(true or false\)"),
+    ("{time: 50.0, bus_tie: {name: bt_ab}}", r"events\[0\]\.bus_tie: name .* and closed \(true or false\), not"),
+    ("{time: 50.0, bus_tie: {name: bt_ab, closed: true, delay: 2.0}}", r"events\[0\]\.bus_tie\.delay: unknown key"),
+])
+def test_a_bus_tie_event_is_checked_at_load(tmp_path, event, message):
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(tie_scenario(tmp_path, event))

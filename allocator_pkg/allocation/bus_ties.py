@@ -1,0 +1,139 @@
+"""Bus-tie breakers at runtime (docs/power.md, "Bus ties"): which power sources form one bus
+for the state of the ties, and the power rows of that state.
+
+Sources joined by closed ties (directly or through others) are one bus. A bus's power is the
+sum of its sources' available power, and a thruster fed by any source of the bus draws on all
+of it: the row of the bus's first source (in ``power.sources`` order) carries the bus, its
+weights summing the shares of every feed of the thruster on the bus and its limit the sum of
+the bus's available power; the rows of the other sources of the bus are empty and unbounded.
+An open tie splits them again: each source its own row, its own thrusters. What a bus draws is
+split over its sources in proportion to their available power, as parallel generators share
+load by their droop: each source is within its available power exactly when the bus is.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TypeAlias
+
+import numpy as np
+
+from ..vehicle.config import BusTie
+
+TieStates: TypeAlias = dict[str, bool]
+
+
+@dataclass
+class BusTies:
+    """The ties of one configuration between the sources ``sources`` and each one's state
+    (``closed`` by name)."""
+
+    sources: tuple[str, ...]
+    ties: tuple[BusTie, ...]
+    closed: TieStates = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, sources: tuple[str, ...], ties: tuple[BusTie, ...]) -> BusTies:
+        """The ties in their configured states."""
+        return cls(sources, ties, {tie.name: tie.closed for tie in ties})
+
+    def carried(self, other: BusTies) -> BusTies:
+        """These ties with the runtime state of every tie ``other`` has too (a new configuration
+        keeps what the operator set)."""
+        kept = {name: state for name, state in other.closed.items() if name in self.closed}
+        return BusTies(self.sources, self.ties, {**self.closed, **kept})
+
+    def checked(self, name: str) -> BusTie:
+        """The tie ``name``; ValueError naming the ties for another name."""
+        for tie in self.ties:
+            if tie.name == name:
+                return tie
+        raise ValueError(f"unknown bus tie '{name}'; bus ties: {', '.join(t.name for t in self.ties) or 'none'}")
+
+    def set(self, name: str, closed: bool) -> bool:
+        """Open or close the tie ``name`` (:meth:`checked` first); whether its state changed."""
+        self.checked(name)
+        changed = self.closed[name] != bool(closed)
+        self.closed[name] = bool(closed)
+        return changed
+
+    @property
+    def head(self) -> np.ndarray:
+        """For every source, the index of the first source of its bus (itself when no closed tie
+        joins it to an earlier one)."""
+        head = np.arange(len(self.sources))
+        index = {name: j for j, name in enumerate(self.sources)}
+
+        def root(j: int) -> int:
+            while head[j] != j:
+                j = int(head[j])
+            return j
+
+        for tie in self.ties:
+            if self.closed[tie.name]:
+                a, b = sorted((root(index[tie.sources[0]]), root(index[tie.sources[1]])))
+                head[b] = a
+        return np.array([root(j) for j in range(len(self.sources))], dtype=int)
+
+    def pooling(self) -> np.ndarray:
+        """(m x m) matrix that maps a source's column onto its bus's row: entry (j, k) is 1 when
+        source j's power and consumers go to row k."""
+        m = len(self.sources)
+        pool = np.zeros((m, m))
+        pool[np.arange(m), self.head] = 1.0
+        return pool
+
+    def pool_shares(self, shares: np.ndarray) -> np.ndarray:
+        """The (r x m) feed shares by row: each thruster's shares on a bus summed into the bus's
+        row."""
+        return shares @ self.pooling()
+
+    def pool_available(self, available: np.ndarray) -> np.ndarray:
+        """Available power of every row: a bus's sum on its first source, inf on the others."""
+        head = self.head
+        rows = available @ self.pooling()
+        return np.where(head == np.arange(head.size), rows, np.inf)
+
+    def split(self, rows: np.ndarray, available: np.ndarray) -> np.ndarray:
+        """What each source gives of its bus's draw ``rows`` (by row): the bus's draw in
+        proportion to the available power of its sources (all on the first one when the bus has
+        none)."""
+        head = self.head
+        total = (available @ self.pooling())[head]
+        first = head == np.arange(head.size)
+        share = np.divide(available, total, out=first.astype(float), where=total > 0.0)
+        return rows[head] * share
+
+    def pattern(self, shares: np.ndarray) -> np.ndarray:
+        """(m x r) every (row, thruster) pair that some state of the ties makes non-zero: row j
+        carries thruster i when a path of ties from j to one of i's feeds passes only sources
+        at or after j (closing just those ties makes a bus that j heads and that feeds i)."""
+        m = len(self.sources)
+        index = {name: j for j, name in enumerate(self.sources)}
+        links = [(index[t.sources[0]], index[t.sources[1]]) for t in self.ties]
+        reach = np.zeros((m, shares.shape[0]), dtype=bool)
+        for j in range(m):
+            bus, grown = {j}, True
+            while grown:
+                joined = {b for a, b in links if a in bus and b > j} | {a for a, b in links if b in bus and a > j}
+                grown = not joined <= bus
+                bus |= joined
+            reach[j] = (shares[:, sorted(bus)] > 0.0).any(axis=1)
+        return reach
+
+    def buses(self) -> list[tuple[str, ...]]:
+        """The buses of the state in force: the sources of each, in ``power.sources`` order."""
+        head = self.head
+        return [tuple(s for s, h in zip(self.sources, head) if h == k) for k in sorted(set(head.tolist()))]
+
+    def reply(self, name: str) -> str:
+        """What a change of the tie ``name`` answers: its state and the buses it leaves."""
+        buses = " | ".join(" + ".join(bus) for bus in self.buses())
+        return f"bus tie {name} {'closed' if self.closed[name] else 'open'} from the next sample; buses: {buses}"
+
+    def text(self) -> str:
+        """The state of every tie, for the diagnostics and the log: ``bt_ab closed (swbd_a +
+        swbd_b)``."""
+        return ", ".join(f"{t.name} {'closed' if self.closed[t.name] else 'open'} ({' + '.join(t.sources)})"
+                         for t in self.ties)
+

@@ -1,0 +1,169 @@
+"""Bus ties (allocation/bus_ties.py, docs/power.md "Bus ties"): the buses of a tie state and
+their rows by hand, the fixed pattern against every tie state enumerated, and on dp_vessel with a
+tie between its switchboards: a thruster uses the other switchboard's power only with the tie
+closed, the bus drawn to its limit and never beyond, the reply and refusals of
+``Allocator.set_bus_tie``."""
+
+import itertools
+
+import numpy as np
+import pytest
+from conftest import ROOT, vehicle_from
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from allocator_pkg import Allocator
+from allocator_pkg.allocation.bus_ties import BusTies
+from allocator_pkg.vehicle.config import BusTie
+
+OVER = 0.01
+"""A source may be asked for at most 1 % more than it has (rounding)."""
+
+CHAIN = BusTies.of(("a", "b", "c"), (BusTie("t_ab", ("a", "b"), True), BusTie("t_bc", ("b", "c"), True)))
+
+
+def chain(ab: bool, bc: bool) -> BusTies:
+    ties = BusTies.of(CHAIN.sources, CHAIN.ties)
+    ties.set("t_ab", ab)
+    ties.set("t_bc", bc)
+    return ties
+
+
+@pytest.mark.parametrize(("ab", "bc", "head", "rows"), [
+    (True, True, [0, 0, 0], [600.0, np.inf, np.inf]),
+    (False, True, [0, 1, 1], [100.0, 500.0, np.inf]),
+    (True, False, [0, 0, 2], [300.0, np.inf, 300.0]),
+    (False, False, [0, 1, 2], [100.0, 200.0, 300.0]),
+])
+def test_the_buses_of_a_chain_of_ties_by_hand(ab, bc, head, rows):
+    """Sources a, b, c with 100, 200, 300 kW; a thruster on each. A closed tie pools its two
+    sources into the row of the first; a bus's row has the sum of its sources' power."""
+    ties = chain(ab, bc)
+    assert ties.head.tolist() == head
+    np.testing.assert_array_equal(ties.pool_available(np.array([100.0, 200.0, 300.0])), rows)
+    pooled = ties.pool_shares(np.eye(3))
+    assert [int(np.flatnonzero(row)[0]) for row in pooled] == head
+
+
+def test_a_bus_draw_splits_over_its_sources_by_their_available_power():
+    """a + b + c closed, 600 kW drawn: 100, 200 and 300 kW; b at 0 kW: a and c share by 100/400, 300/400."""
+    ties = chain(True, True)
+    np.testing.assert_allclose(ties.split(np.array([600.0, 0.0, 0.0]), np.array([100.0, 200.0, 300.0])),
+                               [100.0, 200.0, 300.0])
+    np.testing.assert_allclose(ties.split(np.array([200.0, 0.0, 0.0]), np.array([100.0, 0.0, 300.0])),
+                               [50.0, 0.0, 150.0])
+    split = chain(False, True).split(np.array([80.0, 250.0, 0.0]), np.array([100.0, 200.0, 300.0]))
+    np.testing.assert_allclose(split, [80.0, 100.0, 150.0])
+
+
+def test_the_pattern_of_a_chain_by_hand():
+    """Row a can carry every thruster (a heads every bus it is in), row b those on b and c (a bus
+    b + c without a), row c only c's (any bus with b has b before c)."""
+    assert CHAIN.pattern(np.eye(3)).tolist() == [[True, True, True], [False, True, True], [False, False, True]]
+
+
+@st.composite
+def tie_graphs(draw):
+    m = draw(st.integers(2, 5))
+    pairs = list(itertools.combinations(range(m), 2))
+    chosen = draw(st.lists(st.sampled_from(pairs), min_size=1, max_size=min(4, len(pairs)), unique=True))
+    r = draw(st.integers(1, 5))
+    feeds = draw(st.lists(st.lists(st.booleans(), min_size=m, max_size=m).filter(any), min_size=r, max_size=r))
+    sources = tuple(f"s{j}" for j in range(m))
+    ties = tuple(BusTie(f"t{k}", (sources[a], sources[b]), True) for k, (a, b) in enumerate(chosen))
+    return BusTies.of(sources, ties), np.array(feeds, dtype=float)
+
+
+@settings(deadline=None, max_examples=60)
+@given(tie_graphs())
+def test_the_pattern_is_every_pair_some_tie_state_makes_non_zero(graph):
+    """Against every one of the 2^k states of k ties, enumerated."""
+    ties, shares = graph
+    union = np.zeros((len(ties.sources), shares.shape[0]), dtype=bool)
+    for states in itertools.product((False, True), repeat=len(ties.ties)):
+        state = BusTies.of(ties.sources, ties.ties)
+        for tie, closed in zip(ties.ties, states):
+            state.set(tie.name, closed)
+        union |= state.pool_shares(shares).T > 0.0
+    assert np.array_equal(ties.pattern(shares), union)
+
+
+DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"
+TIED = {"power__bus_ties": ["bt_ab"], "power__bus_tie__bt_ab__sources": ["swbd_a", "swbd_b"],
+        "power__bus_tie__bt_ab__closed": False}
+ON_A = np.array([True, False, True, False])
+"""dp_vessel's thrusters on swbd_a: azimuth_stbd and tunnel_fwd."""
+
+
+def drawn(vehicle, thrust: np.ndarray) -> np.ndarray:
+    """[kW] of each thruster, P |f|^(3/2) (1.44), from the vehicle file's coefficients."""
+    return np.array([a.power_coefficient for a in vehicle.actuators]) * np.abs(thrust) ** 1.5 / 1e3
+
+
+@pytest.mark.parametrize("tau", [[0, 300e3, 0, 0, 0, 0], [0, -400e3, 0, 0, 0, -5e6], [0, 300e3, 0, 0, 0, 8e6]])
+def test_a_thruster_uses_the_other_switchboards_power_only_with_the_tie_closed(tau):
+    """300 kW on each switchboard. Open: each switchboard's thrusters draw at most its 300 kW.
+    Closed: the bus of 600 kW is drawn to its limit, and the thrusters of swbd_b draw more than
+    swbd_b's 300 kW (power of swbd_a); what each source reports stays within its own."""
+    vehicle = vehicle_from(DP_VESSEL, **TIED)
+    allocator = Allocator(vehicle)
+    allocator.set_available_power({"swbd_a": 300.0, "swbd_b": 300.0})
+    seen = {}
+    for closed in (False, True):
+        allocator.set_bus_tie("bt_ab", closed)
+        for _ in range(200):
+            result = allocator.allocate(tau)
+        power = drawn(vehicle, result.thrust)
+        reading = allocator.power.reading(result.thrust, allocator.power_limit)
+        assert np.all(reading.power <= 300.0 * (1.0 + OVER))
+        np.testing.assert_allclose(reading.power.sum(), power.sum(), rtol=1e-9)
+        seen[closed] = power[ON_A].sum(), power[~ON_A].sum()
+    (open_a, open_b), (closed_a, closed_b) = seen[False], seen[True]
+    assert open_a <= 300.0 * (1.0 + OVER) and open_b <= 300.0 * (1.0 + OVER)
+    assert closed_a + closed_b <= 600.0 * (1.0 + OVER)
+    assert closed_a + closed_b >= 600.0 * (1.0 - OVER)              # the bus's limit reached
+    assert max(closed_a, closed_b) > 300.0 * (1.0 + OVER)          # one side on the other's power
+
+
+def test_a_lost_source_in_a_closed_bus_leaves_its_thrusters_the_others_power():
+    """swbd_b at 0 kW: open, azimuth_port and tunnel_aft have no feed; closed, they run on swbd_a."""
+    allocator = Allocator(vehicle_from(DP_VESSEL, **TIED))
+    allocator.set_available_power({"swbd_b": 0.0})
+    _, high = allocator.ranges
+    assert high[1] == 0.0 and high[3] == 0.0
+    allocator.set_bus_tie("bt_ab", True)
+    _, high = allocator.ranges
+    assert high[1] > 0.0 and high[3] > 0.0
+
+
+def test_set_bus_tie_replies_with_the_buses_and_refuses_an_unknown_tie():
+    allocator = Allocator(vehicle_from(DP_VESSEL, **TIED))
+    assert allocator.set_bus_tie("bt_ab", True) == \
+        "bus tie bt_ab closed from the next sample; buses: swbd_a + swbd_b"
+    limit = allocator.power_limit
+    with pytest.raises(ValueError, match="unknown bus tie 'bt_xy'; bus ties: bt_ab"):
+        allocator.set_bus_tie("bt_xy", False)
+    assert allocator.power.ties.closed == {"bt_ab": True} and allocator.power_limit is limit
+    assert allocator.set_bus_tie("bt_ab", False) == "bus tie bt_ab open from the next sample; buses: swbd_a | swbd_b"
+    assert allocator.power.ties.text() == "bt_ab open (swbd_a + swbd_b)"
+
+
+def test_a_new_configuration_keeps_the_tie_state_set():
+    allocator = Allocator(vehicle_from(DP_VESSEL, **TIED))
+    allocator.set_bus_tie("bt_ab", True)
+    allocator.reconfigure(vehicle_from(DP_VESSEL, **TIED, power__swbd_a__capacity=5000.0))
+    assert allocator.power.ties.closed == {"bt_ab": True}
+
+
+def test_rows_and_pattern_for_the_optimisation():
+    """Closed: swbd_a's row carries all four thrusters and 5600 + 7800 kW, swbd_b's is empty and
+    unbounded; the pattern (every state) has both rows' own thrusters and row a all four."""
+    allocator = Allocator(vehicle_from(DP_VESSEL, **TIED))
+    weights, available = allocator.power.rows()
+    np.testing.assert_array_equal(weights, [[1, 0, 1, 0], [0, 1, 0, 1]])
+    np.testing.assert_array_equal(available, [5600.0, 7800.0])
+    allocator.set_bus_tie("bt_ab", True)
+    weights, available = allocator.power.rows()
+    np.testing.assert_array_equal(weights, [[1, 1, 1, 1], [0, 0, 0, 0]])
+    np.testing.assert_array_equal(available, [13400.0, np.inf])
+    assert allocator.power.pattern.tolist() == [[True] * 4, [False, True, False, True]]
