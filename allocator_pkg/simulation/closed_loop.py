@@ -210,6 +210,8 @@ class ClosedLoop:
                 thrusters.set_fault(actuator, "failed", 0.0)
         elif event.kind == "bus_tie":
             message = link.set_bus_tie(event.name, bool(event.value))
+            if self.electric is not None:
+                message += "; " + self.electric.set_bus_tie(event.name, bool(event.value))
         elif event.kind == "power":
             self.power_plant.set_available(event.name, float(event.value))
             message = f"power plant: {event.name} gives {float(event.value):g} kW"
@@ -227,8 +229,6 @@ class ClosedLoop:
             message = link.set_parameter(event.name, event.value)
         elif event.kind == "generator_trip":
             message = self.electric.lose_set(event.name)
-        elif event.kind == "bus_tie":
-            message = self.electric.set_bus_tie(event.name, bool(event.value))
         else:
             return
         self.log(f"sim: {event.time:7.1f} s  {message}")

@@ -1,8 +1,7 @@
 """Reading a scenario's ``power_plant`` section (:data:`~.power_plant_keys.POWER_PLANT`) into a
-:class:`~.electric_plant.PlantSpec`, each mistake refused with its key (``ScenarioError``):
-a switchboard that is not a power source of the vehicle, a name given twice, a bus tie joining
-a switchboard to itself, a frequency band that does not hold 1 pu, a switchboard without a
-connected set."""
+:class:`~.electric_plant.PlantSpec`, each mistake refused with its key (``ScenarioError``): a
+switchboard that is not a power source of the vehicle, a name given twice, a frequency band
+that does not hold 1 pu, a bus (by the vehicle's ties closed at start) without a connected set."""
 
 from __future__ import annotations
 
@@ -54,15 +53,6 @@ def _generator_set(item: dict, where: str, sources: list[str]) -> GeneratorSetSp
                             connected=_flag(item, "connected", where, True), **values)
 
 
-def _bus_tie(item: dict, where: str, sources: list[str]) -> BusTieSpec:
-    between = item.get("between")
-    if not (isinstance(between, list) and len(between) == 2 and all(b in sources for b in between)
-            and between[0] != between[1]):
-        raise ScenarioError(f"{where}between: two distinct power sources of the vehicle ({', '.join(sources)}), "
-                            f"not {between!r}")
-    return BusTieSpec(_name(item, "name", where), (between[0], between[1]), _flag(item, "closed", where, True))
-
-
 def _unique(names: list[str], where: str) -> None:
     repeated = sorted({name for name in names if names.count(name) > 1})
     if repeated:
@@ -83,9 +73,7 @@ def read_power_plant(data: Any, vehicle: Vehicle) -> PlantSpec:
     for index, s in enumerate(sets):
         if not s.under_frequency < 1.0 < s.over_frequency:
             raise ScenarioError(f"{ROOT}generator_sets[{index}]: under_frequency < 1 < over_frequency")
-    unfed = [name for name in sources if not any(s.switchboard == name and s.connected for s in sets)]
-    ties = [_bus_tie(item, where, sources) for where, item in _items(data, "bus_ties")]
-    _unique([t.name for t in ties], f"{ROOT}bus_ties")
+    ties = [BusTieSpec(tie.name, tie.sources, tie.closed) for tie in vehicle.bus_ties]
     consumers = [Consumer(_name(item, "switchboard", where, sources, "a power source of the vehicle"),
                              number(item, "power", where), number(item, "start", where), number(item, "on_time", where),
                              number(item, "off_time", where)) for where, item in _items(data, "consumers")]
@@ -106,19 +94,21 @@ def read_power_plant(data: Any, vehicle: Vehicle) -> PlantSpec:
         management=PowerManagementSpec(number(management, "reaction_time", ROOT + "management."),
                                        number(management, "ramp_time", ROOT + "management.")),
         load_reduction=spec)
-    if unfed and not _joined(unfed, sources, ties, sets):
+    unfed = _unfed(sources, ties, sets)
+    if unfed:
         raise ScenarioError(f"{ROOT}generator_sets: no connected set feeds {', '.join(unfed)}, nor any switchboard "
-                            "a closed bus tie joins it to")
+                            "a closed bus tie (power.bus_ties of the vehicle) joins it to")
     return plant
 
 
-def _joined(unfed: list[str], sources: list[str], ties: list[BusTieSpec], sets: list[GeneratorSetSpec]) -> bool:
+def _unfed(sources: list[str], ties: list[BusTieSpec], sets: list[GeneratorSetSpec]) -> list[str]:
+    """The switchboards whose bus (by the ties closed at start) has no connected set."""
     groups = buses(sources, {t.name: t for t in ties}, {t.name: t.closed for t in ties})
     fed = {s.switchboard for s in sets if s.connected}
-    return all(any(fed & set(group) for group in groups if name in group) for name in unfed)
+    return [name for group in groups if not fed & set(group) for name in group]
 
 
-PLANT_EVENTS = {"generator_trip": "generator_set", "bus_tie": "tie"}
+PLANT_EVENTS = {"generator_trip": "generator_set"}
 """The events that need a ``power_plant``, and the key naming what of it they act on."""
 SOURCE_EVENTS = ("power", "group_fault")
 """The events that set a source's power by hand, which a simulated plant gives by itself."""
@@ -131,13 +121,10 @@ def check_plant_events(events: list, plant: PlantSpec | None) -> None:
             raise ScenarioError(f"events[{index}].{event.kind}: needs a power_plant section")
         if event.kind in SOURCE_EVENTS and plant is not None:
             raise ScenarioError(f"events[{index}].{event.kind}: the power_plant gives each source's power; "
-                                "use generator_trip or bus_tie")
-        if event.kind == "generator_trip":
-            known = [s.name for s in plant.generator_sets]
-        elif event.kind == "bus_tie":
-            known = [t.name for t in plant.bus_ties]
-        else:
+                                "use generator_trip")
+        if event.kind != "generator_trip":
             continue
+        known = [s.name for s in plant.generator_sets]
         if event.name not in known:
             key = PLANT_EVENTS[event.kind]
             raise ScenarioError(f"events[{index}].{event.kind}.{key}: '{event.name}' is not one of "

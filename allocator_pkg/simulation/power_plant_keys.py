@@ -1,5 +1,5 @@
 """The keys of a scenario's ``power_plant`` section (:data:`POWER_PLANT`), part of
-:data:`~.scenario_keys.SCENARIO_KEYS`: the simulated generator sets, bus ties, other consumers,
+:data:`~.scenario_keys.SCENARIO_KEYS`: the simulated generator sets, other consumers,
 power management system and load reduction of :mod:`.electric_plant`. The defaults are
 MarPowSim's drilling rig (NTNU-MCS/MarPowSim,
 ``Example/DrillingRigMSStoolbox/initDrillingRigMSStoolbox.m``)."""
@@ -36,12 +36,6 @@ GENERATOR_SET_KEYS = (
             default=0.1, unit="s", minimum=0.0),
     FileKey("connected", BOOLEAN, "on the bus at t = 0", default=True),
 )
-BUS_TIE_KEYS = (
-    FileKey("name", TEXT, "the tie's name, unique; a `bus_tie` event names it", required=True),
-    FileKey("between", LIST, "the two switchboards (power sources of the vehicle) it joins", required=True,
-            range_doc="2 distinct sources"),
-    FileKey("closed", BOOLEAN, "closed at t = 0", default=True),
-)
 CONSUMER_KEYS = (
     FileKey("switchboard", TEXT, "the power source of the vehicle it draws from", required=True),
     FileKey("power", NUMBER, "its power while on", required=True, unit="kW", minimum=0.0),
@@ -71,11 +65,12 @@ LOAD_REDUCTION_KEYS = (
 POWER_PLANT = FileKey(
     "power_plant", MAPPING, "a simulated electric power plant on the vehicle's power sources (docs/power.md, "
     "\"The drilling-rig benchmark\"): it reports power_available in place of the capacities, and the `power` "
-    "and `group_fault` events do not apply", default_doc="none (each source at its capacity)", keys=(
+    "and `group_fault` events do not apply; its bus ties are the vehicle's (`power.bus_ties`), which the `bus_tie` "
+    "event opens and closes for the allocator and the plant alike", default_doc="none (each source at its capacity)",
+    keys=(
         FileKey("generator_sets", LIST, "the diesel generator sets", required=True, keys=GENERATOR_SET_KEYS,
                 item=EACH),
-        FileKey("bus_ties", LIST, "bus tie breakers", default_doc="none", keys=BUS_TIE_KEYS, item=EACH),
-        FileKey("consumers", LIST, "the other consumers (hotel, drilling, a drawworks)", default_doc="none",
+            FileKey("consumers", LIST, "the other consumers (hotel, drilling, a drawworks)", default_doc="none",
                 keys=CONSUMER_KEYS, item=EACH),
         FileKey("management", MAPPING, "the power management system's power available", keys=MANAGEMENT_KEYS),
         FileKey("load_reduction", MAPPING, "the fast load reduction of the PMS and the thruster drives",

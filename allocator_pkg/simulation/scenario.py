@@ -209,10 +209,6 @@ def _event(data: Any, index: int) -> Event:
             raise ScenarioError(f"{where}generator_trip.generator_set: a generator set's name, not "
                                 f"{body.get('generator_set')!r}")
         return Event(time, kind, name=body["generator_set"])
-    if kind == "bus_tie":
-        if not isinstance(body.get("tie"), str) or not isinstance(body.get("closed"), bool):
-            raise ScenarioError(f"{where}bus_tie: a tie's name (tie) and closed: true or false, not {body!r}")
-        return Event(time, kind, name=body["tie"], value=body["closed"])
     if kind == "power":
         if not isinstance(body.get("source"), str):
             raise ScenarioError(f"{where}power.source: a power source's name, not {body.get('source')!r}")

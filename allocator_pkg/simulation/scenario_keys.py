@@ -106,9 +106,6 @@ EVENT_KEYS = (
         FileKey("closed", BOOLEAN, "true: closed (its sources one bus), false: open", required=True))),
     FileKey("weather_ramp", MAPPING, "the weather grows (or calms) linearly to `to` times the scenario's current "
             "speed, wind speed and significant wave height", keys=RAMP_KEYS),
-    FileKey("bus_tie", MAPPING, "a bus tie breaker opens or closes (the allocator's and the power plant's)", keys=(
-        FileKey("tie", TEXT, "a bus tie of `power_plant.bus_ties`", required=True),
-        FileKey("closed", BOOLEAN, "closed after the event", required=True))),
     FileKey("generator_trip", MAPPING, "a generator set of `power_plant` is lost (its breaker opens)", keys=(
         FileKey("generator_set", TEXT, "a generator set of `power_plant.generator_sets`", required=True),)),
 )
