@@ -125,7 +125,8 @@ class ClosedLoop:
             report["power_plant"] = plant_report(self.electric.record, self.electric.sources, self.period)
             report["metrics"] |= report["power_plant"]["metrics"]
         (self.out / "metrics.json").write_text(report_json(report))
-        return RunResult(report["metrics"], self.trace, self.vehicle, self.faults, report)
+        return RunResult(report["metrics"], self.trace, self.vehicle, self.faults, report,
+                         None if self.electric is None else self.electric.record)
 
     def _wrench(self, setpoint: np.ndarray) -> np.ndarray:
         """The controller's request for this step, in the six DOFs."""

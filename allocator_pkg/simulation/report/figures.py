@@ -21,6 +21,7 @@ from ..run_setup import RunResult
 from ..scenario import Scenario
 from ..verdict import RUN
 from .footprint import footprint_figure, mark_setpoints, offsets, origin_of
+from .plant_figure import plant_figure
 from .style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, shade_faults
 from .timeline import timeline_figure
 
@@ -60,10 +61,14 @@ def nominal_run(scenario: Scenario, out: Path, run: Callable[[Scenario, Path], R
 
 
 def plot_run(out: Path, result: RunResult, scenario: Scenario, nominal_result: RunResult | None = None) -> None:
-    """``footprint.png`` and ``timeline.png`` of one run, the nominal run's dashed."""
+    """``footprint.png`` and ``timeline.png`` of one run, the nominal run's dashed; with a
+    simulated electric power plant, ``plant.png`` (:mod:`.plant_figure`)."""
     plt = pyplot()
-    for name, figure in (("footprint", footprint_figure(result, scenario, nominal_result)),
-                         ("timeline", timeline_figure(result, scenario, nominal_result))):
+    figures = [("footprint", footprint_figure(result, scenario, nominal_result)),
+               ("timeline", timeline_figure(result, scenario, nominal_result))]
+    if result.plant is not None:
+        figures.append(("plant", plant_figure(result, scenario)))
+    for name, figure in figures:
         figure.savefig(out / f"{name}.png", dpi=100)
         plt.close(figure)
 
