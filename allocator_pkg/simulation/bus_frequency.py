@@ -69,9 +69,9 @@ class Bus:
         return sum(g.spec.rating * g.p_m for g in self.sets if g.connected)
 
     def advance(self, load: float, dt: float, time: float) -> list[GeneratorSet]:
-        """``dt`` [s] under ``load`` [kW] ending at ``time``: the swing equation (explicit, dt
-        small against 2 H / (1 / R) ...), the governors, then the frequency relays; the sets
-        that tripped."""
+        """``dt`` [s] under ``load`` [kW] ending at ``time``: the swing equation (an explicit
+        Euler step: ``dt`` is a small share of the governors' period, 2 pi sqrt(2 H T R)), the
+        governors at the new frequency, then the frequency relays; the sets that tripped."""
         if not self.live:
             self.frequency = 0.0
             return []

@@ -57,8 +57,8 @@ class PlantSpec:
 
 @dataclass
 class PlantRecord:
-    """Per step: time [s], frequency [pu] and load [kW] per switchboard (its bus's frequency),
-    generation [kW] per switchboard, each thruster's drive limit [kW]."""
+    """Per step of the closed loop: time [s], and per switchboard its bus's frequency [pu], its
+    load [kW] (0 once dead) and what its sets generate [kW]."""
 
     time: list[float] = field(default_factory=list)
     frequency: list[list[float]] = field(default_factory=list)

@@ -116,3 +116,13 @@ def test_the_wrench_follows_every_change_of_angle_and_the_ranges_every_change_of
         rov.set_voltage(voltage)
         low, high = thrust_limits(ROV, voltage)
         assert np.array_equal(rov.low, low) and np.array_equal(rov.high, high), voltage
+
+
+@pytest.mark.parametrize("cap", [0.0, 50e3, 150e3])
+def test_a_drive_limit_holds_the_thrust_under_it_at_once_whatever_the_rate(cap):
+    thrusters = Thrusters(VESSEL, time_constant=2.0)
+    thrusters.start_at(np.array([300e3, 200e3, 200e3, 100e3]), thrusters.angle.copy())
+    thrusters.cap = np.array([cap, cap, np.inf, cap])
+    thrusters.step(np.array([300e3, 200e3, 200e3, 100e3]), thrusters.angle.copy(), 0.01)
+    assert thrusters.thrust[[0, 1, 3]] == pytest.approx([min(cap, 300e3), min(cap, 200e3), min(cap, 100e3)])
+    assert thrusters.thrust[2] == pytest.approx(200e3)
