@@ -37,11 +37,15 @@ METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),
                ("time_over_available", "time over available power [s]", "{:.1f}"),
                ("consequence_alarm_time", "consequence alarm at [s]", "{:.1f}"),
                ("alarm_lead_time", "alarm lead time [s]", "{:.1f}"),
+               ("frequency_dip", "frequency dip [pu]", "{:.4f}"),
+               ("time_under_frequency", "time under 0.95 pu [s]", "{:.1f}"),
+               ("generator_sets_tripped", "generator sets tripped [count]", "{:.0f}"),
                ("realtime_factor", "real-time factor [x real time]", "{:.1f}"))
 POWER_ROWS = ("time_over_available", "consequence_alarm_time", "alarm_lead_time")
-"""Rows for a scenario with power events (group faults, available power, weather ramps) only."""
-POWER_EVENTS = ("group_fault", "power", "weather_ramp")
-FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter", "group_fault", "power")
+"""Rows for a scenario with power events (group faults, available power, weather ramps, a simulated
+plant's generator trips and bus ties) only; a plant's own rows only where its runs have them."""
+POWER_EVENTS = ("group_fault", "power", "weather_ramp", "generator_trip", "bus_tie")
+FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter", "group_fault", "power", "generator_trip")
 """The kinds of event the nominal run leaves out: what goes wrong, not what is asked."""
 
 
