@@ -30,7 +30,7 @@ def test_the_reported_power_rises_from_the_floor_at_the_rated_power_over_the_ram
     assert report.bus(BUS, available, rated, 100.0 + reaction * 0.5) == available
     for dt in (0.0, 1.0, 3.0):
         expected = max(floor + rated * dt / ramp, 0.0)
-        assert report.bus(BUS, available, rated, 100.0 + reaction + dt) == pytest.approx(expected)
+        assert report.bus(BUS, available, rated, 100.0 + reaction + dt) == pytest.approx(expected, abs=1e-6)
     assert report.bus(("other",), 700.0, rated, 100.0 + reaction + 1.0) == 700.0
 
 

@@ -90,7 +90,7 @@ def test_every_switchboard_needs_a_connected_set_on_its_bus(tmp_path):
 
 def test_plant_metrics_need_a_plant_and_are_bounded_over_the_run_only(tmp_path):
     with pytest.raises(ScenarioError, match=r"windows\[0\]\.bounds\.frequency_dip: a power plant's metric"):
-        variant(tmp_path, "bounds: {", "windows:\n  - {name: late, start: 260.0, bounds: {frequency_dip: 0.1}}\n"
+        variant(tmp_path, "\nbounds: {", "\nwindows:\n  - {name: late, start: 260.0, bounds: {frequency_dip: 0.1}}\n"
                 "bounds: {")
     dp = (ROOT / "config" / "scenarios" / "dp_station_keeping.yaml").read_text()
     path = tmp_path / "dp.yaml"
