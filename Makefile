@@ -105,6 +105,7 @@ docs: setup
 	$(PY) tools/render_markers.py
 	$(PY) tools/plot_priorities.py
 	$(PY) tools/plot_bus_trip.py
+	$(PY) tools/plot_drilling_rig.py
 
 VEHICLES := $(filter-out config/default.yaml,$(wildcard config/*.yaml))
 capability: setup

@@ -22,7 +22,9 @@ import numpy as np
 
 from ..configuration.parameters import load_vehicle
 from .control_system import DpControl
+from .electric_plant import ElectricPlant
 from .plant import PLANAR, Pose
+from .plant_metrics import plant_report
 from .power_plant import PowerPlant
 from .run_report import report_json, run_report
 from .run_setup import RunResult, Voltage, WeatherScale, build_plant, setpoint_vector, warm_up_steps
@@ -104,7 +106,8 @@ class ClosedLoop:
         self.schedule = scenario.schedule()
         self.voltage = Voltage(scenario)
         self.weather = WeatherScale(scenario)
-        self.power_plant = PowerPlant(self.vehicle)
+        self.electric = None if scenario.power_plant is None else ElectricPlant(scenario.power_plant, self.vehicle)
+        self.power_plant = self.electric or PowerPlant(self.vehicle)
         self.trace = Trace(names=list(self.vehicle.names), period=self.period, horizontal=scenario.horizontal,
                            sources=list(self.power_plant.sources), position_limit=scenario.position_limit)
         self.faults = fault_intervals(scenario.events, scenario.duration)
@@ -120,8 +123,12 @@ class ClosedLoop:
             wall = time.monotonic() - wall_start
         report = run_report(self.scenario, self.trace, self.vehicle,
                             self.scenario.duration / wall if wall > 0 else math.inf)
+        if self.electric is not None:
+            report["power_plant"] = plant_report(self.electric.record, self.electric.sources, self.period)
+            report["metrics"] |= report["power_plant"]["metrics"]
         (self.out / "metrics.json").write_text(report_json(report))
-        return RunResult(report["metrics"], self.trace, self.vehicle, self.faults, report)
+        return RunResult(report["metrics"], self.trace, self.vehicle, self.faults, report,
+                         None if self.electric is None else self.electric.record)
 
     def _warm_up(self, link: Link) -> int:
         """Before t = 0: bring the allocator into step with the clock (no allocation), then hold
@@ -147,6 +154,8 @@ class ClosedLoop:
                 t_ns += self.period_ns
                 answer = link.step(t_ns, pose, supply, wrench, position, heading, record=False)
             thrusters.start_at(answer.thrust.copy(), answer.azimuth.copy())
+        if self.electric is not None:
+            self.electric.start(thrusters.thrust)
         self.log(f"sim: warm-up: {steps} steps of the equilibrium request; thrusters start at "
                  + ", ".join(f"{name} {f:.4g} N" for name, f in zip(self.vehicle.names, answer.thrust)))
         return t_ns + self.period_ns
@@ -182,7 +191,16 @@ class ClosedLoop:
                 error = trace.position_errors()[-1]
                 self.log(f"{t:6.1f} s  err {error:6.2f} m  " + link.live_line())
             self.control.advance(setpoint, self.period, answer.unallocated[dofs])
+            if self.electric is not None:
+                plant.thrusters.cap = self.electric.thrust_caps()
             plant.step(answer.thrust, answer.azimuth, self.period)
+            if self.electric is not None:
+                self._switchboards_lost(self.electric.advance(plant.thrusters.thrust, self.period))
+
+    def _switchboards_lost(self, names: list[str]) -> None:
+        """Log each switchboard whose bus went dead (its thrusters' drives stop with it)."""
+        for name in names:
+            self.log(f"sim: {self.electric.time:7.1f} s  power plant: switchboard {name} dead (blackout)")
 
     def _apply(self, link: Link, event: Event) -> None:
         """A timed event: a fault (on the allocator and on the simulated thruster), a redundancy
@@ -198,6 +216,8 @@ class ClosedLoop:
                 thrusters.set_fault(actuator, "failed", 0.0)
         elif event.kind == "bus_tie":
             message = link.set_bus_tie(event.name, bool(event.value))
+            if self.electric is not None:
+                message += "; " + self.electric.set_bus_tie(event.name, bool(event.value))
         elif event.kind == "power":
             self.power_plant.set_available(event.name, float(event.value))
             message = f"power plant: {event.name} gives {float(event.value):g} kW"
@@ -213,6 +233,8 @@ class ClosedLoop:
             self.power_plant.restore()
         elif event.kind == "parameter":
             message = link.set_parameter(event.name, event.value)
+        elif event.kind == "generator_trip":
+            message = self.electric.lose_set(event.name)
         else:
             return
         self.log(f"sim: {event.time:7.1f} s  {message}")

@@ -24,7 +24,13 @@ and of the power and the consequence analysis (:func:`power_metrics`, :func:`ala
 - ``alarm_lead_time`` [s]: how long before the position was lost the alarm rose (inf: the
   position was never lost; -inf: no alarm);
 - ``alarm_after_position_loss`` [s]: how long the position had been lost when the alarm rose
-  (0: the alarm came first, or the position was never lost; inf: lost, and no alarm).
+  (0: the alarm came first, or the position was never lost; inf: lost, and no alarm);
+
+and, with a simulated electric power plant (:mod:`.plant_metrics`, over the run only):
+
+- ``frequency_dip`` [pu]: 1 less the lowest frequency of any bus (1: a bus went dead);
+- ``time_under_frequency`` [s]: how long some bus was below 0.95 pu;
+- ``generator_sets_tripped``: the sets the frequency relays tripped.
 """
 
 from __future__ import annotations
@@ -37,12 +43,15 @@ METRIC_UNITS = {"position_error_rms": "m", "position_error_max": "m", "heading_e
                 "heading_error_max": "deg", "depth_error_max": "m", "energy": "J", "azimuth_travel": "rad",
                 "thrust_reversals": "count", "saturated_fraction": "share", "time_over_available": "s",
                 "consequence_alarm_time": "s", "position_lost_time": "s", "alarm_lead_time": "s",
-                "alarm_after_position_loss": "s", "realtime_factor": "x real time"}
+                "alarm_after_position_loss": "s", "frequency_dip": "pu", "time_under_frequency": "s",
+                "generator_sets_tripped": "count", "realtime_factor": "x real time"}
 """Every metric of a run, in the order they are reported, with its unit."""
 UNBOUNDED = ("position_lost_time", "alarm_lead_time", "realtime_factor")
 """Metrics an upper bound means nothing for: two moments that are better later, and the wall clock."""
 BOUNDED_METRICS = tuple(name for name in METRIC_UNITS if name not in UNBOUNDED)
 """The metrics a scenario's ``bounds`` may hold a run to (from above)."""
+PLANT_METRICS = ("frequency_dip", "time_under_frequency", "generator_sets_tripped")
+"""The metrics of a simulated electric power plant, over the run only."""
 OVER_SHARE = 0.01
 """A source is over its available power when it draws more than (1 + this) times it."""
 REVERSAL_SHARE = 0.01

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..vehicle.config import Vehicle
+from .electric_plant import PlantRecord
 from .environment import Environment
 from .plant import Plant
 from .rov import Rov
@@ -34,6 +35,8 @@ class RunResult:
     fault_intervals: list[tuple[float, float]]
     report: dict
     """What metrics.json holds (``simulation.report.run_report``)."""
+    plant: PlantRecord | None = None
+    """The simulated electric power plant's record, with a scenario's ``power_plant``."""
 
 
 def build_plant(scenario: Scenario, vehicle: Vehicle) -> Plant:

@@ -27,8 +27,10 @@ from ..vehicle.config import ConfigError, Vehicle
 from .control_system import ControlSystem
 from .control_values import control_system
 from .controller import Gains
+from .electric_plant import PlantSpec
 from .environment import EnvironmentSpec
 from .method_bounds import MethodBounds, method_bounds
+from .power_plant_file import check_plant_bounds, check_plant_events, read_power_plant
 from .scenario_check import (
     check_depth,
     check_environment,
@@ -117,6 +119,8 @@ class Scenario:
     """A failed actuator's thrust drops to zero at once, not at its rate limit."""
     thrust_losses: ThrustLosses | None = None
     """The thrust losses the simulated thrusters suffer (a Level 3 case's; none from a file)."""
+    power_plant: PlantSpec | None = None
+    """The simulated electric power plant (``power_plant`` of the file), or None."""
 
     @property
     def horizontal(self) -> bool:
@@ -210,6 +214,11 @@ def _event(data: Any, index: int) -> Event:
         if not isinstance(body.get("group"), str):
             raise ScenarioError(f"{where}group_fault.group: a redundancy group's name, not {body.get('group')!r}")
         return Event(time, kind, name=body["group"])
+    if kind == "generator_trip":
+        if not isinstance(body.get("generator_set"), str):
+            raise ScenarioError(f"{where}generator_trip.generator_set: a generator set's name, not "
+                                f"{body.get('generator_set')!r}")
+        return Event(time, kind, name=body["generator_set"])
     if kind == "power":
         if not isinstance(body.get("source"), str):
             raise ScenarioError(f"{where}power.source: a power source's name, not {body.get('source')!r}")
@@ -360,6 +369,9 @@ def load_scenario(path: str | Path) -> Scenario:
                    {"setpoint.position": position, "initial.position": initial_position})
     except ValueError as error:
         raise ScenarioError(str(error)) from error
+    plant = read_power_plant(data["power_plant"], config) if "power_plant" in data else None
+    check_plant_events(checked, plant)
+    check_plant_bounds(data.get("bounds", {}) or {}, plant)
     changed = dict(parameters)
     for index, event in sorted(enumerate(checked), key=lambda item: item[1].time):
         _check_event(event, index, config)
@@ -383,5 +395,5 @@ def load_scenario(path: str | Path) -> Scenario:
         description=str(data.get("description", "")),
         position_limit=number(data, "position_limit", ""),
         method_bounds=method_bounds(data.get("methods", {}) or {}, named, config),
-        control=control_system(data, model, spec), fault_trip=flag(data, "fault_trip", ""))
+        control=control_system(data, model, spec), fault_trip=flag(data, "fault_trip", ""), power_plant=plant)
 

@@ -20,6 +20,7 @@ from ..configuration.file_keys import (
 )
 from .metrics import BOUNDED_METRICS, METRIC_UNITS
 from .spectra import WAVE_SPECTRA, WIND_SPECTRA
+from .power_plant_keys import POWER_PLANT
 
 MODELS = ("dp_vessel", "bluerov2_heavy")
 FAULT_MODES = ("failed", "stuck", "degraded")
@@ -134,6 +135,8 @@ EVENT_KEYS = (
         FileKey("closed", BOOLEAN, "true: closed (its sources one bus), false: open", required=True))),
     FileKey("weather_ramp", MAPPING, "the weather grows (or calms) linearly to `to` times the scenario's current "
             "speed, wind speed and significant wave height", keys=RAMP_KEYS),
+    FileKey("generator_trip", MAPPING, "a generator set of `power_plant` is lost (its breaker opens)", keys=(
+        FileKey("generator_set", TEXT, "a generator set of `power_plant.generator_sets`", required=True),)),
 )
 """An event: ``time`` and exactly one of the others."""
 SCENARIO_KEYS = (
@@ -179,6 +182,7 @@ SCENARIO_KEYS = (
     FileKey("environment", MAPPING, "current, wind and waves, seeded", keys=ENVIRONMENT_KEYS),
     FileKey("parameters", MAPPING, "node parameters over the vehicle file's (docs/configuration.md)",
             default_doc="none"),
+    POWER_PLANT,
     FileKey("battery", MAPPING, "a battery voltage from the start", default_doc="none", keys=(
         FileKey("voltage", NUMBER, "the battery voltage", required=True, unit="V", minimum=0.0),)),
     FileKey("events", LIST, "timed events, each `time` and one of the others", default_doc="none", keys=EVENT_KEYS,

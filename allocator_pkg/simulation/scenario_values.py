@@ -10,7 +10,7 @@ from typing import Any
 
 from ..configuration.file_keys import FileKey
 from .environment import EnvironmentSpec, SlowVariation
-from .metrics import BOUNDED_METRICS
+from .metrics import BOUNDED_METRICS, PLANT_METRICS
 from .scenario_keys import scenario_key
 from .setpoint import SetpointTarget
 from .windows import Window
@@ -144,7 +144,11 @@ def read_windows(data: Any, duration: float) -> list[Window]:
                                 "after_fault, fault_N, after_fault_N)")
         if item["name"] in [w.name for w in found]:
             raise ScenarioError(f"{where}.name: '{item['name']}' names another window too")
-        found.append(Window(item["name"], start, end, read_bounds(item.get("bounds", {}), where + ".bounds")))
+        bounds = read_bounds(item.get("bounds", {}), where + ".bounds")
+        over_run = [name for name in bounds if name in PLANT_METRICS]
+        if over_run:
+            raise ScenarioError(f"{where}.bounds.{over_run[0]}: a power plant's metric, bounded over the run only")
+        found.append(Window(item["name"], start, end, bounds))
     return found
 
 

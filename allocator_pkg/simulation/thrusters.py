@@ -4,8 +4,10 @@ turns toward its commanded angle at the configured turning rate, the short way r
 FAILED actuator gives no force: its thrust falls at its rate limit, or, with ``trip``, drops to
 zero at once (a trip, as a breaker opens); a STUCK one keeps its angle, a DEGRADED one a share
 of its force. With thrust losses (:mod:`.thrust_losses`) the thrust followed is the command
-times the factors of the case of the actuators failed now, at the direction it pushes. Their
-wrench is T(alpha) f (survey (1.9)) at the angles reached."""
+times the factors of the case of the actuators failed now, at the direction it pushes. A
+drive's power limit (``cap``, the thrust it leaves [N]; the simulated power plant's load
+reduction) holds the thrust under it at once. Their wrench is T(alpha) f (survey (1.9)) at the
+angles reached."""
 
 from __future__ import annotations
 
@@ -49,6 +51,7 @@ class Thrusters:
         self._forward = self._reverse = np.ones(len(actuators))
         self._profiles: list = []
         self._losses_now()
+        self.cap = np.full(len(actuators), np.inf)
         self._rotatable = [i for i, a in enumerate(actuators) if a.rotatable]
         self._matrix = configuration_matrix(actuators, self.angle)
         self._matrix_angles = self.angle.tolist()
@@ -121,7 +124,7 @@ class Thrusters:
         if self.losses is not None:
             target = target * self.loss_factor(target)
         change = (target - self.thrust) * (1.0 - math.exp(-dt / self.time_constant))
-        self.thrust += _clip(change, -self.rate * dt, self.rate * dt)
+        self.thrust = _clip(self.thrust + _clip(change, -self.rate * dt, self.rate * dt), -self.cap, self.cap)
         turn = np.array([wrap(a - b) for a, b in zip(np.asarray(angle, dtype=float).tolist(), self.angle.tolist())])
         turn = _clip(turn, -self.turn_rate * dt, self.turn_rate * dt)
         self.angle = np.where(self.stuck, self.angle, self.angle + turn)

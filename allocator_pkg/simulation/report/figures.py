@@ -21,6 +21,7 @@ from ..run_setup import RunResult
 from ..scenario import Scenario
 from ..verdict import RUN
 from .footprint import footprint_figure, mark_setpoints, offsets, origin_of
+from .plant_figure import plant_figure
 from .style import FAULT_COLOUR, NOMINAL_LABEL, PALETTE, legend_beside, mark_events, shade_faults
 from .timeline import timeline_figure
 
@@ -36,11 +37,15 @@ METRIC_ROWS = (("position_error_rms", "position error rms [m]", "{:.3f}"),
                ("time_over_available", "time over available power [s]", "{:.1f}"),
                ("consequence_alarm_time", "consequence alarm at [s]", "{:.1f}"),
                ("alarm_lead_time", "alarm lead time [s]", "{:.1f}"),
+               ("frequency_dip", "frequency dip [pu]", "{:.4f}"),
+               ("time_under_frequency", "time under 0.95 pu [s]", "{:.1f}"),
+               ("generator_sets_tripped", "generator sets tripped [count]", "{:.0f}"),
                ("realtime_factor", "real-time factor [x real time]", "{:.1f}"))
 POWER_ROWS = ("time_over_available", "consequence_alarm_time", "alarm_lead_time")
-"""Rows for a scenario with power events (group faults, available power, weather ramps) only."""
-POWER_EVENTS = ("group_fault", "power", "weather_ramp")
-FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter", "group_fault", "power")
+"""Rows for a scenario with power events (group faults, available power, weather ramps, a simulated
+plant's generator trips and bus ties) only; a plant's own rows only where its runs have them."""
+POWER_EVENTS = ("group_fault", "power", "weather_ramp", "generator_trip", "bus_tie")
+FAILURES = ("fault", "clear_faults", "battery_ramp", "parameter", "group_fault", "power", "generator_trip")
 """The kinds of event the nominal run leaves out: what goes wrong, not what is asked."""
 
 
@@ -60,10 +65,14 @@ def nominal_run(scenario: Scenario, out: Path, run: Callable[[Scenario, Path], R
 
 
 def plot_run(out: Path, result: RunResult, scenario: Scenario, nominal_result: RunResult | None = None) -> None:
-    """``footprint.png`` and ``timeline.png`` of one run, the nominal run's dashed."""
+    """``footprint.png`` and ``timeline.png`` of one run, the nominal run's dashed; with a
+    simulated electric power plant, ``plant.png`` (:mod:`.plant_figure`)."""
     plt = pyplot()
-    for name, figure in (("footprint", footprint_figure(result, scenario, nominal_result)),
-                         ("timeline", timeline_figure(result, scenario, nominal_result))):
+    figures = [("footprint", footprint_figure(result, scenario, nominal_result)),
+               ("timeline", timeline_figure(result, scenario, nominal_result))]
+    if result.plant is not None:
+        figures.append(("plant", plant_figure(result, scenario)))
+    for name, figure in figures:
         figure.savefig(out / f"{name}.png", dpi=100)
         plt.close(figure)
 
