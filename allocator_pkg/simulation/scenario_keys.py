@@ -19,8 +19,8 @@ from ..configuration.file_keys import (
     FileKey,
 )
 from .metrics import BOUNDED_METRICS, METRIC_UNITS
-from .spectra import WAVE_SPECTRA, WIND_SPECTRA
 from .power_plant_keys import POWER_PLANT
+from .spectra import WAVE_SPECTRA, WIND_SPECTRA
 
 MODELS = ("dp_vessel", "bluerov2_heavy")
 FAULT_MODES = ("failed", "stuck", "degraded")
