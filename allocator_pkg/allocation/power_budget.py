@@ -1,25 +1,36 @@
-"""Power per source in the allocation (docs/power.md): the thrust each actuator may have so
-that no power source is asked for more than it has.
+"""Power per source in the allocation (docs/power.md): what each source gives, as the power rows
+a method solves with, and the proportional bounds of a method without rows.
 
 Actuator i draws p_i = P_i |f_i|^(3/2) (1.44); its rated power is R_i = P_i F_i^(3/2), F_i the
-largest magnitude of its configured thrust range. A feed is live while its source has power
-(available > 0); S_i is the sum of the shares of actuator i's live feeds. The actuator's power
-comes from its live feeds in proportion to their shares (feed j gives p_i s_ij / S_i), and no
-feed gives more than s_ij R_i, so p_i <= S_i R_i: with every feed live the power splits by
-the shares and the limit is the rated power; a split-fed actuator that loses a feed runs on the
-rest, derated.
+largest magnitude of its configured thrust range. Feed j of share s_ij can give
+e_ij = min(s_ij, A_j / R_i) of the rated power (0 from a source at 0 kW: a dead feed; the full
+share from one that has at least s_ij R_i; a single feed its full share while it has power, the
+source's row bounding the rest); S_i = sum_j e_ij. The actuator's power comes from
+its feeds in proportion to e (feed j gives p_i e_ij / S_i), and no feed gives more than
+e_ij R_i, so p_i <= S_i R_i: with every feed strong the power splits by the shares and the
+limit is the rated power; a split-fed actuator whose feed is lost or weak runs on the rest,
+derated (|f_i| <= S_i^(2/3) F_i, a range). e is continuous in A_j, so a weak feed coming up
+adds thrust rather than tying the actuator to its small power.
 
-A source j whose consumers could together draw more than it has (D_j > A_j, each consumer at
-the largest thrust faults, voltage and the derating leave it, m_i) is shared in proportion to
-those largest draws: each consumer's power is scaled by rho_j = A_j / D_j, an actuator by the
-smallest rho of its live feeds. That bounds |f_i| <= m_i rho^(2/3), a thrust range for every
-stage of the sample (the optimiser moves the rest to other sources' actuators), and the draw
-on source j is at most rho_j D_j = A_j by construction.
+**The rows contract** (:meth:`PowerBudget.rows`, read by every method that solves an
+optimisation, :mod:`allocator_pkg.effectiveness.power_rows`): a
+:class:`~allocator_pkg.effectiveness.power_rows.PowerRows` with, per row j (one per source
+here), the weight w_ij of each actuator i (actuators x rows: the share of p_i row j carries,
+here s_ij / S_i on live feeds), the available power A_j [W] (inf: the row bounds nothing), the
+fixed boolean ``pattern`` (actuators x rows: every (i, j) that can ever be non-zero for this
+configuration, here the feeds), and per actuator a forward and a reverse power coefficient
+(both P_i here) and the range F_i the chords cover. A method puts
+sum_i w_ij P_i h(|f_i|) <= A_j (h the chord interpolant of |f|^(3/2)) into its problem; a
+change of weights, available power or coefficients is values only, a new pattern a new
+structure. How the values are computed (pooled rows of tied switchboards, the other row of a
+tie left at inf, reverse or degraded coefficients) is this class's business alone.
 
-A sample that leaves a short source's power unused while some of its consumers sit at their
-bound shares it again (:meth:`PowerBudget.shared`): every consumer of the source may grow by
-the factor that scales the sample's own draw on it up to A_j, and the sample is solved again
-inside those bounds; the draw on the source is again at most A_j.
+**The proportional bounds** (:meth:`PowerBudget.limit`), for a method without rows (the
+pseudo-inverse family, docs/power.md): a source j whose consumers could together draw more
+than it has (D_j > A_j, each consumer at the largest thrust faults, voltage and the derating
+leave it, m_i) is shared in proportion to those largest draws: each consumer's power is scaled
+by rho_j = A_j / D_j, an actuator by the smallest rho of its live feeds. That bounds
+|f_i| <= m_i rho^(2/3), and the draw on source j is at most rho_j D_j = A_j by construction.
 """
 
 from __future__ import annotations
@@ -30,18 +41,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..effectiveness.model import AT_LIMIT
+from ..effectiveness.power_rows import PowerPattern, PowerRows, feed_shares
 from ..vehicle.config import RedundancyGroup, Vehicle
 
 KW = 1000.0
 """Watts in a kilowatt: the configuration and the topic speak kW, the model W (1.44)."""
 
-SPARE = 1e-3
-"""A short source whose draw falls below its available power by more than this share has power
-to share again."""
-
-PATTERN = 1e-9
-"""A short source drawn below this share of its available power has no thrust pattern to scale
-up: its consumers keep their bounds."""
+HELD = 1e-3
+"""A short source whose draw, as the chord rows see it, is within this share of its available
+power holds the thrust back."""
 
 
 @dataclass(frozen=True)
@@ -52,7 +60,10 @@ class PowerLimit:
     whose range the bound narrows; ``available``, the available power [kW] of every source
     the rule took; ``largest`` [N], the largest thrust magnitude faults, speed, voltage and the
     feed limit leave every actuator (m_i; inf for one without feeds); ``rho``, every source's
-    share of its consumers' largest draws (1: it limits nothing)."""
+    share of its consumers' largest draws (1: it limits nothing). With ``rows`` (the method
+    solves with the power rows) ``bound`` is only the derating of a lost feed and the rows
+    keep the sources within their power; ``proportional`` is then the proportional bounds all the
+    same, the fallback's when the method fails."""
 
     bound: np.ndarray
     weights: np.ndarray
@@ -60,11 +71,19 @@ class PowerLimit:
     available: np.ndarray
     largest: np.ndarray
     rho: np.ndarray
+    proportional: np.ndarray
+    rows: PowerRows | None = None
 
     def holds(self, thrust: np.ndarray) -> bool:
         """Whether the power holds some actuator back at ``thrust``: one whose range a bound
-        narrows sits at that bound."""
-        return bool(np.any(self.limited & (np.abs(thrust) >= self.bound * (1.0 - AT_LIMIT))))
+        narrows sits at that bound, or (with rows) a short source's row is full as the chord
+        rows see it."""
+        if np.any(self.limited & (np.abs(thrust) >= self.bound * (1.0 - AT_LIMIT))):
+            return True
+        if self.rows is None:
+            return False
+        full = self.rows.seen(thrust) >= self.rows.available * (1.0 - HELD)
+        return bool(np.any(full & (self.rho < 1.0)))
 
 
 @dataclass(frozen=True)
@@ -86,11 +105,8 @@ class PowerBudget:
         actuators = vehicle.actuators
         self.sources = tuple(s.name for s in vehicle.power_sources)
         self.capacity = np.array([s.capacity for s in vehicle.power_sources], dtype=float)
-        index = {name: j for j, name in enumerate(self.sources)}
-        self.shares = np.zeros((len(actuators), len(self.sources)))
-        for i, actuator in enumerate(actuators):
-            for feed, share in zip(actuator.feeds, actuator.feed_shares or (1.0,) * len(actuator.feeds)):
-                self.shares[i, index[feed]] = share
+        self.shares = feed_shares(vehicle)
+        self.pattern = PowerPattern.of(vehicle)
         self.coefficient = np.array([a.power_coefficient for a in actuators], dtype=float)
         self.rated_thrust = np.array([max(abs(a.thrust_min), abs(a.thrust_max)) for a in actuators], dtype=float)
         self.fed = self.shares.any(axis=1)
@@ -145,53 +161,49 @@ class PowerBudget:
             raise ValueError(f"unknown redundancy group '{name}'; groups: {', '.join(self.groups) or 'none'}")
         return self.groups[name]
 
-    def limit(self, low: np.ndarray, high: np.ndarray) -> PowerLimit:
-        """The power rule's bounds given the static force ranges ``low``/``high`` that faults,
-        speed and voltage leave (module docstring)."""
-        kilowatts = self.available
-        available = kilowatts * KW
-        live = self.shares * (available > 0.0)
+    def _weights(self, available: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(w_ij = e_ij / S_i, S_i = sum_j e_ij) at ``available`` [W], e_ij = min(s_ij, A_j / R_i)
+        the share feed j of a split-fed actuator can give at its rated power, s_ij for a single
+        live feed (module docstring)."""
+        rated = self.coefficient * self.rated_thrust ** 1.5
+        with np.errstate(divide="ignore", invalid="ignore"):
+            room = np.where(rated[:, None] > 0.0, available[None, :] / rated[:, None], np.inf)
+        split = ((self.shares > 0.0).sum(axis=1) > 1)[:, None]
+        room = np.where(split, room, np.inf)
+        live = np.where(self.shares > 0.0, np.minimum(self.shares, np.where(available[None, :] > 0.0, room, 0.0)), 0.0)
         live_share = live.sum(axis=1)
         weights = np.divide(live, live_share[:, None], out=np.zeros_like(live), where=live_share[:, None] > 0.0)
+        return weights, live_share
+
+    def rows(self) -> PowerRows | None:
+        """The power rows' values in force (the contract of the module docstring); None without
+        sources."""
+        if self.pattern is None:
+            return None
+        available = self.available * KW
+        weights, _ = self._weights(available)
+        return PowerRows(pattern=self.pattern, weights=weights, available=available, forward=self.coefficient,
+                         reverse=self.coefficient, rated=self.rated_thrust)
+
+    def limit(self, low: np.ndarray, high: np.ndarray, rows: bool = False) -> PowerLimit:
+        """The power rule given the static force ranges ``low``/``high`` that faults, speed and
+        voltage leave (module docstring): the proportional bounds, or with ``rows`` (the method
+        solves with the power rows) the derating of lost feeds only, and the rows."""
+        kilowatts = self.available
+        available = kilowatts * KW
+        weights, live_share = self._weights(available)
         derated = np.where(self.fed, live_share ** (2.0 / 3.0) * self.rated_thrust, np.inf)
         largest = np.minimum(np.maximum(np.abs(low), np.abs(high)), derated)
         drawing = self.fed & (self.coefficient > 0.0)
         demand = (self.coefficient * np.where(drawing, largest, 0.0) ** 1.5) @ weights
         rho = np.minimum(1.0, np.divide(available, demand, out=np.ones_like(demand), where=demand > 0.0))
         scale = np.where((weights > 0.0) & drawing[:, None], rho, 1.0).min(axis=1, initial=1.0)
-        bound = np.where(self.fed, np.minimum(derated, largest * scale ** (2.0 / 3.0)), np.inf)
+        proportional = np.where(self.fed, np.minimum(derated, largest * scale ** (2.0 / 3.0)), np.inf)
+        bound = np.where(self.fed, np.minimum(derated, largest), np.inf) if rows else proportional
         limited = bound < np.maximum(np.abs(low), np.abs(high))
         return PowerLimit(bound=bound, weights=weights, limited=limited, available=kilowatts,
-                          largest=np.where(self.fed, largest, np.inf), rho=rho)
-
-    def shared(self, limit: PowerLimit, bound: np.ndarray, thrust: np.ndarray,
-               movable: np.ndarray) -> np.ndarray | None:
-        """Bounds [N] that give a short source's unused power to its consumers (module
-        docstring), from a sample's ``thrust`` inside the bounds ``bound`` under ``limit``; None
-        when no short source has power to spare and a consumer at its bound that could take it
-        (``movable``: those whose window this sample may open).
-
-        Source j shares again when its draw W_j is below A_j (1 - SPARE) and a consumer sits at
-        its bound: each of its consumers may grow to g_j |f_i|, g_j = (A_j / W_j)^(2/3), so
-        that the draw on j is at most g_j^(3/2) W_j = A_j, the sample's own thrust pattern
-        scaled up until the source is full. An actuator fed by several sources takes the
-        smallest g of those sharing and keeps its bound if another of its sources is short."""
-        available = limit.available * KW
-        drawing = self.fed & (self.coefficient > 0.0)
-        consumers = (limit.weights > 0.0) & drawing[:, None]
-        magnitude = np.abs(thrust)
-        draw = (self.coefficient * np.where(drawing, magnitude, 0.0) ** 1.5) @ limit.weights
-        at_bound = limit.limited & movable & (magnitude >= bound * (1.0 - AT_LIMIT))
-        short = limit.rho < 1.0
-        sharing = (short & (draw < available * (1.0 - SPARE)) & (draw > available * PATTERN)
-                   & (consumers & at_bound[:, None]).any(axis=0))
-        if not sharing.any():
-            return None
-        growth = np.divide(available, draw, out=np.ones_like(draw), where=sharing) ** (2.0 / 3.0)
-        grown = np.where(consumers & sharing, growth * magnitude[:, None], np.inf).min(axis=1, initial=np.inf)
-        held = (consumers & short & ~sharing).any(axis=1)
-        new = np.minimum(np.where(held, np.minimum(grown, bound), grown), limit.largest)
-        return np.where(consumers[:, sharing].any(axis=1), new, bound)
+                          largest=np.where(self.fed, largest, np.inf), rho=rho, proportional=proportional,
+                          rows=self.rows() if rows else None)
 
     def draw(self, thrust: np.ndarray, limit: PowerLimit) -> np.ndarray:
         """Power [kW] each source gives at ``thrust``: p_i = P_i |f_i|^(3/2) (1.44) split over
