@@ -44,22 +44,21 @@ from ..allocation.power_budget import PowerBudget, PowerLimit
 from ..allocation.solve import check_method
 from ..effectiveness.faults import Fault, FaultMode, FaultSet
 from ..effectiveness.model import Model
+from ..effectiveness.power_rows import PowerRows
 from ..effectiveness.sectors import can_push_along
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
+from ..methods.power_block import add_power_rows, inequalities
 from ..solvers.linear_program import solve_linear_programme
 from ..solvers.outcome import Solution
+from ..solvers.problem import Rows
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import Vehicle
 from .thrust_profile import ForceProfile
 from .thruster_pieces import thruster_pieces
 
 FORCE_DOFS = ("surge", "sway", "heave")
-
-POWER_PASSES = 4
-"""Answers :meth:`Capability.reach_forces` gives under the power rule: the first inside the
-bounds in force, each next one with a short source's unused power shared again."""
 
 PowerRule = tuple[PowerBudget, PowerLimit]
 """The power sources with the available power in force, and the rule's limit at it."""
@@ -84,6 +83,7 @@ class Capability:
                  plane: tuple[str, str] | None = None, profiles: Mapping[str, ForceProfile] | None = None):
         self.vehicle = vehicle
         self.profiles = dict(profiles or {})
+        self._power: PowerRows | None = None
         """A direction-dependent thrust limit per rotatable thruster, by name (none: its limit every way)."""
         fixed = [name for name in self.profiles if not vehicle.actuator(name).rotatable]
         if fixed:
@@ -135,12 +135,10 @@ class Capability:
         """(lambda, f): lambda as :meth:`reach` gives it and the extended forces f (m, the model's
         columns) that give lambda * tau (zeros for a zero request).
 
-        With ``power`` (the budget and the limit in force, docs/power.md) the thrust stays
-        inside the power bounds, shared again as a sample shares them
-        (:meth:`~allocator_pkg.allocation.power_budget.PowerBudget.shared`): each short source's
-        unused power goes to its consumers in proportion to the thrust of the last answer,
-        ``POWER_PASSES`` times at most; every answer stays inside bounds that keep each source
-        within its available power, and none is below the one before."""
+        With ``power`` (the budget and the limit in force, docs/power.md) every source stays
+        within its available power as the allocator keeps it: with the power rows of a method
+        that solves with them (the same chords and weights, :mod:`~allocator_pkg.methods.power_block`)
+        in the linear programme, else inside the proportional bounds of the limit."""
         request = np.asarray(tau, dtype=float)[self.model.dof_index]
         if not np.any(request):
             return math.inf, np.zeros(self.model.m)
@@ -148,18 +146,18 @@ class Capability:
         low, high = conditions.low, conditions.high
         zero = np.zeros(self.model.n)
         solve = self._pseudo_inverse_limit if self.sides is None else self._linear_programme
-        if power is None or not power[1].limited.any():
+        if power is None:
             return solve(request, zero, conditions, low, high)
-        budget, limit = power
-        bound, best = limit.bound, (0.0, np.zeros(self.model.m))
-        for _ in range(POWER_PASSES):
-            answer = solve(request, zero, conditions, np.clip(low, -bound, bound), np.clip(high, -bound, bound))
-            best = max(best, answer, key=lambda pair: pair[0])
-            thrust = np.sqrt(np.bincount(self.model.extended_owner, answer[1] ** 2, self.model.r))
-            bound = budget.shared(limit, bound, thrust, np.ones(thrust.size, dtype=bool))
-            if bound is None:
-                break
-        return best
+        limit = power[1]
+        bound = np.where(limit.limited, limit.bound, np.inf)
+        low, high = np.clip(low, -bound, bound), np.clip(high, -bound, bound)
+        if limit.rows is None or self.sides is None or not limit.rows.short().any():
+            return solve(request, zero, conditions, low, high)
+        self._power = limit.rows
+        try:
+            return solve(request, zero, conditions, low, high)
+        finally:
+            self._power = None
 
     def in_force(self, faults: Mapping[str, Fault | FaultMode] | FaultSet | None = None, speed: float | None = None,
                  voltage: float | None = None) -> Conditions:
@@ -286,10 +284,31 @@ class Capability:
         a_eq = np.hstack([model.t_ec, -unit.reshape(-1, 1)])
         cost = np.zeros(columns)
         cost[-1] = -1.0
+        if self._power is not None:
+            cost, a_ub, b_ub, a_eq, bounds = self._with_power(cost, a_ub, b_ub, a_eq, bounds)
         result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
         if not result.usable:
             return 0.0, np.zeros(model.m)
-        return float(result.x[-1]), result.x[:model.m]
+        return float(result.x[model.m]), result.x[:model.m]
+
+    def _with_power(self, cost, a_ub, b_ub, a_eq, bounds):
+        """The programme with the power rows of ``self._power`` (columns after lambda)."""
+        model, rows = self.model, self._power
+        columns = model.m + 1
+        rated = np.maximum(np.abs(model.thrust_min), np.abs(model.thrust_max))
+        scale = np.maximum(rated, 1e-9)
+        terms: dict = {int(i): [(int(c), 1.0 / scale[i])] for i, c in zip(model.scalar, model.scalar_columns)}
+        for i, (c1, c2) in zip(model.rot.tolist(), model.rot_columns.tolist()):
+            terms[i] = ([(c1, 1.0 / scale[i])], [(c2, 1.0 / scale[i])])
+        rated_power = np.maximum(np.where(model.power > 0.0, model.power, 1.0) * rated ** 1.5, 1e-9)
+        table = Rows()
+        block = add_power_rows(table, columns, rows.pattern, terms, rated, model.power, q_unit=rated_power,
+                               row_unit=np.maximum(rated_power @ rows.pattern.pattern, 1.0))
+        total = columns + block.columns
+        extra_a, extra_b = inequalities(block, table.matrix(total).toarray(), rows, 0, total)
+        a_ub = [np.r_[row, np.zeros(block.columns)] for row in a_ub] + list(extra_a)
+        return (np.r_[cost, np.zeros(block.columns)], a_ub, list(b_ub) + extra_b.tolist(),
+                np.hstack((a_eq, np.zeros((a_eq.shape[0], block.columns)))), bounds + [(None, None)] * block.columns)
 
     def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces) -> Solution:
         """:meth:`_solve`'s programme on HiGHS (a subclass may add rows, and columns after its own)."""

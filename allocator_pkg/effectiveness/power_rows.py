@@ -38,7 +38,7 @@ BREAKPOINTS = 24
 optimum with them (test/methods/test_power_rows.py against SLSQP)."""
 SPACING = 2.0
 """Breakpoints at F (k/K)^SPACING: denser near zero, where a chord's relative error is largest."""
-POWER_SIDES = 16
+POWER_SIDES = 32
 """Faces of the polygon inscribed in a rotatable thruster's magnitude circle."""
 
 

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..effectiveness.power_rows import BREAKPOINTS, POWER_SIDES, PowerPattern, PowerRows, chord_lines, polygon
 from ..solvers.backend import NO_BOUND
+from ..solvers.linear_program import LinearProgram
 from ..solvers.problem import Rows
 
 Terms = list[tuple[int, float]]
@@ -55,6 +56,7 @@ class PowerBlock:
     reference: np.ndarray
     q_unit: np.ndarray
     row_unit: np.ndarray
+    scale_column: int = -1
 
     def bound_actuators(self, short: np.ndarray) -> np.ndarray:
         """Per actuator, whether it has a weight in a ``short`` row: its chord and polygon rows
@@ -62,11 +64,17 @@ class PowerBlock:
         OSQP row without bounds costs it nothing)."""
         return (self.pattern.pattern[:, short]).any(axis=1)
 
-    def values(self, rows: PowerRows) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    def values(self, rows: PowerRows, unit: np.ndarray | None = None
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(chord entries, source weight entries, chord rows' lower bounds, source rows' upper
-        bounds) at ``rows``; entries in the order of ``chord_entry`` and ``weight_entry``."""
+        bounds) at ``rows``; entries in the order of ``chord_entry`` and ``weight_entry``.
+        ``unit`` (per actuator): the force per unit of the columns in ``force_terms`` where the
+        terms were written with a coefficient of 1 standing for it (a programme whose columns
+        are scaled per analysis)."""
         ratio = np.column_stack((rows.forward, rows.reverse)) / self.reference[:, None]
         chord = self.chord_base * ratio[self.chord_owner[:, 0], self.chord_owner[:, 1]]
+        if unit is not None:
+            chord = chord * unit[self.chord_owner[:, 0]]
         low = self.chord_low * ratio[self.chord_owner_row[:, 0], self.chord_owner_row[:, 1]]
         i, j = self.weight_pair[:, 0], self.weight_pair[:, 1]
         weight = rows.weights[i, j] * self.q_unit[i] / self.row_unit[j]
@@ -77,11 +85,12 @@ class PowerBlock:
 def add_power_rows(rows: Rows, first: int, pattern: PowerPattern, force_terms: dict[int, Terms | tuple[Terms, Terms]],
                    rated: np.ndarray, coefficient: np.ndarray, q_unit: np.ndarray | None = None,
                    row_unit: np.ndarray | None = None, count: int = BREAKPOINTS,
-                   sides: int = POWER_SIDES) -> PowerBlock:
+                   sides: int = POWER_SIDES, scale_column: int = -1) -> PowerBlock:
     """Append the power columns (from column ``first``) and rows to ``rows``, the values those
     of every coefficient equal to the configured ``coefficient`` and every weight 1 (written
     again by :meth:`PowerBlock.values`). ``force_terms`` per powered actuator: t_i for a scalar
-    one, (t_x, t_y) for a rotatable one; ``rated`` F_i [N]."""
+    one, (t_x, t_y) for a rotatable one; ``rated`` F_i [N]. ``scale_column``: a column u that
+    scales the available power (sum_i w_ij q_i - u A_j <= 0, a utilisation; -1: none)."""
     powered = pattern.powered
     r = pattern.pattern.shape[0]
     q_unit = np.ones(r) if q_unit is None else q_unit
@@ -118,7 +127,8 @@ def add_power_rows(rows: Rows, first: int, pattern: PowerPattern, force_terms: d
     source, weight_entry, weight_pair = [], [], []
     for j in range(pattern.pattern.shape[1]):
         members = [i for i in powered.tolist() if pattern.pattern[i, j]]
-        row = rows.add([(int(q_column[i]), q_unit[i] / row_unit[j]) for i in members])
+        scale = [(scale_column, -1.0)] if scale_column >= 0 else []
+        row = rows.add([(int(q_column[i]), q_unit[i] / row_unit[j]) for i in members] + scale)
         source.append(row)
         weight_entry += [(row, int(q_column[i])) for i in members]
         weight_pair += [(i, j) for i in members]
@@ -132,7 +142,48 @@ def add_power_rows(rows: Rows, first: int, pattern: PowerPattern, force_terms: d
                       weight_entry=np.array(weight_entry, dtype=np.int64).reshape(-1, 2),
                       weight_pair=np.array(weight_pair, dtype=np.int64).reshape(-1, 2),
                       source_row=np.array(source, dtype=np.int64), reference=reference, q_unit=q_unit,
-                      row_unit=row_unit)
+                      row_unit=row_unit, scale_column=scale_column)
+
+
+def write_programme(lp: LinearProgram, block: PowerBlock, rows: PowerRows, unit: np.ndarray,
+                    only: int | None = None) -> None:
+    """The values of ``rows`` in a HiGHS programme's power rows (``unit`` as in
+    :meth:`PowerBlock.values`); ``only``: the chord entries of that actuator alone (its unit
+    changed), nothing else."""
+    chord, weight, low, up = block.values(rows, unit)
+    for (row, col), value, (owner, _) in zip(block.chord_entry.tolist(), chord.tolist(), block.chord_owner.tolist()):
+        if only is None or owner == only:
+            lp.coefficient(row, col, value)
+    if only is not None:
+        return
+    for (row, col), value in zip(block.weight_entry.tolist(), weight.tolist()):
+        lp.coefficient(row, col, value)
+    lp.low[block.chord_row], lp.up[block.chord_row] = low, NO_BOUND
+    lp.low[block.source_row], lp.up[block.source_row] = -NO_BOUND, up
+    if block.scale_column >= 0:                 # sum w q - u A <= 0: the utilisation scales the power
+        bounded = up < NO_BOUND
+        for row, value, finite in zip(block.source_row.tolist(), up.tolist(), bounded.tolist()):
+            lp.coefficient(row, block.scale_column, -value if finite else 0.0)
+        lp.up[block.source_row] = np.where(bounded, 0.0, NO_BOUND)
+    lp.low[block.polygon_row], lp.up[block.polygon_row] = 0.0, NO_BOUND
+
+
+def inequalities(block: PowerBlock, matrix: np.ndarray, rows: PowerRows, first_row: int,
+                 columns: int) -> tuple[np.ndarray, np.ndarray]:
+    """The power rows as dense A_ub x <= b_ub (``matrix``: the dense rows :func:`add_power_rows`
+    wrote, from row ``first_row``; ``columns`` of the programme), the values of ``rows``."""
+    a = np.array(matrix, dtype=float)
+    chord, weight, low, up = block.values(rows)
+    for (row, col), value in zip(block.chord_entry.tolist(), chord.tolist()):
+        a[row - first_row, col] = value
+    for (row, col), value in zip(block.weight_entry.tolist(), weight.tolist()):
+        a[row - first_row, col] = value
+    b = np.zeros(a.shape[0])
+    sign = np.ones(a.shape[0])
+    sign[block.chord_row - first_row] = sign[block.polygon_row - first_row] = -1.0      # ">=" rows turned round
+    b[block.chord_row - first_row] = -low
+    b[block.source_row - first_row] = up
+    return sign[:, None] * a[:, :columns], b
 
 
 def power_columns_scale(block: PowerBlock, rated: np.ndarray) -> np.ndarray:
