@@ -99,9 +99,20 @@ LEVELS = [0.05, 0.25, 0.6, 1.5]
 def test_the_allocator_reaches_the_exact_power_limited_optimum_and_keeps_every_source_within_its_power(name, level):
     """24 directions: the request at the reference's largest scale lambda*; after settling the
     achieved wrench's component along the direction is >= 0.99 lambda*, and every source's draw
-    within its available power (to the solver's tolerance)."""
+    within its available power (to the solver's tolerance). Method qp."""
+    reaches_the_optimum(name, level, "qp")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", list(VEHICLES))
+def test_the_linear_programme_reaches_the_exact_power_limited_optimum_too(name):
+    """Method lp with the same rows, at a quarter of the power."""
+    reaches_the_optimum(name, 0.25, "lp")
+
+
+def reaches_the_optimum(name, level, method):
     vehicle = VEHICLES[name]()
-    allocator = Allocator(vehicle)
+    allocator = Allocator(vehicle, method=method)
     capacity = np.array([s.capacity for s in vehicle.power_sources])
     allocator.set_available_power({s.name: level * c for s, c in zip(vehicle.power_sources, capacity)})
     available = allocator.power.available * KW
