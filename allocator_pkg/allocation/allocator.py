@@ -38,6 +38,7 @@ from ..effectiveness.sectors import in_feasible_sector
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..solvers import BACKENDS, DEFAULT_BACKEND, BackendFactory
+from ..solvers.outcome import Outcome
 from ..vehicle.config import DOF_NAMES, Vehicle
 from .actuation import ActuationStage
 from .conditions import Conditions
@@ -370,6 +371,8 @@ class Allocator:
         if share.opening is not None:                   # a drop of power wins over the rate limit
             limits = share.opened(limits)
         output, drag = self._solver.solve(controlled, limits)
+        if output.outcome is Outcome.FALLBACK:          # actuated inside the bounds it answered in
+            limits = self._solver.fallback_limits(limits)
         result = self._actuation.actuate(requested, controlled, limits, output, drag, state,
                                          self._solver.method.name, start)
         state.commit(model, result.thrust, result.azimuth, self._conditions.lift)

@@ -153,10 +153,14 @@ class MethodStage:
         """The pseudo-inverse's extended force for ``tau``, as the answer of a method that
         ``failed`` (``Outcome.FALLBACK``, the failed status as its ``reason``)."""
         self.fallbacks += 1
-        bound = self._power_bound
-        fallback = self.fallback.solve(tau, limits if bound is None else within(limits, bound))
+        fallback = self.fallback.solve(tau, self.fallback_limits(limits))
         return replace(fallback, status=f"fallback: pseudoinverse ({failed.status})", iterations=failed.iterations,
                        outcome=Outcome.FALLBACK, reason=failed.status)
+
+    def fallback_limits(self, limits: SampleLimits) -> SampleLimits:
+        """The limits the fallback answers within and is actuated in: with power rows in force,
+        inside the proportional power bounds (docs/power.md)."""
+        return limits if self._power_bound is None else within(limits, self._power_bound)
 
     def _surface_drag(self, force: np.ndarray, low: np.ndarray, high: np.ndarray) -> float:
         """X_cs of (1.57): the added resistance of all control surfaces at the deflections

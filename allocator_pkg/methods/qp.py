@@ -40,9 +40,9 @@ PRIORITY_HOLD = 1e-6
 """How far, as a fraction of its DOF's authority, a higher priority level's achieved wrench may
 move away from the request while a lower level is solved: a margin for rounding, so that every
 stage is feasible."""
-POWER_MARGIN = 2.0
-"""A source row's bound lies this many solver tolerances (eps_abs + eps_rel, of the row's
-scale) below the available power: a solution the solver accepts keeps the source within it."""
+POWER_MARGIN = 1e-7
+"""A source row's bound lies this share below the available power: the power rows are solved
+by DAQP, exact to rounding, and a solution it accepts keeps the source within A_j."""
 CASCADE_BACKEND = "daqp"
 """The backend of the priority cascade's stages: exact on the sliver a saturated level leaves
 the next (docs/theory.md, DOF priorities); and of the problems with power rows in force, where
@@ -96,7 +96,7 @@ class QPAllocation(AllocationMethod):
             self._problems(self.model, rows.pattern)
         for problem in (*self._rows, self._stages):
             if problem is not None:
-                write_power(problem, rows, self._margin)
+                write_power(problem, rows, POWER_MARGIN)
         self._short = bool(rows.short().any())
 
     @classmethod
@@ -120,7 +120,6 @@ class QPAllocation(AllocationMethod):
         self._lower = [np.concatenate(self._levels[k + 1:]) if k + 1 < len(self._levels) else np.zeros(0, int)
                        for k in range(len(self._levels))]
         self._hold = PRIORITY_HOLD * model.dof_scale
-        self._margin = POWER_MARGIN * (model.vehicle.solver.eps_abs + model.vehicle.solver.eps_rel)
 
     def update_model(self, model: Model) -> None:
         """Take a configuration with the same structure: values only, no new set-up (unless the
@@ -153,7 +152,7 @@ class QPAllocation(AllocationMethod):
             problem.multiplier, problem.curvature = [0.0] * len(model.rot), [0.0] * len(model.rot)
             problem.version = -1
             if self.power is not None and problem.power is not None:
-                write_power(problem, self.power, self._margin)
+                write_power(problem, self.power, POWER_MARGIN)
         if self._direct is not None:
             self._direct.update_model(model)
         self._use(model)

@@ -153,11 +153,11 @@ def power_terms(model: Model) -> dict[int, list | tuple]:
 
 def write_power(problem: QPProblem, rows: PowerRows, margin: float) -> None:
     """The values of ``rows`` in a problem's power rows: entries and bounds, no new set-up.
-    Each source row's bound is A_j less ``margin`` of the row's scale (the solver's tolerance,
-    so that a solution within it still keeps the source within A_j)."""
+    Each source row's bound is A_j (1 - ``margin``): a solution within the solver's tolerance
+    keeps the source within A_j."""
     block, qp = problem.power, problem.qp
     chord, weight, low, up = block.values(rows)
-    up = np.maximum(up - margin / qp.row_scale[block.source_row], 0.0)
+    up = up * (1.0 - margin)
     short = rows.short()
     bound = block.bound_actuators(short)
     qp.update_matrix(np.concatenate((chord, weight)), problem.power_entries)
