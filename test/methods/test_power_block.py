@@ -143,12 +143,12 @@ chords (measured: at most 2.4e-4 of the request)."""
 
 def test_more_power_never_gives_less_thrust_the_split_feed_of_the_issue_included():
     """The 70/30 split-fed starboard azimuth, switchboard A at its capacity, 600 kN of surge asked
-    (and five more directions at the reference scale of B at capacity): along a sweep of B's
-    available power the achieved wrench's component along the request never falls by more than
-    MONOTONE of the request (a weak feed's weight, min(s, A / R), moves with its power, and the
-    chords' overestimate of a thruster's power with it). At B = 0 kW the azimuth runs on A alone, derated to 0.7^(2/3) 420 kN = 331.1 kN
-    and with port's and the aft tunnel's power gone the surge is that azimuth's; a weak B (1 W)
-    adds to it rather than tying the azimuth to B's watts."""
+    (and five more requests): along a sweep of B's available power the achieved wrench's
+    component along the request never falls by more than MONOTONE of the request (a weak feed's
+    weight, min(s, A / R), moves with its power, and the chords' overestimate with it). At
+    B = 0 kW the azimuth runs on A alone, derated to 0.7^(2/3) 420 kN = 331.1 kN, and with port's
+    and the aft tunnel's power gone the surge is that azimuth's; a weak B (1 W) adds to it rather
+    than tying the azimuth to B's watts."""
     vehicle = VEHICLES["dp_vessel_split"]()
     allocator = Allocator(vehicle)
     scale = allocator.model.dof_scale
