@@ -7,7 +7,8 @@ power the sample draws, and how far along the request's direction the achieved w
 against an independent reference: the largest scale s* along the direction that the exact power
 constraint sum_i w_ij P_i |f_i|^(3/2) <= A_j allows (with the same thrust ranges, derating and
 forbidden sectors), from scipy's SLSQP over (s, thrust, azimuth angle), started from many
-angles. Also the time of a power-limited sample.
+angles. Also the time of a power-limited sample, and how many samples cut a thrust by more than
+its rate step (none: the power rows move no bound between samples).
 
     python bench/power_use.py [--samples 300] [--methods qp,nonlinear]
 """
@@ -158,8 +159,8 @@ def run(samples: int, methods: list[str]) -> None:
                 allocator.set_group_fault(group)
             allocator.set_available_power(available)
             limit = allocator.power_limit
-            short = [j for j, a in enumerate(allocator.power.available)
-                     if a > 0 and np.any(limit.limited & (limit.weights[:, j] > 0))]
+            short = [j for j, a in enumerate(allocator.power.available) if a > 0 and (
+                limit.rows.short()[j] if limit.rows is not None else np.any(limit.limited & (limit.weights[:, j] > 0)))]
             used, along, times = {k: [] for k in MAGNITUDES}, {k: [] for k in MAGNITUDES}, []
             cut, wobbles = 0, []
             for direction in directions():

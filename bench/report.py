@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import power_cost
 from report_sections import (
     NOT_IN_THIS_RUN,
     _consequence_section,
@@ -356,6 +357,8 @@ def write(result: dict, path: Path) -> None:
         lines += ["", *_dp_capability_section(result["dp_capability"])]
     if "consequence" in result:
         lines += ["", *_consequence_section(result["consequence"])]
+    if "power_cost" in result:
+        lines += ["", *power_cost.section(result["power_cost"])]
     if "inprocess_sim" in result:
         lines += ["", *_inprocess_section(result["inprocess_sim"])]
     if "dp_level3" in result:

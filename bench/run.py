@@ -70,6 +70,8 @@ def main(argv: list[str] | None = None) -> int:
     result["dp_capability"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_capability.py")]
                                                   + (["--repeats", "1", "--heading-step", "30"] if arguments.quick
                                                      else [])))
+    result["power_cost"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "power_cost.py")]
+                                               + (["--samples", "600"] if arguments.quick else [])))
     consequence_out = RESULTS / "consequence.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "consequence.py"), "--out", str(consequence_out)]
                    + (["--seconds", "3", "--rounds", "1"] if arguments.quick else []), check=True)

@@ -14,6 +14,7 @@ from allocator_pkg.solvers import BACKENDS
 dp_capability = bench_module("dp_capability")
 idle_core = bench_module("idle_core")
 overhead = bench_module("overhead")
+power_cost = bench_module("power_cost")
 report = bench_module("report")
 soak = bench_module("soak")
 solver = bench_module("solver")
@@ -178,6 +179,21 @@ def test_the_dp_capability_bench_times_every_run_and_counts_its_balances():
     assert result["summary"].startswith("DP capability-L1(")
     # every heading and case balances its number's conditions and then halves 14 times at least
     assert result["balances"] >= 4 * 3 * 14
+
+
+def test_the_power_cost_bench_gives_the_ratios_of_one_run_and_the_report_says_them():
+    """The cases fed in turn, each sample timed: the ratios are those of the means; the limited
+    cases solve with the rows (one set-up more than without sources, none after), the one at
+    capacity never power-limited."""
+    run = power_cost.run(40)
+    mean = run["mean_ms"]
+    assert run["limited_over_unlimited"] == pytest.approx(0.5 * (mean["limited"] + mean["limited_split"])
+                                                          / mean["at_capacity"])
+    assert run["rows_over_without"] == pytest.approx(mean["at_capacity"] / mean["without"])
+    assert run["setups"]["limited"] == run["setups"]["at_capacity"] == run["setups"]["without"] + 1
+    assert run["power_limited_share"]["without"] == run["power_limited_share"]["at_capacity"] == 0.0
+    lines = power_cost.section(run)
+    assert lines[0] == "## Power rows" and f"{run['limited_over_unlimited']:.2f}x one at capacity" in lines[-1]
 
 
 def test_the_report_gives_the_dp_capability_run_against_its_target():

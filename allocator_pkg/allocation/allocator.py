@@ -36,13 +36,14 @@ from ..effectiveness.sectors import in_feasible_sector
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
 from ..solvers import BACKENDS, DEFAULT_BACKEND, BackendFactory
+from ..solvers.outcome import Outcome
 from ..vehicle.config import DOF_NAMES, Vehicle
 from .actuation import ActuationStage
 from .conditions import Conditions
 from .drive_power import within_drive_limits
 from .limits import LimitsStage
 from .power_budget import PowerBudget, PowerLimit
-from .power_stage import SHARE_PASSES, PowerStage
+from .power_stage import PowerStage
 from .request import checked_request
 from .result import AllocationResult, AllocatorStats
 from .solve import MethodStage, check_method
@@ -152,6 +153,7 @@ class Allocator:
         if replace(self._vehicle, method=vehicle.method) == vehicle:
             self._vehicle = vehicle                 # another method, nothing else: switch to it
             self._solver.choose(self._method_override or vehicle.method)
+            self._refresh()                         # its power: rows, or the proportional bounds
             return
         self._fault_set = self._fault_set.rebound(vehicle)
         self._power = self._power.rebound(vehicle)
@@ -280,14 +282,15 @@ class Allocator:
 
     @property
     def power_limit(self) -> PowerLimit | None:
-        """The proportional thrust bounds and feed weights of the power rule in force (None: no
-        sources); a power-limited sample may share a short source's power again beyond them."""
+        """The power rule in force (None: no sources): the feed weights, the power rows of a
+        method that solves with them, the thrust bounds the power sets in the ranges."""
         return self._share.limit
 
     @property
     def power_bounds(self) -> np.ndarray | None:
-        """The thrust bounds [N] the power left the last sample, shared again where a short
-        source had power to spare (the proportional ones before; None: no sources)."""
+        """The thrust bounds [N] the power sets in the ranges (None: no sources): the
+        proportional ones for a method without power rows, the derating of a lost feed with
+        them (the rows then keep each source within its power)."""
         return self._share.bound
 
     def set_available_power(self, available: Mapping[str, float]) -> None:
@@ -339,7 +342,7 @@ class Allocator:
         conditions = within_drive_limits(conditions, self._power.in_force)
         state = getattr(self, "_state", None)
         conditions = self._share.refresh(self._power, conditions, None if state is None else state.thrust,
-                                         self._model.vehicle.power_phase_back)
+                                         self._model.vehicle.power_phase_back, self._solver.method.power_rows)
         self._conditions = conditions
         self._limits.refresh(conditions)
         self._solver.refresh(conditions)
@@ -368,26 +371,21 @@ class Allocator:
         controlled = requested if model.n == len(DOF_NAMES) else requested[model.dof_index]
         if self._power.advance(model.dt):       # power.restore_ramp: the power in use rises a sample's worth
             self._refresh()
-        ramping = share.ramping is not None
-        if ramping:                                     # power.phase_back false: down at the rate limit
-            conditions = share.ramp(state.thrust)
-            self._limits.refresh(conditions)
-            self._actuation.refresh(conditions)
+        if share.ramping is not None:                   # power.phase_back false: down at the rate limit
+            if share.rows is not None:
+                self._solver.set_power(share.ramp_rows(state.thrust))
+            else:
+                conditions = share.ramp(state.thrust)
+                self._limits.refresh(conditions)
+                self._actuation.refresh(conditions)
         limits = self._limits.sample(controlled, state)
-        sharing = share.sharing and not ramping
-        if sharing:                                     # a short source: its power shared as last sample
-            limits = share.carried(limits)
+        if share.opening is not None:                   # a drop of power wins over the rate limit
+            limits = share.opened(limits)
         output, drag = self._solver.solve(controlled, limits)
-        name = self._solver.method.name
-        result = self._actuation.actuate(requested, controlled, limits, output, drag, state, name, start)
-        for _ in range(SHARE_PASSES if sharing else 0):
-            limits = share.widened(limits, result.thrust)
-            if limits is None:
-                break
-            output, drag = self._solver.solve(controlled, limits)
-            result = self._actuation.actuate(requested, controlled, limits, output, drag, state, name, start)
-        if sharing:
-            share.commit()
+        if output.outcome is Outcome.FALLBACK:          # actuated inside the bounds it answered in
+            limits = self._solver.fallback_limits(limits)
+        result = self._actuation.actuate(requested, controlled, limits, output, drag, state,
+                                         self._solver.method.name, start)
         state.commit(model, result.thrust, result.azimuth, self._conditions.lift)
         self._samples += 1
         return result

@@ -18,6 +18,7 @@ from typing import TypeAlias
 
 import numpy as np
 
+from ..effectiveness.power_rows import tied_reach
 from ..vehicle.config import BusTie
 
 TieStates: TypeAlias = dict[str, bool]
@@ -105,21 +106,9 @@ class BusTies:
         return rows[head] * share
 
     def pattern(self, shares: np.ndarray) -> np.ndarray:
-        """(m x r) every (row, thruster) pair that some state of the ties makes non-zero: row j
-        carries thruster i when a path of ties from j to one of i's feeds passes only sources
-        at or after j (closing just those ties makes a bus that j heads and that feeds i)."""
-        m = len(self.sources)
-        index = {name: j for j, name in enumerate(self.sources)}
-        links = [(index[t.sources[0]], index[t.sources[1]]) for t in self.ties]
-        reach = np.zeros((m, shares.shape[0]), dtype=bool)
-        for j in range(m):
-            bus, grown = {j}, True
-            while grown:
-                joined = {b for a, b in links if a in bus and b > j} | {a for a, b in links if b in bus and a > j}
-                grown = not joined <= bus
-                bus |= joined
-            reach[j] = (shares[:, sorted(bus)] > 0.0).any(axis=1)
-        return reach
+        """(m x r) every (row, thruster) pair that some state of the ties makes non-zero
+        (:func:`~allocator_pkg.effectiveness.power_rows.tied_reach`)."""
+        return tied_reach(self.sources, tuple(tuple(t.sources) for t in self.ties), shares)
 
     def buses(self) -> list[tuple[str, ...]]:
         """The buses of the state in force: the sources of each, in ``power.sources`` order."""

@@ -13,6 +13,7 @@ import numpy as np
 from ..effectiveness.actuators import drag_gain
 from ..effectiveness.faults import FaultSet, lift_gains, static_ranges
 from ..effectiveness.flushing import DeadFlushing
+from ..effectiveness.power_rows import PowerRows
 from ..effectiveness.zones import has_zones, zones_in_force
 from ..vehicle.config import RotationConfig, Vehicle
 
@@ -24,8 +25,12 @@ class Conditions:
     ``lift`` (1.48) and ``drag`` (1.57), each control surface's gains at the speed (0 for
     thrusters); ``rotations``, each rotatable thruster's rotation with the flushing zones in force
     (None for other actuators); ``losses``, the [3.11.4] losses of a thruster pushing onto a dead
-    one, by actuator index. A thruster works while its force range is not zero; a fixed thruster
-    whose push a zone forbids has that side of its range closed."""
+    one, by actuator index; ``power``, the power rows a method that solves with them takes
+    (:mod:`~allocator_pkg.effectiveness.power_rows`; None: no sources, or a method without
+    rows); ``power_bound``, with rows, the proportional power bounds [N] that keep every source
+    within its power on their own, for the fallback when the method fails. A thruster works
+    while its force range is not zero; a fixed thruster whose push a zone forbids has that side
+    of its range closed."""
 
     faults: FaultSet
     low: np.ndarray
@@ -34,6 +39,8 @@ class Conditions:
     drag: np.ndarray
     rotations: tuple[RotationConfig | None, ...]
     losses: dict[int, tuple[DeadFlushing, ...]]
+    power: PowerRows | None = None
+    power_bound: np.ndarray | None = None
 
     @classmethod
     def of(cls, vehicle: Vehicle, faults: FaultSet, speed: float, voltage: float | None) -> Conditions:

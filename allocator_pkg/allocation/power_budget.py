@@ -1,31 +1,42 @@
-"""Power per source in the allocation (docs/power.md): the thrust each actuator may have so
-that no power source is asked for more than it has.
+"""Power per source in the allocation (docs/power.md): what each source gives, as the power rows
+a method solves with, and the proportional bounds of a method without rows.
 
 Actuator i draws p_i = P_i |f_i|^(3/2) (1.44); its rated power is R_i = P_i F_i^(3/2), F_i the
-largest magnitude of its configured thrust range. A feed is live while its source has power
-(available > 0); S_i is the sum of the shares of actuator i's live feeds. The actuator's power
-comes from its live feeds in proportion to their shares (feed j gives p_i s_ij / S_i), and no
-feed gives more than s_ij R_i, so p_i <= S_i R_i: with every feed live the power splits by
-the shares and the limit is the rated power; a split-fed actuator that loses a feed runs on the
-rest, derated.
+largest magnitude of its configured thrust range. Feed j of share s_ij can give
+e_ij = min(s_ij, A_j / R_i) of the rated power (0 from a source at 0 kW: a dead feed; the full
+share from one that has at least s_ij R_i; a single feed its full share while it has power, the
+source's row bounding the rest); S_i = sum_j e_ij. The actuator's power comes from
+its feeds in proportion to e (feed j gives p_i e_ij / S_i), and no feed gives more than
+e_ij R_i, so p_i <= S_i R_i: with every feed strong the power splits by the shares and the
+limit is the rated power; a split-fed actuator whose feed is lost or weak runs on the rest,
+derated (|f_i| <= S_i^(2/3) F_i, a range). e is continuous in A_j, so a weak feed coming up
+adds thrust rather than tying the actuator to its small power.
 
-A source j whose consumers could together draw more than it has (D_j > A_j, each consumer at
-the largest thrust faults, voltage and the derating leave it, m_i) is shared in proportion to
-those largest draws: each consumer's power is scaled by rho_j = A_j / D_j, an actuator by the
-smallest rho of its live feeds. That bounds |f_i| <= m_i rho^(2/3), a thrust range for every
-stage of the sample (the optimiser moves the rest to other sources' actuators), and the draw
-on source j is at most rho_j D_j = A_j by construction.
+**The rows contract** (:meth:`PowerBudget.rows`, read by every method that solves an
+optimisation, :mod:`allocator_pkg.effectiveness.power_rows`): a
+:class:`~allocator_pkg.effectiveness.power_rows.PowerRows` with, per row j (one per source),
+the weight w_ij of each actuator i (actuators x rows: the share of p_i row j carries,
+e_ij / S_i on live rows), the available power A_j [W] (inf: the row bounds nothing), the
+fixed boolean ``pattern`` (actuators x rows: every (i, j) that some state of the bus ties can
+make non-zero), and per actuator the forward and the reverse power coefficient and the range
+F_i the chords cover. A method puts sum_i w_ij P_i h(|f_i|) <= A_j (h the chord interpolant of
+|f|^(3/2)) into its problem; a change of weights, available power, coefficients or tie state
+is values only, a new pattern (a new configuration's feeds or ties) a new structure.
 
-A sample that leaves a short source's power unused while some of its consumers sit at their
-bound shares it again (:meth:`PowerBudget.shared`): every consumer of the source may grow by
-the factor that scales the sample's own draw on it up to A_j, and the sample is solved again
-inside those bounds; the draw on the source is again at most A_j.
+**The proportional bounds** (:meth:`PowerBudget.limit`), for a method without rows (the
+pseudo-inverse family, docs/power.md): a source j whose consumers could together draw more
+than it has (D_j > A_j, each consumer at the largest thrust faults, voltage and the derating
+leave it, m_i) is shared in proportion to those largest draws: each consumer's power is scaled
+by rho_j = A_j / D_j, an actuator by the smallest rho of its live feeds. That bounds
+|f_i| <= m_i rho^(2/3), and the draw on source j is at most rho_j D_j = A_j by construction.
 
-The sources are taken by row: a closed bus tie pools the sources of a bus into its first
-source's row (:mod:`.bus_ties`), and each drive's power has its forward and reverse
-coefficients, a DEGRADED thruster's counted on its set-point (:mod:`.drive_power`); the bound's
-coefficient is the larger of the two its range allows. The available power in use follows the
-restore ramp (:mod:`.restore_ramp`).
+The sources are taken by row, for the rows and the proportional bounds alike: a closed bus tie
+pools the sources of a bus into its first source's row (:mod:`.bus_ties`: weights over every
+thruster the bus feeds, A_j the bus's sum, its other rows inf; e_ij on the pooled rows), and
+each drive's power has its forward and reverse coefficients, a DEGRADED thruster's counted on
+its set-point (:mod:`.drive_power`); the proportional bounds' coefficient is the larger of the
+two its range allows, R_i the larger one's. The available power in use follows the restore
+ramp (:mod:`.restore_ramp`).
 """
 
 from __future__ import annotations
@@ -36,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..effectiveness.model import AT_LIMIT
+from ..effectiveness.power_rows import PowerPattern, PowerRows, feed_shares
 from ..vehicle.config import RedundancyGroup, Vehicle
 from .bus_ties import BusTies
 from .drive_power import DrivePower
@@ -44,25 +56,24 @@ from .restore_ramp import RestoreRamp
 KW = 1000.0
 """Watts in a kilowatt: the configuration and the topic speak kW, the model W (1.44)."""
 
-SPARE = 1e-3
-"""A short source whose draw falls below its available power by more than this share has power
-to share again."""
-
-PATTERN = 1e-9
-"""A short source drawn below this share of its available power has no thrust pattern to scale
-up: its consumers keep their bounds."""
+HELD = 1e-3
+"""A short source whose draw, as the chord rows see it, is within this share of its available
+power holds the thrust back."""
 
 
 @dataclass(frozen=True)
 class PowerLimit:
     """The power rule at one set of available powers: ``bound`` [N], the largest thrust
     magnitude of every actuator (inf: the power sets none); ``weights`` (r x m), the share of
-    actuator i's power drawn from row j (0 from a lost feed); ``limited``, the actuators
+    actuator i's power drawn from row j (0 from a lost feed; a closed bus on its first source's
+    row); ``limited``, the actuators
     whose range the bound narrows; ``available``, the available power [kW] of every source
     the rule took; ``largest`` [N], the largest thrust magnitude faults, speed, voltage and the
     feed limit leave every actuator (m_i; inf for one without feeds); ``rho``, every row's
-    share of its consumers' largest draws (1: it limits nothing); ``rows``, every row's
-    available power [kW] (a bus's sum on its first source, inf on its others)."""
+    share of its consumers' largest draws (1: it limits nothing). With ``rows`` (the method
+    solves with the power rows) ``bound`` is only the derating of a lost feed and the rows
+    keep the sources within their power; ``proportional`` is then the proportional bounds all the
+    same, the fallback's when the method fails."""
 
     bound: np.ndarray
     weights: np.ndarray
@@ -70,12 +81,19 @@ class PowerLimit:
     available: np.ndarray
     largest: np.ndarray
     rho: np.ndarray
-    rows: np.ndarray
+    proportional: np.ndarray
+    rows: PowerRows | None = None
 
     def holds(self, thrust: np.ndarray) -> bool:
         """Whether the power holds some actuator back at ``thrust``: one whose range a bound
-        narrows sits at that bound."""
-        return bool(np.any(self.limited & (np.abs(thrust) >= self.bound * (1.0 - AT_LIMIT))))
+        narrows sits at that bound, or (with rows) a short source's row is full as the chord
+        rows see it."""
+        if np.any(self.limited & (np.abs(thrust) >= self.bound * (1.0 - AT_LIMIT))):
+            return True
+        if self.rows is None:
+            return False
+        full = self.rows.seen(thrust) >= self.rows.available * (1.0 - HELD)
+        return bool(np.any(full & (self.rho < 1.0)))
 
 
 @dataclass(frozen=True)
@@ -97,11 +115,8 @@ class PowerBudget:
         actuators = vehicle.actuators
         self.sources = tuple(s.name for s in vehicle.power_sources)
         self.capacity = np.array([s.capacity for s in vehicle.power_sources], dtype=float)
-        index = {name: j for j, name in enumerate(self.sources)}
-        self.shares = np.zeros((len(actuators), len(self.sources)))
-        for i, actuator in enumerate(actuators):
-            for feed, share in zip(actuator.feeds, actuator.feed_shares or (1.0,) * len(actuator.feeds)):
-                self.shares[i, index[feed]] = share
+        self.shares = feed_shares(vehicle)
+        self.pattern = PowerPattern.of(vehicle)
         self.drive = DrivePower.of(vehicle)
         self.efficiency = np.ones(len(actuators))
         self.ties = BusTies.of(self.sources, vehicle.bus_ties)
@@ -156,22 +171,6 @@ class PowerBudget:
         """The restore ramp ``seconds`` on; whether the available power in force changed."""
         return self.ramp.advance(self.target, seconds)
 
-    def rows(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The power rows of the ties in force: (weights w (m x r), the share of thruster i's
-        power on row j, s_ij / S_i over its live rows and 0 on a dead one; available power A of
-        every row [kW], a bus's sum on its first source and inf on its others; S, every
-        thruster's live share, whose feed limit is p_i <= S_i R_i)."""
-        rows = self.ties.pool_available(self.available)
-        live = self.ties.pool_shares(self.shares) * (rows > 0.0)
-        live_share = live.sum(axis=1)
-        weights = np.divide(live, live_share[:, None], out=np.zeros_like(live), where=live_share[:, None] > 0.0)
-        return weights.T, rows, live_share
-
-    @property
-    def pattern(self) -> np.ndarray:
-        """(m x r) every (row, thruster) that some state of the ties makes non-zero."""
-        return self.ties.pattern(self.shares)
-
     @property
     def active(self) -> bool:
         """Whether the configuration has power sources at all."""
@@ -210,12 +209,42 @@ class PowerBudget:
             raise ValueError(f"unknown redundancy group '{name}'; groups: {', '.join(self.groups) or 'none'}")
         return self.groups[name]
 
-    def limit(self, low: np.ndarray, high: np.ndarray) -> PowerLimit:
-        """The power rule's bounds given the static force ranges ``low``/``high`` that faults,
-        speed and voltage leave (module docstring)."""
+    def _weights(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(w_ij = e_ij / S_i, A_j [W] of every row, S_i = sum_j e_ij) of the ties in force: the
+        rows pool a closed bus's feeds and power on its first source (:mod:`.bus_ties`; inf on
+        its others), and e_ij = min(s_ij, A_j / R_i) is the share row j of a split-fed actuator
+        can give at its rated power R_i (the larger coefficient's), s_ij for a single live row
+        (module docstring)."""
+        available = self.ties.pool_available(self.available * KW)
+        shares = self.ties.pool_shares(self.shares)
+        drive = self.in_force
+        rated = np.maximum(drive.forward, drive.reverse) * self.rated_thrust ** 1.5
+        with np.errstate(divide="ignore", invalid="ignore"):
+            room = np.where(rated[:, None] > 0.0, available[None, :] / rated[:, None], np.inf)
+        split = ((shares > 0.0).sum(axis=1) > 1)[:, None]
+        room = np.where(split, room, np.inf)
+        live = np.where(shares > 0.0, np.minimum(shares, np.where(available[None, :] > 0.0, room, 0.0)), 0.0)
+        live_share = live.sum(axis=1)
+        weights = np.divide(live, live_share[:, None], out=np.zeros_like(live), where=live_share[:, None] > 0.0)
+        return weights, available, live_share
+
+    def rows(self) -> PowerRows | None:
+        """The power rows' values in force (the contract of the module docstring): the rows of
+        the ties in force on the pattern of every tie state, the drives' forward and reverse
+        coefficients at the faults in force; None without sources."""
+        if self.pattern is None:
+            return None
+        weights, available, _ = self._weights()
+        drive = self.in_force
+        return PowerRows(pattern=self.pattern, weights=weights, available=available, forward=drive.forward,
+                         reverse=drive.reverse, rated=self.rated_thrust)
+
+    def limit(self, low: np.ndarray, high: np.ndarray, rows: bool = False) -> PowerLimit:
+        """The power rule given the static force ranges ``low``/``high`` that faults, speed and
+        voltage leave (module docstring): the proportional bounds, or with ``rows`` (the method
+        solves with the power rows) the derating of lost feeds only, and the rows."""
         kilowatts = self.available
-        row_weights, rows, live_share = self.rows()
-        weights, available = row_weights.T, rows * KW
+        weights, available, live_share = self._weights()
         derated = np.where(self.fed, live_share ** (2.0 / 3.0) * self.rated_thrust, np.inf)
         largest = np.minimum(np.maximum(np.abs(low), np.abs(high)), derated)
         coefficient = self.in_force.bound_coefficient(low, high)
@@ -223,40 +252,12 @@ class PowerBudget:
         demand = (coefficient * np.where(drawing, largest, 0.0) ** 1.5) @ weights
         rho = np.minimum(1.0, np.divide(available, demand, out=np.ones_like(demand), where=demand > 0.0))
         scale = np.where((weights > 0.0) & drawing[:, None], rho, 1.0).min(axis=1, initial=1.0)
-        bound = np.where(self.fed, np.minimum(derated, largest * scale ** (2.0 / 3.0)), np.inf)
+        proportional = np.where(self.fed, np.minimum(derated, largest * scale ** (2.0 / 3.0)), np.inf)
+        bound = np.where(self.fed, np.minimum(derated, largest), np.inf) if rows else proportional
         limited = bound < np.maximum(np.abs(low), np.abs(high))
         return PowerLimit(bound=bound, weights=weights, limited=limited, available=kilowatts,
-                          largest=np.where(self.fed, largest, np.inf), rho=rho, rows=rows)
-
-    def shared(self, limit: PowerLimit, bound: np.ndarray, thrust: np.ndarray,
-               movable: np.ndarray) -> np.ndarray | None:
-        """Bounds [N] that give a short source's unused power to its consumers (module
-        docstring), from a sample's ``thrust`` inside the bounds ``bound`` under ``limit``; None
-        when no short source has power to spare and a consumer at its bound that could take it
-        (``movable``: those whose window this sample may open).
-
-        Source j shares again when its draw W_j is below A_j (1 - SPARE) and a consumer sits at
-        its bound: each of its consumers may grow to g_j |f_i|, g_j = (A_j / W_j)^(2/3), so
-        that the draw on j is at most g_j^(3/2) W_j = A_j, the sample's own thrust pattern
-        scaled up until the source is full. An actuator fed by several sources takes the
-        smallest g of those sharing and keeps its bound if another of its sources is short."""
-        available = limit.rows * KW
-        drive = self.in_force
-        drawing = self.fed & ((drive.forward > 0.0) | (drive.reverse > 0.0))
-        consumers = (limit.weights > 0.0) & drawing[:, None]
-        magnitude = np.abs(thrust)
-        draw = np.where(drawing, drive.power(thrust), 0.0) @ limit.weights
-        at_bound = limit.limited & movable & (magnitude >= bound * (1.0 - AT_LIMIT))
-        short = limit.rho < 1.0
-        sharing = (short & (draw < available * (1.0 - SPARE)) & (draw > available * PATTERN)
-                   & (consumers & at_bound[:, None]).any(axis=0))
-        if not sharing.any():
-            return None
-        growth = np.divide(available, draw, out=np.ones_like(draw), where=sharing) ** (2.0 / 3.0)
-        grown = np.where(consumers & sharing, growth * magnitude[:, None], np.inf).min(axis=1, initial=np.inf)
-        held = (consumers & short & ~sharing).any(axis=1)
-        new = np.minimum(np.where(held, np.minimum(grown, bound), grown), limit.largest)
-        return np.where(consumers[:, sharing].any(axis=1), new, bound)
+                          largest=np.where(self.fed, largest, np.inf), rho=rho, proportional=proportional,
+                          rows=self.rows() if rows else None)
 
     def draw(self, thrust: np.ndarray, limit: PowerLimit) -> np.ndarray:
         """Power [kW] each source gives at ``thrust``: p_i = P_i |f_i|^(3/2) (1.44), P_i the

@@ -10,6 +10,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.power_rows import PowerRows
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS, AllocationMethod
 from ..methods.base import MethodOutput
@@ -42,6 +43,17 @@ def check_method(method: str, vehicle: Vehicle) -> None:
                                             f"{able}")])
 
 
+def within(limits: SampleLimits, bound: np.ndarray) -> SampleLimits:
+    """``limits`` inside the thrust magnitudes ``bound`` [N]: the power rule of a method
+    without rows (the proportional bounds, docs/power.md), for the fallback of one with rows."""
+    azimuth = [replace(lim, thrust_low=min(max(lim.thrust_low, -bound[i]), bound[i]),
+                       thrust_high=min(max(lim.thrust_high, -bound[i]), bound[i]),
+                       physical_max=min(lim.physical_max, bound[i]))
+               for i, lim in zip(limits.rot.tolist(), limits.azimuth)]
+    return replace(limits, low=np.clip(limits.low, -bound, bound), high=np.clip(limits.high, -bound, bound),
+                   azimuth=azimuth, version=-1)
+
+
 class MethodStage:
     """One method in use, the ones used before kept while the solver pattern stays (a switch
     back sets nothing up), and the pseudo-inverse behind them.
@@ -56,6 +68,8 @@ class MethodStage:
         self.method: AllocationMethod | None = None
         self.fallbacks = 0
         self._retired_setups = 0
+        self._power = None
+        self._power_bound: np.ndarray | None = None
 
     def configure(self, model: Model, name: str, inverse: PseudoInverseGains) -> None:
         """Take a new configuration and use the method ``name``; ``inverse`` is the
@@ -72,6 +86,7 @@ class MethodStage:
         self._drag_row = int(rows[0]) if rows.size and model.surfaces.size else None
         self._surfaces = model.surfaces
         self._surface_columns = model.starts[model.surfaces]
+        self._power = None                          # the next refresh gives the new configuration's rows
         self.choose(name)
 
     def choose(self, name: str) -> None:
@@ -81,6 +96,7 @@ class MethodStage:
             method = self.methods[name] = METHODS[name](self.model, self.backend)
         elif method.model is not self.model or method is not self.method:
             method.update_model(self.model)
+        method.set_power(self._power)
         self.method = method
 
     def refresh(self, conditions: Conditions) -> None:
@@ -90,6 +106,13 @@ class MethodStage:
         self._lifting = self._lift > 0.0
         self._drag = conditions.drag[self._surfaces]
         self._deflection = np.zeros(self._surfaces.size)
+        self.set_power(conditions.power)
+        self._power_bound = conditions.power_bound
+
+    def set_power(self, rows: PowerRows | None) -> None:
+        """The power rows in force, for the method (values only, docs/power.md)."""
+        self._power = rows
+        self.method.set_power(rows)
 
     @property
     def setups(self) -> int:
@@ -130,9 +153,14 @@ class MethodStage:
         """The pseudo-inverse's extended force for ``tau``, as the answer of a method that
         ``failed`` (``Outcome.FALLBACK``, the failed status as its ``reason``)."""
         self.fallbacks += 1
-        fallback = self.fallback.solve(tau, limits)
+        fallback = self.fallback.solve(tau, self.fallback_limits(limits))
         return replace(fallback, status=f"fallback: pseudoinverse ({failed.status})", iterations=failed.iterations,
                        outcome=Outcome.FALLBACK, reason=failed.status)
+
+    def fallback_limits(self, limits: SampleLimits) -> SampleLimits:
+        """The limits the fallback answers within and is actuated in: with power rows in force,
+        inside the proportional power bounds (docs/power.md)."""
+        return limits if self._power_bound is None else within(limits, self._power_bound)
 
     def _surface_drag(self, force: np.ndarray, low: np.ndarray, high: np.ndarray) -> float:
         """X_cs of (1.57): the added resistance of all control surfaces at the deflections

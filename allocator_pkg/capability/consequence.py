@@ -11,6 +11,14 @@ method's polygon of the thrust circle, cut by the circle where it reaches beyond
 group's loss leaves enough; u > 1: it does not (the consequence alarm); inf: no force of the
 remaining actuators gives the load's direction at all. The margin is 1 - u.
 
+With a method that solves with the power rows (docs/power.md), the programme has the same rows:
+the same chords of r^(3/2) (:mod:`~allocator_pkg.effectiveness.power_rows`) and the weights and
+available power the allocator would have after the group's loss
+(:meth:`~allocator_pkg.allocation.power_budget.PowerBudget.rows`), each source at u times its
+available power (sum_i w_ij q_i <= u A_j, linear in u): u is the utilisation of the ranges and
+the power together, and u <= 1 exactly when the allocator's own problem after the loss holds
+the load.
+
 A group's loss is what the allocator would have after it (:mod:`.group_loss`): the group's
 actuators failed on top of the faults in force, the flushing zones of the working thrusters,
 and the power rule's bounds with the group's sources at 0 kW and the others at their available
@@ -34,16 +42,18 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..allocation.pieces import Piece, convex_pieces
 from ..effectiveness.flushing import DeadFlushing
 from ..effectiveness.model import Model
+from ..effectiveness.power_rows import PowerPattern
 from ..effectiveness.sectors import in_forbidden_sector
 from ..methods import METHODS
 from ..methods.base import CIRCLE_SIDES
+from ..methods.power_block import PowerBlock, add_power_rows, write_programme
 from ..solvers.linear_program import LinearProgram
 from ..solvers.outcome import Outcome
+from ..solvers.problem import Rows
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import RotationConfig, Vehicle
 from .group_loss import InForce, Remaining, remaining
@@ -118,7 +128,9 @@ class Consequence:
         self.method = method or vehicle.method
         self.model = Model.build(vehicle, 1.0 / vehicle.rate_hz)
         faces = thrust_faces(vehicle, self.method)
-        self._programmes = [_Programme(self.model, faces) for _ in vehicle.redundancy_groups]
+        self._rows = METHODS[self.method].power_rows
+        pattern = PowerPattern.of(vehicle) if self._rows else None
+        self._programmes = [_Programme(self.model, faces, pattern) for _ in vehicle.redundancy_groups]
 
     @property
     def groups(self) -> tuple[str, ...]:
@@ -132,7 +144,7 @@ class Consequence:
         if not np.any(np.asarray(load, dtype=float)[self.model.dof_index]):
             return tuple(GroupUtilisation(group.name, 0.0) for group in groups)
         in_force = in_force or InForce.intact(self.vehicle)
-        return tuple(self.utilisation_left(k, load, remaining(self.vehicle, in_force, group))
+        return tuple(self.utilisation_left(k, load, remaining(self.vehicle, in_force, group, self._rows))
                      for k, group in enumerate(groups))
 
     def utilisation_left(self, index: int, load: Sequence[float], left: Remaining) -> GroupUtilisation:
@@ -149,9 +161,11 @@ class _Programme:
     -low_i), a_i = high_i / w_i, b_i = -low_i / w_i), and for a rotatable one (x = f / R, R its
     piece's radius) the faces n . x - u apothem <= 0, the two sides of its piece's cone and
     "along the cone's middle, not against it". D holds w_i and R; a force range without zero (a
-    stuck control surface) is a fixed x, and an actuator that gives nothing has x = 0."""
+    stuck control surface) is a fixed x, and an actuator that gives nothing has x = 0. With a
+    ``pattern``, the power rows (:mod:`~allocator_pkg.methods.power_block`) on x, their force
+    per unit of x written with each analysis (w_i, or the piece's R)."""
 
-    def __init__(self, model: Model, faces: list[tuple[float, float, float]]):
+    def __init__(self, model: Model, faces: list[tuple[float, float, float]], pattern: PowerPattern | None = None):
         self.model = model
         n, m = model.n, model.m
         self.u = m
@@ -165,21 +179,36 @@ class _Programme:
             rows += [{c1: nx, c2: ny, m: -apothem} for nx, ny, apothem in faces]
             self._cone_rows.append(len(rows))
             rows += [{c1: PLACEHOLDER, c2: PLACEHOLDER} for _ in range(3)]
-        entries = [(k, c, v) for k, row in enumerate(rows) for c, v in row.items()]
-        k, c, v = zip(*entries)
-        a = sp.csc_matrix((v, (k, c)), shape=(len(rows), m + 1))
-        low = np.full(len(rows), -np.inf)
-        up = np.zeros(len(rows))
-        costs = np.zeros(m + 1)
+        table = Rows()
+        for row in rows:
+            table.add(list(row.items()))
+        self.block = None if pattern is None else self._power_rows(table, pattern)
+        columns = m + 1 + (0 if self.block is None else self.block.columns)
+        a = table.matrix(columns)
+        low = np.full(table.count, -np.inf)
+        up = np.r_[np.zeros(len(rows)), np.full(table.count - len(rows), np.inf)]
+        costs = np.zeros(columns)
         costs[m] = 1.0
-        column_low = np.r_[np.full(m, -np.inf), 0.0]
-        column_up = np.full(m + 1, np.inf)
+        column_low = np.r_[np.full(m, -np.inf), 0.0, np.full(columns - m - 1, -np.inf)]
+        column_up = np.full(columns, np.inf)
         self.lp = LinearProgram()
         self.lp.setup(costs, column_low, column_up, a, low, up, 0.0)
         self._columns = np.arange(m, dtype=np.int32)
         self._column_low, self._column_up = np.full(m, -np.inf), np.full(m, np.inf)
         self._scaled = model.t_ec / model.dof_scale[:, None]
         self._nonzero = [np.flatnonzero(model.t_ec[:, c]) for c in range(m)]
+
+    def _power_rows(self, table: Rows, pattern: PowerPattern) -> PowerBlock:
+        """The power rows on x (placeholders for the force per unit of x), q in units of each
+        actuator's rated power and each source row in units of its consumers' rated power."""
+        model = self.model
+        self._rated = np.maximum(np.abs(model.thrust_min), np.abs(model.thrust_max))
+        rated_power = np.maximum(np.where(model.power > 0.0, model.power, 1.0) * self._rated ** 1.5, 1e-9)
+        terms: dict = {int(i): [(int(c), 1.0)] for i, c in zip(model.scalar, model.scalar_columns)}
+        for i, (c1, c2) in zip(model.rot.tolist(), model.rot_columns.tolist()):
+            terms[i] = ([(c1, 1.0)], [(c2, 1.0)])
+        return add_power_rows(table, model.m + 1, pattern, terms, self._rated, model.power, q_unit=rated_power,
+                              row_unit=np.maximum(rated_power @ pattern.pattern, 1.0), scale_column=model.m)
 
     def smallest(self, request: np.ndarray, left: Remaining) -> float:
         """The smallest utilisation over every combination of pieces (inf: none gives the request)."""
@@ -188,6 +217,10 @@ class _Programme:
         lp.low[:n] = lp.up[:n] = request
         low, high = left.low, left.high
         self._fixed_direction(low, high)
+        self._power = left.power if self.block is not None else None
+        if self._power is not None:
+            self._unit = np.maximum(np.maximum(high, -low), 0.0) / np.maximum(self._rated, 1e-9)
+            write_programme(lp, self.block, self._power, self._unit)
         choices = [force_pieces(left.rotations[i], low[i], high[i], left.stuck.get(int(i)), left.losses.get(int(i), ()))
                    for i in model.rot]
         best = math.inf
@@ -232,6 +265,10 @@ class _Programme:
         self._column_low[[c1, c2]], self._column_up[[c1, c2]] = -np.inf, np.inf
         self._scale(c1, piece.radius)
         self._scale(c2, piece.radius)
+        if self._power is not None:
+            i = int(self.model.rot[index])
+            self._unit[i] = piece.radius / max(self._rated[i], 1e-9)
+            write_programme(self.lp, self.block, self._power, self._unit, only=i)
         lp.up[row:row + 3] = np.inf if piece.whole else 0.0
         if piece.whole:
             return

@@ -45,6 +45,7 @@ from ..allocation.power_budget import PowerBudget, PowerLimit
 from ..allocation.solve import check_method
 from ..effectiveness.faults import Fault, FaultMode, FaultSet
 from ..effectiveness.model import Model
+from ..effectiveness.power_rows import PowerRows
 from ..effectiveness.sectors import can_push_along
 from ..effectiveness.weighted_inverse import PseudoInverseGains
 from ..methods import METHODS
@@ -53,14 +54,11 @@ from ..solvers.linear_program import solve_linear_programme
 from ..solvers.outcome import Solution
 from ..vehicle.angles import TWO_PI
 from ..vehicle.config import Vehicle
+from .envelope_power import with_power_rows
 from .thrust_profile import ForceProfile
 from .thruster_pieces import thruster_pieces
 
 FORCE_DOFS = ("surge", "sway", "heave")
-
-POWER_PASSES = 4
-"""Answers :meth:`Capability.reach_forces` gives under the power rule: the first inside the
-bounds in force, each next one with a short source's unused power shared again."""
 
 PowerRule = tuple[PowerBudget, PowerLimit]
 """The power sources with the available power in force, and the rule's limit at it."""
@@ -85,6 +83,7 @@ class Capability:
                  plane: tuple[str, str] | None = None, profiles: Mapping[str, ForceProfile] | None = None):
         self.vehicle = vehicle
         self.profiles = dict(profiles or {})
+        self._power: PowerRows | None = None
         """A direction-dependent thrust limit per rotatable thruster, by name (none: its limit every way)."""
         fixed = [name for name in self.profiles if not vehicle.actuator(name).rotatable]
         if fixed:
@@ -136,12 +135,10 @@ class Capability:
         """(lambda, f): lambda as :meth:`reach` gives it and the extended forces f (m, the model's
         columns) that give lambda * tau (zeros for a zero request).
 
-        With ``power`` (the budget and the limit in force, docs/power.md) the thrust stays
-        inside the power bounds, shared again as a sample shares them
-        (:meth:`~allocator_pkg.allocation.power_budget.PowerBudget.shared`): each short source's
-        unused power goes to its consumers in proportion to the thrust of the last answer,
-        ``POWER_PASSES`` times at most; every answer stays inside bounds that keep each source
-        within its available power, and none is below the one before."""
+        With ``power`` (the budget and the limit in force, docs/power.md) every source stays
+        within its available power as the allocator keeps it: with the power rows of a method
+        that solves with them (the same chords and weights, :mod:`~allocator_pkg.methods.power_block`)
+        in the linear programme, else inside the proportional bounds of the limit."""
         request = np.asarray(tau, dtype=float)[self.model.dof_index]
         if not np.any(request):
             return math.inf, np.zeros(self.model.m)
@@ -149,18 +146,18 @@ class Capability:
         low, high = conditions.low, conditions.high
         zero = np.zeros(self.model.n)
         solve = self._pseudo_inverse_limit if self.sides is None else self._linear_programme
-        if power is None or not power[1].limited.any():
+        if power is None:
             return solve(request, zero, conditions, low, high)
-        budget, limit = power
-        bound, best = limit.bound, (0.0, np.zeros(self.model.m))
-        for _ in range(POWER_PASSES):
-            answer = solve(request, zero, conditions, np.clip(low, -bound, bound), np.clip(high, -bound, bound))
-            best = max(best, answer, key=lambda pair: pair[0])
-            thrust = np.sqrt(np.bincount(self.model.extended_owner, answer[1] ** 2, self.model.r))
-            bound = budget.shared(limit, bound, thrust, np.ones(thrust.size, dtype=bool))
-            if bound is None:
-                break
-        return best
+        limit = power[1]
+        bound = np.where(limit.limited, limit.bound, np.inf)
+        low, high = np.clip(low, -bound, bound), np.clip(high, -bound, bound)
+        if limit.rows is None or self.sides is None or not limit.rows.short().any():
+            return solve(request, zero, conditions, low, high)
+        self._power = limit.rows
+        try:
+            return solve(request, zero, conditions, low, high)
+        finally:
+            self._power = None
 
     def in_force(self, faults: Mapping[str, Fault | FaultMode] | FaultSet | None = None, speed: float | None = None,
                  voltage: float | None = None) -> Conditions:
@@ -261,13 +258,15 @@ class Capability:
         result = self._programme(cost, a_ub, b_ub, a_eq, fixed, bounds, pieces)
         if not result.usable:
             return 0.0, np.zeros(model.m)
-        return float(result.x[-1]), result.x[:model.m]
+        return float(result.x[model.m]), result.x[:model.m]
 
     def _constraints(self, unit, low, high, pieces, sides) -> tuple:
         """(cost, inequality rows, their bounds, equality rows, column bounds) of :meth:`_solve`'s
-        programme; the equality rows' right-hand side is the fixed part of the request. Each
-        inequality row belongs to one rotatable thruster (its columns only) and its bound is the
-        piece's radius times a number of the piece's shape, or 0."""
+        programme, with the power rows of ``self._power`` after lambda's column
+        (:func:`.envelope_power.with_power_rows`); the equality rows' right-hand side is the
+        fixed part of the request. Each inequality row of the pieces belongs to one rotatable
+        thruster (its columns only) and its bound is the piece's radius times a number of the
+        piece's shape, or 0."""
         model = self.model
         columns = model.m + 1
         bounds = [(None, None)] * model.m + [(0.0, None)]
@@ -312,6 +311,8 @@ class Capability:
         a_eq = np.hstack([model.t_ec, -unit.reshape(-1, 1)])
         cost = np.zeros(columns)
         cost[-1] = -1.0
+        if self._power is not None:
+            return with_power_rows(model, self._power, cost, a_ub, b_ub, a_eq, bounds)
         return cost, a_ub, b_ub, a_eq, bounds
 
     def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces) -> Solution:

@@ -11,10 +11,12 @@ of what is in force now.
   every range inside its drive limit (:mod:`~allocator_pkg.allocation.drive_power`);
 - the bus ties in the state in force (:mod:`~allocator_pkg.allocation.bus_ties`), the group's
   sources at 0 kW and every other source at its available power in force (0 for a source
-  already lost: a failed group's, or one reported at 0 kW), and the power rule's bounds
-  (:meth:`~allocator_pkg.allocation.power_budget.PowerBudget.limit`: a split-fed thruster
-  derated to its live share of its rated power to the 2/3, (1.44), and a source its consumers
-  could overdraw shared among them) narrow those ranges.
+  already lost: a failed group's, or one reported at 0 kW), and the power rule of
+  :meth:`~allocator_pkg.allocation.power_budget.PowerBudget.limit` as the allocator's method has
+  it: for a method with power rows, the rows after the loss (the same pooled weights, available
+  power, coefficients and chords the allocator would solve with) and the derating of a
+  split-fed thruster's lost feed in the ranges; for one without, the proportional bounds in
+  the ranges.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from ..allocation.drive_power import within_drive_limits
 from ..allocation.power_budget import PowerBudget, narrowed
 from ..effectiveness.faults import FaultMode, FaultSet
 from ..effectiveness.flushing import DeadFlushing
+from ..effectiveness.power_rows import PowerRows
 from ..vehicle.config import RedundancyGroup, RotationConfig, Vehicle
 
 
@@ -70,17 +73,20 @@ class Remaining:
     """What the allocator would have after a group's loss, per actuator (configuration order):
     the signed force ranges ``low``/``high`` [N], each rotatable thruster's ``rotations`` with the
     zones in force (None for other actuators), the [3.11.4] ``losses`` by actuator index, and the
-    ``stuck`` angles by actuator index."""
+    ``stuck`` angles by actuator index; the ``power`` rows after the loss (None: no sources, or
+    a method without rows)."""
 
     low: np.ndarray
     high: np.ndarray
     rotations: tuple[RotationConfig | None, ...]
     losses: Mapping[int, tuple[DeadFlushing, ...]]
     stuck: Mapping[int, float]
+    power: PowerRows | None = None
 
 
-def remaining(vehicle: Vehicle, in_force: InForce, group: RedundancyGroup) -> Remaining:
-    """What ``group``'s loss leaves on top of ``in_force`` (module docstring)."""
+def remaining(vehicle: Vehicle, in_force: InForce, group: RedundancyGroup, rows: bool = False) -> Remaining:
+    """What ``group``'s loss leaves on top of ``in_force`` (module docstring); ``rows``: the
+    allocator's method solves with the power rows."""
     faults = in_force.faults
     for name in group.actuators:
         faults = faults.with_fault(name, FaultMode.FAILED)
@@ -89,10 +95,12 @@ def remaining(vehicle: Vehicle, in_force: InForce, group: RedundancyGroup) -> Re
     budget.efficiency = faults.command_efficiency
     conditions = within_drive_limits(Conditions.of(vehicle, faults, in_force.speed, in_force.voltage), budget.in_force)
     low, high = conditions.low, conditions.high
+    power = None
     if budget.active:
         budget.reported = np.asarray(in_force.available, dtype=float).copy()
         budget.lost = frozenset(group.sources)
-        limit = budget.limit(low, high)
+        limit = budget.limit(low, high, rows)
+        power = limit.rows
         if limit.limited.any():
             low, high = narrowed(low, high, limit)
-    return Remaining(low, high, conditions.rotations, conditions.losses, faults.stuck)
+    return Remaining(low, high, conditions.rotations, conditions.losses, faults.stuck, power)

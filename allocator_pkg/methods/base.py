@@ -18,6 +18,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.power_rows import PowerRows
 from ..solvers import BackendFactory
 from ..solvers.outcome import Outcome
 from ..vehicle.config import Vehicle
@@ -66,6 +67,9 @@ class AllocationMethod(ABC):
     is refused when it is parsed (:meth:`problems`)."""
 
     implements_priorities: ClassVar[bool] = False
+    power_rows: ClassVar[bool] = False
+    """Whether the method solves with the power rows (:meth:`set_power`, docs/power.md); one
+    that does not gets the proportional power bounds in its thrust ranges instead."""
     implements_bias: ClassVar[bool] = False
     """Whether :meth:`solve` honours the thrust bias of ``SampleLimits.bias`` (docs/theory.md,
     thrust bias); the configuration check refuses ``bias.enabled`` with a method that does not."""
@@ -81,6 +85,7 @@ class AllocationMethod(ABC):
         self.model = model
         self.backend = backend
         self.setups = 0
+        self.power: PowerRows | None = None
 
     @property
     def structure(self) -> tuple:
@@ -91,6 +96,12 @@ class AllocationMethod(ABC):
     @abstractmethod
     def update_model(self, model: Model) -> None:
         """Take a configuration with the same structure: values only, no new set-up."""
+
+    def set_power(self, rows: PowerRows | None) -> None:
+        """Take the power rows' values in force (None: no sources), values only on the same
+        pattern. A method without rows (``power_rows`` False) only keeps them (``power``): the
+        allocator narrows its thrust ranges instead."""
+        self.power = rows
 
     @abstractmethod
     def solve(self, tau: np.ndarray, limits: SampleLimits) -> MethodOutput:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..effectiveness.model import Model, SampleLimits
+from ..effectiveness.power_rows import PowerRows
 from ..solvers import BackendFactory
 from ..vehicle.config import Vehicle
 from .base import AllocationMethod, MethodOutput
@@ -29,6 +30,7 @@ class LPAllocation(AllocationMethod):
 
     name = "lp"
     saturation_modes = ("weighted", "direct")
+    power_rows = True
 
     def __init__(self, model: Model, backend: BackendFactory):
         super().__init__(model, backend)
@@ -44,6 +46,11 @@ class LPAllocation(AllocationMethod):
     @classmethod
     def thrust_region_apothem(cls, vehicle: Vehicle) -> float:
         return survey_apothem(vehicle.azimuth_polygon_sides)
+
+    def set_power(self, rows: PowerRows | None) -> None:
+        """The power rows' values in the programme (values only)."""
+        self.power = rows
+        self._lp.set_power(rows)
 
     def update_model(self, model: Model) -> None:
         """Take a configuration with the same structure: values only, no new set-up."""

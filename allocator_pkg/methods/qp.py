@@ -18,13 +18,14 @@ import math
 import numpy as np
 
 from ..effectiveness.model import AT_LIMIT, Model, SampleLimits
+from ..effectiveness.power_rows import PowerPattern, PowerRows
 from ..solvers import BACKENDS, BackendFactory
 from ..solvers.backend import NO_BOUND
 from ..vehicle.config import Vehicle
 from .base import CIRCLE_SIDES, AllocationMethod, MethodOutput
 from .bias import biased_objective
 from .direct import DirectSolution
-from .qp_problem import QPProblem, build, constant_bounds, objective
+from .qp_problem import QPProblem, build, constant_bounds, objective, write_power
 
 PINNED = 1e-12
 """[rad] A window of angles narrower than this is a single direction."""
@@ -39,9 +40,13 @@ PRIORITY_HOLD = 1e-6
 """How far, as a fraction of its DOF's authority, a higher priority level's achieved wrench may
 move away from the request while a lower level is solved: a margin for rounding, so that every
 stage is feasible."""
+POWER_MARGIN = 1e-7
+"""A source row's bound lies this share below the available power: the power rows are solved
+by DAQP, exact to rounding, and a solution it accepts keeps the source within A_j."""
 CASCADE_BACKEND = "daqp"
 """The backend of the priority cascade's stages: exact on the sliver a saturated level leaves
-the next (docs/theory.md, DOF priorities)."""
+the next (docs/theory.md, DOF priorities); and of the problems with power rows in force, where
+a first-order solver crawls along the power boundary (docs/theory.md, power rows)."""
 
 
 class QPAllocation(AllocationMethod):
@@ -51,15 +56,48 @@ class QPAllocation(AllocationMethod):
     saturation_modes = ("weighted", "preserve_direction", "direct")
     implements_priorities = True
     implements_bias = True
+    power_rows = True
 
     def __init__(self, model: Model, backend: BackendFactory):
         super().__init__(model, backend)
         self._use(model)
-        self._main = self._setup(model, scale=False)
-        self._scale = self._setup(model, scale=True) if model.vehicle.saturation == "preserve_direction" else None
         self._direct = DirectSolution(model) if model.vehicle.saturation == "direct" else None
         self.setups += self._direct is not None
+        self._problems(model, PowerPattern.of(model.vehicle))
+
+    def _problems(self, model: Model, pattern: PowerPattern | None) -> None:
+        """Set up the main problem and the scale problem on the method's backend, and with the
+        power rows of ``pattern`` (docs/theory.md, power rows) the same two on
+        CASCADE_BACKEND, used while some source is short, and the cascade's."""
+        self._pattern, self._short = pattern, False
+        preserve = model.vehicle.saturation == "preserve_direction"
+        self._free = (self._setup(model, scale=False), self._setup(model, scale=True) if preserve else None)
+        self._rows = (self._setup(model, False, rows=True), self._setup(model, True, rows=True) if preserve else None) \
+            if pattern is not None else (None, None)
         self._stages = self._setup(model, scale=False, stages=True) if model.vehicle.priority_levels else None
+
+    @property
+    def _main(self) -> QPProblem:
+        return self._rows[0] if self._short else self._free[0]
+
+    @property
+    def _scale(self) -> QPProblem | None:
+        return self._rows[1] if self._short else self._free[1]
+
+    def set_power(self, rows: PowerRows | None) -> None:
+        """The power rows' values in every problem that has them: entries and bounds only,
+        unless the rows come on another pattern (then the problems are set up again). The
+        samples solve with them while some source is short (``short``), else without."""
+        self.power = rows
+        if rows is None:
+            self._short = False
+            return
+        if not rows.pattern.same(self._pattern):
+            self._problems(self.model, rows.pattern)
+        for problem in (*self._rows, self._stages):
+            if problem is not None:
+                write_power(problem, rows, POWER_MARGIN)
+        self._short = bool(rows.short().any())
 
     @classmethod
     def thrust_region_sides(cls, vehicle: Vehicle) -> int | None:
@@ -84,9 +122,17 @@ class QPAllocation(AllocationMethod):
         self._hold = PRIORITY_HOLD * model.dof_scale
 
     def update_model(self, model: Model) -> None:
-        """Take a configuration with the same structure: values only, no new set-up."""
+        """Take a configuration with the same structure: values only, no new set-up (unless the
+        feeds changed the power rows' pattern)."""
         self.model = model
-        for problem, scale in ((self._main, False), (self._scale, True), (self._stages, False)):
+        pattern = PowerPattern.of(model.vehicle)
+        if (pattern is None) != (self._pattern is None) or (pattern is not None and not pattern.same(self._pattern)):
+            self._use(model)
+            self._problems(model, pattern)
+            self.power = None
+            return
+        for problem, scale in ((self._free[0], False), (self._free[1], True), (self._rows[0], False),
+                               (self._rows[1], True), (self._stages, False)):
             if problem is None:
                 continue
             # Of A's values only T_e's follow the configuration (the rest is fixed by the
@@ -94,6 +140,9 @@ class QPAllocation(AllocationMethod):
             values = problem.qp.a.data.copy()
             values[problem.t_ec_index] = model.t_ec.ravel()
             p, q = objective(model, scale)
+            if problem.power is not None:
+                p = np.concatenate((p, np.zeros(problem.power.columns)))
+                q = np.concatenate((q, np.zeros(problem.power.columns)))
             constant_bounds(problem.qp, model, problem.index, scale)
             problem.qp.update_matrix(values)
             problem.qp.update_objective(p, q)
@@ -102,6 +151,8 @@ class QPAllocation(AllocationMethod):
             problem.directions, problem.edges = [], []
             problem.multiplier, problem.curvature = [0.0] * len(model.rot), [0.0] * len(model.rot)
             problem.version = -1
+            if self.power is not None and problem.power is not None:
+                write_power(problem, self.power, POWER_MARGIN)
         if self._direct is not None:
             self._direct.update_model(model)
         self._use(model)
@@ -159,10 +210,12 @@ class QPAllocation(AllocationMethod):
             force[c1], force[c2] = cos * u - sin * v, sin * u + cos * v
         return force
 
-    def _setup(self, model: Model, scale: bool, stages: bool = False) -> QPProblem:
+    def _setup(self, model: Model, scale: bool, stages: bool = False, rows: bool = False) -> QPProblem:
         """One of the method's problems (:func:`~.qp_problem.build`) on its backend, the
-        cascade's on ``CASCADE_BACKEND``."""
-        problem = build(model, scale, BACKENDS[CASCADE_BACKEND]() if stages else self.backend(), stages)
+        cascade's and those with power ``rows`` on ``CASCADE_BACKEND``."""
+        exact = stages or rows
+        problem = build(model, scale, BACKENDS[CASCADE_BACKEND]() if exact else self.backend(), stages,
+                        self._pattern if exact else None)
         self.setups += 1
         return problem
 

@@ -17,8 +17,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..effectiveness.model import Model
+from ..effectiveness.power_rows import PowerPattern, PowerRows
 from ..solvers.backend import NO_BOUND, Backend
 from ..solvers.problem import Entries, Rows, ScaledProblem, block_index, entry_index
+from .power_block import PowerBlock, add_power_rows, power_columns_scale
 
 
 @dataclass
@@ -55,6 +57,8 @@ class QPProblem:
     multiplier: list[float] = field(default_factory=list)
     curvature: list[float] = field(default_factory=list)
     version: int = -1
+    power: PowerBlock | None = None
+    power_entries: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
 
 
 def layout(model: Model, scale: bool) -> tuple[int, int, int]:
@@ -85,10 +89,12 @@ def objective(model: Model, scale: bool) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate((2.0 * model.weight_ext, 2.0 * model.slack_weights(model.weight), [0.0])), q
 
 
-def constraints(model: Model, scale: bool, stages: bool = False) -> tuple[sp.csc_matrix, dict]:
-    """A and the indices of its rows by kind, every entry that can ever be non-zero stored: T_e
-    dense, both components of every polygon face and angle edge (``stages``: one bound row per
-    slack besides)."""
+def constraints(model: Model, scale: bool, stages: bool = False,
+                pattern: PowerPattern | None = None) -> tuple[sp.csc_matrix, dict, PowerBlock | None]:
+    """A, the indices of its rows by kind and the power rows' block (with a ``pattern``), every
+    entry that can ever be non-zero stored: T_e dense, both components of every polygon face
+    and angle edge (``stages``: one bound row per slack besides), the power rows
+    (:mod:`~.power_block`) after every other row, their columns after every other column."""
     sides = model.vehicle.azimuth_polygon_sides
     extra, top, columns = layout(model, scale)
     rows = Rows()
@@ -116,13 +122,50 @@ def constraints(model: Model, scale: bool, stages: bool = False) -> tuple[sp.csc
         edge_high.append(rows.add([(c1, 0.0), (c2, 1.0)]))
     last = rows.add([(extra, 1.0)] if scale else [(top, 1.0)])
     slack = [rows.add([(extra + k, 1.0)]) for k in range(model.n)] if stages else []
+    block = None
+    if pattern is not None:
+        block = add_power_rows(rows, columns, pattern, power_terms(model), rated(model), model.power)
+        columns += block.columns
     index = dict(equality=np.array(equality, int), box=np.array(box, int), minimax=np.array(minimax, int),
                  polygon=np.array(polygon, int).reshape(len(model.rot), sides),
                  polygon_minimax=np.array(polygon_minimax, int).reshape(len(model.rot), 0 if scale else sides),
                  along=np.array(along, int),
                  across=np.array(across, int), edge_low=np.array(edge_low, int),
                  edge_high=np.array(edge_high, int), last=last, slack=np.array(slack, int))
-    return rows.matrix(columns), index
+    return rows.matrix(columns), index, block
+
+
+def rated(model: Model) -> np.ndarray:
+    """F_i [N]: the largest magnitude of each actuator's configured range, the chords' range."""
+    return np.maximum(np.abs(model.thrust_min), np.abs(model.thrust_max))
+
+
+def power_terms(model: Model) -> dict[int, list | tuple]:
+    """t_i = f_i / F_i in the problem's columns: a scalar actuator's column, a rotatable
+    thruster's two (its frame turns with it; the polygon of the magnitude is safe in any)."""
+    scale = np.maximum(rated(model), 1e-9)
+    terms: dict[int, list | tuple] = {int(i): [(int(c), 1.0 / scale[i])] for i, c in zip(model.scalar,
+                                                                                        model.scalar_columns)}
+    for i, (c1, c2) in zip(model.rot.tolist(), model.rot_columns.tolist()):
+        terms[i] = ([(c1, 1.0 / scale[i])], [(c2, 1.0 / scale[i])])
+    return terms
+
+
+def write_power(problem: QPProblem, rows: PowerRows, margin: float) -> None:
+    """The values of ``rows`` in a problem's power rows: entries and bounds, no new set-up.
+    Each source row's bound is A_j (1 - ``margin``): a solution within the solver's tolerance
+    keeps the source within A_j."""
+    block, qp = problem.power, problem.qp
+    chord, weight, low, up = block.values(rows)
+    up = up * (1.0 - margin)
+    short = rows.short()
+    bound = block.bound_actuators(short)
+    qp.update_matrix(np.concatenate((chord, weight)), problem.power_entries)
+    qp.low[block.chord_row] = np.where(bound[block.chord_owner_row[:, 0]], low, -NO_BOUND)
+    qp.up[block.chord_row] = NO_BOUND
+    qp.low[block.source_row], qp.up[block.source_row] = -NO_BOUND, np.where(short, up, NO_BOUND)
+    qp.low[block.polygon_row] = np.where(bound[block.polygon_owner], 0.0, -NO_BOUND)
+    qp.up[block.polygon_row] = NO_BOUND
 
 
 def constant_bounds(qp: ScaledProblem, model: Model, index: dict, scale: bool) -> None:
@@ -139,13 +182,19 @@ def constant_bounds(qp: ScaledProblem, model: Model, index: dict, scale: bool) -
     qp.low[index["last"]], qp.up[index["last"]] = 0.0, (float(np.max(model.force_scale)) if minimax else 0.0)
 
 
-def build(model: Model, scale: bool, backend: Backend, stages: bool = False) -> QPProblem:
+def build(model: Model, scale: bool, backend: Backend, stages: bool = False,
+          pattern: PowerPattern | None = None) -> QPProblem:
     """The problem (``scale``: the scale problem of ``preserve_direction``; ``stages``: the
-    priority cascade's) on ``backend``, with its constant bounds and the indices a sample writes."""
-    a, index = constraints(model, scale, stages)
+    priority cascade's; ``pattern``: with the power rows) on ``backend``, with its constant
+    bounds and the indices a sample writes."""
+    a, index, block = constraints(model, scale, stages, pattern)
     p, q = objective(model, scale)
+    columns = column_scale(model, scale)
+    if block is not None:
+        p, q = np.concatenate((p, np.zeros(block.columns))), np.concatenate((q, np.zeros(block.columns)))
+        columns = np.concatenate((columns, power_columns_scale(block, rated(model))))
     extra = layout(model, scale)[0]
-    qp = ScaledProblem(p, q, a, column_scale(model, scale), model.vehicle.solver,
+    qp = ScaledProblem(p, q, a, columns, model.vehicle.solver,
                        effort=np.arange(0 if not scale else model.m, model.m if not scale else model.m + 1),
                        backend=backend)
     constant_bounds(qp, model, index, scale)
@@ -166,4 +215,13 @@ def build(model: Model, scale: bool, backend: Backend, stages: bool = False) -> 
                      scale_index=scale_index, p_diagonal=p, q=q, rows=per_thruster,
                      moving=qp.entries(np.concatenate((rotated_index.reshape(-1), edge_index.reshape(-1)))),
                      index=index, t_ec_index=block_index(a, rows, model.m),
-                     multiplier=[0.0] * rotatable, curvature=[0.0] * rotatable, slack=index["slack"])
+                     multiplier=[0.0] * rotatable, curvature=[0.0] * rotatable, slack=index["slack"],
+                     power=block, power_entries=power_entries(a, block))
+
+
+def power_entries(a: sp.csc_matrix, block: PowerBlock | None) -> np.ndarray:
+    """CSC positions of the power rows' changing entries: chord force entries, then weights."""
+    if block is None:
+        return np.zeros(0, np.int64)
+    pairs = np.concatenate((block.chord_entry, block.weight_entry))
+    return np.array([entry_index(a, int(row), int(col)) for row, col in pairs.tolist()], dtype=np.int64)

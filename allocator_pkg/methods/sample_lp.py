@@ -34,6 +34,9 @@ sees the tie-break.
 
 Only values change between samples: the bounds, and the coefficients of the cone's edges and
 of the along-row of each rotatable thruster (sent when they differ from the last sample's).
+A vehicle with power sources has the power rows after every other row and column
+(:mod:`~.power_block`, docs/power.md), their values written when the available power, the
+feeds or the coefficients change.
 """
 
 from __future__ import annotations
@@ -43,10 +46,12 @@ import math
 import numpy as np
 
 from ..effectiveness.model import AzimuthLimits, Model, SampleLimits
+from ..effectiveness.power_rows import PowerPattern, PowerRows
 from ..solvers.backend import NO_BOUND
 from ..solvers.linear_program import LinearProgram
 from ..solvers.outcome import Solution
 from ..solvers.problem import Rows
+from .power_block import PowerBlock, add_power_rows, write_programme
 
 PINNED = 1e-12
 """[rad] A window of angles narrower than this is a single direction."""
@@ -102,6 +107,7 @@ class SampleLP:
             raise ValueError(f"objective is effort or scale, got {objective!r}")
         self.sides, self.apothem, self.objective, self.scale_max = sides, apothem, objective, scale_max
         self._lp = LinearProgram(DUAL_TOLERANCE if objective == "effort" else None)
+        self._power: PowerRows | None = None
         self._build(model)
 
     # -- set-up ---------------------------------------------------------------------------
@@ -169,8 +175,13 @@ class SampleLP:
             self._polygon.append([rows.add([(fx, x), (fy, y)]) for x, y in normals])
             self._along.append(rows.add([(fx, 1.0), (fy, 0.0)]))
             self._edges.append((rows.add([(fx, 0.0), (fy, 1.0)]), rows.add([(fx, 0.0), (fy, 1.0)])))
+        self._block = self._power_rows(rows, model, len(costs), force, scalar_p, scalar_m, rotatable)
+        if self._block is not None:
+            costs = np.concatenate((costs, np.zeros(self._block.columns)))
         lower = np.zeros(len(costs))
         upper = np.full(len(costs), NO_BOUND)
+        if self._block is not None:
+            lower[len(costs) - self._block.columns:] = -NO_BOUND
         for fx, fy, _, _ in rotatable:
             lower[[fx, fy]] = -NO_BOUND
         if self.objective == "scale":
@@ -182,6 +193,37 @@ class SampleLP:
         self._lp.setup(costs, lower, upper, rows.matrix(len(costs)), row_low, row_up, model.vehicle.solver.time_limit,
                        keep_basis)
         self._version = -1
+        if self._block is not None and self._power is not None:
+            write_programme(self._lp, self._block, self._power, self._unit)
+
+    def _power_rows(self, rows: Rows, model: Model, first: int, force: np.ndarray, scalar_p: dict, scalar_m: dict,
+                    rotatable: list) -> PowerBlock | None:
+        """The power rows (:mod:`~.power_block`) on this programme's force columns, for a
+        vehicle with power sources: t_i = (p_i - m_i) force_i / F_i, a rotatable thruster's
+        (f_x, f_y) force_i / F_i; q in units of the rated power, each source row in units of
+        its consumers' rated power."""
+        pattern = PowerPattern.of(model.vehicle)
+        if pattern is None:
+            return None
+        rated = np.maximum(np.abs(model.thrust_min), np.abs(model.thrust_max))
+        self._unit = force / np.maximum(rated, 1e-9)
+        terms: dict = {int(i): [(scalar_p[int(i)], 1.0), (scalar_m[int(i)], -1.0)] for i in model.scalar}
+        for (fx, fy, _, _), j in zip(rotatable, model.rot.tolist()):
+            terms[j] = ([(fx, 1.0)], [(fy, 1.0)])
+        rated_power = np.maximum(np.where(model.power > 0.0, model.power, 1.0) * rated ** 1.5, 1e-9)
+        return add_power_rows(rows, first, pattern, terms, rated, model.power, q_unit=rated_power,
+                              row_unit=np.maximum(rated_power @ pattern.pattern, 1.0))
+
+    def set_power(self, power: PowerRows | None) -> None:
+        """The power rows' values (values only; the programme is set up again for another
+        pattern)."""
+        self._power = power
+        if power is None or self._block is None:
+            return
+        if not power.pattern.same(self._block.pattern):
+            self._build(self.model, keep_basis=True)
+            return
+        write_programme(self._lp, self._block, power, self._unit)
 
     @staticmethod
     def _slack_weights(model: Model, effort: float) -> list[float]:

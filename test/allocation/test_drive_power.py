@@ -77,7 +77,10 @@ def test_a_power_limited_bound_takes_the_dearer_coefficient():
     allocator.set_available_power({"swbd_a": 1000.0})
     demand = P_AZIMUTH * 420e3 ** 1.5 + 0.015 * 300e3 ** 1.5
     scale = (1000e3 / demand) ** (2.0 / 3.0)
-    np.testing.assert_allclose(allocator.power_limit.bound[[0, 2]], [420e3 * scale, 300e3 * scale], rtol=1e-12)
+    np.testing.assert_allclose(allocator.power_limit.proportional[[0, 2]], [420e3 * scale, 300e3 * scale],
+                               rtol=1e-12)
+    rows = allocator.power.rows()
+    assert rows.forward[2] == P_TUNNEL and rows.reverse[2] == 0.015
 
 
 LIMITS = {"actuators__azimuth_stbd__drive_limit": 1500.0, "actuators__azimuth_port__drive_limit": 2500.0,

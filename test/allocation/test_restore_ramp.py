@@ -60,9 +60,9 @@ def test_the_power_in_use_never_rises_faster_than_the_ramp_nor_above_its_target(
 
 def test_the_allocator_raises_the_power_in_use_one_sample_period_a_sample():
     """dp_vessel at 10 Hz with T = 20 s: swbd_a down to 500 kW holds at once; back at 5600 kW it
-    rises 5600 / 20 x 0.1 = 28 kW a sample, and azimuth_stbd's bound with it: while the use u is
-    below its consumers' largest draw D = 0.0074 x 420000^1.5 + 0.0113 x 300000^1.5 W, the bound is
-    420 kN (u / D)^(2/3)."""
+    rises 5600 / 20 x 0.1 = 28 kW a sample, the power row of qp with it, and azimuth_stbd's
+    proportional bound: while the use u is below its consumers' largest draw
+    D = 0.0074 x 420000^1.5 + 0.0113 x 300000^1.5 W, the bound is 420 kN (u / D)^(2/3)."""
     allocator = Allocator(vehicle_from(DP_VESSEL, power__restore_ramp=20.0))
     allocator.set_available_power({"swbd_a": 500.0})
     assert allocator.power.available[0] == 500.0
@@ -73,7 +73,9 @@ def test_the_allocator_raises_the_power_in_use_one_sample_period_a_sample():
         allocator.allocate([0, 0, 0, 0, 0, 0])
         used = allocator.power.available[0]
         assert used == pytest.approx(500.0 + 28.0 * sample, abs=1e-6)
-        assert allocator.power_limit.bound[0] == pytest.approx(420e3 * (used * 1e3 / demand) ** (2 / 3), rel=1e-9)
+        limit = allocator.power_limit
+        assert limit.rows.available[0] == pytest.approx(used * 1e3, rel=1e-12)
+        assert limit.proportional[0] == pytest.approx(420e3 * (used * 1e3 / demand) ** (2 / 3), rel=1e-9)
 
 
 def test_a_cleared_group_fault_comes_back_along_the_ramp():

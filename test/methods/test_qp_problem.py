@@ -29,7 +29,8 @@ def test_the_rows_of_each_problem_and_every_entry_that_can_change_stored(scale, 
     and one slack row per DOF in the cascade's problem; T_e stored whole, zeros included."""
     model = model_of()
     sides = model.vehicle.azimuth_polygon_sides
-    a, index = constraints(model, scale, stages)
+    a, index, block = constraints(model, scale, stages)
+    assert block is None                                    # no power sources: no power rows
     scalar, rotatable, n = model.scalar_columns.size, model.rot.size, model.n
     minimax = 0 if scale else 2 * scalar + rotatable * sides
     assert a.shape == (n + scalar + minimax + rotatable * (sides + 4) + 1 + (n if stages else 0),

@@ -41,7 +41,7 @@ def test_power_available_limits_the_sources_and_bad_messages_are_counted(harness
     assert harness.node.allocator.power.available.tolist() == [300.0, 7800.0]
     values = harness.diagnostics_after_a_second()
     assert values["rejected power messages"] == "4" and values["available power from"].endswith("power_available")
-    assert values["thrust limited by power"].startswith("azimuth_stbd ")
+    assert values["thrust limited by power"] == "none"        # the power rows hold it back, no range
     assert "power-limited" in harness.diagnostics[-1].status[0].message
     harness.tick(round(5.0 / harness.node.period))                             # nothing for power_timeout
     values = harness.diagnostics_after_a_second()
@@ -112,10 +112,11 @@ def test_a_vehicle_without_sources_leaves_the_power_fields_empty(harness):
 
 @pytest.mark.params(DP_VESSEL, wrench_timeout=0.0, power_timeout=60.0)
 def test_get_capability_answers_under_the_power_in_force(harness):
-    """Switchboard B failed, A at 1000 kW: the surge of the exact optimum under the power
-    constraint, 255.5 kN (test_envelope.py), not the 418 kN of the faults alone."""
+    """Switchboard B failed, A at 1000 kW: within 1 % below the surge of the exact optimum under
+    the power constraint, 255.5 kN (test_envelope.py; the power rows are on the safe side), not
+    the 418 kN of the faults alone."""
     assert harness.capability([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])[0] > 600e3
     harness.set_group_fault("switchboard_b")
     assert harness.capability([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])[0] == pytest.approx(418.3e3, rel=1e-3)
     harness.send_power({"swbd_a": 1000.0})
-    assert harness.capability([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])[0] == pytest.approx(255.45e3, rel=1e-3)
+    assert 0.99 * 255.45e3 <= harness.capability([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])[0] <= 255.45e3

@@ -61,7 +61,9 @@ def test_power_limited_station_keeping_loses_position_but_never_overloads(tmp_pa
     assert_never_over(limited)
     assert np.max(limited.trace.power_arrays()["source_power"]) <= 1.01 * 450.0
     assert np.max(unlimited.trace.power_arrays()["source_power"]) > 1.2 * 450.0
-    assert limited.metrics["position_error_max"] > 2.0 * unlimited.metrics["position_error_max"]
+    # the power costs position (at half length 4.7 m against 2.8 m: the power rows spend the
+    # 450 kW where the request wants it, so the loss is smaller than with proportional bounds)
+    assert limited.metrics["position_error_max"] > 1.5 * unlimited.metrics["position_error_max"]
     assert limited.metrics["saturated_fraction"] > 0.3 > unlimited.metrics["saturated_fraction"]
 
 

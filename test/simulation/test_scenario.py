@@ -204,7 +204,7 @@ def test_group_faults_power_and_weather_ramps_load():
     ("{time: 160.0, power: {source: swbd_a, available: 450.0}}",
      "{time: 160.0, weather_ramp: {to: 2.0, duration: 10.0, hs: 4.0}}", r"events\[1\]\.weather_ramp\.hs: unknown"),
     ("seed: 3", "seed: 3\nposition_limit: 0.0", "position_limit: at least"),
-    ("bounds: {position_error_max: 4.0", "bounds: {alarm_lead_time: 4.0", "bounds.alarm_lead_time: unknown key"),
+    ("bounds: {position_error_max: 5.0", "bounds: {alarm_lead_time: 4.0", "bounds.alarm_lead_time: unknown key"),
 ])
 def test_group_faults_power_and_weather_ramps_are_checked_at_load(tmp_path, old, new, message):
     with pytest.raises(ScenarioError, match=message):

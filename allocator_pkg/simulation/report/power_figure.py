@@ -20,16 +20,18 @@ ACTUATOR_EVENTS = ("fault", "clear_faults", "group_fault")
 
 
 def power_bounds(result: RunResult, scenario: Scenario) -> np.ndarray | None:
-    """[N] per sample and actuator, the thrust magnitude the available power leaves it: the
-    allocator's proportional bound (:meth:`~allocator_pkg.allocation.power_budget.PowerBudget.limit`),
-    NaN where the power sets none. The scenario's faults and group losses, the recorded supply
-    voltage and available power are replayed on an allocator of the run's vehicle, so that the
-    bounds are those the node worked with (a sample sharing a short source's unused power may
-    take more). None without power sources, or when the power never bounds a thrust."""
+    """[N] per sample and actuator, the thrust magnitude the available power leaves it in its
+    range (:meth:`~allocator_pkg.allocation.power_budget.PowerBudget.limit`): the proportional
+    bound for a method without power rows, the derating of a lost feed for one with them (whose
+    rows keep the sources within their power without a bound per thruster); NaN where the power
+    sets none. The scenario's faults and group losses, the recorded supply voltage and available
+    power are replayed on an allocator of the run's vehicle and the scenario's method, so that
+    the bounds are those the node worked with. None without power sources, or when the power
+    never bounds a thrust."""
     trace = result.trace
     if not trace.sources:
         return None
-    allocator = Allocator(result.vehicle)
+    allocator = Allocator(result.vehicle, method=scenario.method)
     a = trace.arrays()
     available = trace.power_arrays()["source_available"]
     events = sorted((e for e in scenario.events if e.kind in ACTUATOR_EVENTS), key=lambda e: e.time)

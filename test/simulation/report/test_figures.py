@@ -20,6 +20,7 @@ from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.effectiveness.faults import thrust_limits
 from allocator_pkg.simulation.report import figures as sim_plots
 from allocator_pkg.simulation.report.footprint import arrow_interval, footprint_figure
+from allocator_pkg.simulation.report.power_figure import power_bounds
 from allocator_pkg.simulation.report.style import (
     FAULT_COLOUR,
     LIMIT_COLOUR,
@@ -345,11 +346,14 @@ def power_limited_run(case) -> RunResult:
 
 def test_the_thrust_panel_draws_each_thrusters_bound_from_the_available_power():
     """450 kW per switchboard: swbd_a feeds azimuth_stbd (P = 0.0074 W/N^1.5, 420 kN) and tunnel_fwd
-    (0.0113, 300 kN), swbd_b azimuth_port (0.0074, 655 kN) and tunnel_aft (0.0113, 300 kN). Each source's
-    power is shared in proportion to its consumers' largest draws D_j = sum P_i F_i^1.5, so that each
-    thruster's bound is F_i (A_j / D_j)^(2/3)."""
+    (0.0113, 300 kN), swbd_b azimuth_port (0.0074, 655 kN) and tunnel_aft (0.0113, 300 kN). With qp the
+    power rows hold the power and no thrust range is narrowed: no bound. For a method without rows each
+    source's power is shared in proportion to its consumers' largest draws D_j = sum P_i F_i^1.5, so
+    that each thruster's bound is F_i (A_j / D_j)^(2/3)."""
     case = scenario("dp_power_limited", 1.0)
-    figure = timeline_figure(power_limited_run(case), case)
+    run = power_limited_run(case)
+    assert power_bounds(run, case) is None
+    figure = timeline_figure(run, replace(case, method="pseudoinverse"))
     thrust = figure.axes[2]
     bounds: dict[str, list] = {}
     for line in thrust.get_lines():
