@@ -115,7 +115,6 @@ class SampleLP:
     def _build(self, model: Model, keep_basis: bool = False) -> None:
         """Columns, rows and the constant coefficients; bounds are filled per sample."""
         self.model = model
-        n, m = model.n, model.m
         force = np.maximum(model.force_scale, 1e-9)
         self._force = force
         self._dof = model.dof_scale
@@ -146,24 +145,7 @@ class SampleLP:
         self._scalar_m = np.array([scalar_m[int(i)] for i in model.scalar], dtype=np.int32)
         self._rot_columns = rotatable
         rows = Rows()
-        # Equality rows, each divided by its DOF's authority.
-        t = model.t_ec / self._dof[:, None]
-        owner = model.extended_owner
-        self._equality = []
-        for k in range(n):
-            entries = []
-            for c in range(m):
-                i = int(owner[c])
-                if not model.rotatable[i]:
-                    entries += [(scalar_p[i], t[k, c] * force[i]), (scalar_m[i], -t[k, c] * force[i])]
-            for (fx, fy, _, _), (c1, c2) in zip(rotatable, model.rot_columns):
-                i = int(owner[c1])
-                entries += [(fx, t[k, c1] * force[i]), (fy, t[k, c2] * force[i])]
-            if self.objective == "effort":
-                entries += [(self._slack + 2 * k, -1.0), (self._slack + 2 * k + 1, 1.0)]
-            else:
-                entries.append((self._lambda, 0.0))
-            self._equality.append(rows.add(entries))
+        self._equality = self._equality_rows(rows, model, force, scalar_p, scalar_m, rotatable)
         # Rotatable thrusters: magnitudes, polygon, along-row, the cone's two edges.
         normals = [(math.cos(2.0 * math.pi * k / self.sides), math.sin(2.0 * math.pi * k / self.sides))
                    for k in range(self.sides)]
@@ -195,6 +177,29 @@ class SampleLP:
         self._version = -1
         if self._block is not None and self._power is not None:
             write_programme(self._lp, self._block, self._power, self._unit)
+
+    def _equality_rows(self, rows: Rows, model: Model, force: np.ndarray, scalar_p: dict, scalar_m: dict,
+                       rotatable: list) -> list[int]:
+        """The equality rows T f = tau (with the slack or lambda column), each divided by its
+        DOF's authority; their indices."""
+        t = model.t_ec / self._dof[:, None]
+        owner = model.extended_owner
+        equality = []
+        for k in range(model.n):
+            entries = []
+            for c in range(model.m):
+                i = int(owner[c])
+                if not model.rotatable[i]:
+                    entries += [(scalar_p[i], t[k, c] * force[i]), (scalar_m[i], -t[k, c] * force[i])]
+            for (fx, fy, _, _), (c1, c2) in zip(rotatable, model.rot_columns):
+                i = int(owner[c1])
+                entries += [(fx, t[k, c1] * force[i]), (fy, t[k, c2] * force[i])]
+            if self.objective == "effort":
+                entries += [(self._slack + 2 * k, -1.0), (self._slack + 2 * k + 1, 1.0)]
+            else:
+                entries.append((self._lambda, 0.0))
+            equality.append(rows.add(entries))
+        return equality
 
     def _power_rows(self, rows: Rows, model: Model, first: int, force: np.ndarray, scalar_p: dict, scalar_m: dict,
                     rotatable: list) -> PowerBlock | None:

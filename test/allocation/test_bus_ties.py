@@ -157,25 +157,28 @@ def test_a_new_configuration_keeps_the_tie_state_set():
     assert allocator.power.ties.closed == {"bt_ab": True}
 
 
-def test_rows_and_pattern_for_the_optimisation():
+@pytest.mark.parametrize("method", ["qp", "lp"])
+def test_rows_and_pattern_for_the_optimisation(method):
     """Closed: swbd_a's row carries all four thrusters and 5600 + 7800 kW, swbd_b's is empty and
     unbounded; the pattern (every state) has both rows' own thrusters and row a all four, so the
     tie's change is values only: the method sets nothing up again."""
-    allocator = Allocator(vehicle_from(DP_VESSEL, **TIED))
+    allocator = Allocator(vehicle_from(DP_VESSEL, **TIED, method=method))
     rows = allocator.power.rows()
     np.testing.assert_array_equal(rows.weights.T, [[1, 0, 1, 0], [0, 1, 0, 1]])
     np.testing.assert_array_equal(rows.available, [5600e3, 7800e3])
-    allocator.allocate(np.array([300e3, 100e3, 0, 0, 0, 1e6]))
-    setups = allocator.stats.solver_setups
     allocator.set_bus_tie("bt_ab", True)
     rows = allocator.power.rows()
     np.testing.assert_array_equal(rows.weights.T, [[1, 1, 1, 1], [0, 0, 0, 0]])
     np.testing.assert_array_equal(rows.available, [13400e3, np.inf])
-    assert not allocator.power_limit.limited.any()
     assert rows.pattern.pattern.T.tolist() == [[True] * 4, [False, True, False, True]]
-    allocator.allocate(np.array([300e3, 100e3, 0, 0, 0, 1e6]))
-    allocator.set_bus_tie("bt_ab", False)
-    allocator.allocate(np.array([300e3, 100e3, 0, 0, 0, 1e6]))
+    allocator.set_available_power({"swbd_a": 300.0, "swbd_b": 300.0})
+    request = np.array([300e3, 100e3, 0, 0, 0, 1e6])
+    allocator.allocate(request)
+    setups = allocator.stats.solver_setups
+    for closed in (False, True, False):
+        allocator.set_bus_tie("bt_ab", closed)
+        allocator.allocate(request)
+        assert allocator.power_limit.rows.short().any() and not allocator.power_limit.limited.any()
     assert allocator.stats.solver_setups == setups
 
 
