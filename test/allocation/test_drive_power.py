@@ -46,6 +46,8 @@ def test_a_degraded_thruster_draws_the_power_of_its_set_point():
     assert by_set_point == pytest.approx(5774.0, abs=1.0) and by_delivered == pytest.approx(3238.0, abs=1.0)
     azimuth = P_AZIMUTH * set_point_force ** 1.5 / 1e3
     assert azimuth == pytest.approx(3922.8, abs=0.05)
+    rows = allocator.power_limit.rows                  # the power rows qp solves with count it so
+    assert rows.forward[1] == pytest.approx(P_AZIMUTH * 0.5 ** -1.5, rel=1e-12) and rows.forward[0] == P_AZIMUTH
 
 
 def test_the_degraded_coefficient_is_p_over_eta_to_the_three_halves():
