@@ -28,6 +28,7 @@ import numpy as np
 from ..hull.environment_loads import VesselParticulars, wave_drift_load, wind_load
 from .environment_record import build_record
 from .environment_spec import EnvironmentSpec, SlowVariation
+from .spreading import spread_mean
 
 
 class GaussMarkov:
@@ -128,15 +129,19 @@ class Environment:
 
     def drift_load(self, heading: float, mean: bool = False) -> np.ndarray:
         """[X, Y, N] of the wave drift at ``heading`` [rad] (``mean``: its mean), the caller's mean
-        drift when it gave one, else the hull's (zeros without particulars)."""
+        drift when it gave one, else the hull's (zeros without particulars); in a spread sea the
+        hull's long-crested drift averaged over the directions weighted by the spreading
+        (:func:`~.spreading.spread_mean`), the one drift coefficient of Newman's approximation."""
         spec = self.spec
         if spec.mean_drift_load is not None:
             load = np.array(spec.mean_drift_load) * self.scale ** 2
         elif self.particulars is None:
             return np.zeros(3)
         else:
-            load = wave_drift_load(self.particulars, spec.wave_height * self.scale, spec.wave_period,
-                                   math.radians(spec.wave_direction) - heading)
+            relative = math.radians(spec.wave_direction) - heading
+            load = spread_mean(lambda theta: wave_drift_load(self.particulars, spec.wave_height * self.scale,
+                                                             spec.wave_period, relative + theta),
+                               spec.wave_spreading)
         return load if mean else load * self.drift_factor()
 
     def hull_load(self, heading: float, mean: bool = False) -> np.ndarray:
