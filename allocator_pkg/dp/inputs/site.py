@@ -18,8 +18,9 @@ they come from relative to the wind [deg]; absent: collinear, Level 1's). Level 
 balance keeps wind, waves and current collinear and the standard's long-crested drift [3.7]
 whatever these say (its loads are the standard's formulas for one heading).
 
-The keys sit under ``level2.site`` of the particulars file or at the top of a file of their own (:func:`load_site`). The standard's Level 2 text is not in the transcription used
-here: this is the package's reading. Not verified by DNV.
+The keys sit under ``level2.site`` of the particulars file or at the top of a file of their
+own (:func:`load_site`). The standard's Level 2 text is not in the transcription used here:
+this is the package's reading. Not verified by DNV.
 """
 
 from __future__ import annotations
