@@ -273,3 +273,14 @@ def test_the_sites_peak_factor_reaches_the_sea(standard_setup, number):
         assert measured == pytest.approx(expected, rel=0.10)
         off = max(off, abs(integrate.quad(jonswap, low, high, args=(dnv_gamma,), points=[wp])[0] / expected - 1.0))
     assert off > 0.2
+
+
+@pytest.mark.parametrize("heading", [0.0, 90.0, 225.0])
+def test_a_spread_seas_slowly_varying_drift_keeps_newmans_statistics(standard_setup, heading):
+    """With one drift coefficient the spread sea's drift has the spread mean and, the point spectrum
+    being the same, a standard deviation equal to it (within 10 %) in every DOF."""
+    scenario = case_scenario(replace(standard_setup, sea=SEA), Case(heading, 6, INTACT, 0))
+    drift, mean = record_drift(scenario), np.array(scenario.environment.mean_drift_load)
+    scale = 1e-6 * np.abs(mean).max()
+    assert np.mean(drift, axis=0) == pytest.approx(mean, rel=0.01, abs=scale)
+    assert np.std(drift, axis=0) == pytest.approx(np.abs(mean), rel=0.10, abs=scale)
