@@ -231,3 +231,19 @@ def test_the_environment_note_says_which_sea_and_directions(sea, spectra, says, 
                       frozenset(), Criteria(), spectra=spectra, sea=sea)
     note = environment_note(setup)
     assert all(text in note for text in says) and not any(text in note for text in not_said)
+
+
+@pytest.mark.slow
+def test_a_sites_sea_reaches_the_level_3_outputs(tmp_path):
+    """A site file with the sea's keys: the Level 3 notes say the spread sea, its peak factor and
+    the site's directions; Level 2's part says it stays collinear."""
+    site = tmp_path / "sea.yaml"
+    site.write_text((DATA / "sites" / "level3_site.yaml").read_text()
+                    + "peak_factor: [1.5, 2.5, 3.3]\nspreading: 2\nwave_direction: 30\ncurrent_direction: -60\n")
+    small = [*SMALL[2:], "--site", str(site)]
+    assert main(["--dnv-level3", *FILES, "--out", str(tmp_path), "--workers", "1", *small]) == 0
+    text = (tmp_path / "dp_vessel_dp_l3.txt").read_text()
+    for said in ("a short-crested JONSWAP sea (cos^2 spreading", "(the site's peak factor)",
+                 "site directions: waves from 30 deg and current from -60 deg relative to the wind",
+                 "JONSWAP sea with peak factor 1.5, 2.5, 3.3 (numbers 1 to 3)", "Level 2 collinear."):
+        assert said in text
