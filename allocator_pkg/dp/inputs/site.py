@@ -188,6 +188,7 @@ def _column(value: Any, count: int, where_key: str, quantity: str) -> list[float
         if isinstance(item, bool) or not isinstance(item, (int, float)) or not math.isfinite(item):
             raise ValueError(f"{where}: a finite number [{key.unit or '-'}], not {item!r}")
         if not key.holds(item):
-            raise ValueError(f"{where}: {item:g} {key.unit} outside {key.interval()}".replace("  ", " "))
+            unit = f" {key.unit}" if key.unit else ""
+            raise ValueError(f"{where}: {item:g}{unit} outside {key.interval()}")
         result.append(float(item))
     return result
