@@ -11,7 +11,8 @@ spectrum (``environment.wind.spectrum``: NPD, API or Harris); the slowly varying
 the mean drift of ``hull.environment_loads.wave_drift_load`` times (1 + such a process) unless the
 scenario names a wave spectrum (``environment.waves.spectrum: jonswap``: Newman's drift and the
 wave motion), in a spread sea (``environment.waves.spreading``, :mod:`.spreading`) the mean drift
-the long-crested drift averaged over the directions weighted by the spreading. A spectrum's series are generated once per run (:mod:`.environment_record`) and
+the long-crested drift averaged over the directions weighted by the spreading. A spectrum's
+series are generated once per run (:mod:`.environment_record`) and
 looked up per step. The mean wind load and the mean drift may come from the caller
 (``mean_wind_load``, ``mean_drift_load``: the Level 3 case passes the standard's), the gusts then
 scaling the mean wind load by (U / U_mean)^2 and the drift factor the mean drift. Directions are
