@@ -10,7 +10,9 @@ process for the wind speed (turbulence intensity sigma / mean) unless the scenar
 spectrum (``environment.wind.spectrum``: NPD, API or Harris); the slowly varying wave drift is
 the mean drift of ``hull.environment_loads.wave_drift_load`` times (1 + such a process) unless the
 scenario names a wave spectrum (``environment.waves.spectrum: jonswap``: Newman's drift and the
-wave motion). A spectrum's series are generated once per run (:mod:`.environment_record`) and
+wave motion), in a spread sea (``environment.waves.spreading``, :mod:`.spreading`) the mean drift
+the long-crested drift averaged over the directions weighted by the spreading. A spectrum's
+series are generated once per run (:mod:`.environment_record`) and
 looked up per step. The mean wind load and the mean drift may come from the caller
 (``mean_wind_load``, ``mean_drift_load``: the Level 3 case passes the standard's), the gusts then
 scaling the mean wind load by (U / U_mean)^2 and the drift factor the mean drift. Directions are
@@ -28,6 +30,7 @@ import numpy as np
 from ..hull.environment_loads import VesselParticulars, wave_drift_load, wind_load
 from .environment_record import build_record
 from .environment_spec import EnvironmentSpec, SlowVariation
+from .spreading import spread_mean
 
 
 class GaussMarkov:
@@ -128,15 +131,19 @@ class Environment:
 
     def drift_load(self, heading: float, mean: bool = False) -> np.ndarray:
         """[X, Y, N] of the wave drift at ``heading`` [rad] (``mean``: its mean), the caller's mean
-        drift when it gave one, else the hull's (zeros without particulars)."""
+        drift when it gave one, else the hull's (zeros without particulars); in a spread sea the
+        hull's long-crested drift averaged over the directions weighted by the spreading
+        (:func:`~.spreading.spread_mean`), the one drift coefficient of Newman's approximation."""
         spec = self.spec
         if spec.mean_drift_load is not None:
             load = np.array(spec.mean_drift_load) * self.scale ** 2
         elif self.particulars is None:
             return np.zeros(3)
         else:
-            load = wave_drift_load(self.particulars, spec.wave_height * self.scale, spec.wave_period,
-                                   math.radians(spec.wave_direction) - heading)
+            relative = math.radians(spec.wave_direction) - heading
+            load = spread_mean(lambda theta: wave_drift_load(self.particulars, spec.wave_height * self.scale,
+                                                             spec.wave_period, relative + theta),
+                               spec.wave_spreading)
         return load if mean else load * self.drift_factor()
 
     def hull_load(self, heading: float, mean: bool = False) -> np.ndarray:

@@ -7,7 +7,15 @@ random-phase method (:mod:`.series`) from one generator seeded by the scenario's
 Columns: ``gust`` [m/s] about the mean wind speed, ``wind_direction`` [deg] about the mean
 direction, ``drift`` the factor on the mean wave drift (mean 1), ``north``, ``east`` [m] and
 ``yaw`` [rad] of the wave-frequency motion, each for the scale 1 of the weather (the environment
-scales them). The vessel's heading for the wave motion's response is the set-point's.
+scales them). The vessel's heading for the wave motion's response is the set-point's. A spread
+sea (``wave_spreading`` n > 0) gives each component a random direction from the cos^n spreading
+(:func:`~.spreading.sample_directions`, drawn after the sea's phases, so a long-crested record is
+the same draw as ever); the wave motion takes each component from its own direction. The drift
+factor is Newman's with one drift coefficient for every frequency and direction: the squared
+envelope of the elevation at the body origin, whose statistics a spreading leaves as they are
+(the point spectrum is the same), so spreading changes the slowly varying drift only through
+its mean (:meth:`~.environment.Environment.drift_load`: the spreading-weighted mean of the
+long-crested drift over the directions).
 """
 
 from __future__ import annotations
@@ -20,6 +28,7 @@ from ..hull.environment_loads import VesselParticulars
 from . import spectra
 from .environment_spec import EnvironmentSpec
 from .series import Record, amplitudes, analytic_series, grid, real_series
+from .spreading import sample_directions
 from .wave_drift import drift_factor
 from .wave_motion import body_motion, to_ned
 
@@ -62,7 +71,8 @@ def build_record(spec: EnvironmentSpec, seed: int, particulars: VesselParticular
         omega, elevation = wave_components(spec, n, df, generator)
         columns["drift"] = drift_factor(analytic_series(elevation, n))
         if particulars is not None:
-            relative = math.radians(spec.wave_direction) - heading
+            spread = sample_directions(spec.wave_spreading, omega.size, generator)
+            relative = math.radians(spec.wave_direction) - heading + spread
             surge, sway, yaw = (real_series(c, n) for c in
                                 body_motion(elevation, omega, relative, particulars.lpp, particulars.beam))
             columns["north"], columns["east"] = to_ned(surge, sway, heading)

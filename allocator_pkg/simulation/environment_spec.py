@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 from .scenario_keys import scenario_default
 from .spectra import WAVE_SPECTRA, WIND_SPECTRA
+from .spreading import check_exponent
 
 
 @dataclass(frozen=True)
@@ -22,7 +23,6 @@ class SlowVariation:
             raise ValueError(f"variation sigma: a finite number >= 0, not {self.sigma!r}")
         if not (math.isfinite(self.time_constant) and self.time_constant > 0.0):
             raise ValueError(f"variation time_constant: a finite number > 0, not {self.time_constant!r}")
-
 
 
 @dataclass(frozen=True)
@@ -51,6 +51,8 @@ class EnvironmentSpec:
     """``none`` (the drift times 1 + ``drift_variation``) or ``jonswap``."""
     peak_factor: float = scenario_default("environment.waves.peak_factor")
     """JONSWAP's gamma; 0: DNV-RP-C205's from Hs and Tp."""
+    wave_spreading: float = scenario_default("environment.waves.spreading")
+    """n of the cos^n spreading about ``wave_direction`` (:mod:`.spreading`); 0: long-crested."""
     mean_wind_load: tuple[float, float, float] | None = None
     """[X, Y, N] of the mean wind at the set-point heading in place of the hull's model."""
     mean_drift_load: tuple[float, float, float] | None = None
@@ -65,3 +67,4 @@ class EnvironmentSpec:
         if not (math.isfinite(self.peak_factor) and (self.peak_factor == 0.0 or self.peak_factor >= 1.0)):
             raise ValueError(f"environment.waves.peak_factor: 0 (DNV-RP-C205's) or a number >= 1, "
                              f"not {self.peak_factor!r}")
+        check_exponent(self.wave_spreading, "environment.waves.spreading")

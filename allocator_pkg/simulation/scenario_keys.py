@@ -81,7 +81,10 @@ ENVIRONMENT_KEYS = (
                 "slowly varying drift by Newman's approximation and its first-order motion in the position "
                 "measurement", default="none", choices=WAVE_SPECTRA),
         FileKey("peak_factor", NUMBER, "JONSWAP's gamma; 0: DNV-RP-C205's from Hs and Tp", default=0.0,
-                minimum=0.0))),
+                minimum=0.0),
+        FileKey("spreading", NUMBER, "n of DNV-RP-C205's cos^n directional spreading about `direction` (jonswap: "
+                "a random direction per wave component; the mean drift averaged over the directions); 0: "
+                "long-crested", default=0.0, minimum=0.0))),
 )
 OBSERVER_KEYS = (
     FileKey("enabled", BOOLEAN, "the controller acts on the observer's estimate, not on the true state",

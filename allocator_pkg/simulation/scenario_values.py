@@ -83,7 +83,8 @@ def environment(data: dict) -> EnvironmentSpec:
         wind_spectrum=choice(wind, "spectrum", "environment.wind."),
         wind_direction_variation=_variation(wind, "direction_sigma", "direction_time_constant", "environment.wind."),
         wave_spectrum=choice(waves, "spectrum", "environment.waves."),
-        peak_factor=number(waves, "peak_factor", "environment.waves."))
+        peak_factor=number(waves, "peak_factor", "environment.waves."),
+        wave_spreading=number(waves, "spreading", "environment.waves."))
 
 
 def choice(data: dict, key: str, where: str) -> str:

@@ -35,17 +35,17 @@ def _slope(kappa: np.ndarray, length: float) -> np.ndarray:
     return np.where(small, kappa, exact)
 
 
-def transfer(omega: np.ndarray, direction: float, length: float, beam: float) -> np.ndarray:
+def transfer(omega: np.ndarray, direction: float | np.ndarray, length: float, beam: float) -> np.ndarray:
     """(3, n) complex body-frame [surge [m], sway [m], yaw [rad]] per unit complex elevation
-    amplitude at ``omega`` [rad/s]."""
+    amplitude at ``omega`` [rad/s], from ``direction`` [rad] (one, or one per component: a spread sea)."""
     k = np.asarray(omega, dtype=float) ** 2 / GRAVITY
-    px, py = -math.cos(direction), -math.sin(direction)
+    px, py = -np.cos(direction), -np.sin(direction)
     displacement = -1j * _sinc(k * px * length / 2.0) * _sinc(k * py * beam / 2.0)
     yaw = py * (-1j) * 1j * _slope(-k * px, length) * _sinc(k * py * beam / 2.0)
     return np.vstack([px * displacement, py * displacement, yaw])
 
 
-def body_motion(coefficients: np.ndarray, omega: np.ndarray, direction: float, length: float,
+def body_motion(coefficients: np.ndarray, omega: np.ndarray, direction: float | np.ndarray, length: float,
                 beam: float) -> np.ndarray:
     """(3, n) complex amplitudes of the body-frame motion of elevation ``coefficients`` at ``omega``."""
     return transfer(omega, direction, length, beam) * np.asarray(coefficients)[np.newaxis, :]

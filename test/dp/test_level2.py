@@ -136,6 +136,20 @@ def test_a_site_equal_to_table_2_1_changes_nothing_and_says_so():
                for note in same.notes)
 
 
+def test_level_2_keeps_a_sites_sea_collinear_and_says_so():
+    """The site's peak factor, spreading and directions are Level 3's: Level 2's numbers and
+    limiting winds are those of the same conditions without them, its notes name them."""
+    plain = Level2(load_vehicle(DP_VESSEL), with_site({"current": 0.8})).run(45.0)
+    sea = Level2(load_vehicle(DP_VESSEL), with_site({"current": 0.8, "peak_factor": 3.3, "spreading": 2,
+                                                     "wave_direction": 45, "current_direction": -90})).run(45.0)
+    for case in plain.numbers:
+        assert np.array_equal(plain.numbers[case], sea.numbers[case])
+        assert np.array_equal(plain.wind_limits[case], sea.wind_limits[case])
+    assert any("Level 3: JONSWAP sea with peak factor 3.3" in note and "Level 2 collinear." in note
+               for note in sea.notes)
+    assert not any("Level 3" in note for note in plain.notes if note.startswith("Environment"))
+
+
 @pytest.mark.slow
 def test_a_sites_conditions_are_the_numbers():
     """Four site conditions: numbers 0 to 4, the top held at the site's 20 m/s. A stronger current

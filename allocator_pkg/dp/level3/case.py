@@ -1,8 +1,9 @@
 """One case of the DNV-ST-0111 Level 3 (time-domain) capability analysis: a seeded in-process
 closed-loop run (:class:`~...simulation.closed_loop.ClosedLoop` over
 :class:`~...simulation.in_process.InProcessLink`) of
-the DP vessel on station, with wind, current and waves of one capability number's condition all
-coming from one heading, intact or with a redundancy group failed once the vessel has settled
+the DP vessel on station, with wind, current and waves of one capability number's condition
+coming from one heading (or waves and current from the site's directions relative to the wind),
+intact or with a redundancy group failed once the vessel has settled
 on station, so that the failure's transient counts.
 
 A run holds alone when its horizontal position excursion from the set-point stays within
@@ -21,7 +22,7 @@ import contextlib
 import math
 import tempfile
 from collections.abc import Iterator
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -33,8 +34,10 @@ from ...simulation.environment import EnvironmentSpec
 from ...simulation.in_process import InProcessLink
 from ...simulation.metrics import heading_errors
 from ...simulation.scenario import Event, Scenario
+from ...simulation.spreading import spread_mean
 from ..capability_result import INTACT
 from ..inputs.particulars import Particulars
+from ..inputs.site import SiteSea
 from ..standard.loads import BodyFrame, DnvHull, wave_drift_load, wind_load
 from ..standard.weather import WeatherCondition
 from .dp_system import with_dp_system
@@ -190,6 +193,9 @@ class CaseSetup:
     dp_system: bool = True
     """The vessel's DP system, a failure a trip, the thrusters' losses (:mod:`.dp_system`; False:
     the controller on the true state, a failure at the rate limit, no loss)."""
+    sea: SiteSea = field(default_factory=SiteSea)
+    """The site's peak factor, spreading and directions of the waves and the current relative to
+    the wind (the default: DNV-RP-C205's peak factor, long-crested, collinear)."""
 
 
 @dataclass(frozen=True)
@@ -231,27 +237,35 @@ class CaseResult:
 
 
 def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
-    """The environment of one case: the condition's wind, current and waves, all from
-    ``case.heading_deg`` relative to the bow (the set-point heading 0 deg, north); the gusts from
-    the base scenario's gust spectrum (NPD unless it names another), a JONSWAP sea (Newman's slowly
-    varying drift, the first-order wave motion), the mean wind load and the mean wave drift those of
-    [3.5] and [3.7] at the condition when the set-up has the standard's hull, the base scenario's
-    slow variations of the current."""
-    spec, condition = setup.scenario.environment, setup.conditions[case.number]
+    """The environment of one case: the condition's wind from ``case.heading_deg`` relative to the
+    bow (the set-point heading 0 deg, north), the waves and the current from the same heading
+    (Level 1's collinear environment) or from the site's directions relative to the wind
+    (``setup.sea``); the gusts from the base scenario's gust spectrum (NPD unless it names
+    another), a JONSWAP sea of the site's peak factor (DNV-RP-C205's unless given) and spreading
+    (long-crested unless given) with Newman's slowly varying drift and the first-order wave
+    motion, the mean wind load [3.5] at the wind's direction and the mean wave drift [3.7] at the
+    waves' (in a spread sea averaged over the directions weighted by the spreading,
+    :func:`~...simulation.spreading.spread_mean`) when the set-up has the standard's hull, the base
+    scenario's slow variations of the current."""
+    spec, condition, sea = setup.scenario.environment, setup.conditions[case.number], setup.sea
     heading = case.heading_deg
+    waves = heading + (sea.wave_direction or 0.0)
     period = condition.tp if condition.tp > 0.0 else spec.wave_period
-    common = dict(current_speed=condition.current, current_direction=heading, wind_speed=condition.wind,
-                  wind_direction=heading, wave_height=condition.hs, wave_direction=heading, wave_period=period)
+    common = dict(current_speed=condition.current, current_direction=heading + (sea.current_direction or 0.0),
+                  wind_speed=condition.wind, wind_direction=heading, wave_height=condition.hs, wave_direction=waves,
+                  wave_period=period, wave_spreading=sea.spreading)
     if not setup.spectra:
         intensity = spec.gusts.sigma / spec.wind_speed if spec.wind_speed > 0.0 else 0.0
         return replace(spec, gusts=replace(spec.gusts, sigma=intensity * condition.wind), **common)
     mean_wind = mean_drift = None
-    if setup.hull is not None and setup.frame is not None:
-        direction = math.radians(heading)
-        mean_wind = tuple(setup.frame.load(wind_load(setup.hull, condition.wind, direction)))
-        mean_drift = tuple(setup.frame.load(wave_drift_load(setup.hull, condition.hs, period, direction)))
+    hull, frame = setup.hull, setup.frame
+    if hull is not None and frame is not None:
+        mean_wind = tuple(frame.load(wind_load(hull, condition.wind, math.radians(heading))))
+        mean_drift = tuple(spread_mean(lambda theta: frame.load(wave_drift_load(
+            hull, condition.hs, period, math.radians(waves) + theta)), sea.spreading))
     return replace(spec, wind_spectrum=spec.wind_spectrum if spec.wind_spectrum != "first_order" else "npd",
-                   wave_spectrum="jonswap", mean_wind_load=mean_wind, mean_drift_load=mean_drift, **common)
+                   wave_spectrum="jonswap", peak_factor=sea.peak_factor(case.number), mean_wind_load=mean_wind,
+                   mean_drift_load=mean_drift, **common)
 
 
 def case_scenario(setup: CaseSetup, case: Case) -> Scenario:

@@ -26,7 +26,7 @@ from ...simulation.scenario import load_scenario, vehicle_config
 from ...simulation.scenario_check import check_method_serves, check_vehicle
 from ..capability_result import INTACT, WORST, CapabilityResult
 from ..inputs.particulars import load_particulars
-from ..inputs.site import load_site
+from ..inputs.site import SiteSea, load_site
 from ..level1 import MAX_STEP_DEG, Level1
 from ..level2 import Level2
 from .case import CRITERIA_NOTE, CaseResult, CaseSetup, Criteria
@@ -97,7 +97,8 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
               for name, members in analysis.groups.items()}
     setup = CaseSetup(base, tuple(analysis.conditions), groups,
                       frozenset(group.name for group in vehicle.redundancy_groups), inputs.criteria,
-                      particulars.hull, particulars.frame, particulars=particulars)
+                      particulars.hull, particulars.frame, particulars=particulars,
+                      sea=analysis.site.sea if analysis.site else SiteSea())
     headings = tuple(float(h) for h in level2.headings_deg)
     ceilings = {(heading, case): int(level2.numbers[case][k]) for case in (INTACT, *groups)
                 for k, heading in enumerate(headings)}
@@ -183,11 +184,20 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
 
 def environment_note(setup: CaseSetup) -> str:
     """Where a case's wind, waves and current come from, as :func:`.case.case_environment` builds them."""
+    sea = setup.sea
+    directions = "wind, waves and current from one heading (Level 1's collinear environment)" if sea.collinear else \
+        (f"site directions: waves from {sea.wave_direction or 0.0:g} deg and current from "
+         f"{sea.current_direction or 0.0:g} deg relative to the wind (the heading is the wind's)")
     if not setup.spectra:
         return ("Environment: the base scenario's first-order gust at its turbulence intensity and the mean wave drift "
-                "times a first-order factor; wind, waves and current from one heading.")
+                f"times a first-order factor; {directions}.")
     gusts = {"api": "API", "harris": "Harris"}.get(setup.scenario.environment.wind_spectrum, "NPD")
-    return (f"Environment: {gusts} gusts on the mean wind, a long-crested JONSWAP sea of the condition's Hs and Tp "
-            "(DNV-RP-C205's peak factor) with Newman's slowly varying drift and the first-order wave motion in the "
-            "position measurement, the mean wind load [3.5] and mean wave drift [3.7] of the standard, the current "
-            "with its slow variation; wind, waves and current from one heading (Level 1's collinear environment).")
+    crests = (f"a short-crested JONSWAP sea (cos^{sea.spreading:g} spreading, DNV-RP-C205 3.5.8.4, a random "
+              "direction per component)") if sea.spreading else "a long-crested JONSWAP sea"
+    gamma = "the site's peak factor" if sea.peak_factors else "DNV-RP-C205's peak factor"
+    drift = ("mean wave drift [3.7] averaged over the spreading's directions" if sea.spreading
+             else "mean wave drift [3.7]")
+    return (f"Environment: {gusts} gusts on the mean wind, {crests} of the condition's Hs and Tp "
+            f"({gamma}) with Newman's slowly varying drift and the first-order wave motion in the "
+            f"position measurement, the mean wind load [3.5] and {drift} of the standard, the current "
+            f"with its slow variation; {directions}.")

@@ -55,7 +55,8 @@ ASSUMPTIONS = (
     "defaults or the criteria file's, not the standard's.",
     "The loads are the simulation's drag-like model (hull/environment_loads.py), not [3.5]-[3.7]; the "
     "environment's slow variations and gusts are the base scenario's; wind, current and waves come from one "
-    "heading.",
+    "heading unless the site gives the waves' and the current's directions relative to the wind (the notes say "
+    "which).",
     "A redundancy group fails at once, all its actuators and power sources, at the end of the time on station; "
     "an intact case has no post-failure window.",
     "The limiting wind speed is the wind of the number's condition (no bisection in the time domain).",

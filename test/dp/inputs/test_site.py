@@ -3,7 +3,7 @@ site's current, Tz turned into Tp [3.3.3], and bad keys refused by name."""
 
 import pytest
 
-from allocator_pkg.dp.inputs.site import load_site, site_from_mapping
+from allocator_pkg.dp.inputs.site import SiteSea, load_site, site_from_mapping
 from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS, condition_at, limit
 
 TABLE = {"name": "shelf", "wind": [5.0, 10.0, 15.0, 20.0], "hs": [0.5, 1.5, 3.0, 5.0], "tz": [4.0, 5.0, 6.0, 7.0],
@@ -56,6 +56,14 @@ def test_a_current_relation_over_fewer_numbers_keeps_table_2_1s_first_rows():
     ({"current": [0.5, True]}, r"level2\.site\.current\[1\]: a finite number"),
     ({"current": 1.0, "name": 3}, r"level2\.site\.name: text"),
     ([1.0], r"level2\.site: a mapping"),
+    ({"peak_factor": 0.5}, r"level2\.site\.peak_factor: 0\.5 outside \[1, 10\]"),
+    ({"peak_factor": [3.3, 3.3], "hs": [1.0, 2.0, 3.0]}, r"level2\.site\.(peak_factor|hs): .* entries"),
+    ({"peak_factor": [3.3, "high"]}, r"level2\.site\.peak_factor\[1\]: a finite number"),
+    ({"spreading": -2.0}, r"level2\.site\.spreading: -2 outside \[0, 100\]"),
+    ({"spreading": [2.0]}, r"level2\.site\.spreading: one value, not a list"),
+    ({"wave_direction": 200.0}, r"level2\.site\.wave_direction: 200 deg outside \[-180, 180\]"),
+    ({"current_direction": "abeam"}, r"level2\.site\.current_direction: a finite number \[deg\]"),
+    ({"current_direction": True}, r"level2\.site\.current_direction: a finite number"),
 ])
 def test_bad_sites_are_refused_naming_the_key(data, message):
     with pytest.raises(ValueError, match=message):
@@ -70,3 +78,20 @@ def test_a_site_file(tmp_path):
     path.write_text("current: -1\n")
     with pytest.raises(ValueError, match=r"site\.yaml: site\.current: -1 m/s outside \[0, 5\]"):
         load_site(path)
+
+
+def test_a_sites_sea_peak_factor_spreading_and_directions():
+    """The sea's keys beside the conditions: a gamma per number (0, DNV-RP-C205's, for calm),
+    the spreading and the directions relative to the wind, said in the notes; absent, Level 1's sea."""
+    site = site_from_mapping({**TABLE, "peak_factor": [1.0, 2.0, 3.3, 5.0], "spreading": 4,
+                              "wave_direction": 30, "current_direction": -45.5})
+    assert site.sea == SiteSea((0.0, 1.0, 2.0, 3.3, 5.0), 4.0, 30.0, -45.5)
+    assert [site.sea.peak_factor(n) for n in range(5)] == [0.0, 1.0, 2.0, 3.3, 5.0]
+    assert "cos^4 spreading" in site.describe() and "waves 30 deg, current -45.5 deg" in site.describe()
+    plain = site_from_mapping(TABLE)
+    assert plain.sea == SiteSea() and plain.sea.collinear and plain.sea.peak_factor(3) == 0.0
+    assert "Level 3" not in plain.describe()
+    only_sea = site_from_mapping({"peak_factor": 2.5, "current_direction": 90.0})
+    assert only_sea.conditions == WEATHER_CONDITIONS and only_sea.sea.peak_factors == (0.0,) + (2.5,) * 11
+    assert only_sea.sea.wave_direction is None and not only_sea.sea.collinear
+    assert "collinear" not in only_sea.sea.describe() and "Table 2-1's wind" in only_sea.describe()

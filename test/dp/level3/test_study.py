@@ -16,8 +16,12 @@ from test_engine import alive
 
 from allocator_pkg.cli.allocator_capability import main
 from allocator_pkg.dp.capability_result import SCOPE_L3
+from allocator_pkg.dp.inputs.site import SiteSea
 from allocator_pkg.dp.level3 import engine as level3_engine
-from allocator_pkg.dp.level3.study import JOURNAL
+from allocator_pkg.dp.level3.case import CaseSetup, Criteria
+from allocator_pkg.dp.level3.study import JOURNAL, environment_note
+from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
+from allocator_pkg.simulation.scenario import load_scenario
 
 FILES = [str(ROOT / "config/dp_vessel.yaml"), str(ROOT / "config/particulars/dp_vessel.yaml")]
 SMALL = ["--site", str(DATA / "sites" / "level3_site.yaml"), "--headings", "90", "--position-limit", "0.05",
@@ -212,3 +216,34 @@ def test_the_criteria_file_gives_the_criteria_and_an_option_overrides_its_key(tm
     overridden = parser.parse_args(["--level3-criteria", str(path), "--seeds", "6", "--position-limit", "3",
                                     "--heading-limit", "4", "--settle", "5", "--duration", "7"])
     assert level3_criteria(overridden) == Criteria(3.0, 4.0, 5.0, 7.0, seeds=6, quantile=0.8)
+
+
+@pytest.mark.parametrize(("sea", "spectra", "says", "not_said"), [
+    (SiteSea(), True, ["a long-crested JONSWAP sea", "DNV-RP-C205's peak factor", "Level 1's collinear"],
+     ["site directions", "spreading"]),
+    (SiteSea((0.0, 2.0), 3.0, 20.0, None), True,
+     ["cos^3 spreading", "the site's peak factor", "averaged over the spreading's directions",
+      "site directions: waves from 20 deg and current from 0 deg relative to the wind"], ["collinear"]),
+    (SiteSea(current_direction=-30.0), False, ["current from -30 deg relative to the wind"], ["collinear"]),
+])
+def test_the_environment_note_says_which_sea_and_directions(sea, spectra, says, not_said):
+    setup = CaseSetup(load_scenario(ROOT / "config/scenarios/dp_station_keeping.yaml"), WEATHER_CONDITIONS, {},
+                      frozenset(), Criteria(), spectra=spectra, sea=sea)
+    note = environment_note(setup)
+    assert all(text in note for text in says) and not any(text in note for text in not_said)
+
+
+@pytest.mark.slow
+def test_a_sites_sea_reaches_the_level_3_outputs(tmp_path):
+    """A site file with the sea's keys: the Level 3 notes say the spread sea, its peak factor and
+    the site's directions; Level 2's part says it stays collinear."""
+    site = tmp_path / "sea.yaml"
+    site.write_text((DATA / "sites" / "level3_site.yaml").read_text()
+                    + "peak_factor: [1.5, 2.5, 3.3]\nspreading: 2\nwave_direction: 30\ncurrent_direction: -60\n")
+    small = [*SMALL[2:], "--site", str(site)]
+    assert main(["--dnv-level3", *FILES, "--out", str(tmp_path), "--workers", "1", *small]) == 0
+    text = (tmp_path / "dp_vessel_dp_l3.txt").read_text()
+    for said in ("a short-crested JONSWAP sea (cos^2 spreading", "(the site's peak factor)",
+                 "site directions: waves from 30 deg and current from -60 deg relative to the wind",
+                 "JONSWAP sea with peak factor 1.5, 2.5, 3.3 (numbers 1 to 3)", "Level 2 collinear."):
+        assert said in text
