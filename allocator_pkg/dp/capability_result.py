@@ -53,11 +53,14 @@ SCOPE_L2 = (f"DNV-ST-0111 (Dec 2021) Level 2 as read here (the transcription use
             "Not verified by DNV.")
 """What every Level 2 output says about itself."""
 SCOPE_L3 = ("DNV-ST-0111 (Dec 2021) Level 3 as read here (the transcription used has no Level 3 text): seeded "
-            "in-process closed-loop time-domain runs of the vessel with this package's allocator, its station-keeping "
-            "controller and its simulation load model (not the standard's [3.5]-[3.7]); wind, current and waves of "
-            "Table 2-1 (or the Level 2 site's) from each heading; a redundancy group failed after settling on "
-            "station; conditions rising per [2.4.4] to the first that fails; a condition the static Level 2 "
-            "balance fails is not simulated. Not verified by DNV.")
+            "in-process closed-loop time-domain runs of the vessel with this package's allocator and DP system (a "
+            "passive observer on noisy position and heading, the controller on its estimate, wind feed-forward), "
+            "thrusters with the static analysis' losses, a failure a trip; the mean wind load [3.5] and wave drift "
+            "[3.7] of the standard with gusts from a wind spectrum, a JONSWAP sea's slowly varying drift (Newman) "
+            "and wave motion, the current through the simulation's hull model; wind, current and waves of Table 2-1 "
+            "(or the Level 2 site's) from each heading; a redundancy group failed after settling on station; "
+            "conditions rising per [2.4.4] to the first that fails, each decided over seeds by a stated quantile; a "
+            "condition the static Level 2 balance fails is not simulated. Not verified by DNV.")
 """What every Level 3 output says about itself."""
 SCOPES = {1: SCOPE_L1, 2: SCOPE_L2, 3: SCOPE_L3}
 
