@@ -23,6 +23,7 @@ import numpy as np
 from ..configuration.parameters import load_vehicle
 from .control_system import DpControl
 from .electric_plant import ElectricPlant
+from .metrics import METRIC_UNITS
 from .plant import PLANAR, Pose
 from .plant_metrics import plant_report
 from .power_plant import PowerPlant
@@ -126,6 +127,7 @@ class ClosedLoop:
         if self.electric is not None:
             report["power_plant"] = plant_report(self.electric.record, self.electric.sources, self.period)
             report["metrics"] |= report["power_plant"]["metrics"]
+            report["units"] |= {name: METRIC_UNITS[name] for name in report["power_plant"]["metrics"]}
         (self.out / "metrics.json").write_text(report_json(report))
         return RunResult(report["metrics"], self.trace, self.vehicle, self.faults, report,
                          None if self.electric is None else self.electric.record)

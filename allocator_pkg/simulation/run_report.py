@@ -45,7 +45,8 @@ def run_report(scenario: Scenario, trace: Trace, vehicle: Vehicle, realtime_fact
         steps.append({"channel": step.channel, "time": step.time, "size": size,
                       **trace.step_response(step).as_dict()})
     return {"scenario": scenario.name, "method": scenario.method, "seed": scenario.seed,
-            "duration": scenario.duration, "metrics": metrics, "units": dict(METRIC_UNITS), "windows": windows,
+            "duration": scenario.duration, "metrics": metrics,
+            "units": {name: METRIC_UNITS[name] for name in metrics}, "windows": windows,
             "steps": steps, "step_units": dict(STEP_UNITS), "settling_band": SETTLING_BAND,
             "sources": trace.source_figures(), "source_units": dict(SOURCE_UNITS)}
 

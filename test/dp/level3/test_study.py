@@ -57,7 +57,9 @@ def test_the_report(uninterrupted, capsys):
         stated = "\n".join(lines[:2]) if name.endswith(".csv") else "\n".join(lines)
         assert "Not verified by DNV" in stated and "post_failure_window 60 s" in stated.replace(": ", " "), name
     assert SCOPE_L3 in text and "Not simulated, the static Level 2 balance already fails them" in text
-    assert "gusts at its turbulence intensity); method qp." in text
+    assert "the current's slow variation); method qp." in text
+    assert "Environment: NPD gusts on the mean wind, a long-crested JONSWAP sea" in text
+    assert "DP system: " in text
     assert "Headings every 90 deg: coarser than the standard's 10 deg." in text
 
 
