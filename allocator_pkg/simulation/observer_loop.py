@@ -9,13 +9,15 @@ linear (R(psi_y) = I to first order), so the loop is x' = A x + B w, with the st
 and the inputs w = [gust force (3), other environmental force (3), wave-frequency motion (3),
 measurement noise (3)]:
 
-    eta' = nu,  M nu' = -D nu + tau + F_gust + F_other,  tau' = (u - tau) / T_thr,
+    eta' = nu,  M nu' = -D nu + tau + F_gust + F_other,  tau' = (eta_l u - tau) / T_thr,
     u = -Kp eta^ - Ki z - Kd nu^ + f,  z' = eta^,  f' = (-F_gust - f) / T_f,
     observer (Fossen and Strand 1999) driven by y = eta + eta_w + v and its model's force
     u + F_gust (the measured wind's load is an input of its model with feed-forward),
 
 M the mass with added mass, D the hull's damping linearised in the mean current (the true
-vessel's), the observer's own M and D those of :class:`.vessel.Vessel` (its linear damping).
+vessel's), the observer's own M and D those of :class:`.vessel.Vessel` (its linear damping),
+eta_l the thrusters' loss factor (the thrust delivered over the thrust commanded, one for all:
+the allocator and the observer's model do not know it, so it scales the loop's gain).
 Without an observer the controller acts on eta and nu (then the loop is
 :class:`.frequency_domain.LinearLoop`'s). The excursion's variance per DOF is
 int_0^inf (H S H^*)_ii dw over the inputs' one-sided spectra (Fossen 2021, 11.2):
@@ -25,7 +27,8 @@ int_0^inf (H S H^*)_ii dw over the inputs' one-sided spectra (Fossen 2021, 11.2)
 - the wave-frequency motion: T T^H S_zeta (:func:`.wave_motion.transfer`, JONSWAP S_zeta),
   averaged over the spreading.
 
-The allocator, the thrust losses, the trips and the sampling's one-step delay are left out.
+The allocator (its distribution of the request, hence a loss that differs between thrusters),
+the trips and the sampling's one-step delay are left out.
 """
 
 from __future__ import annotations
@@ -50,8 +53,9 @@ INPUTS = 12
 @dataclass(frozen=True)
 class ObservedLoop:
     """M and D [SI, surge, sway, yaw] of the vessel, the controller's gains, the thrusters' lag
-    [s] (> 0), the observer (None: the controller on the true state) and the feed-forward
-    filter's time constant [s] (None: no wind feed-forward)."""
+    [s] (> 0), the observer (None: the controller on the true state), the feed-forward
+    filter's time constant [s] (None: no wind feed-forward) and the thrusters' loss factor
+    (delivered over commanded, in (0, 1])."""
 
     mass: np.ndarray
     damping: np.ndarray
@@ -59,12 +63,15 @@ class ObservedLoop:
     lag: float
     observer: PassiveObserver | None = None
     wind_filter: float | None = None
+    thrust_factor: float = 1.0
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.lag) and self.lag > 0.0):
             raise ValueError(f"thruster_time_constant: a finite number > 0 for the linear loop, not {self.lag!r}")
         if self.wind_filter is not None and not (math.isfinite(self.wind_filter) and self.wind_filter > 0.0):
             raise ValueError(f"controller.wind_filter: a finite number > 0, not {self.wind_filter!r}")
+        if not 0.0 < self.thrust_factor <= 1.0:
+            raise ValueError(f"thrust_losses: a loss factor in (0, 1], not {self.thrust_factor!r}")
 
     def matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """(A, B) of x' = A x + B w; the first three states are the vessel's position."""
@@ -78,12 +85,12 @@ class ObservedLoop:
         a[0:3, 3:6] = eye
         a[3:6, 3:6], a[3:6, 6:9] = -m_inv @ self.damping, m_inv
         b[3:6, 0:3], b[3:6, 3:6] = m_inv, m_inv
-        a[6:9] += request / self.lag
+        a[6:9] += self.thrust_factor * request / self.lag
         a[6:9, 6:9] -= eye / self.lag
         a[9:12, pose] = eye
         if self.wind_filter is not None:
-            a[6:9, 12:15] += eye / self.lag
             request[:, 12:15] = eye
+            a[6:9, 12:15] += self.thrust_factor * eye / self.lag
             a[12:15, 12:15] = -eye / self.wind_filter
             b[12:15, 0:3] = -eye / self.wind_filter
         if self.observer is not None:

@@ -33,14 +33,26 @@ def observer(period: float) -> PassiveObserver:
 
 
 @settings(max_examples=10, deadline=None)
-@given(st.floats(0.0, 1.5), st.floats(0.0, 2.0 * math.pi), st.floats(1.0, 20.0))
-def test_without_observer_and_feedforward_the_loop_is_the_plain_receptance(speed, direction, lag):
+@given(st.floats(0.0, 1.5), st.floats(0.0, 2.0 * math.pi), st.floats(1.0, 20.0), st.floats(0.3, 1.0))
+def test_without_observer_and_feedforward_the_loop_is_the_plain_receptance(speed, direction, lag, factor):
+    """... with the thrust loss factor as the same factor on the plain loop's gains."""
     damping = linear_damping(VESSEL, current_vector(speed, direction))
     omega = np.geomspace(1e-3, 2.0, 25)
-    plain = LinearLoop(VESSEL.mass, damping, GAINS, lag).receptance(omega)
-    joint = ObservedLoop(VESSEL.mass, damping, GAINS, lag).response(omega)
+    scaled = Gains(*(tuple(factor * k for k in gain) for gain in (GAINS.kp, GAINS.kd, GAINS.ki)))
+    plain = LinearLoop(VESSEL.mass, damping, scaled, lag).receptance(omega)
+    joint = ObservedLoop(VESSEL.mass, damping, GAINS, lag, thrust_factor=factor).response(omega)
     np.testing.assert_allclose(joint[:, :, 0:3], plain, rtol=1e-9, atol=1e-12 * np.abs(plain).max())
     np.testing.assert_allclose(joint[:, :, 3:6], plain, rtol=1e-9, atol=1e-12 * np.abs(plain).max())
+
+
+@pytest.mark.parametrize("key,value", [("lag", 0.0), ("lag", math.nan), ("wind_filter", -1.0),
+                                       ("thrust_factor", 0.0), ("thrust_factor", 1.2)])
+def test_a_bad_loop_value_is_refused_naming_its_key(key, value):
+    names = {"lag": "thruster_time_constant", "wind_filter": "controller.wind_filter",
+             "thrust_factor": "thrust_losses"}
+    values = {"lag": 5.0, "wind_filter": None, "thrust_factor": 1.0, key: value}
+    with pytest.raises(ValueError, match=names[key]):
+        ObservedLoop(VESSEL.mass, VESSEL.linear_damping, GAINS, **values)
 
 
 def observer_alone_amplitude(period: float, dof: int, omega: float) -> float:

@@ -5,8 +5,9 @@ north, so they are surge and sway). The loop: with the DP system (``CaseSetup.dp
 PID on the passive observer's estimate, wind feed-forward, the measurement's noise and wave
 motion (:mod:`allocator_pkg.simulation.observer_loop`); without, the PID on the true state
 (:mod:`allocator_pkg.simulation.frequency_domain`); both excited by the force spectra of
-:mod:`allocator_pkg.simulation.force_spectra`. The thrust losses, the trips and the allocator are
-left out. A fast estimate to screen conditions, not a criterion.
+:mod:`allocator_pkg.simulation.force_spectra`. With the DP system the thrust losses enter as one
+factor on the loop's gain; the trips and the allocator are left out. A fast estimate to screen
+conditions, not a criterion.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from ...simulation.frequency_domain import LinearLoop, current_vector, linear_da
 from ...simulation.observer import PassiveObserver
 from ...simulation.observer_loop import INPUTS, ObservedLoop, noise_spectrum, wave_motion_spectrum
 from ...simulation.scenario import Scenario
+from ...simulation.thrust_losses import ThrustLosses
 from ...simulation.vessel import Vessel, VesselParameters
 from ..capability_result import INTACT
 from .case import TRACK_PERIOD, Case, CaseResult, CaseSetup, case_scenario
@@ -62,12 +64,15 @@ def observed_estimate(scenario: Scenario, vessel: Vessel, damping: np.ndarray, f
     """The estimate of :func:`screening_estimate` through the DP system's loop
     (:class:`~allocator_pkg.simulation.observer_loop.ObservedLoop`): the gust's force apart (the
     feed-forward and the observer's model see it), the other forces, the first-order wave motion
-    and the white measurement noise at the control period."""
+    and the white measurement noise at the control period; the thrust losses as one factor on the
+    loop's gain (:func:`thrust_factor`)."""
     spec, control, p = scenario.environment, scenario.control, scenario.particulars
     observer = PassiveObserver(control.observer, vessel.mass, vessel.linear_damping, vessel.parameters.mass,
                                vessel.parameters.length)
+    vehicle = load_vehicle(scenario.vehicle)
     loop = ObservedLoop(vessel.mass, damping, scenario.gains, scenario.thruster_time_constant, observer,
-                        control.wind_filter if control.wind_feedforward else None)
+                        control.wind_filter if control.wind_feedforward else None,
+                        thrust_factor(scenario.thrust_losses, vehicle.names))
     gust = gust_force_spectrum(spec, p, OMEGA)
     inputs = np.zeros((OMEGA.size, INPUTS, INPUTS), dtype=complex)
     inputs[:, 0:3, 0:3], inputs[:, 3:6, 3:6] = gust, forces - gust
@@ -75,10 +80,21 @@ def observed_estimate(scenario: Scenario, vessel: Vessel, damping: np.ndarray, f
         inputs[:, 6:9, 6:9] = wave_motion_spectrum(OMEGA, spec.wave_height, spec.wave_period, spec.peak_factor,
                                                    math.radians(spec.wave_direction), spec.wave_spreading,
                                                    p.lpp, p.beam)
-    period = 1.0 / load_vehicle(scenario.vehicle).rate_hz
+    period = 1.0 / vehicle.rate_hz
     sigma = [control.noise.position_sigma, control.noise.position_sigma, control.noise.heading_sigma]
     inputs[:, 9:12, 9:12] = noise_spectrum(OMEGA, np.array(sigma), period)
     return loop.excursion_std(OMEGA, inputs)
+
+
+def thrust_factor(losses: ThrustLosses | None, actuators: tuple[str, ...]) -> float:
+    """The intact case's thrust loss as one factor on the loop's gain: the mean over the
+    ``actuators`` of their forward factors (1 where none is given or without losses). The
+    factors of a case differ little between thrusters (within a few per cent: ventilation and
+    misc. losses), which the allocator's distribution would weigh."""
+    if losses is None or not actuators:
+        return 1.0
+    intact = losses.case(frozenset())
+    return float(np.mean([intact.forward.get(name, 1.0) for name in actuators]))
 
 
 def track_std(results: list[CaseResult], settle: float) -> tuple[float, float]:
