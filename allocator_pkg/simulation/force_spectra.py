@@ -49,16 +49,24 @@ def drift_spectrum(spec: EnvironmentSpec, omega: np.ndarray) -> np.ndarray:
     return newman_spectrum(omega, WAVE_GRID, sea)
 
 
+def gust_force_spectrum(spec: EnvironmentSpec, particulars: VesselParticulars | None, omega: np.ndarray,
+                        heading: float = 0.0) -> np.ndarray:
+    """(n, 3, 3) one-sided spectrum of the gust's force on the hull at ``heading`` [rad], linearised
+    about the mean wind load: (2 / U)^2 F_w F_w^T S_u (zeros without wind)."""
+    omega = np.asarray(omega, dtype=float)
+    if spec.wind_speed <= 0.0:
+        return np.zeros((omega.size, 3, 3))
+    means = Environment(replace(spec, wind_spectrum="first_order", wave_spectrum="none"), 0, particulars)
+    return outer(2.0 * means.wind_load(heading, mean=True) / spec.wind_speed, gust_spectrum(spec, omega))
+
+
 def force_spectrum(spec: EnvironmentSpec, particulars: VesselParticulars | None, vessel: Vessel,
                    omega: np.ndarray, heading: float = 0.0) -> np.ndarray:
     """(n, 3, 3) one-sided force spectrum on the hull at ``heading`` [rad] at ``omega`` [rad/s]."""
     omega = np.asarray(omega, dtype=float)
     means = Environment(replace(spec, wind_spectrum="first_order", wave_spectrum="none"), 0, particulars)
-    wind, drift = means.wind_load(heading, mean=True), means.drift_load(heading, mean=True)
-    total = np.zeros((omega.size, 3, 3))
-    if spec.wind_speed > 0.0:
-        total += outer(2.0 * wind / spec.wind_speed, gust_spectrum(spec, omega))
-    total += outer(drift, drift_spectrum(spec, omega))
+    total = gust_force_spectrum(spec, particulars, omega, heading)
+    total += outer(means.drift_load(heading, mean=True), drift_spectrum(spec, omega))
     f = omega / (2.0 * math.pi)
     by_speed, by_direction = current_gradients(vessel, spec.current_speed, math.radians(spec.current_direction),
                                                   heading)
