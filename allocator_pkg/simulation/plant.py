@@ -78,6 +78,9 @@ class Plant:
             current = current[:2]
         load = self.environment.hull_load(self.eta[2]) if self.planar else None    # the same in every sub-step
         h = dt / self.substeps
+        if self.planar:
+            self._step_planar(thrust, angle, h, current.tolist(), load)
+            return
         state = np.concatenate([self.eta, self.nu])
         for _ in range(self.substeps):
             self.thrusters.step(thrust, angle, h)
@@ -89,6 +92,24 @@ class Plant:
             state = state + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
         n = self.hull.dofs
         self.eta, self.nu = state[:n], state[n:]
+
+    def _step_planar(self, thrust: np.ndarray, angle: np.ndarray, h: float, current: list[float],
+                     load: np.ndarray) -> None:
+        """:meth:`step`'s sub-steps of a 3-DOF hull on floats (:meth:`.Vessel.rates`): the same
+        Runge-Kutta, each element's operations those of the vector form in the same order."""
+        rates = self.hull.rates
+        state = (*self.eta.tolist(), *self.nu.tolist())
+        half = 0.5 * h
+        sixth = h / 6.0
+        for _ in range(self.substeps):
+            self.thrusters.step(thrust, angle, h)
+            tau = self.body_wrench(load).tolist()
+            k1 = rates(state, tau, current)
+            k2 = rates(tuple(x + half * k for x, k in zip(state, k1)), tau, current)
+            k3 = rates(tuple(x + half * k for x, k in zip(state, k2)), tau, current)
+            k4 = rates(tuple(x + h * k for x, k in zip(state, k3)), tau, current)
+            state = tuple(x + sixth * (a + 2.0 * b + 2.0 * c + d) for x, a, b, c, d in zip(state, k1, k2, k3, k4))
+        self.eta, self.nu = np.array(state[:3]), np.array(state[3:])
 
     def pose(self) -> Pose:
         if self.planar:
