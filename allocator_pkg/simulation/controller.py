@@ -65,12 +65,11 @@ class StationKeeping:
 
     def _to_body(self, eta: np.ndarray) -> np.ndarray:
         """The matrix that turns a NED error vector into body axes (attitude DOFs unchanged)."""
-        result = np.eye(self.dofs)
         if self.dofs == 3:
             c, s = math.cos(eta[2]), math.sin(eta[2])
-            result[:2, :2] = [[c, s], [-s, c]]
-        else:
-            result[:3, :3] = rotation(eta[3], eta[4], eta[5]).T
+            return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+        result = np.eye(self.dofs)
+        result[:3, :3] = rotation(eta[3], eta[4], eta[5]).T
         return result
 
     def wrench(self, eta: np.ndarray, nu: np.ndarray, setpoint: np.ndarray) -> np.ndarray:

@@ -30,7 +30,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..hull.environment_loads import LoadCoefficients
-from .kinematics import coriolis_planar
 
 STRIPS = 20
 """Hull strips of the cross-flow drag integral."""
@@ -85,6 +84,7 @@ class Vessel:
         self.parameters = p = parameters or VesselParameters()
         self.mass = p.mass_matrix()
         self.mass_inverse = np.linalg.inv(self.mass)
+        self._mass_rows = (self.mass[0].tolist(), self.mass[1].tolist())
         t1, t2, t6 = p.time_constants
         self.linear_damping = np.diag([self.mass[0, 0] / t1, self.mass[1, 1] / t2, self.mass[2, 2] / t6])
         self._sway_yaw_linear = (-np.diag(self.linear_damping)).tolist()
@@ -93,6 +93,13 @@ class Vessel:
         dx = p.length / STRIPS
         self._strips = -p.length / 2.0 + (np.arange(STRIPS) + 0.5) * dx
         self._strip_factor = 0.5 * p.water_density * p.draught * p.coefficients.current_sway * dx
+
+    def _coriolis(self, u: float, v: float, r: float) -> np.ndarray:
+        """:func:`~.kinematics.coriolis_planar` of the mass matrix at [u, v, r], its rows as floats kept."""
+        (m11, m12, m16), (m21, m22, m26) = self._mass_rows
+        sway = m21 * u + m22 * v + m26 * r
+        surge = m11 * u + m12 * v + m16 * r
+        return np.array([[0.0, 0.0, -sway], [0.0, 0.0, surge], [sway, -surge, 0.0]])
 
     def surge_damping(self, u_r: float) -> float:
         """X [N] of the hull moving at u_r through the water: sigma Xu u_r + (1 - sigma) X_|u|u
@@ -130,7 +137,7 @@ class Vessel:
         nu_c = (c * north + s * east, -s * north + c * east)
         u_r, v_r = u - nu_c[0], v - nu_c[1]
         nu_r = np.array([u_r, v_r, r])
-        coriolis = (coriolis_planar(self.mass, nu_r) @ nu_r).tolist()
+        coriolis = (self._coriolis(u_r, v_r, r) @ nu_r).tolist()
         cross_y, cross_n = self._crossflow(v_r, r)
         _, sway, yaw = self._sway_yaw_linear
         x, y, n = tau
