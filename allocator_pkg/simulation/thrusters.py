@@ -127,10 +127,22 @@ class Thrusters:
             target = target * self.loss_factor(target)
         lag, fall, rise, back, ahead = self._per_step(dt)
         change = (target - self.thrust) * lag
-        self.thrust = _clip(self.thrust + _clip(change, fall, rise), -self.cap, self.cap)
+        self.thrust = self.thrust + _clip(change, fall, rise)
+        if self._capped:
+            self.thrust = _clip(self.thrust, -self._cap, self._cap)
         turn = np.array([wrap(a - b) for a, b in zip(np.asarray(angle, dtype=float).tolist(), self.angle.tolist())])
         turn = _clip(turn, back, ahead)
         self.angle = np.where(self.stuck, self.angle, self.angle + turn)
+
+    @property
+    def cap(self) -> np.ndarray:
+        """The thrust [N] each drive's power limit leaves (inf: none)."""
+        return self._cap
+
+    @cap.setter
+    def cap(self, value: np.ndarray) -> None:
+        self._cap = value
+        self._capped = not bool(np.all(value == np.inf))
 
     def _per_step(self, dt: float) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Of a step ``dt`` [s]: the lag's share 1 - exp(-dt / T) and the thrust's and the angle's
