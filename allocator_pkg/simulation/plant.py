@@ -105,10 +105,10 @@ class Plant:
             self.thrusters.step(thrust, angle, h)
             tau = self.body_wrench(load).tolist()
             k1 = rates(state, tau, current)
-            k2 = rates(tuple(x + half * k for x, k in zip(state, k1)), tau, current)
-            k3 = rates(tuple(x + half * k for x, k in zip(state, k2)), tau, current)
-            k4 = rates(tuple(x + h * k for x, k in zip(state, k3)), tau, current)
-            state = tuple(x + sixth * (a + 2.0 * b + 2.0 * c + d) for x, a, b, c, d in zip(state, k1, k2, k3, k4))
+            k2 = rates(_along(state, half, k1), tau, current)
+            k3 = rates(_along(state, half, k2), tau, current)
+            k4 = rates(_along(state, h, k3), tau, current)
+            state = _along(state, sixth, [a + 2.0 * b + 2.0 * c + d for a, b, c, d in zip(k1, k2, k3, k4)])
         self.eta, self.nu = np.array(state[:3]), np.array(state[3:])
 
     def pose(self) -> Pose:
@@ -118,3 +118,10 @@ class Plant:
             return Pose(np.array([north, east, 0.0]), np.array([0.0, 0.0, yaw]), np.array([u, v, 0.0]),
                         np.array([0.0, 0.0, r]))
         return Pose(self.eta[:3].copy(), self.eta[3:].copy(), self.nu[:3].copy(), self.nu[3:].copy())
+
+
+def _along(state: tuple[float, ...], step: float, rate) -> tuple[float, ...]:
+    """state + step * rate of the six floats of a 3-DOF hull, element by element."""
+    x0, x1, x2, x3, x4, x5 = state
+    r0, r1, r2, r3, r4, r5 = rate
+    return (x0 + step * r0, x1 + step * r1, x2 + step * r2, x3 + step * r3, x4 + step * r4, x5 + step * r5)
