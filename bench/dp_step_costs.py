@@ -2,11 +2,19 @@
 ``Allocator.allocate``: one case of dp_vessel (heading 90 deg, capability number 6, the loss of
 switchboard_a at the end of ``--settle``) with the DP system of :mod:`allocator_pkg.dp.level3.dp_system`
 (observer, noise, wind feed-forward, trip, thrust losses), timed by process time over the run
-after its warm-up: in ``Allocator.allocate``, in the rest of the in-process link's step (the
-node's periodic work: power readings, consequence analysis), in the control system
-(measurement, observer, controller, feed-forward), in the simulated thrusters (lag, rate,
-losses, their wrench) and in the hull, environment and trace; each per step [us] and as a ratio
-to ``allocate`` (the timing wrappers' own cost, a few us per call, falls on the parts timed).
+after its warm-up, the case run twice in one process:
+
+- the ratio: only ``Allocator.allocate`` timed; everything but ``allocate()`` is the run's steps
+  less that, so it holds the in-process link's own per-sample work (the node's work beside the
+  solve: supply voltage, available power, the status's power per source, the consequence
+  analysis when on, the watchdog, the answer), the control system, the thrusters, the hull,
+  the environment, the events and the trace. The two clock reads of that one wrapper per step
+  (``timer_us_per_call``) fall partly on each side;
+- the split: also the rest of the link's step (``InProcessLink.step`` less ``allocate``), the
+  control system (measurement, observer, controller, feed-forward), the simulated thrusters
+  (lag, rate, losses, their wrench) and the hull, environment and trace (the rest); each timed
+  call's clock reads (``timer_us_per_call``, about 4 us on a virtual machine) fall on the parts
+  that hold it, so the split's sum exceeds the ratio's run.
 
     .venv/bin/python bench/dp_step_costs.py [--settle 60] [--duration 240]
 """
@@ -50,9 +58,28 @@ class Timed:
         setattr(owner, name, timed)
 
 
-def step_costs(settle: float, duration: float) -> dict:
-    """Per simulated step [us] and against allocate(): the allocator, the control system, the
-    thrusters and the rest, over one case after its warm-up."""
+def timer_cost(calls: int = 20000) -> float:
+    """[s] one :class:`Timed` call adds to a call of a function doing nothing."""
+    class Idle:
+        def call(self) -> None:
+            return None
+
+    idle = Idle()
+    bare = idle.call
+    start = time.process_time()
+    for _ in range(calls):
+        bare()
+    plain = time.process_time() - start
+    Timed().wrap(idle, "call")
+    start = time.process_time()
+    for _ in range(calls):
+        idle.call()
+    return max(0.0, time.process_time() - start - plain) / calls
+
+
+def case_run(settle: float, duration: float, split: bool) -> tuple[dict[str, float], int]:
+    """[s] in each timed part over one case after its warm-up, and the steps: ``allocate`` and
+    ``step`` (the run's steps) always, with ``split`` the link, control and thrusters too."""
     scenario = load_scenario(ROOT / "config" / "scenarios" / "dp_station_keeping.yaml")
     particulars = load_particulars(ROOT / "config" / "particulars" / "dp_vessel.yaml")
     groups = {g.name: tuple(g.actuators) for g in load_vehicle(scenario.vehicle).redundancy_groups}
@@ -61,43 +88,53 @@ def step_costs(settle: float, duration: float) -> dict:
                       particulars=particulars)
     scenario = case_scenario(setup, Case(90.0, 6, "switchboard_a", 0))
     parts = {name: Timed() for name in ("allocate", "link", "control", "thrusters", "step")}
-    links = []
 
     @contextlib.contextmanager
     def connect(run, out):
-        links.append(GroupFaultLink(run, "switchboard_a"))
-        yield links[-1]
+        yield GroupFaultLink(run, "switchboard_a")
 
     with tempfile.TemporaryDirectory() as folder:
         loop = ClosedLoop(scenario, Path(folder), connect, log=lambda _: None)
-        for name in ("measure", "wrench", "advance"):
-            parts["control"].wrap(loop.control, name)
-        for name in ("step", "wrench"):
-            parts["thrusters"].wrap(loop.plant.thrusters, name)
+        if split:
+            for name in ("measure", "wrench", "advance"):
+                parts["control"].wrap(loop.control, name)
+            for name in ("step", "wrench"):
+                parts["thrusters"].wrap(loop.plant.thrusters, name)
         original = loop._steps
 
         def steps(link, start_ns, live):
             for timed in parts.values():
                 timed.seconds = 0.0                                  # the warm-up not counted
             parts["allocate"].wrap(link.allocator, "allocate")
-            parts["link"].wrap(link, "step")
+            if split:
+                parts["link"].wrap(link, "step")
             start = time.process_time()
             original(link, start_ns, live)
             parts["step"].seconds = time.process_time() - start
         loop._steps = steps
         loop.run()
-    count = round(scenario.duration / loop.period)
-    allocate, link = parts["allocate"].seconds, parts["link"].seconds
-    simulation = parts["step"].seconds - link
-    per_step = {"allocate": allocate, "allocator_link_besides_allocate": link - allocate,
-                "control_and_observer": parts["control"].seconds, "thrusters": parts["thrusters"].seconds,
-                "hull_environment_trace": simulation - parts["control"].seconds - parts["thrusters"].seconds,
-                "simulation_side": simulation, "all_but_allocate": parts["step"].seconds - allocate}
+    return {name: timed.seconds for name, timed in parts.items()}, round(scenario.duration / loop.period)
+
+
+def step_costs(settle: float, duration: float) -> dict:
+    """Per simulated step [us] and against allocate(): everything but allocate() from a run
+    timing allocate() alone, then the split from a run timing each part."""
+    timer = timer_cost()
+    whole, count = case_run(settle, duration, split=False)
+    parts, _ = case_run(settle, duration, split=True)
+    allocate, link = parts["allocate"], parts["link"]
+    simulation = parts["step"] - link
+    split = {"allocate": allocate, "allocator_link_besides_allocate": link - allocate,
+             "control_and_observer": parts["control"], "thrusters": parts["thrusters"],
+             "hull_environment_trace": simulation - parts["control"] - parts["thrusters"],
+             "simulation_side": simulation}
+    rest = whole["step"] - whole["allocate"]
     return {"case": "dp_vessel, 90 deg, number 6, switchboard_a lost", "steps": count,
-            "us_per_step": {k: 1e6 * v / count for k, v in per_step.items()},
-            "ratio_to_allocate": {k: v / allocate for k, v in per_step.items()},
-            "control_observer_thrusters_over_allocate":
-                (parts["control"].seconds + parts["thrusters"].seconds) / allocate,
+            "allocate_us": 1e6 * whole["allocate"] / count, "all_but_allocate_us": 1e6 * rest / count,
+            "all_but_allocate_over_allocate": rest / whole["allocate"], "target_ratio": 1.0,
+            "timer_us_per_call": 1e6 * timer,
+            "split_us_per_step": {k: 1e6 * v / count for k, v in split.items()},
+            "split_ratio_to_allocate": {k: v / allocate for k, v in split.items()},
             "load_average": os.getloadavg()[0]}
 
 

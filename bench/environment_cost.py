@@ -2,8 +2,9 @@
 
 A Level 3 case of dp_vessel (number 6, heading 45 deg, intact, the standard's mean loads, NPD
 gusts and a JONSWAP sea) runs in the in-process closed loop with a link that times each
-allocate() call; the rest of the step (plant, environment, controller, trace) is the run's time
-less that. Apart from it, the environment alone per step (``step``, ``hull_load``,
+``Allocator.allocate`` call; the rest of the step (the link's own per-sample work, plant,
+environment, controller, trace) is the run's time less that (bench/dp_step_costs.py splits it).
+Apart from it, the environment alone per step (``step``, ``hull_load``,
 ``wave_motion``, ``wind_feedforward``), its series' generation spread over the case's steps, and the
 first-order environment (no spectra) for comparison. Ratios within this one run; the target is
 everything but allocate() at most allocate() (a ratio <= 1).
@@ -37,18 +38,23 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 class TimedLink(InProcessLink):
-    """The in-process link adding up the wall time of its allocate() calls."""
+    """The in-process link adding up the wall time of its ``Allocator.allocate`` calls alone (the
+    link's own per-sample work, the power reading and the consequence analysis among it, is the
+    node's work beside the solve and counts in the rest)."""
 
     def __init__(self, scenario) -> None:
         super().__init__(scenario)
         self.spent, self.calls = 0.0, 0
+        inner = self.allocator.allocate
 
-    def _allocate(self, wrench, t_ns):
-        start = time.perf_counter()
-        answer = super()._allocate(wrench, t_ns)
-        self.spent += time.perf_counter() - start
-        self.calls += 1
-        return answer
+        def allocate(wrench):
+            start = time.perf_counter()
+            try:
+                return inner(wrench)
+            finally:
+                self.spent += time.perf_counter() - start
+                self.calls += 1
+        self.allocator.allocate = allocate
 
 
 def environment_step_cost(scenario, steps: int, period: float) -> tuple[float, float]:

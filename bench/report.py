@@ -16,6 +16,7 @@ from report_sections import (
     _level3_section,
     _overhead_section,
     _settling_section,
+    _step_costs_section,
 )
 
 TARGET_VEHICLE = "bluerov2_heavy"
@@ -363,5 +364,7 @@ def write(result: dict, path: Path) -> None:
         lines += ["", *_inprocess_section(result["inprocess_sim"])]
     if "dp_level3" in result:
         lines += ["", *_level3_section(result["dp_level3"])]
+    if "dp_step_costs" in result:
+        lines += ["", *_step_costs_section(result["dp_step_costs"])]
     lines += ["", *_load_section(result), "", SOAK]
     path.write_text("\n".join(lines) + "\n")

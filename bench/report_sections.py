@@ -183,3 +183,27 @@ def _level3_section(run: dict) -> list[str]:
             f"{inside['realtime_factor_wall']:.0f}x / {inside['realtime_factor_cpu']:.0f}x | "
             f"{run['pool_1_worker']['wall_s']:.1f} | {run['pool_2_workers']['wall_s']:.1f} | "
             f"{run['speedup_2_over_1']:.2f} | >= {run['target_speedup']:g} | {'yes' if run['identical'] else 'no'} |"]
+
+
+STEP_PARTS = (("allocator_link_besides_allocate", "the link's own work (power reading, sample rules)"),
+              ("control_and_observer", "control system (measurement, observer, controller)"),
+              ("thrusters", "simulated thrusters"), ("hull_environment_trace", "hull, environment, trace"))
+
+
+def _step_costs_section(run: dict) -> list[str]:
+    """Everything but allocate() in a Level 3 step against allocate() (bench/dp_step_costs.py)."""
+    split, ratios = run["split_us_per_step"], run["split_ratio_to_allocate"]
+    lines = ["## A Level 3 step against allocate()", "",
+             f"`bench/dp_step_costs.py`: {run['case']}, {run['steps']} steps after the warm-up, process time. "
+             "Everything but `Allocator.allocate` is the run's steps less it: the in-process link's own "
+             "per-sample work (the node's beside the solve), the control system, the thrusters, the hull, "
+             "the environment, the events and the trace.", "",
+             "| allocate() us | everything else us | ratio | target |", "|---|---|---|---|",
+             f"| {run['allocate_us']:.0f} | {run['all_but_allocate_us']:.0f} | "
+             f"{run['all_but_allocate_over_allocate']:.2f} | <= {run['target_ratio']:g} |", "",
+             f"The split, from a second run with every part timed ({run['timer_us_per_call']:.1f} us of clock "
+             "reads per timed call fall on the parts):", "", "| part | us per step | against allocate() |",
+             "|---|---|---|"]
+    lines += [f"| {label} | {split[key]:.0f} | {ratios[key]:.2f} |" for key, label in STEP_PARTS]
+    return lines
+

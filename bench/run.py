@@ -82,6 +82,9 @@ def main(argv: list[str] | None = None) -> int:
                                               + (["--settle", "10", "--duration", "30"] if arguments.quick else [])))
     result["environment_cost"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "environment_cost.py")]
                                                      + (["--duration", "30"] if arguments.quick else [])))
+    result["dp_step_costs"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_step_costs.py")]
+                                                  + (["--settle", "20", "--duration", "60"] if arguments.quick
+                                                     else [])))
     load_out = RESULTS / "load.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "load.py"), "--out", str(load_out)]
                    + (["--seconds", "10"] if arguments.quick else []), check=False)

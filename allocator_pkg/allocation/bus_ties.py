@@ -32,6 +32,9 @@ class BusTies:
     sources: tuple[str, ...]
     ties: tuple[BusTie, ...]
     closed: TieStates = field(default_factory=dict)
+    _buses: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    """(head, pooling) of each state of the ties met, read-only (a sample's power reading asks
+    for them every sample)."""
 
     @classmethod
     def of(cls, sources: tuple[str, ...], ties: tuple[BusTie, ...]) -> BusTies:
@@ -61,7 +64,30 @@ class BusTies:
     @property
     def head(self) -> np.ndarray:
         """For every source, the index of the first source of its bus (itself when no closed tie
-        joins it to an earlier one)."""
+        joins it to an earlier one); read-only."""
+        return self._of_state()[0]
+
+    def pooling(self) -> np.ndarray:
+        """(m x m) matrix that maps a source's column onto its bus's row: entry (j, k) is 1 when
+        source j's power and consumers go to row k; read-only."""
+        return self._of_state()[1]
+
+    def _of_state(self) -> tuple[np.ndarray, np.ndarray]:
+        """(head, pooling) of the state of the ties now, made once per state."""
+        state = tuple(self.closed.values())
+        known = self._buses.get(state)
+        if known is None:
+            head = self._head()
+            m = len(self.sources)
+            pool = np.zeros((m, m))
+            pool[np.arange(m), head] = 1.0
+            head.setflags(write=False)
+            pool.setflags(write=False)
+            known = self._buses[state] = (head, pool)
+        return known
+
+    def _head(self) -> np.ndarray:
+        """:attr:`head` made from the ties' states."""
         head = np.arange(len(self.sources))
         index = {name: j for j, name in enumerate(self.sources)}
 
@@ -75,14 +101,6 @@ class BusTies:
                 a, b = sorted((root(index[tie.sources[0]]), root(index[tie.sources[1]])))
                 head[b] = a
         return np.array([root(j) for j in range(len(self.sources))], dtype=int)
-
-    def pooling(self) -> np.ndarray:
-        """(m x m) matrix that maps a source's column onto its bus's row: entry (j, k) is 1 when
-        source j's power and consumers go to row k."""
-        m = len(self.sources)
-        pool = np.zeros((m, m))
-        pool[np.arange(m), self.head] = 1.0
-        return pool
 
     def pool_shares(self, shares: np.ndarray) -> np.ndarray:
         """The (r x m) feed shares by row: each thruster's shares on a bus summed into the bus's

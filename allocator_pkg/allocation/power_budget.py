@@ -119,6 +119,7 @@ class PowerBudget:
         self.pattern = PowerPattern.of(vehicle)
         self.drive = DrivePower.of(vehicle)
         self.efficiency = np.ones(len(actuators))
+        self._in_force: tuple[np.ndarray, DrivePower] | None = None
         self.ties = BusTies.of(self.sources, vehicle.bus_ties)
         self.ramp = RestoreRamp(self.capacity, vehicle.power_restore_ramp)
         self.rated_thrust = np.array([max(abs(a.thrust_min), abs(a.thrust_max)) for a in actuators], dtype=float)
@@ -142,8 +143,11 @@ class PowerBudget:
 
     @property
     def in_force(self) -> DrivePower:
-        """The drives' coefficients on the delivered force at the faults in force."""
-        return self.drive.degraded(self.efficiency)
+        """The drives' coefficients on the delivered force at the faults in force (made again
+        when :attr:`efficiency` is another array; it is replaced, never changed in place)."""
+        if self._in_force is None or self._in_force[0] is not self.efficiency:
+            self._in_force = (self.efficiency, self.drive.degraded(self.efficiency))
+        return self._in_force[1]
 
     @property
     def coefficient(self) -> np.ndarray:

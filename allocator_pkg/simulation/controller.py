@@ -55,6 +55,7 @@ class StationKeeping:
         self.kp, self.kd, self.ki = (np.array(v, dtype=float) for v in (gains.kp, gains.kd, gains.ki))
         self.threshold = np.array(gains.unallocated_threshold or [0.0] * self.dofs)
         self.integral = np.zeros(self.dofs)
+        self._last: tuple | None = None
 
     def error(self, eta: np.ndarray, setpoint: np.ndarray) -> np.ndarray:
         """eta - setpoint with the angles wrapped."""
@@ -65,18 +66,24 @@ class StationKeeping:
 
     def _to_body(self, eta: np.ndarray) -> np.ndarray:
         """The matrix that turns a NED error vector into body axes (attitude DOFs unchanged)."""
-        result = np.eye(self.dofs)
         if self.dofs == 3:
             c, s = math.cos(eta[2]), math.sin(eta[2])
-            result[:2, :2] = [[c, s], [-s, c]]
-        else:
-            result[:3, :3] = rotation(eta[3], eta[4], eta[5]).T
+            return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+        result = np.eye(self.dofs)
+        result[:3, :3] = rotation(eta[3], eta[4], eta[5]).T
         return result
+
+    def _error_in_body(self, eta: np.ndarray, setpoint: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(:meth:`error`, :meth:`_to_body`) at ``eta`` and ``setpoint``, kept for the next call
+        at the same values, bit for bit (a step's wrench and its integral share them)."""
+        key = (np.asarray(eta, dtype=float).tobytes(), np.asarray(setpoint, dtype=float).tobytes())
+        if self._last is None or self._last[0] != key:
+            self._last = (key, self.error(eta, setpoint), self._to_body(eta))
+        return self._last[1], self._last[2]
 
     def wrench(self, eta: np.ndarray, nu: np.ndarray, setpoint: np.ndarray) -> np.ndarray:
         """The body-frame request [X, Y, N] or [X, Y, Z, K, M, N] for this step."""
-        e = self.error(eta, setpoint)
-        to_body = self._to_body(eta)
+        e, to_body = self._error_in_body(eta, setpoint)
         return -self.kp * (to_body @ e) - self.ki * (to_body @ self.integral) - self.kd * np.asarray(nu)
 
     def settle(self, eta: np.ndarray, force: np.ndarray) -> None:
@@ -89,8 +96,8 @@ class StationKeeping:
                   unallocated: np.ndarray | None = None) -> None:
         """z += e dt, less its part along a body axis whose unallocated request (as the status
         gives it, in this controller's DOFs) is above its threshold and would grow by integrating."""
-        to_body = self._to_body(eta)
-        step = to_body @ (self.error(eta, setpoint) * dt)
+        e, to_body = self._error_in_body(eta, setpoint)
+        step = to_body @ (e * dt)
         if unallocated is not None:
             short = np.asarray(unallocated, dtype=float)
             frozen = (np.abs(short) > self.threshold) & (short * (-self.ki * step) > 0.0)

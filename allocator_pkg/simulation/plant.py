@@ -78,6 +78,9 @@ class Plant:
             current = current[:2]
         load = self.environment.hull_load(self.eta[2]) if self.planar else None    # the same in every sub-step
         h = dt / self.substeps
+        if self.planar:
+            self._step_planar(thrust, angle, h, current.tolist(), load)
+            return
         state = np.concatenate([self.eta, self.nu])
         for _ in range(self.substeps):
             self.thrusters.step(thrust, angle, h)
@@ -90,6 +93,24 @@ class Plant:
         n = self.hull.dofs
         self.eta, self.nu = state[:n], state[n:]
 
+    def _step_planar(self, thrust: np.ndarray, angle: np.ndarray, h: float, current: list[float],
+                     load: np.ndarray) -> None:
+        """:meth:`step`'s sub-steps of a 3-DOF hull on floats (:meth:`.Vessel.rates`): the same
+        Runge-Kutta, each element's operations those of the vector form in the same order."""
+        rates = self.hull.rates
+        state = (*self.eta.tolist(), *self.nu.tolist())
+        half = 0.5 * h
+        sixth = h / 6.0
+        for _ in range(self.substeps):
+            self.thrusters.step(thrust, angle, h)
+            tau = self.body_wrench(load).tolist()
+            k1 = rates(state, tau, current)
+            k2 = rates(_along(state, half, k1), tau, current)
+            k3 = rates(_along(state, half, k2), tau, current)
+            k4 = rates(_along(state, h, k3), tau, current)
+            state = _along(state, sixth, [a + 2.0 * b + 2.0 * c + d for a, b, c, d in zip(k1, k2, k3, k4)])
+        self.eta, self.nu = np.array(state[:3]), np.array(state[3:])
+
     def pose(self) -> Pose:
         if self.planar:
             north, east, yaw = self.eta
@@ -97,3 +118,10 @@ class Plant:
             return Pose(np.array([north, east, 0.0]), np.array([0.0, 0.0, yaw]), np.array([u, v, 0.0]),
                         np.array([0.0, 0.0, r]))
         return Pose(self.eta[:3].copy(), self.eta[3:].copy(), self.nu[:3].copy(), self.nu[3:].copy())
+
+
+def _along(state: tuple[float, ...], step: float, rate) -> tuple[float, ...]:
+    """state + step * rate of the six floats of a 3-DOF hull, element by element."""
+    x0, x1, x2, x3, x4, x5 = state
+    r0, r1, r2, r3, r4, r5 = rate
+    return (x0 + step * r0, x1 + step * r1, x2 + step * r2, x3 + step * r3, x4 + step * r4, x5 + step * r5)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -44,13 +45,17 @@ class Segment:
     end: np.ndarray
     rate: float
 
+    @cached_property
+    def distance(self) -> float:
+        """|end - start| [m or rad]."""
+        return float(np.linalg.norm(self.end - self.start))
+
     def at(self, t: float) -> np.ndarray:
-        change = self.end - self.start
-        distance = float(np.linalg.norm(change))
+        distance = self.distance
         if distance == 0.0 or math.isinf(self.rate):
             return self.end.copy()
         share = min(1.0, self.rate * max(0.0, t - self.time) / distance)
-        return self.start + share * change
+        return self.start + share * (self.end - self.start)
 
 
 @dataclass(frozen=True)

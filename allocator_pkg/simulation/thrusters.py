@@ -57,6 +57,8 @@ class Thrusters:
         self._matrix_angles = self.angle.tolist()
         self._voltage = voltage
         self.low, self.high = thrust_limits(vehicle, voltage)
+        self._step_dt: float | None = None
+        self._step_limits: tuple = ()
 
     def set_voltage(self, voltage: float | None) -> None:
         """The supply voltage the force ranges follow (None: nominal)."""
@@ -123,11 +125,33 @@ class Thrusters:
         target = _clip(thrust, self.low, self.high) * self.efficiency
         if self.losses is not None:
             target = target * self.loss_factor(target)
-        change = (target - self.thrust) * (1.0 - math.exp(-dt / self.time_constant))
-        self.thrust = _clip(self.thrust + _clip(change, -self.rate * dt, self.rate * dt), -self.cap, self.cap)
+        lag, fall, rise, back, ahead = self._per_step(dt)
+        change = (target - self.thrust) * lag
+        self.thrust = self.thrust + _clip(change, fall, rise)
+        if self._capped:
+            self.thrust = _clip(self.thrust, -self._cap, self._cap)
         turn = np.array([wrap(a - b) for a, b in zip(np.asarray(angle, dtype=float).tolist(), self.angle.tolist())])
-        turn = _clip(turn, -self.turn_rate * dt, self.turn_rate * dt)
+        turn = _clip(turn, back, ahead)
         self.angle = np.where(self.stuck, self.angle, self.angle + turn)
+
+    @property
+    def cap(self) -> np.ndarray:
+        """The thrust [N] each drive's power limit leaves (inf: none)."""
+        return self._cap
+
+    @cap.setter
+    def cap(self, value: np.ndarray) -> None:
+        self._cap = value
+        self._capped = not bool(np.all(value == np.inf))
+
+    def _per_step(self, dt: float) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Of a step ``dt`` [s]: the lag's share 1 - exp(-dt / T) and the thrust's and the angle's
+        largest change down and up (kept for the last ``dt``)."""
+        if self._step_dt != dt:
+            self._step_dt = dt
+            self._step_limits = (1.0 - math.exp(-dt / self.time_constant), -self.rate * dt, self.rate * dt,
+                                 -self.turn_rate * dt, self.turn_rate * dt)
+        return self._step_limits
 
     def wrench(self) -> np.ndarray:
         """[X, Y, Z, K, M, N] of the actuators in body FRD: T(alpha) f, the column of each

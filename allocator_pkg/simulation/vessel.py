@@ -30,7 +30,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..hull.environment_loads import LoadCoefficients
-from .kinematics import coriolis_planar
 
 STRIPS = 20
 """Hull strips of the cross-flow drag integral."""
@@ -85,46 +84,66 @@ class Vessel:
         self.parameters = p = parameters or VesselParameters()
         self.mass = p.mass_matrix()
         self.mass_inverse = np.linalg.inv(self.mass)
+        self._mass_rows = (self.mass[0].tolist(), self.mass[1].tolist())
         t1, t2, t6 = p.time_constants
         self.linear_damping = np.diag([self.mass[0, 0] / t1, self.mass[1, 1] / t2, self.mass[2, 2] / t6])
-        self._negative_linear = -np.diag(self.linear_damping)
+        self._sway_yaw_linear = (-np.diag(self.linear_damping)).tolist()
         self._surge_linear = float(self.linear_damping[0, 0])
+        self._surge_quadratic, self._crossover = p.surge_quadratic, p.crossover_speed
         dx = p.length / STRIPS
         self._strips = -p.length / 2.0 + (np.arange(STRIPS) + 0.5) * dx
         self._strip_factor = 0.5 * p.water_density * p.draught * p.coefficients.current_sway * dx
 
+    def _coriolis(self, u: float, v: float, r: float) -> np.ndarray:
+        """:func:`~.kinematics.coriolis_planar` of the mass matrix at [u, v, r], its rows as floats kept."""
+        (m11, m12, m16), (m21, m22, m26) = self._mass_rows
+        sway = m21 * u + m22 * v + m26 * r
+        surge = m11 * u + m12 * v + m16 * r
+        return np.array([[0.0, 0.0, -sway], [0.0, 0.0, surge], [sway, -surge, 0.0]])
+
     def surge_damping(self, u_r: float) -> float:
         """X [N] of the hull moving at u_r through the water: sigma Xu u_r + (1 - sigma) X_|u|u
         |u_r| u_r, sigma = 1 - tanh(|u_r| / crossover)."""
-        p = self.parameters
-        sigma = 1.0 - math.tanh(abs(u_r) / p.crossover_speed)
-        return -sigma * self._surge_linear * u_r + (1.0 - sigma) * p.surge_quadratic * abs(u_r) * u_r
+        sigma = 1.0 - math.tanh(abs(u_r) / self._crossover)
+        return -sigma * self._surge_linear * u_r + (1.0 - sigma) * self._surge_quadratic * abs(u_r) * u_r
 
     def crossflow(self, v_r: float, r: float) -> np.ndarray:
         """[0, Y, N] of the cross-flow drag: -1/2 rho T Cd |v_r + x r| (v_r + x r) dx over the strips."""
+        return np.array([0.0, *self._crossflow(v_r, r)])
+
+    def _crossflow(self, v_r: float, r: float) -> tuple[float, float]:
+        """(Y, N) of :meth:`crossflow` as floats."""
         local = v_r + self._strips * r
         drag = -self._strip_factor * np.abs(local) * local
-        return np.array([0.0, _sum(drag), _sum(drag * self._strips)])
+        return float(_sum(drag)), float(_sum(drag * self._strips))
 
     def derivative(self, eta: np.ndarray, nu: np.ndarray, tau: np.ndarray,
                    current: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(eta', nu') under the body force ``tau`` [X, Y, N] and a current [north, east] [m/s]:
-        M nu_r' = tau - C(nu_r) nu_r + d(nu_r), d the linear damping -D nu_r (D diagonal) with
-        the blended surge damping in surge, plus the cross-flow drag. Written on floats where
-        that does each operation as the vector form would (the products with M and C stay
-        matrix products)."""
-        c, s = math.cos(eta[2]), math.sin(eta[2])
-        north, east = current.tolist()
-        u, v, r = nu.tolist()
+        """(eta', nu') under the body force ``tau`` [X, Y, N] and a current [north, east] [m/s]
+        (:meth:`rates` on arrays)."""
+        rates = self.rates((*eta.tolist(), *nu.tolist()), tau.tolist(), current.tolist())
+        return np.array(rates[:3]), np.array(rates[3:])
+
+    def rates(self, state: tuple[float, ...], tau: list[float], current: list[float]) -> tuple[float, ...]:
+        """(eta', nu') as six floats of the state (north, east, psi, u, v, r) under the body force
+        ``tau`` [X, Y, N] and a current [north, east] [m/s]: M nu_r' = tau - C(nu_r) nu_r +
+        d(nu_r), d the linear damping -D nu_r (D diagonal) with the blended surge damping in
+        surge, plus the cross-flow drag; nu' = nu_r' + [r v_c, -r u_c, 0] (Fossen 2021, (6.111)-(6.116)).
+        Written on floats where that does each operation as the vector form would; the products
+        with M^-1 and C stay numpy's matrix products (their sums the same as every run's)."""
+        _, _, psi, u, v, r = state
+        c, s = math.cos(psi), math.sin(psi)
+        north, east = current
         nu_c = (c * north + s * east, -s * north + c * east)
-        nu_r = np.array([u - nu_c[0], v - nu_c[1], r])
-        u_r, v_r, _ = nu_r.tolist()
-        coriolis = (coriolis_planar(self.mass, nu_r) @ nu_r).tolist()
-        _, cross_y, cross_n = self.crossflow(v_r, r).tolist()
-        _, sway, yaw = self._negative_linear.tolist()
-        x, y, n = tau.tolist()
+        u_r, v_r = u - nu_c[0], v - nu_c[1]
+        nu_r = np.array([u_r, v_r, r])
+        coriolis = (self._coriolis(u_r, v_r, r) @ nu_r).tolist()
+        cross_y, cross_n = self._crossflow(v_r, r)
+        _, sway, yaw = self._sway_yaw_linear
+        x, y, n = tau
         force = np.array([x - coriolis[0] + (self.surge_damping(u_r) + 0.0),
                           y - coriolis[1] + (sway * v_r + cross_y),
                           n - coriolis[2] + (yaw * r + cross_n)])
-        eta_dot = np.array([c * u - s * v, s * u + c * v, r])
-        return eta_dot, np.array([r * nu_c[1], -r * nu_c[0], 0.0]) + self.mass_inverse @ force
+        accel = (self.mass_inverse @ force).tolist()
+        return (c * u - s * v, s * u + c * v, r,
+                r * nu_c[1] + accel[0], -r * nu_c[0] + accel[1], 0.0 + accel[2])

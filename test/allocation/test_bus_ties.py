@@ -47,6 +47,21 @@ def test_the_buses_of_a_chain_of_ties_by_hand(ab, bc, head, rows):
     assert [int(np.flatnonzero(row)[0]) for row in pooled] == head
 
 
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(st.booleans(), st.booleans()), min_size=1, max_size=8))
+def test_the_buses_follow_every_change_of_the_ties(states):
+    """Head and pooling, kept per state of the ties, are those of ties set so afresh (read-only)."""
+    ties = BusTies.of(CHAIN.sources, CHAIN.ties)
+    for ab, bc in states:
+        ties.set("t_ab", ab)
+        ties.set("t_bc", bc)
+        fresh = chain(ab, bc)
+        np.testing.assert_array_equal(ties.head, fresh.head)
+        np.testing.assert_array_equal(ties.pooling(), fresh.pooling())
+        assert ties.head.tolist() == [0, 0 if ab else 1, (0 if ab else 1) if bc else 2]
+        assert not ties.head.flags.writeable and not ties.pooling().flags.writeable
+
+
 def test_a_bus_draw_splits_over_its_sources_by_their_available_power():
     """a + b + c closed, 600 kW drawn: 100, 200 and 300 kW; b at 0 kW: a and c share by 100/400, 300/400."""
     ties = chain(True, True)

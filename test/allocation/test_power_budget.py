@@ -272,3 +272,20 @@ def test_no_source_is_asked_for_more_than_it_has_and_every_command_is_within_its
         for actuator, command in zip(vehicle.actuators, result.command.tolist()):
             lowest, highest = sorted((actuator.command.command_min, actuator.command.command_max))
             assert lowest - 1e-9 <= command <= highest + 1e-9
+
+
+@pytest.mark.parametrize("efficiencies", [[1.0, 0.5, 1.0, 1.0], [0.25, 1.0, 0.8, 1.0], [1.0, 1.0, 1.0, 1.0]])
+def test_the_drives_in_force_follow_each_efficiency_settled(efficiencies):
+    """P / eta^(3/2) of every drive (docs/power.md, "Degraded") after each settle, the coefficients
+    made once per efficiency taken."""
+    budget = PowerBudget(vehicle_from(DP_VESSEL))
+    forward = budget.drive.forward.copy()
+    first = budget.in_force
+    assert budget.in_force is first
+    np.testing.assert_array_equal(first.forward, forward)
+    budget.settle(np.array(efficiencies))
+    eta = np.array(efficiencies)
+    np.testing.assert_allclose(budget.in_force.forward, forward / eta ** 1.5, rtol=1e-15)
+    np.testing.assert_allclose(budget.in_force.reverse, budget.drive.reverse / eta ** 1.5, rtol=1e-15)
+    budget.settle(np.ones(len(efficiencies)))
+    np.testing.assert_array_equal(budget.in_force.forward, forward)

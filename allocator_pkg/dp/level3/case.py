@@ -44,6 +44,11 @@ from .dp_system import with_dp_system
 
 TRACK_PERIOD = 1.0
 """[s] between the samples of a case's x-y track kept for the footprint plots."""
+NO_ONLINE_CONSEQUENCE = {"consequence.rate": 0.0}
+"""The node parameter of every case: the online consequence analysis off. Its alarm only marks
+the statuses (it changes no allocation), a case's result is its excursions alone, and the case
+is that analysis' question asked in the time domain (the group does fail); run at its period it
+would cost a case more than the rest of the link's work per sample."""
 CRITERIA_NOTE = ("Level 3 criteria: the transcription used has no Level 3 text; a condition holds when, over its "
                  "seeds, the stated quantile of the largest horizontal position excursion from the set-point is "
                  "within the position limit and that of the largest heading deviation within the heading limit "
@@ -270,13 +275,15 @@ def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
 
 def case_scenario(setup: CaseSetup, case: Case) -> Scenario:
     """The scenario of one case: its environment (:func:`case_environment`), the seed (the base
-    scenario's plus the case's index), a failure of every actuator of the group at ``settle``, and
-    the DP system, trip and losses of :mod:`.dp_system` (unless ``setup.dp_system`` is False)."""
+    scenario's plus the case's index), a failure of every actuator of the group at ``settle``, the
+    online consequence analysis off (:data:`NO_ONLINE_CONSEQUENCE`), and the DP system, trip and
+    losses of :mod:`.dp_system` (unless ``setup.dp_system`` is False)."""
     base, criteria = setup.scenario, setup.criteria
     environment = case_environment(setup, case)
     failed = () if case.group == INTACT else setup.groups[case.group]
     events = tuple(Event(criteria.settle, "fault", actuator=name, mode="failed", value=0.0) for name in failed)
     scenario = replace(base, name=f"{base.name}_l3", duration=criteria.settle + criteria.duration,
+                       parameters={**base.parameters, **NO_ONLINE_CONSEQUENCE},
                        seed=base.seed + case.seed, setpoint_position=(0.0, 0.0, 0.0), setpoint_heading=0.0,
                        initial_position=(0.0, 0.0, 0.0), initial_heading=0.0, environment=environment, events=events,
                        bounds={}, windows=())

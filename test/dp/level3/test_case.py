@@ -13,6 +13,7 @@ from allocator_pkg.dp.inputs.particulars import load_particulars
 from allocator_pkg.dp.inputs.site import SiteSea
 from allocator_pkg.dp.level3.case import (
     INTACT,
+    NO_ONLINE_CONSEQUENCE,
     Case,
     CaseResult,
     CaseSetup,
@@ -138,6 +139,26 @@ def test_the_group_link_fails_the_group_and_the_simulated_thrusters(setup, tmp_p
     failed = [trace.names.index(name) for name in GROUPS["switchboard_a"]]
     assert np.all(thrust[time > 5.0 + 1e-9][:, failed] == 0.0)
     assert np.any(thrust[time < 5.0][:, failed] != 0.0)
+
+
+def test_the_online_consequence_analysis_is_off_and_would_change_no_run(setup, tmp_path):
+    """A case runs without the node's online consequence analysis; with it on at the vehicle's
+    rate (1 Hz) the run is the same, bit for bit, but for the alarm the statuses carry."""
+    import contextlib
+
+    off = case_scenario(setup, Case(90.0, 7, "switchboard_a", 0))
+    assert NO_ONLINE_CONSEQUENCE == {"consequence.rate": 0.0}
+    assert off.parameters["consequence.rate"] == 0.0
+    on = replace(off, parameters={k: v for k, v in off.parameters.items() if k != "consequence.rate"})
+    traces = []
+    for scenario in (off, on):
+        def connect(run, out):
+            return contextlib.nullcontext(GroupFaultLink(run, "switchboard_a"))
+        traces.append(ClosedLoop(scenario, tmp_path / str(len(traces)), connect, log=lambda _: None).run().trace)
+    for name in ("time", "position", "attitude", "thrust", "azimuth", "power", "source_power"):
+        assert getattr(traces[0], name) == getattr(traces[1], name), name
+    assert not any(traces[0].consequence_alarm)
+    assert any(traces[1].consequence_alarm)                  # number 7 after a switchboard's loss: the alarm
 
 
 @pytest.mark.parametrize("group", [INTACT, "switchboard_b"])
