@@ -35,8 +35,9 @@ SCREENING_COLUMNS = ("heading_deg", "capability_number", "seeds", "fd_north_std_
 SCREENING_TABLE = {
     True: ("Excursion standard deviation, intact: the frequency-domain screening estimate (the DP system's closed "
            "loop linearised about the mean environment: the PID on the passive observer's estimate from the "
-           "measured position with wave motion and noise, wind feed-forward, thruster lag; thrust losses and "
-           "trips left out) beside the time-domain cases (after settling, over the seeds)"),
+           "measured position with wave motion and noise, wind feed-forward, thruster lag; the thrust losses "
+           "as one factor on the loop's gain; trips left out) beside the time-domain cases (after settling, "
+           "over the seeds)"),
     False: ("Excursion standard deviation, intact: the frequency-domain screening estimate (the closed loop "
             "linearised about the mean environment: the PID on the true position and velocity, thruster lag) "
             "beside the time-domain cases (after settling, over the seeds)"),
