@@ -16,12 +16,11 @@ import math
 
 import numpy as np
 
-from ...configuration.parameters import load_vehicle
 from ...simulation.force_spectra import force_spectrum, gust_force_spectrum
 from ...simulation.frequency_domain import LinearLoop, current_vector, linear_damping
 from ...simulation.observer import PassiveObserver
 from ...simulation.observer_loop import INPUTS, ObservedLoop, noise_spectrum, wave_motion_spectrum
-from ...simulation.scenario import Scenario
+from ...simulation.scenario import Scenario, vehicle_config
 from ...simulation.thrust_losses import ThrustLosses
 from ...simulation.vessel import Vessel, VesselParameters
 from ..capability_result import INTACT
@@ -70,7 +69,7 @@ def observed_estimate(scenario: Scenario, vessel: Vessel, damping: np.ndarray, f
     spec, control, p = scenario.environment, scenario.control, scenario.particulars
     observer = PassiveObserver(control.observer, vessel.mass, vessel.linear_damping, vessel.parameters.mass,
                                vessel.parameters.length)
-    vehicle = load_vehicle(scenario.vehicle)
+    vehicle = vehicle_config(scenario.vehicle, scenario.parameters)
     loop = ObservedLoop(vessel.mass, damping, scenario.gains, scenario.thruster_time_constant, observer,
                         control.wind_filter if control.wind_feedforward else None,
                         thrust_factor(scenario.thrust_losses, vehicle.names))
