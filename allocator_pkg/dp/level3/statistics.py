@@ -69,9 +69,16 @@ def spread(values: Sequence[float], criteria: Criteria) -> Spread:
 
 def metric_values(results: Sequence[CaseResult], metric: str) -> list[float] | None:
     """The values of ``metric`` over ``results``; None when no run has it (an intact case's
-    post-failure metrics)."""
+    post-failure metrics); ValueError when some runs have it and others not (the seeds of one
+    condition share its case and post-failure window)."""
     values = [getattr(result, metric) for result in results]
-    return None if any(value is None for value in values) else [float(v) for v in values]
+    missing = sum(value is None for value in values)
+    if missing == len(values):
+        return None
+    if missing:
+        raise ValueError(f"{metric}: {missing} of {len(values)} runs lack it; the seeds of one condition "
+                         "either all have it or none does")
+    return [float(v) for v in values]
 
 
 def condition_holds(results: Sequence[CaseResult], criteria: Criteria) -> bool:

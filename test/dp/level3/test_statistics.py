@@ -16,6 +16,7 @@ from allocator_pkg.dp.level3.statistics import (
     bootstrap_interval,
     condition_holds,
     condition_spreads,
+    metric_values,
     seed_quantile,
     spread,
 )
@@ -117,3 +118,11 @@ def test_the_top_quantile_by_the_higher_method_is_every_seed_holds(rows, group):
                         post_failure_heading_limit_deg=4.0)
     every = all(p <= 5.0 and h <= 3.0 and (group == "intact" or (t <= 8.0 and d <= 4.0)) for p, h, t, d in rows)
     assert condition_holds(runs(rows, group), criteria) == every
+
+
+def test_a_metric_some_runs_lack_is_refused():
+    mixed = runs([(1.0, 1.0, 2.0, 2.0)]) + runs([(1.0, 1.0, 2.0, 2.0)], "intact")
+    assert metric_values(mixed, "steady_position") == [1.0, 1.0]
+    assert metric_values(runs([(1.0, 1.0, 2.0, 2.0)], "intact"), "transient_position") is None
+    with pytest.raises(ValueError, match="transient_position: 1 of 2 runs lack it"):
+        metric_values(mixed, "transient_position")
