@@ -32,14 +32,12 @@ from .environment import EnvironmentSpec
 from .method_bounds import MethodBounds, method_bounds
 from .power_plant_file import check_plant_bounds, check_plant_events, read_power_plant
 from .scenario_check import (
-    check_depth,
-    check_environment,
     check_member,
     check_method_serves,
     check_parameter,
     check_particulars,
+    check_run,
     check_vehicle,
-    check_voltage,
     unknown_keys,
 )
 from .scenario_keys import EVENT_KEYS, FAULT_MODES, MODELS, scenario_default
@@ -274,28 +272,20 @@ def _check_event(event: Event, index: int, vehicle: Vehicle) -> None:
         raise ScenarioError(str(error)) from error
 
 
-def _check_run(model: str, vehicle: Vehicle, duration: float, voltage: float | None, events: list[Event],
-               environment_data: dict, positions: dict[str, tuple[float, ...]]) -> None:
-    """Raise ValueError when the run would not be what the file says: an event at or after its
-    end, a supply voltage (or a battery ramp's) outside the vehicle's thrust tables or without
-    them, a ramp without a voltage to start from, an environment the hull model does not take
-    or no sea gives, a position above the surface (the ROV) or off it (the vessel)."""
-    for index, event in enumerate(events):
-        if event.time >= duration:
-            raise ValueError(f"events[{index}].time: {event.time:g} s is not within the run (0 to {duration:g} s); "
-                             "the run ends before it")
-        if event.kind == "battery_ramp":
-            check_voltage(vehicle, float(event.value), f"events[{index}].battery_ramp.to")
-            if voltage is None:
-                raise ValueError(f"events[{index}].battery_ramp: needs battery.voltage, the voltage it starts from")
-        if event.kind == "setpoint" and event.value.position is not None:
-            check_depth(model, event.value.position, f"events[{index}].setpoint.position")
-    if voltage is not None:
-        check_voltage(vehicle, voltage, "battery.voltage")
-    scale = max([1.0] + [float(e.value) for e in events if e.kind == "weather_ramp"])
-    check_environment(model, environment_data, scale)
-    for where, position in positions.items():
-        check_depth(model, position, where)
+def _replay_events(events: list[Event], vehicle: Path, parameters: dict[str, Any], config: Vehicle) -> Vehicle:
+    """The vehicle at the end of the run: the ``events`` in time order, each checked against the
+    vehicle at its time (:func:`_check_event`), each parameter event's value over the node
+    ``parameters`` of the ``vehicle`` file; ScenarioError naming the first the vehicle refuses."""
+    changed = dict(parameters)
+    for index, event in sorted(enumerate(events), key=lambda item: item[1].time):
+        _check_event(event, index, config)
+        if event.kind == "parameter":
+            changed[event.name] = event.value
+            try:
+                config = vehicle_config(vehicle, changed)
+            except ScenarioError as error:
+                raise ScenarioError(f"events[{index}].parameter: the allocator refuses it: {error}") from error
+    return config
 
 
 def _particulars(data: dict, path: Path, config: Vehicle) -> VesselParticulars:
@@ -365,22 +355,14 @@ def load_scenario(path: str | Path) -> Scenario:
     environment_data = section(data, "environment")
     spec = environment(environment_data)
     try:
-        _check_run(model, config, duration, voltage, checked, environment_data,
+        check_run(model, config, duration, voltage, checked, environment_data,
                    {"setpoint.position": position, "initial.position": initial_position})
     except ValueError as error:
         raise ScenarioError(str(error)) from error
     plant = read_power_plant(data["power_plant"], config) if "power_plant" in data else None
     check_plant_events(checked, plant)
     check_plant_bounds(data.get("bounds", {}) or {}, plant)
-    changed = dict(parameters)
-    for index, event in sorted(enumerate(checked), key=lambda item: item[1].time):
-        _check_event(event, index, config)
-        if event.kind == "parameter":
-            changed[event.name] = event.value
-            try:
-                config = vehicle_config(vehicle, changed)
-            except ScenarioError as error:
-                raise ScenarioError(f"events[{index}].parameter: the allocator refuses it: {error}") from error
+    config = _replay_events(checked, vehicle, parameters, config)
     return Scenario(
         name=str(data.get("name", path.stem)), path=path, vehicle=vehicle, model=model, method=data["method"],
         duration=duration, seed=int(number(data, "seed", "")),

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..allocation.solve import check_method
 from ..configuration.file_keys import EACH, FileKey
@@ -18,6 +18,9 @@ from ..methods import METHODS
 from ..vehicle.config import Vehicle
 from .scenario_keys import SCENARIO_KEYS
 from .vessel import VesselParameters
+
+if TYPE_CHECKING:
+    from .scenario import Event
 
 MODEL_DOFS = {"dp_vessel": ("surge", "sway", "yaw"), "bluerov2_heavy": ("surge", "sway", "heave", "yaw")}
 """The DOFs each hull model needs its vehicle to control: the vessel moves in the horizontal
@@ -171,3 +174,27 @@ def check_depth(model: str, position: tuple[float, ...], where: str) -> None:
         raise ValueError(f"{where}: down {down:g} m is above the surface; the {model} model's depth is down >= 0")
     if model not in SUBMERGED_MODELS and down != 0.0:
         raise ValueError(f"{where}: down {down:g} m; the {model} model floats at the surface (down 0)")
+
+
+def check_run(model: str, vehicle: Vehicle, duration: float, voltage: float | None, events: Sequence[Event],
+              environment_data: dict, positions: dict[str, tuple[float, ...]]) -> None:
+    """Raise ValueError when the run would not be what the file says: an event at or after its
+    end, a supply voltage (or a battery ramp's) outside the vehicle's thrust tables or without
+    them, a ramp without a voltage to start from, an environment the hull model does not take
+    or no sea gives, a position above the surface (the ROV) or off it (the vessel)."""
+    for index, event in enumerate(events):
+        if event.time >= duration:
+            raise ValueError(f"events[{index}].time: {event.time:g} s is not within the run (0 to {duration:g} s); "
+                             "the run ends before it")
+        if event.kind == "battery_ramp":
+            check_voltage(vehicle, float(event.value), f"events[{index}].battery_ramp.to")
+            if voltage is None:
+                raise ValueError(f"events[{index}].battery_ramp: needs battery.voltage, the voltage it starts from")
+        if event.kind == "setpoint" and event.value.position is not None:
+            check_depth(model, event.value.position, f"events[{index}].setpoint.position")
+    if voltage is not None:
+        check_voltage(vehicle, voltage, "battery.voltage")
+    scale = max([1.0] + [float(e.value) for e in events if e.kind == "weather_ramp"])
+    check_environment(model, environment_data, scale)
+    for where, position in positions.items():
+        check_depth(model, position, where)
