@@ -106,13 +106,16 @@ class ElectricPlant:
         return found
 
     def _frequencies(self) -> dict[str, float]:
+        """[pu] per switchboard: the frequency of the bus it is on."""
         return {name: bus.frequency for bus in self.buses for name in bus.switchboards}
 
     def _members(self, bus: Bus) -> list[int]:
+        """The indices of the thrusters ``bus`` feeds (any share of their power from its switchboards)."""
         columns = [self.sources.index(name) for name in bus.switchboards]
         return [i for i in range(len(self.rated)) if self.shares[i, columns].sum() > 0.0]
 
     def _other_load(self, switchboard: str, time: float) -> float:
+        """[kW] at ``time`` [s] of the consumers on ``switchboard`` other than the thrusters."""
         return sum(c.at(time) for c in self.spec.consumers if c.switchboard == switchboard)
 
     def _loads(self, time: float) -> dict[str, float]:

@@ -40,6 +40,9 @@ def case_losses(vehicle: Vehicle, particulars: Particulars, condition: WeatherCo
 
 def _case(level1: Level1, level2: Level2, condition: WeatherCondition, direction: float,
           lost: tuple[str, ...]) -> LossCase:
+    """One case's losses with ``lost`` out: per working actuator, the forward and reverse factors
+    (the thrust range of Level 2 where the particulars give its thrust-loss table, Level 1
+    otherwise, over the nominal thrust), and the thrust profiles of the same analysis."""
     dead = tuple(name for name in level1.actuators if name in lost)
     tables = level1.particulars.thrust_loss
     forward, reverse = {}, {}
