@@ -115,7 +115,8 @@ class PowerStage:
         once every one is inside its bound."""
         bound = self.limit.bound
         lowest = np.abs(thrust) - self._step
-        ceiling = np.where(self.ramping_actuators, np.maximum(bound, lowest), np.where(self.limit.limited, bound, np.inf))
+        ceiling = np.where(self.ramping_actuators, np.maximum(bound, lowest),
+                           np.where(self.limit.limited, bound, np.inf))
         over = self.ramping_actuators & (lowest > bound)
         self.ramping_actuators = over if over.any() else None
         return replace(self.base, low=np.clip(self.base.low, -ceiling, ceiling),
