@@ -24,7 +24,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters
-from allocator_pkg.allocation.power_budget import KW
+from allocator_pkg.allocation.drive_power import KW
 from allocator_pkg.effectiveness.faults import static_ranges
 from allocator_pkg.vehicle.config import DOF_NAMES
 

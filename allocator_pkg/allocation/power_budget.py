@@ -50,11 +50,8 @@ from ..effectiveness.model import AT_LIMIT
 from ..effectiveness.power_rows import PowerPattern, PowerRows, feed_shares
 from ..vehicle.config import RedundancyGroup, Vehicle
 from .bus_ties import BusTies
-from .drive_power import DrivePower
+from .drive_power import KW, DrivePower
 from .restore_ramp import RestoreRamp
-
-KW = 1000.0
-"""Watts in a kilowatt: the configuration and the topic speak kW, the model W (1.44)."""
 
 HELD = 1e-3
 """A short source whose draw, as the chord rows see it, is within this share of its available
