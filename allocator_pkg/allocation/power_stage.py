@@ -6,7 +6,8 @@ proportional bounds of a method without rows, and the phase-back of a drop.
   (:meth:`~.power_budget.PowerBudget.rows`; values only on the solver's pattern) and narrows the
   static ranges by the derating of a lost feed only; a method without rows (the pseudo-inverse
   family) gets the proportional bounds of :meth:`~.power_budget.PowerBudget.limit` in its ranges
-  instead. Never per sample; one solve per sample.
+  instead. Not per sample, with two exceptions: each sample while the restore ramp raises the
+  power in use, and each sample of a ramp-down without phase-back (below); one solve per sample.
 - **Phase-back.** With ``power.phase_back`` (the default) a drop of available power holds from
   the next sample, faster than the rate limit allows: that sample the thrust windows of the
   consumers of a source now over its power open down to zero (:meth:`PowerStage.opened`), a
