@@ -24,7 +24,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters
-from allocator_pkg.allocation.power_budget import KW
+from allocator_pkg.allocation.drive_power import KW
 from allocator_pkg.effectiveness.faults import static_ranges
 from allocator_pkg.vehicle.config import DOF_NAMES
 
@@ -105,7 +105,7 @@ def reference_scale(allocator: Allocator, direction: np.ndarray, starts: int = 2
 
     def power_left(x):
         _, thrust, _ = unpack(x)
-        draw = (budget.coefficient * (thrust ** 2 + 1e-6) ** 0.75) @ weights
+        draw = (budget.in_force.forward * (thrust ** 2 + 1e-6) ** 0.75) @ weights
         return np.where(available > 0, 1.0 - draw / np.maximum(available, 1.0), 0.0)
 
     bounds = [(0.0, None)] + [(lo / n, hi / n) for lo, hi, n in zip(low, high, norm)]

@@ -371,13 +371,12 @@ class Allocator:
         controlled = requested if model.n == len(DOF_NAMES) else requested[model.dof_index]
         if self._power.advance(model.dt):       # power.restore_ramp: the power in use rises a sample's worth
             self._refresh()
-        if share.ramping is not None:                   # power.phase_back false: down at the rate limit
-            if share.rows is not None:
-                self._solver.set_power(share.ramp_rows(state.thrust))
-            else:
-                conditions = share.ramp(state.thrust)
-                self._limits.refresh(conditions)
-                self._actuation.refresh(conditions)
+        if share.ramping_sources is not None:           # power.phase_back false: down at the rate limit
+            self._solver.set_power(share.ramp_rows(state.thrust))
+        elif share.ramping_actuators is not None:
+            conditions = share.ramp(state.thrust)
+            self._limits.refresh(conditions)
+            self._actuation.refresh(conditions)
         limits = self._limits.sample(controlled, state)
         if share.opening is not None:                   # a drop of power wins over the rate limit
             limits = share.opened(limits)

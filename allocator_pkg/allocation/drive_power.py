@@ -25,7 +25,7 @@ from ..vehicle.config import Vehicle
 from .conditions import Conditions
 
 KW = 1000.0
-"""Watts in a kilowatt."""
+"""Watts in a kilowatt: the configuration and the topic speak kW, the model W (1.44)."""
 
 
 @dataclass(frozen=True)

@@ -50,11 +50,8 @@ from ..effectiveness.model import AT_LIMIT
 from ..effectiveness.power_rows import PowerPattern, PowerRows, feed_shares
 from ..vehicle.config import RedundancyGroup, Vehicle
 from .bus_ties import BusTies
-from .drive_power import DrivePower
+from .drive_power import KW, DrivePower
 from .restore_ramp import RestoreRamp
-
-KW = 1000.0
-"""Watts in a kilowatt: the configuration and the topic speak kW, the model W (1.44)."""
 
 HELD = 1e-3
 """A short source whose draw, as the chord rows see it, is within this share of its available
@@ -138,27 +135,16 @@ class PowerBudget:
         budget.lost = self.lost & set(budget.sources)
         budget.ties = budget.ties.carried(self.ties)
         budget.ramp.carried(budget.sources, self.ramp, self.sources)
-        budget.efficiency = self.efficiency
         return budget
 
     @property
     def in_force(self) -> DrivePower:
         """The drives' coefficients on the delivered force at the faults in force (made again
-        when :attr:`efficiency` is another array; it is replaced, never changed in place)."""
+        when :attr:`efficiency` is another array; :meth:`settle` replaces it when its values
+        change, never in place)."""
         if self._in_force is None or self._in_force[0] is not self.efficiency:
             self._in_force = (self.efficiency, self.drive.degraded(self.efficiency))
         return self._in_force[1]
-
-    @property
-    def coefficient(self) -> np.ndarray:
-        """P_i of every actuator's forward thrust on its delivered force (a DEGRADED one's
-        P_i / eta^(3/2)) [W/N^1.5]."""
-        return self.in_force.forward
-
-    @property
-    def reverse_coefficient(self) -> np.ndarray:
-        """P_i of every actuator's negative thrust on its delivered force [W/N^1.5]."""
-        return self.in_force.reverse
 
     @property
     def target(self) -> np.ndarray:
@@ -168,7 +154,9 @@ class PowerBudget:
     def settle(self, efficiency: np.ndarray) -> None:
         """Take the faults' command ``efficiency`` (the drives' coefficients follow it) and the
         available power in force (a drop holds at once on the restore ramp)."""
-        self.efficiency = np.asarray(efficiency, dtype=float).copy()
+        efficiency = np.asarray(efficiency, dtype=float)
+        if not np.array_equal(efficiency, self.efficiency):
+            self.efficiency = efficiency.copy()
         self.ramp.follow(self.target)
 
     def advance(self, seconds: float) -> bool:
@@ -239,6 +227,11 @@ class PowerBudget:
         if self.pattern is None:
             return None
         weights, available, _ = self._weights()
+        return self._rows(weights, available)
+
+    def _rows(self, weights: np.ndarray, available: np.ndarray) -> PowerRows:
+        """The power rows of ``weights`` and ``available`` [W] (:meth:`_weights`) at the drives'
+        coefficients in force."""
         drive = self.in_force
         return PowerRows(pattern=self.pattern, weights=weights, available=available, forward=drive.forward,
                          reverse=drive.reverse, rated=self.rated_thrust)
@@ -261,7 +254,7 @@ class PowerBudget:
         limited = bound < np.maximum(np.abs(low), np.abs(high))
         return PowerLimit(bound=bound, weights=weights, limited=limited, available=kilowatts,
                           largest=np.where(self.fed, largest, np.inf), rho=rho, proportional=proportional,
-                          rows=self.rows() if rows else None)
+                          rows=self._rows(weights, available) if rows and self.pattern is not None else None)
 
     def draw(self, thrust: np.ndarray, limit: PowerLimit) -> np.ndarray:
         """Power [kW] each source gives at ``thrust``: p_i = P_i |f_i|^(3/2) (1.44), P_i the

@@ -6,7 +6,8 @@ proportional bounds of a method without rows, and the phase-back of a drop.
   (:meth:`~.power_budget.PowerBudget.rows`; values only on the solver's pattern) and narrows the
   static ranges by the derating of a lost feed only; a method without rows (the pseudo-inverse
   family) gets the proportional bounds of :meth:`~.power_budget.PowerBudget.limit` in its ranges
-  instead. Never per sample; one solve per sample.
+  instead. Not per sample, with two exceptions: each sample while the restore ramp raises the
+  power in use, and each sample of a ramp-down without phase-back (below); one solve per sample.
 - **Phase-back.** With ``power.phase_back`` (the default) a drop of available power holds from
   the next sample, faster than the rate limit allows: that sample the thrust windows of the
   consumers of a source now over its power open down to zero (:meth:`PowerStage.opened`), a
@@ -36,12 +37,14 @@ this share of its rate step: the rate window keeps room below its bound for the 
 
 class PowerStage:
     """The power limit in force, the ranges without it (``base``), the consumers whose windows
-    the next sample opens to zero (``opening``) and the actuators or sources coming down to a
-    lower power at their rate limit (``ramping``); None when none does."""
+    the next sample opens to zero (``opening``), the sources coming down to a lower power at
+    their consumers' rate limit with rows (``ramping_sources``) and the actuators coming down to
+    a lower bound at their rate limit without rows (``ramping_actuators``); None when none does."""
 
     def __init__(self, model: Model):
         self.limit: PowerLimit | None = None
-        self.ramping: np.ndarray | None = None
+        self.ramping_sources: np.ndarray | None = None
+        self.ramping_actuators: np.ndarray | None = None
         self.opening: np.ndarray | None = None
         self.configure(model)
 
@@ -63,9 +66,9 @@ class PowerStage:
         lost feed, else inside the proportional power bounds of ``budget``'s available power.
         A drop of power that leaves ``thrust`` over it opens the next sample's windows
         (``phase_back``) or ramps (module docstring)."""
-        previous, ramping, self.budget, self.base = self.limit, self.ramping, budget, base
+        previous, ramping, self.base = self.limit, self.ramping_actuators, base
         limit = self.limit = budget.limit(base.low, base.high, rows) if budget.active else None
-        self.ramping = self.opening = None
+        self.ramping_sources = self.ramping_actuators = self.opening = None
         if limit is None:
             return base
         if thrust is not None:
@@ -76,7 +79,8 @@ class PowerStage:
 
     def _dropped(self, previous: PowerLimit | None, limit: PowerLimit, ramping: np.ndarray | None,
                  thrust: np.ndarray, phase_back: bool) -> None:
-        """``opening`` or ``ramping`` after a change of power that ``thrust`` is over."""
+        """``opening``, ``ramping_sources`` or ``ramping_actuators`` after a change of power that
+        ``thrust`` is over; ``ramping`` the actuators still ramping without rows."""
         if limit.rows is not None:
             over = limit.rows.seen(thrust) > limit.rows.available
             if not over.any():
@@ -85,36 +89,37 @@ class PowerStage:
             if phase_back:
                 self.opening = consumers
             else:
-                self.ramping = over
+                self.ramping_sources = over
             return
         if phase_back:
             return
         lowered = np.ones(limit.bound.size, dtype=bool) if previous is None else limit.bound < previous.bound
-        if ramping is not None and ramping.size == lowered.size:
+        if ramping is not None:
             lowered |= ramping
         over = limit.limited & lowered & (np.abs(thrust) > limit.bound) & np.isfinite(self._step)
-        self.ramping = over if over.any() else None
+        self.ramping_actuators = over if over.any() else None
 
     def ramp_rows(self, thrust: np.ndarray) -> PowerRows:
         """This sample's power rows while a source comes down to a lower power at the rate
-        limit (module docstring); ``ramping`` ends once every source is within its power."""
+        limit (module docstring); ``ramping_sources`` ends once every source is within its power."""
         rows = self.limit.rows
         step = RAMP_ROOM * np.where(np.isfinite(self._step), self._step, 0.0)
         lowest = np.sign(thrust) * np.maximum(np.abs(thrust) - step, 0.0)
         reachable = rows.seen(lowest)
-        over = self.ramping & (reachable > rows.available)
-        self.ramping = over if over.any() else None
+        over = self.ramping_sources & (reachable > rows.available)
+        self.ramping_sources = over if over.any() else None
         return replace(rows, available=np.where(over, reachable, rows.available))
 
     def ramp(self, thrust: np.ndarray) -> Conditions:
         """This sample's conditions (a method without rows) while some actuator comes down to
-        its bound: its ceiling max(bound, |f_prev| - step), the rate limit's; ``ramping`` ends
+        its bound: its ceiling max(bound, |f_prev| - step), the rate limit's; ``ramping_actuators`` ends
         once every one is inside its bound."""
         bound = self.limit.bound
         lowest = np.abs(thrust) - self._step
-        ceiling = np.where(self.ramping, np.maximum(bound, lowest), np.where(self.limit.limited, bound, np.inf))
-        over = self.ramping & (lowest > bound)
-        self.ramping = over if over.any() else None
+        ceiling = np.where(self.ramping_actuators, np.maximum(bound, lowest),
+                           np.where(self.limit.limited, bound, np.inf))
+        over = self.ramping_actuators & (lowest > bound)
+        self.ramping_actuators = over if over.any() else None
         return replace(self.base, low=np.clip(self.base.low, -ceiling, ceiling),
                        high=np.clip(self.base.high, -ceiling, ceiling))
 

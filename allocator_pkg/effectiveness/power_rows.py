@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 
@@ -35,7 +36,7 @@ from ..vehicle.config import Vehicle
 
 BREAKPOINTS = 24
 """Chords of r^(3/2) per thruster: the allocator reaches >= 0.99 of the exact power-limited
-optimum with them (test/methods/test_power_rows.py against SLSQP)."""
+optimum with them (test/methods/test_power_block.py against SLSQP)."""
 SPACING = 2.0
 """Breakpoints at F (k/K)^SPACING: denser near zero, where a chord's relative error is largest."""
 POWER_SIDES = 32
@@ -49,14 +50,17 @@ def breakpoints(count: int = BREAKPOINTS) -> np.ndarray:
     return (np.arange(count + 1) / count) ** SPACING
 
 
+@cache
 def chord_lines(count: int = BREAKPOINTS) -> tuple[np.ndarray, np.ndarray]:
     """(slope s_k, intercept c_k) of the K chord lines of g(r) = r^(3/2) on r in [0, 1]:
     l_k(r) = c_k + s_k r; their maximum is the interpolant through :func:`breakpoints`, >= g
-    on [0, 1] (g convex)."""
+    on [0, 1] (g convex). Computed once per ``count``; the arrays are read-only."""
     r = breakpoints(count)
     g = r ** 1.5
     slope = np.diff(g) / np.diff(r)
-    return slope, g[:-1] - slope * r[:-1]
+    intercept = g[:-1] - slope * r[:-1]
+    slope.flags.writeable = intercept.flags.writeable = False
+    return slope, intercept
 
 
 def interpolant(fraction: np.ndarray, count: int = BREAKPOINTS) -> np.ndarray:
@@ -126,6 +130,8 @@ class PowerPattern:
         return np.flatnonzero(self.pattern.any(axis=1))
 
     def same(self, other: PowerPattern | None) -> bool:
+        """Whether ``other`` is a pattern with the same entries (None: no pattern): the rows'
+        structure holds and a change is values only."""
         return other is not None and np.array_equal(self.pattern, other.pattern)
 
 
@@ -158,13 +164,8 @@ class PowerRows:
         return np.max(np.column_stack((self.forward, self.reverse)), axis=1) * self.rated ** 1.5 @ self.weights \
             > self.available
 
-    def draw(self, thrust: np.ndarray) -> np.ndarray:
-        """The exact draw [W] of each row at ``thrust``: sum_i w_ij P_i |f_i|^(3/2)."""
-        coefficient = np.where(thrust >= 0.0, self.forward, self.reverse)
-        return (coefficient * np.abs(thrust) ** 1.5) @ self.weights
-
     def seen(self, thrust: np.ndarray, count: int = BREAKPOINTS) -> np.ndarray:
-        """The draw [W] of each row the chord rows see at ``thrust`` (>= :meth:`draw`)."""
+        """The draw [W] of each row the chord rows see at ``thrust`` (>= the exact sum_i w_ij p_i)."""
         coefficient = np.where(thrust >= 0.0, self.forward, self.reverse)
         scale = np.where(self.rated > 0.0, self.rated, 1.0)
         fraction = np.clip(np.abs(thrust) / scale, 0.0, 1.0)

@@ -157,7 +157,7 @@ class ClosedLoop:
                 answer = link.step(t_ns, pose, supply, wrench, position, heading, record=False)
             thrusters.start_at(answer.thrust.copy(), answer.azimuth.copy())
         if self.electric is not None:
-            self.electric.start(thrusters.thrust)
+            self.electric.start(thrusters.thrust, thrusters.efficiency)
         self.log(f"sim: warm-up: {steps} steps of the equilibrium request; thrusters start at "
                  + ", ".join(f"{name} {f:.4g} N" for name, f in zip(self.vehicle.names, answer.thrust)))
         return t_ns + self.period_ns
@@ -197,7 +197,8 @@ class ClosedLoop:
                 plant.thrusters.cap = self.electric.thrust_caps()
             plant.step(answer.thrust, answer.azimuth, self.period)
             if self.electric is not None:
-                self._switchboards_lost(self.electric.advance(plant.thrusters.thrust, self.period))
+                self._switchboards_lost(self.electric.advance(plant.thrusters.thrust, self.period,
+                                                              plant.thrusters.efficiency))
 
     def _switchboards_lost(self, names: list[str]) -> None:
         """Log each switchboard whose bus went dead (its thrusters' drives stop with it)."""

@@ -1,19 +1,24 @@
 """The simulated electric power plant of a scenario with ``power_plant`` (docs/power.md, "The
 drilling-rig benchmark"): generator sets on the vehicle's switchboards (its power sources),
 bus ties, the other consumers (a base load and pulsing loads such as a drawworks), the
-thrusters' power from the simulated thrusters' thrust by the allocator's model (survey (1.44),
-P_i |f_i|^(3/2)), the buses' frequency (:mod:`.bus_frequency`), the power management system
-and the fast load reduction (:mod:`.power_management`). It answers the closed loop as
-:class:`~.power_plant.PowerPlant` does (``sources``, ``reported``, ``available``) and records
-each step for the metrics and figures."""
+thrusters' power from the simulated thrusters' thrust by the allocator's drive model
+(:mod:`~allocator_pkg.allocation.drive_power`: survey (1.44), P_i |f_i|^(3/2) with the forward or
+reverse coefficient, a DEGRADED thruster's at its set-point), split over its live feeds as the
+allocator splits it (a dead switchboard's share on the live feeds), the buses' frequency
+(:mod:`.bus_frequency`), the power management system and the fast load reduction
+(:mod:`.power_management`). It answers the closed loop as :class:`~.power_plant.PowerPlant`
+does (``sources``, ``reported``, ``available``) and records each step for the metrics and
+figures."""
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..allocation.drive_power import KW, DrivePower
+from ..effectiveness.power_rows import feed_shares
 from ..vehicle.config import Vehicle
 from .bus_frequency import Bus, BusTieSpec, buses
 from .generator_set import GeneratorSet, GeneratorSetSpec
@@ -78,13 +83,11 @@ class ElectricPlant:
         self.sets = [GeneratorSet(s) for s in spec.generator_sets]
         self.ties = {tie.name: tie for tie in spec.bus_ties}
         self.closed = {tie.name: tie.closed for tie in spec.bus_ties}
-        self.coefficient = np.array([a.power_coefficient for a in vehicle.actuators]) / 1000.0
-        self.rated = np.array([a.power_coefficient * max(abs(a.thrust_min), abs(a.thrust_max)) ** 1.5 / 1000.0
-                               for a in vehicle.actuators])
-        self.shares = np.zeros((len(vehicle.actuators), len(self.sources)))
-        for i, actuator in enumerate(vehicle.actuators):
-            for feed, share in zip(actuator.feeds, actuator.feed_shares or (1.0,) * len(actuator.feeds)):
-                self.shares[i, self.sources.index(feed)] = share
+        self.drive = DrivePower.of(vehicle)
+        self.efficiency = np.ones(len(vehicle.actuators))
+        largest = np.array([max(abs(a.thrust_min), abs(a.thrust_max)) for a in vehicle.actuators], dtype=float)
+        self.rated = np.maximum(self.drive.forward, self.drive.reverse) * largest ** 1.5 / KW
+        self.shares = feed_shares(vehicle)
         self.report = PowerAvailableReport(spec.management)
         self.reduction = LoadReduction(spec.load_reduction, self.rated)
         self.buses = self._buses({}, 1.0)
@@ -118,9 +121,23 @@ class ElectricPlant:
         """[kW] at ``time`` [s] of the consumers on ``switchboard`` other than the thrusters."""
         return sum(c.at(time) for c in self.spec.consumers if c.switchboard == switchboard)
 
+    def _live_shares(self) -> np.ndarray:
+        """(thrusters x switchboards) the share of each thruster's power on each switchboard:
+        the configured shares over its live feeds (a dead one's share on the others; the
+        configured shares when every feed is dead)."""
+        live = self.shares * np.array([name not in self.dead for name in self.sources])
+        total = live.sum(axis=1, keepdims=True)
+        return np.where(total > 0.0, live / np.where(total > 0.0, total, 1.0), self.shares)
+
+    def _drawn(self, thrust: np.ndarray, efficiency: np.ndarray) -> None:
+        """The thrusters' power [kW] at the delivered ``thrust`` [N] and the faults' ``efficiency``
+        (the share of force a DEGRADED one delivers; a failed one's 0 counts as 1, its thrust 0)."""
+        self.efficiency = np.where(np.asarray(efficiency, dtype=float) > 0.0, efficiency, 1.0)
+        self.thruster_power = self.drive.degraded(self.efficiency).power(thrust) / KW
+
     def _loads(self, time: float) -> dict[str, float]:
         """[kW] per switchboard: its other consumers and its share of its thrusters' power."""
-        thrusters = self.thruster_power @ self.shares
+        thrusters = self.thruster_power @ self._live_shares()
         return {name: self._other_load(name, time) + float(thrusters[j]) for j, name in enumerate(self.sources)}
 
     # -- events ---------------------------------------------------------------------------
@@ -175,9 +192,10 @@ class ElectricPlant:
 
     # -- stepping -------------------------------------------------------------------------
 
-    def start(self, thrust: np.ndarray) -> None:
-        """Every set's power at the droop share of the load of its bus at ``thrust`` [N]."""
-        self.thruster_power = self.coefficient * np.abs(np.asarray(thrust, dtype=float)) ** 1.5
+    def start(self, thrust: np.ndarray, efficiency: np.ndarray | None = None) -> None:
+        """Every set's power at the droop share of the load of its bus at ``thrust`` [N] (the
+        faults' ``efficiency``: :meth:`_drawn`; None: none)."""
+        self._drawn(thrust, np.ones(len(self.rated)) if efficiency is None else efficiency)
         loads = self._loads(self.time)
         for bus in self.buses:
             live = [g for g in bus.sets if g.connected]
@@ -197,10 +215,11 @@ class ElectricPlant:
                 limits[i] = 0.0
         return limits
 
-    def advance(self, thrust: np.ndarray, dt: float) -> list[str]:
-        """``dt`` [s] with the thrusters at ``thrust`` [N]: the buses, relays, PMS and load
-        reduction; the switchboards that went dead in it."""
-        self.thruster_power = self.coefficient * np.abs(np.asarray(thrust, dtype=float)) ** 1.5
+    def advance(self, thrust: np.ndarray, dt: float, efficiency: np.ndarray | None = None) -> list[str]:
+        """``dt`` [s] with the thrusters at ``thrust`` [N] (the faults' ``efficiency``:
+        :meth:`_drawn`; None: none): the buses, relays, PMS and load reduction; the switchboards
+        that went dead in it."""
+        self._drawn(thrust, np.ones(len(self.rated)) if efficiency is None else efficiency)
         steps = max(1, math.ceil(dt / SUBSTEP - 1e-9))
         h = dt / steps
         for _ in range(steps):
@@ -263,9 +282,10 @@ class ElectricPlant:
         """[kW] per source: what the PMS reports."""
         return np.array([self.reported[name] for name in self.sources])
 
-    def thrust_caps(self) -> np.ndarray:
-        """[N] per thruster: the thrust its drive's power limit leaves (inf: none)."""
-        limits = self.drive_limits()
-        with np.errstate(divide="ignore", invalid="ignore"):
-            caps = np.where(self.coefficient > 0.0, (limits / self.coefficient) ** (2.0 / 3.0), np.inf)
-        return np.where(np.isnan(caps), np.inf, caps)
+    def thrust_caps(self) -> tuple[np.ndarray, np.ndarray]:
+        """([N] astern, [N] ahead) per thruster: the delivered thrust range its drive's power limit
+        leaves at the faults in force (:meth:`DrivePower.ranges`; -inf, inf: none)."""
+        drive = replace(self.drive.degraded(self.efficiency), limit=self.drive_limits())
+        count = len(self.rated)
+        with np.errstate(invalid="ignore"):
+            return drive.ranges(np.full(count, -np.inf), np.full(count, np.inf))

@@ -5,7 +5,7 @@ FAILED actuator gives no force: its thrust falls at its rate limit, or, with ``t
 zero at once (a trip, as a breaker opens); a STUCK one keeps its angle, a DEGRADED one a share
 of its force. With thrust losses (:mod:`.thrust_losses`) the thrust followed is the command
 times the factors of the case of the actuators failed now, at the direction it pushes. A
-drive's power limit (``cap``, the thrust it leaves [N]; the simulated power plant's load
+drive's power limit (``cap``, the thrust range it leaves [N]; the simulated power plant's load
 reduction) holds the thrust under it at once. Their wrench is T(alpha) f (survey (1.9)) at the
 angles reached."""
 
@@ -51,7 +51,7 @@ class Thrusters:
         self._forward = self._reverse = np.ones(len(actuators))
         self._profiles: list = []
         self._losses_now()
-        self.cap = np.full(len(actuators), np.inf)
+        self.cap = (np.full(len(actuators), -np.inf), np.full(len(actuators), np.inf))
         self._rotatable = [i for i, a in enumerate(actuators) if a.rotatable]
         self._matrix = configuration_matrix(actuators, self.angle)
         self._matrix_angles = self.angle.tolist()
@@ -129,20 +129,20 @@ class Thrusters:
         change = (target - self.thrust) * lag
         self.thrust = self.thrust + _clip(change, fall, rise)
         if self._capped:
-            self.thrust = _clip(self.thrust, -self._cap, self._cap)
+            self.thrust = _clip(self.thrust, *self._cap)
         turn = np.array([wrap(a - b) for a, b in zip(np.asarray(angle, dtype=float).tolist(), self.angle.tolist())])
         turn = _clip(turn, back, ahead)
         self.angle = np.where(self.stuck, self.angle, self.angle + turn)
 
     @property
-    def cap(self) -> np.ndarray:
-        """The thrust [N] each drive's power limit leaves (inf: none)."""
+    def cap(self) -> tuple[np.ndarray, np.ndarray]:
+        """(astern, ahead): the thrust range [N] each drive's power limit leaves (-inf, inf: none)."""
         return self._cap
 
     @cap.setter
-    def cap(self, value: np.ndarray) -> None:
+    def cap(self, value: tuple[np.ndarray, np.ndarray]) -> None:
         self._cap = value
-        self._capped = not bool(np.all(value == np.inf))
+        self._capped = not bool(np.all(value[0] == -np.inf) and np.all(value[1] == np.inf))
 
     def _per_step(self, dt: float) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Of a step ``dt`` [s]: the lag's share 1 - exp(-dt / T) and the thrust's and the angle's

@@ -4,6 +4,8 @@ limit with the status saying so; a saturated request under a short source settle
 optimum of the power constraint without hunting, in one solve a sample; with no fault and no
 change of power no thruster moves by more than its rate step (a property)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from conftest import ROOT, bench_module, vehicle_from
@@ -120,3 +122,21 @@ def test_what_does_not_change_the_power_changes_no_sample():
         with_speed.set_speed(0.0)
         a, b = plain.allocate(tau), with_speed.allocate(tau)
         assert np.array_equal(a.thrust, b.thrust) and np.array_equal(a.azimuth, b.azimuth)
+
+
+def test_a_switch_of_method_mid_ramp_keeps_the_thrust_at_its_rate_limit_down_to_the_power():
+    vehicle = vehicle_from(DP_VESSEL, power__phase_back=False)
+    allocator = Allocator(vehicle)
+    tau = [4e5, 0.0, 0.0, 0.0, 0.0, 0.0]
+    for _ in range(100):
+        result = allocator.allocate(tau)
+    step = np.array([a.thrust_rate_max for a in allocator.vehicle.actuators]) * allocator.dt
+    allocator.set_available_power({"swbd_a": 300.0, "swbd_b": 500.0})
+    result = allocator.allocate(tau)
+    allocator.reconfigure(replace(vehicle, method="pseudoinverse"))
+    for _ in range(60):
+        before = result.thrust
+        result = allocator.allocate(tau)
+        assert np.all(np.abs(result.thrust - before) <= step * (1 + 1e-9))
+    draw = allocator.power.draw(result.thrust, allocator.power_limit)
+    assert np.all(draw <= np.array([300.0, 500.0]) * (1 + OVER))

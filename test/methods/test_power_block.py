@@ -10,7 +10,7 @@ from conftest import ROOT, vehicle_from
 from power_reference import Reference
 
 from allocator_pkg import Allocator, read_parameters, vehicle_from_parameters
-from allocator_pkg.allocation.power_budget import KW
+from allocator_pkg.allocation.drive_power import KW
 from allocator_pkg.vehicle.config import DOF_NAMES
 
 DP_VESSEL = ROOT / "config" / "dp_vessel.yaml"

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import ROOT
+from conftest import ROOT, vehicle_from
 
 from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.simulation.closed_loop import ClosedLoop
@@ -36,6 +36,18 @@ def test_the_thrusters_draw_the_allocators_power_model():
     loads = electric._loads(0.0)
     assert loads["swbd_2"] == pytest.approx(2000.0 + 2 * 1373.6, abs=0.1)
     assert loads["swbd_1"] == pytest.approx(2000.0 + 1000.0 + 3000.0 + 2 * 1373.6, abs=0.1)
+
+
+def test_a_reverse_thrust_draws_its_reverse_coefficients_power_and_a_degraded_one_its_set_points():
+    vehicle = vehicle_from(ROOT / "config" / "drilling_rig.yaml", actuators__thruster_1__thrust_min=-300e3,
+                           actuators__thruster_1__reversible=True,
+                           actuators__thruster_1__reverse_power_coefficient=0.02)
+    electric = ElectricPlant(load_scenario(RIG).power_plant, vehicle)
+    thrust = np.array([-200e3, 200e3, 200e3, 0.0, 0.0, 0.0])
+    electric.start(thrust, np.array([1.0, 0.5, 1.0, 1.0, 1.0, 1.0]))
+    assert electric.thruster_power[:3] == pytest.approx([0.02 * 200e3 ** 1.5 / 1000.0,
+                                                         0.010989 * 400e3 ** 1.5 / 1000.0,
+                                                         0.010989 * 200e3 ** 1.5 / 1000.0])
 
 
 def test_opening_the_ties_splits_the_buses_at_one_frequency():
@@ -81,7 +93,7 @@ def test_with_the_load_reduction_the_drives_are_cut_after_its_reaction_and_the_r
     electric.lose_set("g5")
     caps, reported = [], []
     for _ in range(20):
-        electric.advance(np.minimum(THRUST, electric.thrust_caps()), 0.1)      # the drives obey
+        electric.advance(np.clip(THRUST, *electric.thrust_caps()), 0.1)      # the drives obey
         caps.append(electric.drive_limits()[4])
         reported.append(electric.reported["swbd_3"])
     # the remaining set gave less than the other consumers: 0 kW at 0.2 s, then 5000 kW over 5 s
@@ -103,8 +115,9 @@ def test_a_dead_switchboard_stops_its_drives():
     electric.lose_set("g6")
     dead = electric.advance(THRUST, 0.1)
     assert dead == ["swbd_3"] and electric.reported["swbd_3"] == 0.0
-    assert electric.thrust_caps()[4:] == pytest.approx([0.0, 0.0])
-    assert np.isinf(electric.thrust_caps()[:4]).all()
+    low, high = electric.thrust_caps()
+    assert high[4:] == pytest.approx([0.0, 0.0]) and low[4:] == pytest.approx([0.0, 0.0])
+    assert np.isinf(high[:4]).all() and np.isinf(low[:4]).all()
 
 
 def short(name: str, tmp_path):

@@ -186,7 +186,8 @@ def test_a_dead_set_without_a_case_of_its_own_takes_the_largest_within_it_and_ba
 def test_a_drive_limit_holds_the_thrust_under_it_at_once_whatever_the_rate(cap):
     thrusters = Thrusters(VESSEL, time_constant=2.0)
     thrusters.start_at(np.array([300e3, 200e3, 200e3, 100e3]), thrusters.angle.copy())
-    thrusters.cap = np.array([cap, cap, np.inf, cap])
+    high = np.array([cap, cap, np.inf, cap])
+    thrusters.cap = (-high, high)
     thrusters.step(np.array([300e3, 200e3, 200e3, 100e3]), thrusters.angle.copy(), 0.01)
     assert thrusters.thrust[[0, 1, 3]] == pytest.approx([min(cap, 300e3), min(cap, 200e3), min(cap, 100e3)])
     assert thrusters.thrust[2] == pytest.approx(200e3)
