@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from ..allocation.solve import check_method
 from ..configuration.file_keys import EACH, FileKey
@@ -18,9 +18,6 @@ from ..methods import METHODS
 from ..vehicle.config import Vehicle
 from .scenario_keys import SCENARIO_KEYS
 from .vessel import VesselParameters
-
-if TYPE_CHECKING:
-    from .scenario import Event
 
 MODEL_DOFS = {"dp_vessel": ("surge", "sway", "yaw"), "bluerov2_heavy": ("surge", "sway", "heave", "yaw")}
 """The DOFs each hull model needs its vehicle to control: the vessel moves in the horizontal
@@ -176,7 +173,15 @@ def check_depth(model: str, position: tuple[float, ...], where: str) -> None:
         raise ValueError(f"{where}: down {down:g} m; the {model} model floats at the surface (down 0)")
 
 
-def check_run(model: str, vehicle: Vehicle, duration: float, voltage: float | None, events: Sequence[Event],
+class TimedEvent(Protocol):
+    """What :func:`check_run` reads of a scenario's event (:class:`~.scenario.Event`)."""
+
+    time: float
+    kind: str
+    value: Any
+
+
+def check_run(model: str, vehicle: Vehicle, duration: float, voltage: float | None, events: Sequence[TimedEvent],
               environment_data: dict, positions: dict[str, tuple[float, ...]]) -> None:
     """Raise ValueError when the run would not be what the file says: an event at or after its
     end, a supply voltage (or a battery ramp's) outside the vehicle's thrust tables or without
