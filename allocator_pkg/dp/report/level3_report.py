@@ -53,10 +53,13 @@ ASSUMPTIONS = (
     "and heading limits, the post-failure limits and their window), the time on station before a failure, the "
     "simulated duration, the number of seeds and the quantile that decides a condition are this package's "
     "defaults or the criteria file's, not the standard's.",
-    "The loads are the simulation's drag-like model (hull/environment_loads.py), not [3.5]-[3.7]; the "
-    "environment's slow variations and gusts are the base scenario's; wind, current and waves come from one "
-    "heading unless the site gives the waves' and the current's directions relative to the wind (the notes say "
-    "which).",
+    "The mean wind load and wave drift are the standard's [3.5] and [3.7]; the gust spectrum (NPD unless the "
+    "base scenario names another), Newman's slowly varying drift with one drift coefficient, the first-order "
+    "wave motion's response model and the current's slow variation are this package's choices, the current load "
+    "the simulation's hull model's; wind, current and waves come from one heading unless the site gives the "
+    "waves' and the current's directions relative to the wind (the notes say which).",
+    "The DP system (observer tuning, measurement noise, feed-forward filter) and the controller's gains are this "
+    "package's (the notes state them), not the vessel's own.",
     "A redundancy group fails at once, all its actuators and power sources, at the end of the time on station; "
     "an intact case has no post-failure window.",
     "The limiting wind speed is the wind of the number's condition (no bisection in the time domain).",
