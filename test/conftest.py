@@ -42,10 +42,12 @@ for _folder in sorted(path for path in SUITE.rglob("*") if path.is_dir() and pat
 name from any folder (their names are unique: ``test_imports``)."""
 DATA = Path(__file__).resolve().parent / "data"
 BENCH = ROOT / "bench"
-ALARM_TOLERANCE = 1.0 + 3 * 0.1
+ALARM_TOLERANCE = 2 * 1.0 + 3 * 0.1
 """[s] How far apart two closed-loop runs' consequence alarm times may be when the node is in
-the loop: one analysis period (consequence.rate 1 Hz, the DP vessel's; the node's timer has a
-phase of its own on the sim clock) and three samples for the node's thread to answer."""
+the loop: two analysis periods (consequence.rate 1 Hz, the DP vessel's: the node's timer has a
+phase of its own on the sim clock, and an analysis that takes longer in wall time than the sim
+clock gives it, at the run's real-time factor, answers at the next period) and three samples for
+the node's thread to answer."""
 ALARM_METRICS = ("consequence_alarm_time", "alarm_lead_time", "alarm_after_position_loss")
 """The metrics of the consequence alarm's time: the node analyses asynchronously, so these may
 differ between the node and the in-process link by up to one analysis period."""
