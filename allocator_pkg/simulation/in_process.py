@@ -23,7 +23,7 @@ What the node does, and so what this does, by the node's own rules
   ``~/set_actuator_fault`` carries it (``fault_request``); ``set_group_fault`` as
   ``~/set_group_fault``; ``clear_faults``;
 - available power (``power_available``): each step's reported values, ``set_available_power``;
-  the status's power per source (``Allocator.power.reading``);
+  the status's power per source (``Allocator.power.draw``, the figures of ``reading``);
 - with redundancy groups, the consequence analysis at its rate on the sim clock
   (:mod:`.consequence_watch`, ``consequence_period``) and its alarm in the answer;
 - a parameter: refused when read-only or not declared; else checked with the node's declared
@@ -142,10 +142,10 @@ class InProcessLink:
             self.watch.observe(result.requested, t_ns, self.settings)
         voltage = allocator.voltage
         limit = allocator.power_limit
-        reading = None if limit is None else allocator.power.reading(result.thrust, limit)
+        drawn = None if limit is None else allocator.power.draw(result.thrust, limit)
         return Answer(result.thrust.copy(), result.azimuth.copy(), bool(result.saturated), float(result.power),
                       math.nan if voltage is None else float(voltage), wrench_between(result.unallocated, frame),
-                      source_power=None if reading is None else reading.power.copy(),
+                      source_power=drawn,
                       consequence_alarm=self.watch is not None and self.watch.alarm)
 
     def live_line(self) -> str:

@@ -25,6 +25,7 @@ the current (59.8 kN).
 from __future__ import annotations
 
 import math
+from bisect import bisect_left
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -33,8 +34,6 @@ from ..hull.environment_loads import LoadCoefficients
 
 STRIPS = 20
 """Hull strips of the cross-flow drag integral."""
-_sum = np.add.reduce
-"""``ndarray.sum`` of a vector without its method's overhead (the same pairwise sum)."""
 
 
 @dataclass(frozen=True)
@@ -85,21 +84,19 @@ class Vessel:
         self.mass = p.mass_matrix()
         self.mass_inverse = np.linalg.inv(self.mass)
         self._mass_rows = (self.mass[0].tolist(), self.mass[1].tolist())
+        self._inverse_rows = tuple(self.mass_inverse.tolist())
         t1, t2, t6 = p.time_constants
         self.linear_damping = np.diag([self.mass[0, 0] / t1, self.mass[1, 1] / t2, self.mass[2, 2] / t6])
         self._sway_yaw_linear = (-np.diag(self.linear_damping)).tolist()
         self._surge_linear = float(self.linear_damping[0, 0])
         self._surge_quadratic, self._crossover = p.surge_quadratic, p.crossover_speed
         dx = p.length / STRIPS
-        self._strips = -p.length / 2.0 + (np.arange(STRIPS) + 0.5) * dx
+        self._strips = (-p.length / 2.0 + (np.arange(STRIPS) + 0.5) * dx).tolist()
         self._strip_factor = 0.5 * p.water_density * p.draught * p.coefficients.current_sway * dx
-
-    def _coriolis(self, u: float, v: float, r: float) -> np.ndarray:
-        """:func:`~.kinematics.coriolis_planar` of the mass matrix at [u, v, r], its rows as floats kept."""
-        (m11, m12, m16), (m21, m22, m26) = self._mass_rows
-        sway = m21 * u + m22 * v + m26 * r
-        surge = m11 * u + m12 * v + m16 * r
-        return np.array([[0.0, 0.0, -sway], [0.0, 0.0, surge], [sway, -surge, 0.0]])
+        self._power_sums = [[0.0] * (STRIPS + 1) for _ in range(4)]
+        for k, x in enumerate(self._strips):
+            for j, sums in enumerate(self._power_sums):
+                sums[k + 1] = sums[k] + x ** j
 
     def surge_damping(self, u_r: float) -> float:
         """X [N] of the hull moving at u_r through the water: sigma Xu u_r + (1 - sigma) X_|u|u
@@ -112,10 +109,19 @@ class Vessel:
         return np.array([0.0, *self._crossflow(v_r, r)])
 
     def _crossflow(self, v_r: float, r: float) -> tuple[float, float]:
-        """(Y, N) of :meth:`crossflow` as floats."""
-        local = v_r + self._strips * r
-        drag = -self._strip_factor * np.abs(local) * local
-        return float(_sum(drag)), float(_sum(drag * self._strips))
+        """(Y, N) of :meth:`crossflow` as floats, the strip sum in closed form: the local flow
+        w_k = v_r + x_k r changes sign once along the hull, so with s_k its sign
+        sum s_k w_k^2 = v_r^2 S_0 + 2 v_r r S_1 + r^2 S_2 and sum s_k w_k^2 x_k = v_r^2 S_1 +
+        2 v_r r S_2 + r^2 S_3, S_j = sum s_k x_k^j from the strips' running power sums."""
+        if r > 0.0:
+            first, last = bisect_left(self._strips, -v_r / r), STRIPS      # w >= 0 from x = -v_r / r to the bow
+        elif r < 0.0:
+            first, last = 0, bisect_left(self._strips, -v_r / r)           # w > 0 from the stern to x = -v_r / r
+        else:
+            first, last = 0, (STRIPS if v_r >= 0.0 else 0)
+        s0, s1, s2, s3 = (2.0 * (sums[last] - sums[first]) - sums[STRIPS] for sums in self._power_sums)
+        k, vv, vr, rr = self._strip_factor, v_r * v_r, 2.0 * v_r * r, r * r
+        return -k * (vv * s0 + vr * s1 + rr * s2), -k * (vv * s1 + vr * s2 + rr * s3)
 
     def derivative(self, eta: np.ndarray, nu: np.ndarray, tau: np.ndarray,
                    current: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -128,22 +134,25 @@ class Vessel:
         """(eta', nu') as six floats of the state (north, east, psi, u, v, r) under the body force
         ``tau`` [X, Y, N] and a current [north, east] [m/s]: M nu_r' = tau - C(nu_r) nu_r +
         d(nu_r), d the linear damping -D nu_r (D diagonal) with the blended surge damping in
-        surge, plus the cross-flow drag; nu' = nu_r' + [r v_c, -r u_c, 0] (Fossen 2021, (6.111)-(6.116)).
-        Written on floats where that does each operation as the vector form would; the products
-        with M^-1 and C stay numpy's matrix products (their sums the same as every run's)."""
+        surge, plus the cross-flow drag; nu' = nu_r' + [r v_c, -r u_c, 0] (Fossen 2021,
+        (6.111)-(6.116)), C(nu_r) nu_r = [-a_2 r, a_1 r, a_2 u_r - a_1 v_r] with a = M nu_r
+        (:func:`~.kinematics.coriolis_planar`)."""
         _, _, psi, u, v, r = state
         c, s = math.cos(psi), math.sin(psi)
         north, east = current
-        nu_c = (c * north + s * east, -s * north + c * east)
-        u_r, v_r = u - nu_c[0], v - nu_c[1]
-        nu_r = np.array([u_r, v_r, r])
-        coriolis = (self._coriolis(u_r, v_r, r) @ nu_r).tolist()
+        u_c, v_c = c * north + s * east, -s * north + c * east
+        u_r, v_r = u - u_c, v - v_c
+        (m11, m12, m16), (m21, m22, m26) = self._mass_rows
+        surge = m11 * u_r + m12 * v_r + m16 * r
+        sway = m21 * u_r + m22 * v_r + m26 * r
         cross_y, cross_n = self._crossflow(v_r, r)
-        _, sway, yaw = self._sway_yaw_linear
+        _, sway_linear, yaw_linear = self._sway_yaw_linear
         x, y, n = tau
-        force = np.array([x - coriolis[0] + (self.surge_damping(u_r) + 0.0),
-                          y - coriolis[1] + (sway * v_r + cross_y),
-                          n - coriolis[2] + (yaw * r + cross_n)])
-        accel = (self.mass_inverse @ force).tolist()
+        fx = x + sway * r + self.surge_damping(u_r)
+        fy = y - surge * r + sway_linear * v_r + cross_y
+        fn = n - (sway * u_r - surge * v_r) + yaw_linear * r + cross_n
+        (i11, i12, i16), (i21, i22, i26), (i61, i62, i66) = self._inverse_rows
         return (c * u - s * v, s * u + c * v, r,
-                r * nu_c[1] + accel[0], -r * nu_c[0] + accel[1], 0.0 + accel[2])
+                r * v_c + i11 * fx + i12 * fy + i16 * fn,
+                -r * u_c + i21 * fx + i22 * fy + i26 * fn,
+                i61 * fx + i62 * fy + i66 * fn)

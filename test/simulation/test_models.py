@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 from allocator_pkg.hull.environment_loads import VesselParticulars, current_load
@@ -99,6 +101,32 @@ def test_a_beam_current_loads_the_vessel_at_rest_as_the_capability_analysis_does
     load = current_load(particulars, 1.0, math.pi / 2)
     assert crossflow[1] == pytest.approx(load[1] * 1025.0 / 1026.0, rel=1e-12)
     assert crossflow[2] == pytest.approx(0.0, abs=1e-6)
+
+
+def strip_sum(vessel, v_r, r):
+    """(Y, N) of the cross-flow drag summed strip by strip: -1/2 rho T Cd |w| w dx at every strip
+    centre x, w = v_r + x r (osv.m's loop)."""
+    p = vessel.parameters
+    dx = p.length / 20
+    x = -p.length / 2 + (np.arange(20) + 0.5) * dx
+    w = v_r + x * r
+    drag = -0.5 * p.water_density * p.draught * p.coefficients.current_sway * dx * np.abs(w) * w
+    return math.fsum(drag), math.fsum(drag * x)
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.floats(-4.0, 4.0), st.one_of(st.just(0.0), st.floats(-0.2, 0.2)), st.integers(-1, 20))
+def test_the_crossflow_in_closed_form_is_the_strip_sum(v_r, r, at):
+    """The closed form against the strips one by one, a strip centre where the flow turns included
+    (``at``: v_r set so that w = 0 at that strip's centre)."""
+    vessel = Vessel()
+    if 0 <= at < 20 and r != 0.0:
+        v_r = -r * (-83.0 / 2 + (at + 0.5) * 83.0 / 20)
+    scale = 0.5 * 1025.0 * 5.0 * 0.7 * 83.0 * (abs(v_r) + 41.5 * abs(r)) ** 2
+    y, n = vessel.crossflow(v_r, r)[1:]
+    expected = strip_sum(vessel, v_r, r)
+    assert y == pytest.approx(expected[0], abs=1e-12 * scale + 1e-300)
+    assert n == pytest.approx(expected[1], abs=1e-12 * scale * 41.5 + 1e-300)
 
 
 def test_quaternion_round_trip_and_rotation_is_orthonormal():
