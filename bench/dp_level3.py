@@ -1,8 +1,9 @@
 """What a DNV-ST-0111 Level 3 case costs on this machine, and what a second worker gives.
 
 A fixed set of cases of dp_vessel (``config/scenarios/dp_station_keeping.yaml``'s controller and
-variations): headings 0, 90, 180 and 270 deg, capability numbers 4 and 6, intact and after the loss
-of switchboard_a, seed 0, each ``--settle`` + ``--duration`` simulated seconds. They run
+variations, the particulars' hull and thrust losses, the spectra and the DP system, as a study
+has them): headings 0, 90, 180 and 270 deg, capability numbers 4 and 6, intact and after the
+loss of switchboard_a, seed 0, each ``--settle`` + ``--duration`` simulated seconds. They run
 
 - one after another in this process (the case cost: wall and CPU time per case, cases per
   minute, simulated seconds per wall second);
@@ -32,6 +33,7 @@ from pathlib import Path
 
 from allocator_pkg.configuration.parameters import load_vehicle
 from allocator_pkg.dp.capability_result import INTACT
+from allocator_pkg.dp.inputs.particulars import load_particulars
 from allocator_pkg.dp.level3.case import Case, CaseResult, CaseSetup, Criteria, run_case
 from allocator_pkg.dp.level3.engine import PoolEngine, run_search
 from allocator_pkg.dp.level3.journal import Journal
@@ -46,11 +48,14 @@ CASES = [Case(heading, number, group, 0) for heading in (0.0, 90.0, 180.0, 270.0
 
 
 def case_setup(settle: float, duration: float) -> CaseSetup:
+    """The cases' set-up as a study of dp_vessel has it: the standard's hull for the mean loads, the
+    particulars' thrust losses, the spectra and the DP system."""
     scenario = load_scenario(ROOT / "config" / "scenarios" / "dp_station_keeping.yaml")
-    vehicle = load_vehicle(scenario.vehicle)
-    groups = {g.name: tuple(g.actuators) for g in vehicle.redundancy_groups}
+    particulars = load_particulars(ROOT / "config" / "particulars" / "dp_vessel.yaml")
+    groups = {g.name: tuple(g.actuators) for g in load_vehicle(scenario.vehicle).redundancy_groups}
     return CaseSetup(scenario, WEATHER_CONDITIONS, groups, frozenset(groups),
-                     Criteria(settle=settle, duration=duration))
+                     Criteria(settle=settle, duration=duration), particulars.hull, particulars.frame,
+                     particulars=particulars)
 
 
 def on_pool(setup: CaseSetup, workers: int) -> tuple[float, dict[tuple, CaseResult]]:

@@ -30,14 +30,10 @@ import tempfile
 import time
 from pathlib import Path
 
-from allocator_pkg.configuration.parameters import load_vehicle
-from allocator_pkg.dp.inputs.particulars import load_particulars
-from allocator_pkg.dp.level3.case import Case, CaseSetup, Criteria, GroupFaultLink, case_scenario
-from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
-from allocator_pkg.simulation.closed_loop import ClosedLoop
-from allocator_pkg.simulation.scenario import load_scenario
+from dp_level3 import case_setup
 
-ROOT = Path(__file__).resolve().parents[1]
+from allocator_pkg.dp.level3.case import Case, GroupFaultLink, case_scenario
+from allocator_pkg.simulation.closed_loop import ClosedLoop
 
 
 class Timed:
@@ -80,13 +76,7 @@ def timer_cost(calls: int = 20000) -> float:
 def case_run(settle: float, duration: float, split: bool) -> tuple[dict[str, float], int]:
     """[s] in each timed part over one case after its warm-up, and the steps: ``allocate`` and
     ``step`` (the run's steps) always, with ``split`` the link, control and thrusters too."""
-    scenario = load_scenario(ROOT / "config" / "scenarios" / "dp_station_keeping.yaml")
-    particulars = load_particulars(ROOT / "config" / "particulars" / "dp_vessel.yaml")
-    groups = {g.name: tuple(g.actuators) for g in load_vehicle(scenario.vehicle).redundancy_groups}
-    setup = CaseSetup(scenario, WEATHER_CONDITIONS, groups, frozenset(groups),
-                      Criteria(settle=settle, duration=duration), particulars.hull, particulars.frame,
-                      particulars=particulars)
-    scenario = case_scenario(setup, Case(90.0, 6, "switchboard_a", 0))
+    scenario = case_scenario(case_setup(settle, duration), Case(90.0, 6, "switchboard_a", 0))
     parts = {name: Timed() for name in ("allocate", "link", "control", "thrusters", "step")}
 
     @contextlib.contextmanager

@@ -363,7 +363,7 @@ def write(result: dict, path: Path) -> None:
     if "inprocess_sim" in result:
         lines += ["", *_inprocess_section(result["inprocess_sim"])]
     if "dp_level3" in result:
-        lines += ["", *_level3_section(result["dp_level3"])]
+        lines += ["", *_level3_section(result["dp_level3"], result.get("dp_level3_study"))]
     if "dp_step_costs" in result:
         lines += ["", *_step_costs_section(result["dp_step_costs"])]
     lines += ["", *_load_section(result), "", SOAK]

@@ -170,19 +170,33 @@ def _inprocess_section(run: dict) -> list[str]:
     return lines
 
 
-def _level3_section(run: dict) -> list[str]:
-    """The cost of a Level 3 case and the pool's speed-up (bench/dp_level3.py)."""
+def _level3_section(run: dict, study: dict | None = None) -> list[str]:
+    """The cost of a Level 3 case and the pool's speed-up (bench/dp_level3.py), and the speed-up of
+    a short study's search when measured (``--study``)."""
     inside = run["in_process"]
-    return ["## DP capability Level 3", "",
-            f"`bench/dp_level3.py`: {run['cases']} fixed cases on {run['vessel']} "
-            f"({run['simulated_s_per_case']:g} s simulated each), in this process, then on a pool of one and of "
-            "two workers (start-up included); the results of the three are compared.", "",
-            "| s per case (wall) | cases per minute | real-time factor (wall / CPU) | 1 worker s | 2 workers s | "
-            "speed-up | target | identical |", "|---|---|---|---|---|---|---|---|",
-            f"| {inside['wall_s_per_case']:.2f} | {inside['cases_per_minute']:.1f} | "
-            f"{inside['realtime_factor_wall']:.0f}x / {inside['realtime_factor_cpu']:.0f}x | "
-            f"{run['pool_1_worker']['wall_s']:.1f} | {run['pool_2_workers']['wall_s']:.1f} | "
-            f"{run['speedup_2_over_1']:.2f} | >= {run['target_speedup']:g} | {'yes' if run['identical'] else 'no'} |"]
+    lines = ["## DP capability Level 3", "",
+             f"`bench/dp_level3.py`: {run['cases']} fixed cases on {run['vessel']} "
+             f"({run['simulated_s_per_case']:g} s simulated each), in this process, then on a pool of one and of "
+             "two workers (start-up included); the results of the three are compared.", "",
+             "| s per case (wall) | cases per minute | real-time factor (wall / CPU) | 1 worker s | 2 workers s | "
+             "speed-up | target | identical |", "|---|---|---|---|---|---|---|---|",
+             f"| {inside['wall_s_per_case']:.2f} | {inside['cases_per_minute']:.1f} | "
+             f"{inside['realtime_factor_wall']:.0f}x / {inside['realtime_factor_cpu']:.0f}x | "
+             f"{run['pool_1_worker']['wall_s']:.1f} | {run['pool_2_workers']['wall_s']:.1f} | "
+             f"{run['speedup_2_over_1']:.2f} | >= {run['target_speedup']:g} | {'yes' if run['identical'] else 'no'} |"]
+    if study is None:
+        return lines
+    return [
+        *lines, "",
+        f"`bench/dp_level3.py --study`: the rising search of dp_vessel every 90 deg, {study['seeds']} seeds a "
+        f"condition, {study['simulated_s_per_run']:g} s simulated a run, on one and on two workers, journal "
+        "included; load average before each.", "",
+        "| runs | 1 worker s (load) | 2 workers s (load) | speed-up | target | journals identical |",
+        "|---|---|---|---|---|---|",
+        f"| {study['runs']} | {study['pool_1_worker']['wall_s']:.1f} ({study['pool_1_worker']['load_average']:.1f}) | "
+        f"{study['pool_2_workers']['wall_s']:.1f} ({study['pool_2_workers']['load_average']:.1f}) | "
+        f"{study['speedup_2_over_1']:.2f} | >= {study['target_speedup']:g} | "
+        f"{'yes' if study['identical_journals'] else 'no'} |"]
 
 
 STEP_PARTS = (("allocator_link_besides_allocate", "the link's own work (power reading, sample rules)"),

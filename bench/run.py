@@ -80,6 +80,9 @@ def main(argv: list[str] | None = None) -> int:
                                                   + (["--repeats", "1"] if arguments.quick else [])))
     result["dp_level3"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_level3.py")]
                                               + (["--settle", "10", "--duration", "30"] if arguments.quick else [])))
+    result["dp_level3_study"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_level3.py"), "--study",
+                                                    "--seeds", "2", "--settle", "30", "--duration",
+                                                    "30" if arguments.quick else "120"]))
     result["environment_cost"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "environment_cost.py")]
                                                      + (["--duration", "30"] if arguments.quick else [])))
     result["dp_step_costs"] = json.loads(_capture([sys.executable, str(ROOT / "bench" / "dp_step_costs.py")]

@@ -223,6 +223,12 @@ def test_the_report_gives_the_level3_case_cost_and_speed_up():
            "pool_1_worker": {"wall_s": 30.0}, "pool_2_workers": {"wall_s": 15.0}, "speedup_2_over_1": 2.0,
            "target_speedup": 1.8, "identical": True}
     assert report._level3_section(run)[-1] == "| 1.80 | 33.3 | 367x / 400x | 30.0 | 15.0 | 2.00 | >= 1.8 | yes |"
+    study = {"runs": 64, "seeds": 2, "simulated_s_per_run": 150.0,
+             "pool_1_worker": {"wall_s": 67.2, "load_average": 1.65},
+             "pool_2_workers": {"wall_s": 33.6, "load_average": 1.22}, "speedup_2_over_1": 2.0,
+             "target_speedup": 1.8, "identical_journals": True}
+    assert report._level3_section(run, study)[-1] == "| 64 | 67.2 (1.6) | 33.6 (1.2) | 2.00 | >= 1.8 | yes |"
+
 
 def test_a_sequence_of_the_solver_bench_runs_every_method_through_the_allocator():
     """The bench's per-sequence loop on a few samples (it reads the method in use from the
