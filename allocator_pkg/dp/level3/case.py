@@ -201,6 +201,9 @@ class CaseSetup:
     sea: SiteSea = field(default_factory=SiteSea)
     """The site's peak factor, spreading and directions of the waves and the current relative to
     the wind (the default: DNV-RP-C205's peak factor, long-crested, collinear)."""
+    group_sources: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    """The power sources (switchboards) of each named redundancy group: with the base scenario's
+    power plant, a group's loss takes the generator sets of its switchboards with it."""
 
 
 @dataclass(frozen=True)
@@ -275,13 +278,19 @@ def case_environment(setup: CaseSetup, case: Case) -> EnvironmentSpec:
 
 def case_scenario(setup: CaseSetup, case: Case) -> Scenario:
     """The scenario of one case: its environment (:func:`case_environment`), the seed (the base
-    scenario's plus the case's index), a failure of every actuator of the group at ``settle``, the
-    online consequence analysis off (:data:`NO_ONLINE_CONSEQUENCE`), and the DP system, trip and
-    losses of :mod:`.dp_system` (unless ``setup.dp_system`` is False)."""
+    scenario's plus the case's index), a failure of every actuator of the group at ``settle`` and,
+    with the base scenario's power plant, the loss of every generator set on the group's
+    switchboards at the same time (the plant's own events left out), the online consequence
+    analysis off (:data:`NO_ONLINE_CONSEQUENCE`), and the DP system, trip and losses of
+    :mod:`.dp_system` (unless ``setup.dp_system`` is False)."""
     base, criteria = setup.scenario, setup.criteria
     environment = case_environment(setup, case)
     failed = () if case.group == INTACT else setup.groups[case.group]
     events = tuple(Event(criteria.settle, "fault", actuator=name, mode="failed", value=0.0) for name in failed)
+    if base.power_plant is not None:
+        switchboards = setup.group_sources.get(case.group, ())
+        events += tuple(Event(criteria.settle, "generator_trip", name=s.name)
+                        for s in base.power_plant.generator_sets if s.switchboard in switchboards)
     scenario = replace(base, name=f"{base.name}_l3", duration=criteria.settle + criteria.duration,
                        parameters={**base.parameters, **NO_ONLINE_CONSEQUENCE},
                        seed=base.seed + case.seed, setpoint_position=(0.0, 0.0, 0.0), setpoint_heading=0.0,

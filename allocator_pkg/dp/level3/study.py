@@ -22,8 +22,10 @@ from pathlib import Path
 import numpy as np
 
 from ...configuration.parameters import load_vehicle
+from ...simulation.electric_plant import PlantSpec
 from ...simulation.scenario import load_scenario, vehicle_config
 from ...simulation.scenario_check import check_method_serves, check_vehicle
+from ...vehicle.config import Vehicle
 from ..capability_result import INTACT, WORST, CapabilityResult
 from ..inputs.particulars import load_particulars
 from ..inputs.site import SiteSea, load_site
@@ -91,6 +93,7 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     config = vehicle_config(base.vehicle, base.parameters)
     check_vehicle("dp_vessel", config, str(inputs.vessel))
     check_method_serves(base.method, config)
+    check_plant(base.power_plant, config, inputs)
     analysis = Level2(vehicle, particulars, inputs.method, load_site(inputs.site) if inputs.site else None)
     level2 = analysis.run(step, (Level1(vehicle, particulars, inputs.method).run(step),))
     groups = {name: tuple(member for member in members if member in vehicle.names)
@@ -98,12 +101,31 @@ def prepare(inputs: Level3Inputs) -> Level3Study:
     setup = CaseSetup(base, tuple(analysis.conditions), groups,
                       frozenset(group.name for group in vehicle.redundancy_groups), inputs.criteria,
                       particulars.hull, particulars.frame, particulars=particulars,
-                      sea=analysis.site.sea if analysis.site else SiteSea())
+                      sea=analysis.site.sea if analysis.site else SiteSea(),
+                      group_sources={group.name: tuple(group.sources) for group in vehicle.redundancy_groups})
     headings = tuple(float(h) for h in level2.headings_deg)
     ceilings = {(heading, case): int(level2.numbers[case][k]) for case in (INTACT, *groups)
                 for k, heading in enumerate(headings)}
     search = Level3Search(headings, (INTACT, *groups), inputs.criteria, ceilings, len(analysis.conditions) - 1)
     return Level3Study(inputs, level2, analysis, setup, search)
+
+
+def check_plant(plant: PlantSpec | None, vehicle: Vehicle, inputs: Level3Inputs) -> None:
+    """ValueError when the base scenario's power plant cannot feed the study's vessel: a generator
+    set or consumer on a switchboard that is not one of its power sources, or bus ties other
+    than the vessel's."""
+    if plant is None:
+        return
+    sources = {source.name for source in vehicle.power_sources}
+    named = {s.switchboard for s in plant.generator_sets} | {c.switchboard for c in plant.consumers}
+    if named - sources:
+        raise ValueError(f"--scenario {inputs.scenario.name}: its power_plant feeds "
+                         f"{', '.join(sorted(named - sources))}, not a power source of {inputs.vessel.name} "
+                         f"({', '.join(sorted(sources)) or 'none'})")
+    ties = {(tie.name, tuple(tie.sources), tie.closed) for tie in vehicle.bus_ties}
+    if {(tie.name, tuple(tie.between), tie.closed) for tie in plant.bus_ties} != ties:
+        raise ValueError(f"--scenario {inputs.scenario.name}: its power_plant was read for other bus ties than "
+                         f"those of {inputs.vessel.name}")
 
 
 def study(inputs: Level3Inputs, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -170,6 +192,7 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
     if prepared.setup.dp_system:
         middle = prepared.setup.conditions[len(prepared.setup.conditions) // 2]
         lines.append(describe_dp_system(prepared.setup.scenario, middle.tp))
+    lines.append(power_note(prepared.setup))
     if inputs.heading_step > MAX_STEP_DEG:
         lines.append(f"Headings every {inputs.heading_step:g} deg: coarser than the standard's {MAX_STEP_DEG:g} deg.")
     static = []
@@ -180,6 +203,18 @@ def notes(prepared: Level3Study, finished: dict[tuple, CaseResult]) -> list[str]
     lines.append("Not simulated, the static Level 2 balance already fails them (case heading: condition): "
                  + ("; ".join(static) if static else "none") + ".")
     return lines
+
+
+def power_note(setup: CaseSetup) -> str:
+    """Where the thrusters' power comes from in the cases."""
+    plant = setup.scenario.power_plant
+    if plant is None:
+        return ("Power: no power plant simulated; the allocator has the vessel file's power sources, if any, at "
+                "their capacity, and a named group's loss takes its sources.")
+    return (f"Power: the base scenario's simulated power plant ({len(plant.generator_sets)} generator sets with "
+            "droop governors, the bus frequency, the power management's available power, "
+            f"{'fast load reduction' if plant.load_reduction.enabled else 'no fast load reduction'}; its own events "
+            "left out); a named group's loss takes the generator sets of its switchboards with its thrusters.")
 
 
 def environment_note(setup: CaseSetup) -> str:

@@ -1,5 +1,6 @@
 """The Level 3 case runner: a seeded in-process closed-loop run per (heading, condition, case, seed)."""
 
+import contextlib
 import itertools
 from dataclasses import replace
 
@@ -159,6 +160,47 @@ def test_the_online_consequence_analysis_is_off_and_would_change_no_run(setup, t
         assert getattr(traces[0], name) == getattr(traces[1], name), name
     assert not any(traces[0].consequence_alarm)
     assert any(traces[1].consequence_alarm)                  # number 7 after a switchboard's loss: the alarm
+
+
+PLANT = """
+power_plant:
+  generator_sets:
+    - {name: ga1, switchboard: swbd_a, rating: 3500.0}
+    - {name: ga2, switchboard: swbd_a, rating: 3500.0}
+    - {name: gb1, switchboard: swbd_b, rating: 4500.0}
+    - {name: gb2, switchboard: swbd_b, rating: 4500.0}
+  consumers:
+    - {switchboard: swbd_a, power: 500.0}
+    - {switchboard: swbd_b, power: 500.0}
+events:
+  - {time: 1.0, generator_trip: {generator_set: gb1}}
+"""
+
+
+def test_with_the_base_scenarios_power_plant_a_group_loses_its_switchboards_generator_sets(setup, tmp_path):
+    """A base scenario with a power plant: the cases run it, its own events left out, and a named
+    group's loss takes the generator sets of the group's switchboards with its thrusters."""
+    text = (ROOT / "config/scenarios/dp_station_keeping.yaml").read_text().replace("../", f"{ROOT / 'config'}/")
+    (tmp_path / "plant.yaml").write_text(text + PLANT)
+    base = load_scenario(tmp_path / "plant.yaml")
+    assert [e.kind for e in base.events] == ["generator_trip"]
+    sources = {"switchboard_a": ("swbd_a",), "switchboard_b": ("swbd_b",)}
+    with_plant = replace(setup, scenario=base, group_sources=sources)
+    assert not case_scenario(with_plant, Case(0.0, 3, INTACT, 0)).events
+    scenario = case_scenario(with_plant, Case(0.0, 3, "switchboard_a", 0))
+    assert [(e.time, e.kind, e.actuator or e.name) for e in scenario.events] == [
+        (5.0, "fault", "azimuth_stbd"), (5.0, "fault", "tunnel_fwd"), (5.0, "generator_trip", "ga1"),
+        (5.0, "generator_trip", "ga2")]
+    assert [e.kind for e in case_scenario(setup, Case(0.0, 3, "switchboard_a", 0)).events] == ["fault", "fault"]
+    loop = ClosedLoop(scenario, tmp_path / "run", lambda run, out: contextlib.nullcontext(
+        GroupFaultLink(run, "switchboard_a")), log=lambda _: None)
+    trace = loop.run().trace
+    assert [(round(t, 6), name) for t, name, _ in loop.electric.record.trips] == [(5.0, "ga1"), (5.0, "ga2")]
+    generation = np.array(loop.electric.record.generation)
+    time = np.array(loop.electric.record.time)
+    assert np.all(generation[time > 5.0 + 1e-9, 0] == 0.0) and np.all(generation[time < 5.0, 0] > 0.0)
+    assert np.all(generation[:, 1] > 0.0)
+    assert np.all(np.array(trace.source_available)[np.array(trace.time) > 6.0, 0] == 0.0)
 
 
 @pytest.mark.parametrize("group", [INTACT, "switchboard_b"])

@@ -19,7 +19,7 @@ from allocator_pkg.dp.capability_result import SCOPE_L3
 from allocator_pkg.dp.inputs.site import SiteSea
 from allocator_pkg.dp.level3 import engine as level3_engine
 from allocator_pkg.dp.level3.case import CaseSetup, Criteria
-from allocator_pkg.dp.level3.study import JOURNAL, environment_note
+from allocator_pkg.dp.level3.study import JOURNAL, environment_note, power_note
 from allocator_pkg.dp.standard.weather import WEATHER_CONDITIONS
 from allocator_pkg.simulation.scenario import load_scenario
 
@@ -111,7 +111,9 @@ def test_numbers_follow_the_conditions_and_the_static_ceiling(uninterrupted):
     (["--seeds", "0"], "seeds: an integer >= 1"), (["--headings", "7"], "--headings"),
     (["--position-limit", "-1"], "position_limit"), (["--workers", "0"], "--workers"),
     (["--duration", "nan"], "duration"), (["--level3-criteria", str(DATA / "missing.yaml")], "missing.yaml"),
-    (["--level3-criteria", str(ROOT / "config/dp_vessel.yaml")], "unknown key(s)")])
+    (["--level3-criteria", str(ROOT / "config/dp_vessel.yaml")], "unknown key(s)"),
+    (["--scenario", str(ROOT / "config/scenarios/drilling_rig_power.yaml")],
+     "its power_plant feeds swbd_1, swbd_2, swbd_3, not a power source of dp_vessel.yaml (swbd_a, swbd_b)")])
 def test_bad_inputs_are_refused_before_the_first_case(bad, message, tmp_path, capsys):
     assert main(["--dnv-level3", *FILES, "--out", str(tmp_path), *SMALL, *bad]) == 2
     assert message in capsys.readouterr().err
@@ -233,6 +235,15 @@ def test_the_environment_note_says_which_sea_and_directions(sea, spectra, says, 
                       frozenset(), Criteria(), spectra=spectra, sea=sea)
     note = environment_note(setup)
     assert all(text in note for text in says) and not any(text in note for text in not_said)
+
+
+def test_the_power_note_says_whether_a_plant_is_simulated(tmp_path):
+    base = load_scenario(ROOT / "config/scenarios/dp_station_keeping.yaml")
+    assert power_note(CaseSetup(base, WEATHER_CONDITIONS, {}, frozenset(), Criteria())).startswith(
+        "Power: no power plant simulated")
+    plant = load_scenario(ROOT / "config/scenarios/drilling_rig_power.yaml")
+    note = power_note(CaseSetup(plant, WEATHER_CONDITIONS, {}, frozenset(), Criteria()))
+    assert "simulated power plant (6 generator sets" in note and "fast load reduction" in note
 
 
 @pytest.mark.slow
