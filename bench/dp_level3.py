@@ -1,9 +1,10 @@
 """What a DNV-ST-0111 Level 3 case costs on this machine, and what a second worker gives.
 
 A fixed set of cases of dp_vessel (``config/scenarios/dp_station_keeping.yaml``'s controller and
-variations, the particulars' hull and thrust losses, the spectra and the DP system, as a study
-has them): headings 0, 90, 180 and 270 deg, capability numbers 4 and 6, intact and after the
-loss of switchboard_a, seed 0, each ``--settle`` + ``--duration`` simulated seconds. They run
+variations, the standard's hull of the particulars for the mean loads, their thrust losses, the
+spectra and the DP system, as a study has them): headings 0, 90, 180 and 270 deg, capability
+numbers 4 and 6, intact and after the loss of switchboard_a, seed 0, each ``--settle`` +
+``--duration`` simulated seconds. They run
 
 - one after another in this process (the case cost: wall and CPU time per case, cases per
   minute, simulated seconds per wall second);

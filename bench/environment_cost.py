@@ -39,7 +39,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 class TimedLink(InProcessLink):
     """The in-process link adding up the wall time of its ``Allocator.allocate`` calls alone (the
-    link's own per-sample work, the power reading and the consequence analysis among it, is the
+    link's own per-sample work, the power drawn per source and the consequence analysis among it, is the
     node's work beside the solve and counts in the rest)."""
 
     def __init__(self, scenario) -> None:

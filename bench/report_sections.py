@@ -199,7 +199,7 @@ def _level3_section(run: dict, study: dict | None = None) -> list[str]:
         f"{'yes' if study['identical_journals'] else 'no'} |"]
 
 
-STEP_PARTS = (("allocator_link_besides_allocate", "the link's own work (power reading, sample rules)"),
+STEP_PARTS = (("allocator_link_besides_allocate", "the link's own work (power drawn per source, sample rules)"),
               ("control_and_observer", "control system (measurement, observer, controller)"),
               ("thrusters", "simulated thrusters"), ("hull_environment_trace", "hull, environment, trace"))
 

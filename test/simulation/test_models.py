@@ -117,16 +117,19 @@ def strip_sum(vessel, v_r, r):
 @settings(max_examples=400, deadline=None)
 @given(st.floats(-4.0, 4.0), st.one_of(st.just(0.0), st.floats(-0.2, 0.2)), st.integers(-1, 20))
 def test_the_crossflow_in_closed_form_is_the_strip_sum(v_r, r, at):
-    """The closed form against the strips one by one, a strip centre where the flow turns included
-    (``at``: v_r set so that w = 0 at that strip's centre)."""
+    """The closed form against the strips one by one (``scale`` bounds |Y|, times L/2 |N|), with the
+    flow turning at a strip's centre too (``at``: v_r set so that w = 0 there, to rounding)."""
     vessel = Vessel()
+    p = vessel.parameters
     if 0 <= at < 20 and r != 0.0:
-        v_r = -r * (-83.0 / 2 + (at + 0.5) * 83.0 / 20)
-    scale = 0.5 * 1025.0 * 5.0 * 0.7 * 83.0 * (abs(v_r) + 41.5 * abs(r)) ** 2
+        v_r = -r * (-p.length / 2 + (at + 0.5) * p.length / 20)
+    half = p.length / 2
+    scale = 0.5 * p.water_density * p.draught * p.coefficients.current_sway * p.length * (abs(v_r) + half * abs(r)) ** 2
     y, n = vessel.crossflow(v_r, r)[1:]
     expected = strip_sum(vessel, v_r, r)
-    assert y == pytest.approx(expected[0], abs=1e-12 * scale + 1e-300)
-    assert n == pytest.approx(expected[1], abs=1e-12 * scale * 41.5 + 1e-300)
+    floor = 1e-300                                  # scale underflows for the tiniest flows
+    assert y == pytest.approx(expected[0], abs=1e-12 * scale + floor)
+    assert n == pytest.approx(expected[1], abs=1e-12 * scale * half + floor)
 
 
 def test_quaternion_round_trip_and_rotation_is_orthonormal():
