@@ -122,7 +122,7 @@ def test_the_crossflow_in_closed_form_is_the_strip_sum(v_r, r, at):
     vessel = Vessel()
     p = vessel.parameters
     if 0 <= at < 20 and r != 0.0:
-        v_r = -r * (-p.length / 2 + (at + 0.5) * p.length / 20)
+        v_r = -r * (-p.length / 2 + (at + 0.5) * (p.length / 20))     # w = 0 exactly at that centre
     half = p.length / 2
     scale = 0.5 * p.water_density * p.draught * p.coefficients.current_sway * p.length * (abs(v_r) + half * abs(r)) ** 2
     y, n = vessel.crossflow(v_r, r)[1:]
