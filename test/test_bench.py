@@ -28,6 +28,29 @@ def test_the_report_is_rebuilt_from_the_committed_results(tmp_path):
     assert text == (ROOT / "docs" / "performance.md").read_text()
 
 
+def test_only_re_measures_the_named_sections_and_keeps_the_others(tmp_path, monkeypatch):
+    run = bench_module("run")
+    results, kept = tmp_path / "results", json.loads((ROOT / "bench" / "results" / "latest.json").read_text())
+    results.mkdir()
+    (tmp_path / "docs").mkdir()
+    (results / "latest.json").write_text(json.dumps(kept))
+    fresh = {**kept["dp_step_costs"], "allocate_us": 1.0}
+    measured = []
+    monkeypatch.setattr(run, "RESULTS", results)
+    monkeypatch.setattr(run, "ROOT", tmp_path)
+    monkeypatch.setattr(run, "measure", lambda name, quick: measured.append(name) or fresh)
+    assert run.main(["--only", "dp_step_costs"]) == 0
+    result = json.loads((results / "latest.json").read_text())
+    assert measured == ["dp_step_costs"] and result["dp_step_costs"] == fresh and result["solver"] == kept["solver"]
+    assert result["remeasured"]["sections"] == ["dp_step_costs"]
+    text = (tmp_path / "docs" / "performance.md").read_text()
+    assert (f"Re-measured alone on {result['remeasured']['date']}: dp_step_costs; the other "
+            f"sections are from the run of {kept['machine']['date']}.") in text
+    with pytest.raises(SystemExit):
+        run.main(["--only", "dp_step_cost"])
+    assert measured == ["dp_step_costs"]
+
+
 def test_the_soak_judges_each_command_by_the_state_at_its_stamp():
     vehicle = load_vehicle(ROOT / "config" / "dp_vessel.yaml")
     start = soak.State(vehicle, {})
