@@ -12,6 +12,7 @@ from __future__ import annotations
 from ..vehicle.config import BusTie
 from . import schema
 from .fields import filled, tie_field
+from .power import unique_names
 from .values import MISSING, Reader
 
 TIES_KEY = "power.bus_ties"
@@ -21,14 +22,13 @@ def parse_bus_ties(reader: Reader, sources: list[str]) -> tuple[tuple[BusTie, ..
     """(bus ties, the parameter names of their keys) of the parameters; ``sources`` are the
     valid names of power.sources."""
     given = reader.value(schema.VEHICLE_KEY_BY_NAME[TIES_KEY])
-    listed = [] if given in (None, MISSING) else given
-    if listed and not sources:
+    if given not in (None, MISSING) and given and not sources:
         reader.fail(TIES_KEY, "a bus tie joins two of power.sources; there are none")
         return (), set()
     ties: list[BusTie] = []
     known: set[str] = set()
     pairs: dict[frozenset[str], str] = {}
-    for name in _valid_names(reader, listed, sources):
+    for name in unique_names(reader, TIES_KEY, given, sources, "a power source's name; name the tie apart"):
         values = {}
         for key in schema.TIE_KEYS:
             parameter = schema.tie_parameter(name, key.name)
@@ -49,18 +49,3 @@ def parse_bus_ties(reader: Reader, sources: list[str]) -> tuple[tuple[BusTie, ..
             pairs[frozenset(joined)] = name
             ties.append(filled(BusTie, values, tie_field, name=name, sources=tuple(joined)))
     return tuple(ties), known
-
-
-def _valid_names(reader: Reader, listed: list[str], sources: list[str]) -> list[str]:
-    """The unique, valid tie names of ``power.bus_ties``."""
-    valid: list[str] = []
-    for name in listed:
-        if not schema.ACTUATOR_NAME.match(name):
-            reader.fail(TIES_KEY, f"'{name}' is not a valid name (letters, digits, '_', starting with a letter)")
-        elif name in valid:
-            reader.fail(TIES_KEY, f"duplicate name '{name}'")
-        elif name in sources:
-            reader.fail(TIES_KEY, f"'{name}' is a power source's name; name the tie apart")
-        else:
-            valid.append(name)
-    return valid

@@ -12,6 +12,7 @@ The allocation keeps each source's draw within its available power
 from __future__ import annotations
 
 import math
+from collections.abc import Collection
 from typing import Any
 
 from ..vehicle.config import ActuatorConfig, PowerSource, RedundancyGroup
@@ -27,7 +28,8 @@ def parse_power(reader: Reader, names: list[str], actuators: list[ActuatorConfig
         tuple[PowerSource, ...], tuple[RedundancyGroup, ...], set[str]]:
     """(sources, groups, the parameter names of their keys) of the parameters; ``names`` are
     actuators.names, ``actuators`` those built."""
-    listed = _names(reader, "power.sources", names)
+    given = reader.value(schema.VEHICLE_KEY_BY_NAME["power.sources"])
+    listed = unique_names(reader, "power.sources", given, names, "an actuator's name; name the source apart")
     sources, known = _sources(reader, listed)
     _feeds(reader, actuators, set(listed))
     groups, group_keys = _groups(reader, names, set(listed))
@@ -36,9 +38,10 @@ def parse_power(reader: Reader, names: list[str], actuators: list[ActuatorConfig
     return sources, groups, known | group_keys
 
 
-def _names(reader: Reader, key: str, taken: list[str]) -> list[str]:
-    """The unique, valid names of a name list (``power.sources``, ``redundancy_groups.names``)."""
-    given = reader.value(schema.VEHICLE_KEY_BY_NAME[key])
+def unique_names(reader: Reader, key: str, given: Any, taken: Collection[str] = (), clash: str = "") -> list[str]:
+    """The unique, valid names of the name list ``key`` (``power.sources``,
+    ``redundancy_groups.names``, ``power.bus_ties``) of value ``given``, none of them one of
+    ``taken`` (``clash``: what such a name is, in the problem's text)."""
     valid: list[str] = []
     for name in given if given not in (None, MISSING) else []:
         if not schema.ACTUATOR_NAME.match(name):
@@ -46,7 +49,7 @@ def _names(reader: Reader, key: str, taken: list[str]) -> list[str]:
         elif name in valid:
             reader.fail(key, f"duplicate name '{name}'")
         elif name in taken:
-            reader.fail(key, f"'{name}' is an actuator's name; name the source apart")
+            reader.fail(key, f"'{name}' is {clash}")
         else:
             valid.append(name)
     return valid
@@ -88,7 +91,8 @@ def _feeds(reader: Reader, actuators: list[ActuatorConfig], sources: set[str]) -
 
 def _groups(reader: Reader, actuators: list[str], sources: set[str]) -> tuple[tuple[RedundancyGroup, ...], set[str]]:
     groups, known = [], set()
-    for name in _names(reader, "redundancy_groups.names", []):
+    given = reader.value(schema.VEHICLE_KEY_BY_NAME["redundancy_groups.names"])
+    for name in unique_names(reader, "redundancy_groups.names", given):
         values: dict[str, Any] = {}
         for key in schema.GROUP_KEYS:
             parameter = schema.group_parameter(name, key.name)
