@@ -179,22 +179,12 @@ class PoweredCapability(Capability):
 def within(limits: PowerLimits, model: Model, actuators: Sequence[ActuatorConfig], force: np.ndarray,
            pieces) -> bool:
     """Whether the extended forces keep every source within its usable power, with r and q as
-    the rows bound them (``actuators``: the variant's, with its thrust ranges)."""
-    names = [a.name for a in actuators]
-    rot, scalar = list(model.rot), list(model.scalar)
-    fractions = []
-    for name in limits.thrusters:
-        index = names.index(name)
-        if index in rot:
-            c1, c2 = model.rot_columns[rot.index(index)]
-            fraction = max((a1 * force[c1] + a2 * force[c2] for a1, a2 in _fraction_rows(pieces[rot.index(index)])),
-                           default=0.0)
-        else:
-            value, actuator = force[model.scalar_columns[scalar.index(index)]], actuators[index]
-            fraction = max(value / actuator.thrust_max if actuator.thrust_max > 0.0 else 0.0,
-                           value / actuator.thrust_min if actuator.thrust_min < 0.0 else 0.0)
-        fractions.append(max(0.0, *(slope * fraction + intercept for slope, intercept in CHORDS)))
-    return bool(np.all(limits.load @ np.array(fractions) <= 1.0))
+    the rows bound them (``actuators``: the variant's, with its thrust ranges): r_i the largest of
+    its :func:`fraction_entries` rows at ``force`` (0 without rows), q_i the largest chord there."""
+    fractions = [max((sum(coefficient * force[column] for column, coefficient in row) for row in rows), default=0.0)
+                 for rows in fraction_entries(limits, model, actuators, pieces)]
+    powers = [max(0.0, *(slope * fraction + intercept for slope, intercept in CHORDS)) for fraction in fractions]
+    return bool(np.all(limits.load @ np.array(powers) <= 1.0))
 
 
 def fraction_entries(limits: PowerLimits, model: Model, actuators: Sequence[ActuatorConfig],
