@@ -22,8 +22,8 @@ from allocator_pkg.ros.process import (
 
 WAITS_FOR_SIGINT = """
 import sys, time
-print("ready", flush=True)
 try:
+    print("ready", flush=True)
     time.sleep(60)
 except KeyboardInterrupt:
     print("interrupted", flush=True)
@@ -42,6 +42,8 @@ def python(code):
 
 
 def wait_for(process, text, timeout=20.0):
+    """Until ``text`` is in the child's output. Wait for a whole line: an unbuffered print writes
+    the text and the newline apart, and a signal between the two ends the print."""
     deadline = time.monotonic() + timeout
     while text not in process.output():
         assert process.poll() is None and time.monotonic() < deadline, process.output()
@@ -98,7 +100,7 @@ def test_a_child_is_stopped_with_sigint_and_reaped_its_output_in_a_file(tmp_path
     log = tmp_path / "child.log"
     log.write_text("a previous run\n")
     with child_process(python(WAITS_FOR_SIGINT), output=log) as process:
-        wait_for(process, "ready")
+        wait_for(process, "ready\n")
     assert process.returncode == 3                      # its own handler ran: SIGINT, not a kill
     assert process.output() == log.read_text() == "ready\ninterrupted\n"
     with pytest.raises(ProcessLookupError):
@@ -107,14 +109,14 @@ def test_a_child_is_stopped_with_sigint_and_reaped_its_output_in_a_file(tmp_path
 
 def test_a_child_that_ignores_sigint_is_killed():
     with child_process(python(IGNORES_SIGINT)) as process:
-        wait_for(process, "ready")
+        wait_for(process, "ready\n")
         assert process.stop(timeout=0.5) == -signal.SIGKILL
     assert process.stop() == -signal.SIGKILL            # ended already: its exit code at once
 
 
 def test_an_error_raised_while_the_child_runs_carries_its_output():
     with pytest.raises(RuntimeError) as raised, child_process(python(WAITS_FOR_SIGINT)) as process:
-        wait_for(process, "ready")
+        wait_for(process, "ready\n")
         raise RuntimeError("no answer")
     assert raised.value.__notes__ == [f"{os.path.basename(sys.executable)} output:\nready\ninterrupted\n"]
     assert process.returncode == 3
