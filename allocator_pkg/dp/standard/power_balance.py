@@ -21,8 +21,8 @@ piece: a chord of a loss or of a rudder's fan) and q_i above the chords of
 r^(3/2) at r = 0, 0.05, ..., 1 (at most 0.002 high), and one row per such source,
 sum_i s_ji P_B,i q_i <= P_usable,j. Both approximations overstate the power: the balance is
 conservative. A source that can give every thruster it feeds its full P_B share cannot bind and
-has no rows. :meth:`PoweredCapability.attains` solves without the rows first, where that decides
-the answer. Not verified by DNV.
+has no rows. Level 1's balance (:class:`~..case_balance.CaseBalance`) solves without the rows first
+where that decides the answer (:func:`within`). Not verified by DNV.
 """
 
 from __future__ import annotations
@@ -132,27 +132,10 @@ class PoweredCapability(Capability):
                              "thrust region (--method qp or lp)")
         self.limits = limits
         self._rows: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
-        self._enough: float | None = None
-
-    def attains(self, tau, multiple: float, first: int = 0) -> tuple[bool, int]:
-        """:meth:`Capability.attains` with the power: each combination of pieces is first solved
-        without the power rows; when that falls short of ``multiple``, or its forces scaled to
-        ``multiple`` keep every source within its power, it answers as the whole programme would."""
-        self._enough = multiple
-        try:
-            return super().attains(tau, multiple, first)
-        finally:
-            self._enough = None
 
     def _programme(self, cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces):
         """The programme with the columns r_i, q_i of each powered thruster after the others,
-        their rows, and one row per source; the solution cut back to the programme's columns.
-        Within :meth:`attains`, the programme without the power rows where it decides the answer."""
-        if self._enough is not None and not np.any(b_eq):
-            plain = super()._programme(cost, a_ub, b_ub, a_eq, b_eq, bounds, pieces)
-            if not plain.usable or plain.x[-1] < self._enough or self._within(
-                    plain.x[:-1] * (self._enough / plain.x[-1]), pieces):
-                return plain
+        their rows, and one row per source; the solution cut back to the programme's columns."""
         base, extra = len(cost), 2 * len(self.limits.thrusters)
         key = (base, tuple(pieces))
         if key not in self._rows:
@@ -166,10 +149,6 @@ class PoweredCapability(Capability):
         if result.usable:
             result.x = result.x[:base]
         return result
-
-    def _within(self, force: np.ndarray, pieces) -> bool:
-        """Whether the extended forces keep every source within its usable power (:func:`within`)."""
-        return within(self.limits, self.model, self.vehicle.actuators, force, pieces)
 
     def _power_rows(self, base: int, pieces) -> tuple[np.ndarray, np.ndarray]:
         """(rows, right-hand sides) of the power (:func:`power_rows`)."""

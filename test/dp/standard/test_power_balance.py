@@ -153,7 +153,7 @@ def test_the_faces_next_to_a_cone_bound_its_forces_as_the_whole_polygon(start, w
 @given(angle=st.floats(0.0, 2.0 * math.pi), yaw=st.floats(-1.0, 1.0), capacity_a=st.floats(300.0, 1200.0),
        factor=st.sampled_from([0.5, 0.99, 1.01, 2.0]))
 def test_attains_answers_as_the_whole_programme(angle, yaw, capacity_a, factor):
-    # attains solves without the power rows first where that decides; reach always with them.
+    # attains and reach, both with the power rows, agree on what the power lets the thrusters reach.
     capability = powered(box(capacity_a, 2500.0, 1000.0), dict.fromkeys(BOX_NAMES, 1000.0))
     tau = np.array([math.cos(angle), math.sin(angle), 0.0, 0.0, 0.0, yaw])
     most = capability.reach(tau)[0]
