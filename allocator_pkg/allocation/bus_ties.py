@@ -13,6 +13,7 @@ load by their droop: each source is within its available power exactly when the 
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TypeAlias
 
@@ -22,6 +23,23 @@ from ..effectiveness.power_rows import tied_reach
 from ..vehicle.config import BusTie
 
 TieStates: TypeAlias = dict[str, bool]
+
+
+def bus_heads(sources: Sequence[str], closed: Iterable[Sequence[str]]) -> list[int]:
+    """Per source, the index of the first source (in ``sources`` order) of its bus, the sources
+    joined by the ``closed`` ties (each the names of the two sources it joins)."""
+    head = list(range(len(sources)))
+    index = {name: j for j, name in enumerate(sources)}
+
+    def root(j: int) -> int:
+        while head[j] != j:
+            j = head[j]
+        return j
+
+    for first, second in closed:
+        a, b = sorted((root(index[first]), root(index[second])))
+        head[b] = a
+    return [root(j) for j in range(len(sources))]
 
 
 @dataclass
@@ -88,19 +106,8 @@ class BusTies:
 
     def _head(self) -> np.ndarray:
         """:attr:`head` made from the ties' states."""
-        head = np.arange(len(self.sources))
-        index = {name: j for j, name in enumerate(self.sources)}
-
-        def root(j: int) -> int:
-            while head[j] != j:
-                j = int(head[j])
-            return j
-
-        for tie in self.ties:
-            if self.closed[tie.name]:
-                a, b = sorted((root(index[tie.sources[0]]), root(index[tie.sources[1]])))
-                head[b] = a
-        return np.array([root(j) for j in range(len(self.sources))], dtype=int)
+        closed = [tie.sources for tie in self.ties if self.closed[tie.name]]
+        return np.array(bus_heads(self.sources, closed), dtype=int)
 
     def pool_shares(self, shares: np.ndarray) -> np.ndarray:
         """The (r x m) feed shares by row: each thruster's shares on a bus summed into the bus's

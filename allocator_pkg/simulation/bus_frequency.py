@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from ..allocation.bus_ties import bus_heads
 from .generator_set import GeneratorSet
 
 
@@ -30,21 +31,12 @@ class BusTieSpec:
 
 
 def buses(switchboards: Sequence[str], ties: dict[str, BusTieSpec], closed: dict[str, bool]) -> list[tuple[str, ...]]:
-    """The switchboards grouped into buses by the closed ties, each bus in switchboard order."""
-    root = {name: name for name in switchboards}
-
-    def find(name: str) -> str:
-        while root[name] != name:
-            name = root[name]
-        return name
-
-    for tie in ties.values():
-        if closed[tie.name]:
-            a, b = (find(name) for name in tie.between)
-            root[b] = a
-    groups: dict[str, list[str]] = {}
-    for name in switchboards:
-        groups.setdefault(find(name), []).append(name)
+    """The switchboards grouped into buses by the closed ties (:func:`~...allocation.bus_ties.bus_heads`,
+    as the allocator groups its power sources), each bus in switchboard order."""
+    heads = bus_heads(switchboards, [tie.between for tie in ties.values() if closed[tie.name]])
+    groups: dict[int, list[str]] = {}
+    for name, head in zip(switchboards, heads):
+        groups.setdefault(head, []).append(name)
     return [tuple(group) for group in groups.values()]
 
 
