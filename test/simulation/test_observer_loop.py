@@ -13,6 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import signal
+from test_observer import steady_amplitude
 
 from allocator_pkg.simulation.controller import Gains
 from allocator_pkg.simulation.frequency_domain import LinearLoop, current_vector, linear_damping
@@ -55,21 +56,6 @@ def test_a_bad_loop_value_is_refused_naming_its_key(key, value):
         ObservedLoop(VESSEL.mass, VESSEL.linear_damping, GAINS, **values)
 
 
-def observer_alone_amplitude(period: float, dof: int, omega: float) -> float:
-    """|eta^ / y| of DOF ``dof`` from a time-domain run of the observer on a measured sinusoid."""
-    estimator = observer(period)
-    estimator.start(np.zeros(3))
-    steps = round(1500.0 / DT)
-    found = []
-    for k in range(steps):
-        measured = np.zeros(3)
-        measured[dof] = math.sin(omega * k * DT)
-        estimator.step(measured, np.zeros(3), DT)
-        if k > steps - round(4 * 2 * math.pi / omega / DT):
-            found.append(estimator.eta[dof])
-    return max(abs(v) for v in found)
-
-
 @pytest.mark.slow
 @pytest.mark.parametrize("period", [6.0, 11.0])
 @pytest.mark.parametrize("dof", [0, 1, 2])
@@ -82,7 +68,7 @@ def test_the_observer_rows_give_the_estimate_a_time_domain_observer_shows(period
     for omega in (0.1, math.pi / period, 2.0 * math.pi / period, 2.0):
         # the observer's rows, fed by y (the noise column)
         estimate = np.linalg.solve(1j * omega * np.eye(15) - a[rows, rows], b[rows, 9 + dof])[6 + dof]
-        assert abs(estimate) == pytest.approx(observer_alone_amplitude(period, dof, omega), rel=0.03, abs=2e-3)
+        assert abs(estimate) == pytest.approx(steady_amplitude(observer(period), dof, omega), rel=0.03, abs=2e-3)
 
 
 @pytest.mark.parametrize("feedforward", [None, 20.0])
